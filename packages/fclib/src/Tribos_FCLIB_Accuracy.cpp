@@ -1,0 +1,103 @@
+#include "Tribos_FCLIB_Accuracy.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace Tribos {
+namespace FCLIB {
+
+std::array<double, 3> projectOntoCoulombCone(const std::array<double, 3>& r, double mu) {
+  const double normal = r[0];
+  const double normT = std::hypot(r[1], r[2]);
+  if (mu * normT <= -normal) return {0.0, 0.0, 0.0};  // polar cone
+  if (normT <= mu * normal) return r;                 // already in K
+  // Here normT > 0: otherwise one of the two tests above holds.
+  const double t = (normal + mu * normT) / (1.0 + mu * mu);
+  const double scale = mu * t / normT;
+  return {t, scale * r[1], scale * r[2]};
+}
+
+namespace {
+
+double norm2(const std::vector<double>& x) {
+  double sum = 0.0;
+  for (double v : x) sum += v * v;
+  return std::sqrt(sum);
+}
+
+double safeDivide(double value, double normalizer) {
+  return normalizer > DBL_MIN ? value / normalizer : value;
+}
+
+}  // namespace
+
+NaturalMapError naturalMapError(const std::vector<double>& r, const std::vector<double>& u,
+                                const std::vector<double>& mu, const std::vector<double>& q) {
+  const std::size_t m = 3 * mu.size();
+  if (r.size() != m || u.size() != m || q.size() != m)
+    throw std::runtime_error("naturalMapError: r, u, q have " + std::to_string(r.size()) + ", " +
+                             std::to_string(u.size()) + ", " + std::to_string(q.size()) +
+                             " entries, expected 3 x " + std::to_string(mu.size()) +
+                             " contacts");
+  double sum = 0.0;
+  for (std::size_t c = 0; c < mu.size(); ++c) {
+    const double* rc = &r[3 * c];
+    const double* uc = &u[3 * c];
+    const double uNmodified = uc[0] + mu[c] * std::hypot(uc[1], uc[2]);
+    const std::array<double, 3> p =
+        projectOntoCoulombCone({rc[0] - uNmodified, rc[1] - uc[1], rc[2] - uc[2]}, mu[c]);
+    for (int k = 0; k < 3; ++k) sum += (rc[k] - p[k]) * (rc[k] - p[k]);
+  }
+  NaturalMapError e;
+  e.absolute = std::sqrt(sum);
+  e.normQ = norm2(q);
+  e.normR = norm2(r);
+  e.normU = norm2(u);
+  e.relativeToQ = safeDivide(e.absolute, e.normQ);
+  e.relativeToMax = safeDivide(e.absolute, std::max({e.normQ, e.normR, e.normU}));
+  return e;
+}
+
+NaturalMapError naturalMapError(const LocalProblem& problem, const std::vector<double>& r) {
+  if (problem.spacedim != 3)
+    throw std::runtime_error("naturalMapError: only spacedim = 3 is supported");
+  std::vector<double> u;
+  problem.W.multiply(r, u);
+  for (std::size_t k = 0; k < u.size(); ++k) u[k] += problem.q[k];
+  return naturalMapError(r, u, problem.mu, problem.q);
+}
+
+GlobalReduction reduceGlobal(const GlobalProblem& problem, const std::vector<double>& r,
+                             const SolveM& solveM) {
+  if (problem.G)
+    throw std::runtime_error("reduceGlobal: problems with equality constraints G are not "
+                             "supported");
+  GlobalReduction out;
+  // v = M^{-1}(H r + f)
+  std::vector<double> rhs;
+  problem.H.multiply(r, rhs);
+  for (std::size_t k = 0; k < rhs.size(); ++k) rhs[k] += problem.f[k];
+  solveM(rhs, out.v);
+  problem.H.multiplyTranspose(out.v, out.u);
+  for (std::size_t k = 0; k < out.u.size(); ++k) out.u[k] += problem.w[k];
+  // q = H' M^{-1} f + w: the velocity at r = 0.
+  std::vector<double> vFree;
+  solveM(problem.f, vFree);
+  problem.H.multiplyTranspose(vFree, out.q);
+  for (std::size_t k = 0; k < out.q.size(); ++k) out.q[k] += problem.w[k];
+  return out;
+}
+
+NaturalMapError naturalMapError(const GlobalProblem& problem, const std::vector<double>& r,
+                                const SolveM& solveM) {
+  if (problem.spacedim != 3)
+    throw std::runtime_error("naturalMapError: only spacedim = 3 is supported");
+  const GlobalReduction red = reduceGlobal(problem, r, solveM);
+  return naturalMapError(r, red.u, problem.mu, red.q);
+}
+
+}  // namespace FCLIB
+}  // namespace Tribos

@@ -1,0 +1,180 @@
+#include "Tribos_FCLIB_SparseMatrix.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <stdexcept>
+
+namespace Tribos {
+namespace FCLIB {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& what, const std::string& why) {
+  throw std::runtime_error(what + ": " + why);
+}
+
+void checkShape(int m, int n, const std::string& what) {
+  if (m < 0 || n < 0)
+    fail(what, "negative dimension " + std::to_string(m) + " x " + std::to_string(n));
+}
+
+// Validates a pointer array of 'count'+1 entries that indexes 'nnzAvailable'
+// entries: starts at 0, non-decreasing, last entry within the data.
+void checkPointers(const std::vector<int>& ptr, int count, std::size_t nnzAvailable,
+                   const std::string& what) {
+  if (ptr.size() != static_cast<std::size_t>(count) + 1)
+    fail(what, "pointer array p has " + std::to_string(ptr.size()) + " entries, expected " +
+                   std::to_string(count + 1));
+  if (ptr[0] != 0) fail(what, "pointer array p does not start at 0");
+  for (int k = 0; k < count; ++k)
+    if (ptr[k + 1] < ptr[k]) fail(what, "pointer array p decreases at " + std::to_string(k));
+  if (static_cast<std::size_t>(ptr[count]) > nnzAvailable)
+    fail(what, "pointer array p ends at " + std::to_string(ptr[count]) + " but only " +
+                   std::to_string(nnzAvailable) + " entries are stored");
+}
+
+void checkIndices(const std::vector<int>& idx, std::size_t count, int bound,
+                  const std::string& arrayName, const std::string& what) {
+  for (std::size_t k = 0; k < count; ++k)
+    if (idx[k] < 0 || idx[k] >= bound)
+      fail(what, "index " + arrayName + "[" + std::to_string(k) + "] = " +
+                     std::to_string(idx[k]) + " is outside [0, " + std::to_string(bound) + ")");
+}
+
+}  // namespace
+
+void SparseMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
+  if (x.size() != static_cast<std::size_t>(n))
+    throw std::runtime_error("SparseMatrix::multiply: x has " + std::to_string(x.size()) +
+                             " entries, matrix has " + std::to_string(n) + " columns");
+  y.assign(m, 0.0);
+  for (int r = 0; r < m; ++r) {
+    double sum = 0.0;
+    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) sum += val[k] * x[col[k]];
+    y[r] = sum;
+  }
+}
+
+void SparseMatrix::multiplyTranspose(const std::vector<double>& x, std::vector<double>& y) const {
+  if (x.size() != static_cast<std::size_t>(m))
+    throw std::runtime_error("SparseMatrix::multiplyTranspose: x has " +
+                             std::to_string(x.size()) + " entries, matrix has " +
+                             std::to_string(m) + " rows");
+  y.assign(n, 0.0);
+  for (int r = 0; r < m; ++r)
+    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) y[col[k]] += val[k] * x[r];
+}
+
+SparseMatrix SparseMatrix::fromTriplets(int m, int n, const std::vector<int>& row,
+                                        const std::vector<int>& column,
+                                        const std::vector<double>& value,
+                                        const std::string& what) {
+  checkShape(m, n, what);
+  const std::size_t count = row.size();
+  if (column.size() != count || value.size() != count)
+    fail(what, "triplet arrays have different lengths (" + std::to_string(row.size()) + ", " +
+                   std::to_string(column.size()) + ", " + std::to_string(value.size()) + ")");
+  checkIndices(row, count, m, "i", what);
+  checkIndices(column, count, n, "p", what);
+
+  // Order the entries by (row, column), keeping file order among duplicates so
+  // that the summation order, hence the result, is deterministic.
+  std::vector<std::size_t> order(count);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return row[a] != row[b] ? row[a] < row[b] : column[a] < column[b];
+  });
+
+  SparseMatrix A;
+  A.m = m;
+  A.n = n;
+  A.rowptr.assign(m + 1, 0);
+  A.col.reserve(count);
+  A.val.reserve(count);
+  int lastRow = -1, lastCol = -1;
+  for (std::size_t k : order) {
+    if (row[k] == lastRow && column[k] == lastCol) {
+      A.val.back() += value[k];
+      continue;
+    }
+    A.col.push_back(column[k]);
+    A.val.push_back(value[k]);
+    ++A.rowptr[row[k] + 1];
+    lastRow = row[k];
+    lastCol = column[k];
+  }
+  for (int r = 0; r < m; ++r) A.rowptr[r + 1] += A.rowptr[r];
+  return A;
+}
+
+SparseMatrix SparseMatrix::fromCSR(int m, int n, const std::vector<int>& rowptr,
+                                   const std::vector<int>& column,
+                                   const std::vector<double>& value, const std::string& what) {
+  checkShape(m, n, what);
+  checkPointers(rowptr, m, std::min(column.size(), value.size()), what);
+  const int count = rowptr[m];
+  checkIndices(column, count, n, "i", what);
+  // Expand to triplets and canonicalize; rows need not be sorted in the file.
+  std::vector<int> row(count);
+  for (int r = 0; r < m; ++r)
+    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) row[k] = r;
+  return fromTriplets(m, n, row, std::vector<int>(column.begin(), column.begin() + count),
+                      std::vector<double>(value.begin(), value.begin() + count), what);
+}
+
+SparseMatrix SparseMatrix::fromCSC(int m, int n, const std::vector<int>& colptr,
+                                   const std::vector<int>& rowIndex,
+                                   const std::vector<double>& value, const std::string& what) {
+  checkShape(m, n, what);
+  checkPointers(colptr, n, std::min(rowIndex.size(), value.size()), what);
+  const int count = colptr[n];
+  checkIndices(rowIndex, count, m, "i", what);
+  std::vector<int> column(count);
+  for (int c = 0; c < n; ++c)
+    for (int k = colptr[c]; k < colptr[c + 1]; ++k) column[k] = c;
+  return fromTriplets(m, n, std::vector<int>(rowIndex.begin(), rowIndex.begin() + count), column,
+                      std::vector<double>(value.begin(), value.begin() + count), what);
+}
+
+void SparseMatrix::toTriplets(std::vector<int>& row, std::vector<int>& column) const {
+  row.resize(nnz());
+  column = col;
+  for (int r = 0; r < m; ++r)
+    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) row[k] = r;
+}
+
+double SparseMatrix::asymmetry() const {
+  if (m != n) throw std::runtime_error("SparseMatrix::asymmetry: matrix is not square");
+  // Look up A_ji by binary search in the (sorted) row j; a missing entry is 0.
+  auto entry = [this](int r, int c) {
+    auto first = col.begin() + rowptr[r], last = col.begin() + rowptr[r + 1];
+    auto it = std::lower_bound(first, last, c);
+    return (it != last && *it == c) ? val[it - col.begin()] : 0.0;
+  };
+  double worst = 0.0;
+  for (int r = 0; r < m; ++r)
+    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k)
+      worst = std::max(worst, std::abs(val[k] - entry(col[k], r)));
+  return worst;
+}
+
+double SparseMatrix::maxAbs() const {
+  double worst = 0.0;
+  for (double v : val) worst = std::max(worst, std::abs(v));
+  return worst;
+}
+
+bool bitwiseEqual(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+bool bitwiseEqual(const SparseMatrix& a, const SparseMatrix& b) {
+  return a.m == b.m && a.n == b.n && a.rowptr == b.rowptr && a.col == b.col &&
+         bitwiseEqual(a.val, b.val);
+}
+
+}  // namespace FCLIB
+}  // namespace Tribos

@@ -1,0 +1,135 @@
+// Write-then-read of every shipped sample must reproduce the data bit for bit,
+// with matrices stored as compressed rows and as triplets. Also checks that a
+// failed write leaves an existing file untouched.
+#include <cstdio>
+#include <fstream>
+#include <sys/stat.h>
+
+#include "Tribos_FCLIB.hpp"
+#include "fclib_test_util.hpp"
+
+using namespace Tribos::FCLIB;
+using fclib_test::Sample;
+
+namespace {
+
+bool sameOptionalMatrix(const std::optional<SparseMatrix>& a, const std::optional<SparseMatrix>& b) {
+  return a.has_value() == b.has_value() && (!a || bitwiseEqual(*a, *b));
+}
+
+bool sameOptionalVector(const std::optional<std::vector<double>>& a,
+                        const std::optional<std::vector<double>>& b) {
+  return a.has_value() == b.has_value() && (!a || bitwiseEqual(*a, *b));
+}
+
+bool sameSolution(const Solution& a, const Solution& b) {
+  return bitwiseEqual(a.v, b.v) && bitwiseEqual(a.u, b.u) && bitwiseEqual(a.r, b.r) &&
+         bitwiseEqual(a.l, b.l);
+}
+
+bool sameInfo(const Info& a, const Info& b) {
+  return a.title == b.title && a.description == b.description && a.math_info == b.math_info;
+}
+
+bool same(const LocalProblem& a, const LocalProblem& b) {
+  return bitwiseEqual(a.W, b.W) && bitwiseEqual(a.q, b.q) && bitwiseEqual(a.mu, b.mu) &&
+         a.spacedim == b.spacedim && sameOptionalMatrix(a.V, b.V) &&
+         sameOptionalMatrix(a.R, b.R) && sameOptionalVector(a.s, b.s);
+}
+
+bool same(const GlobalProblem& a, const GlobalProblem& b) {
+  return bitwiseEqual(a.M, b.M) && bitwiseEqual(a.H, b.H) && bitwiseEqual(a.f, b.f) &&
+         bitwiseEqual(a.w, b.w) && bitwiseEqual(a.mu, b.mu) && a.spacedim == b.spacedim &&
+         sameOptionalMatrix(a.G, b.G) && sameOptionalVector(a.b, b.b);
+}
+
+const char* storageName(Storage s) { return s == Storage::CompressedRows ? "csr" : "triplets"; }
+
+template <typename Problem, typename Reader, typename Writer>
+void roundTrip(const Sample& s, Storage storage, Reader read, Writer write) {
+  const std::string in = fclib_test::samplePath(s);
+  const std::string out = fclib_test::scratchPath("roundtrip", storageName(storage) + s.name);
+  const Problem P = read(in);
+  const Info info = readInfo(in);
+  const std::optional<Solution> solution = readSolution(in);
+  const std::vector<Solution> guesses = readGuesses(in);
+
+  write(out, P, info, solution ? &*solution : nullptr, guesses, storage);
+
+  FCLIB_CHECK(problemKind(out) == s.kind, s.name);
+  FCLIB_CHECK(same(P, read(out)), s.name << " problem differs after " << storageName(storage));
+  FCLIB_CHECK(sameInfo(info, readInfo(out)), s.name << " info");
+  const std::optional<Solution> solution2 = readSolution(out);
+  FCLIB_CHECK(solution.has_value() == solution2.has_value() &&
+                  (!solution || sameSolution(*solution, *solution2)),
+              s.name << " solution");
+  const std::vector<Solution> guesses2 = readGuesses(out);
+  FCLIB_CHECK(guesses.size() == guesses2.size(), s.name << " number of guesses");
+  for (std::size_t k = 0; k < std::min(guesses.size(), guesses2.size()); ++k)
+    FCLIB_CHECK(sameSolution(guesses[k], guesses2[k]), s.name << " guess " << k + 1);
+  std::ifstream tmp(out + ".tmp");
+  FCLIB_CHECK(!tmp.good(), "temporary file left behind: " << out << ".tmp");
+  std::remove(out.c_str());
+  std::cout << s.name << ": round trip (" << storageName(storage) << ") done" << std::endl;
+}
+
+void roundTripSample(const Sample& s) {
+  for (Storage storage : {Storage::CompressedRows, Storage::Triplets}) {
+    if (s.kind == ProblemKind::Local)
+      roundTrip<LocalProblem>(s, storage, readLocal, writeLocal);
+    else
+      roundTrip<GlobalProblem>(s, storage, readGlobal, writeGlobal);
+  }
+}
+
+// A write that fails (dimension error, or the temporary file cannot be
+// created) must leave the file already at the target path intact.
+void failedWriteKeepsOldFile() {
+  const Sample s = fclib_test::samples()[0];
+  const LocalProblem P = readLocal(fclib_test::samplePath(s));
+  const std::string out = fclib_test::scratchPath("roundtrip", "failed_write.hdf5");
+  writeLocal(out, P, Info{"good", "", ""});
+
+  LocalProblem bad = P;
+  bad.q.pop_back();
+  try {
+    writeLocal(out, bad, Info{"bad", "", ""});
+    FCLIB_CHECK(false, "writing a q of the wrong size did not throw");
+  } catch (const std::runtime_error& e) {
+    std::cout << "expected error: " << e.what() << std::endl;
+    FCLIB_CHECK(std::string(e.what()).find("q") != std::string::npos, e.what());
+  }
+  FCLIB_CHECK(readInfo(out).title == "good", "old file damaged by a rejected write");
+
+  // Block the temporary file with a directory so that HDF5 cannot create it.
+  const std::string tmp = out + ".tmp";
+  ::mkdir(tmp.c_str(), 0700);
+  try {
+    writeLocal(out, P, Info{"replaced", "", ""});
+    FCLIB_CHECK(false, "writing over a blocked temporary did not throw");
+  } catch (const std::runtime_error& e) {
+    std::cout << "expected error: " << e.what() << std::endl;
+  }
+  ::rmdir(tmp.c_str());
+  FCLIB_CHECK(readInfo(out).title == "good", "old file damaged by a failed write");
+  FCLIB_CHECK(same(P, readLocal(out)), "old file content changed");
+  std::remove(out.c_str());
+}
+
+}  // namespace
+
+int main() {
+  for (const Sample& s : fclib_test::samples()) {
+    try {
+      roundTripSample(s);
+    } catch (const std::exception& e) {
+      FCLIB_CHECK(false, s.name << ": " << e.what());
+    }
+  }
+  try {
+    failedWriteKeepsOldFile();
+  } catch (const std::exception& e) {
+    FCLIB_CHECK(false, e.what());
+  }
+  return fclib_test::finish("fclib_test_roundtrip");
+}

@@ -1,0 +1,112 @@
+// fclib_test_util.hpp: small helpers shared by the FCLIB tests: a check macro
+// that counts failures, the location of the sample files, and a dense
+// Cholesky factorization used as the M^{-1} of the small global samples.
+#pragma once
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "Tribos_FCLIB.hpp"
+
+namespace fclib_test {
+
+inline int& failures() {
+  static int count = 0;
+  return count;
+}
+
+#define FCLIB_CHECK(cond, msg)                                                   \
+  do {                                                                           \
+    if (!(cond)) {                                                               \
+      ++fclib_test::failures();                                                  \
+      std::cerr << __FILE__ << ":" << __LINE__ << ": FAILED " #cond ": " << msg \
+                << std::endl;                                                    \
+    }                                                                            \
+  } while (0)
+
+inline int finish(const char* name) {
+  if (failures() == 0) {
+    std::cout << name << ": all checks passed" << std::endl;
+    return 0;
+  }
+  std::cerr << name << ": " << failures() << " check(s) failed" << std::endl;
+  return 1;
+}
+
+// Directory of the sample files: $TRIBOS_SHARED_DIR/fclib, else the CMake
+// cache variable TRIBOS_SHARED_DIR compiled in.
+inline std::string sampleDir() {
+  const char* env = std::getenv("TRIBOS_SHARED_DIR");
+  std::string base = (env && *env) ? env : TRIBOS_SHARED_DIR_DEFAULT;
+  return base + "/fclib";
+}
+
+struct Sample {
+  std::string name;
+  Tribos::FCLIB::ProblemKind kind;
+  int contacts;
+};
+
+// The shipped files and what their README says about them.
+inline std::vector<Sample> samples() {
+  using Tribos::FCLIB::ProblemKind;
+  return {{"local_problem_test.hdf5", ProblemKind::Local, 48},
+          {"LMGC_100_PR_PerioBox-i00361-60-03000.hdf5", ProblemKind::Local, 60},
+          {"LMGC_GFC3D_CubeH8.hdf5", ProblemKind::Global, 1},
+          {"LMGC_GlobalFrictionContactProblem00046.hdf5", ProblemKind::Global, 9},
+          {"Box_Stacks-i0122-82-5.hdf5", ProblemKind::Global, 82}};
+}
+
+inline std::string samplePath(const Sample& s) { return sampleDir() + "/" + s.name; }
+
+// A scratch path in the build tree (tests run there), unique per test.
+inline std::string scratchPath(const std::string& test, const std::string& name) {
+  return "fclib_scratch_" + test + "_" + name;
+}
+
+// Dense Cholesky of a small SPD matrix (test utility only: O(n^3), n <= ~1000).
+class DenseCholesky {
+ public:
+  explicit DenseCholesky(const Tribos::FCLIB::SparseMatrix& A) : n_(A.m), L_(A.m * A.m, 0.0) {
+    if (A.m != A.n) throw std::runtime_error("DenseCholesky: matrix is not square");
+    for (int r = 0; r < A.m; ++r)
+      for (int k = A.rowptr[r]; k < A.rowptr[r + 1]; ++k) L_[r * n_ + A.col[k]] += A.val[k];
+    for (int j = 0; j < n_; ++j) {
+      double d = at(j, j);
+      for (int k = 0; k < j; ++k) d -= at(j, k) * at(j, k);
+      if (!(d > 0.0))
+        throw std::runtime_error("DenseCholesky: matrix is not positive definite at row " +
+                                 std::to_string(j));
+      at(j, j) = std::sqrt(d);
+      for (int i = j + 1; i < n_; ++i) {
+        double s = at(i, j);
+        for (int k = 0; k < j; ++k) s -= at(i, k) * at(j, k);
+        at(i, j) = s / at(j, j);
+      }
+    }
+  }
+
+  void solve(const std::vector<double>& b, std::vector<double>& x) const {
+    x = b;
+    for (int i = 0; i < n_; ++i) {
+      for (int k = 0; k < i; ++k) x[i] -= at(i, k) * x[k];
+      x[i] /= at(i, i);
+    }
+    for (int i = n_ - 1; i >= 0; --i) {
+      for (int k = i + 1; k < n_; ++k) x[i] -= at(k, i) * x[k];
+      x[i] /= at(i, i);
+    }
+  }
+
+ private:
+  double& at(int i, int j) { return L_[i * n_ + j]; }
+  double at(int i, int j) const { return L_[i * n_ + j]; }
+  int n_;
+  std::vector<double> L_;
+};
+
+}  // namespace fclib_test
