@@ -61,7 +61,9 @@ void checkGlobal(const Sample& s) {
             << " contacts, M " << P.M.m << " x " << P.M.n << " nnz " << P.M.nnz() << ", H "
             << P.H.m << " x " << P.H.n << " nnz " << P.H.nnz() << ", max|M - M'| = " << asym
             << " (relative " << asym / scale << ")" << std::endl;
-  FCLIB_CHECK(asym <= 1e-8 * scale, s.name << " M asymmetry " << asym);
+  // The LMGC exports of M are symmetric only to about 1.5e-7 relative (their
+  // values look rounded to single precision); Box_Stacks' diagonal M is exact.
+  FCLIB_CHECK(asym <= 1e-6 * scale, s.name << " M asymmetry " << asym);
   // Every contact is seen by some degree of freedom: no empty column of H.
   std::vector<int> columnCount(P.H.n, 0);
   for (int c : P.H.col) ++columnCount[c];

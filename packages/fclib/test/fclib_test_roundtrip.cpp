@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "Tribos_FCLIB.hpp"
 #include "fclib_test_util.hpp"

@@ -24,6 +24,7 @@ void report(const std::string& label, const NaturalMapError& e) {
             << ": err/||q|| = " << e.relativeToQ << ", err/max(||q||,||r||,||u||) = "
             << e.relativeToMax << " (||phi|| = " << e.absolute << ", ||q|| = " << e.normQ
             << ", ||r|| = " << e.normR << ", ||u|| = " << e.normU << ")" << std::endl;
+  if (e.normR == 0.0) std::cout << "    (the stored r is identically zero)" << std::endl;
   FCLIB_CHECK(std::isfinite(e.relativeToQ) && std::isfinite(e.relativeToMax), label);
 }
 
@@ -52,7 +53,9 @@ void checkLocal(const Sample& s) {
       std::vector<double> u;
       P.W.multiply(c.r, u);
       for (std::size_t i = 0; i < u.size(); ++i) u[i] += P.q[i];
-      std::cout << "    max |u_stored - (W r + q)| = " << maxAbsDifference(u, c.u) << std::endl;
+      std::cout << "    max |u_stored - (W r + q)| = " << maxAbsDifference(u, c.u)
+                << "; with stored u: err/||q|| = "
+                << naturalMapError(c.r, c.u, P.mu, P.q).relativeToQ << std::endl;
     }
   }
 }
@@ -81,6 +84,15 @@ void checkGlobal(const Sample& s) {
     if (!c.u.empty())
       std::cout << "    max |u_stored - (H' v + w)| = " << maxAbsDifference(red.u, c.u)
                 << std::endl;
+    if (!c.u.empty() && !c.v.empty()) {
+      // Checks u = H' v + w on the stored pair alone (no solve with M).
+      std::vector<double> u;
+      P.H.multiplyTranspose(c.v, u);
+      for (std::size_t i = 0; i < u.size(); ++i) u[i] += P.w[i];
+      std::cout << "    max |u_stored - (H' v_stored + w)| = " << maxAbsDifference(u, c.u)
+                << " (max |u_stored| = " << maxAbsDifference(c.u, std::vector<double>(c.u.size()))
+                << ")" << std::endl;
+    }
     // The measure with the stored u (no reduction), for comparison.
     if (!c.u.empty())
       std::cout << "    with stored u: err/||q|| = "
