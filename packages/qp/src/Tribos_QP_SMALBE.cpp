@@ -1,0 +1,248 @@
+#include "Tribos_QP_SMALBE.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <vector>
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_QP_Factory.hpp"
+
+namespace Tribos {
+namespace QP {
+
+namespace {
+
+// H = A + rho G'G, the Hessian of the augmented Lagrangian in x. One
+// application of H costs one application of A.
+class AugmentedHessian : public Operator {
+ public:
+  AugmentedHessian(const Operator& A, const EqualityConstraint& G, SC rho) : A_(A), G_(G), rho_(rho) {}
+  RCP<const Map> getDomainMap() const override { return A_.getDomainMap(); }
+  RCP<const Map> getRangeMap() const override { return A_.getRangeMap(); }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
+             SC beta = 0) const override {
+    Vector AX(getRangeMap()), GX(G_.rangeMap()), GtGX(getDomainMap());
+    for (size_t j = 0; j < X.getNumVectors(); ++j) {
+      auto Xj = X.getVector(j);
+      A_.apply(*Xj, AX);
+      G_.apply(*Xj, GX);
+      G_.applyTranspose(GX, GtGX);
+      AX.update(rho_, GtGX, 1.0);
+      Y.getVectorNonConst(j)->update(alpha, AX, beta);
+    }
+  }
+
+ private:
+  const Operator& A_;
+  const EqualityConstraint& G_;
+  SC rho_;
+};
+
+// G'G, only to estimate ||G||^2 for alpha_bar of the inner problems.
+class NormalOperator : public Operator {
+ public:
+  NormalOperator(const EqualityConstraint& G, RCP<const Map> xmap) : G_(G), xmap_(xmap) {}
+  RCP<const Map> getDomainMap() const override { return xmap_; }
+  RCP<const Map> getRangeMap() const override { return xmap_; }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
+             SC beta = 0) const override {
+    Vector GX(G_.rangeMap()), GtGX(xmap_);
+    for (size_t j = 0; j < X.getNumVectors(); ++j) {
+      G_.apply(*X.getVector(j), GX);
+      G_.applyTranspose(GX, GtGX);
+      Y.getVectorNonConst(j)->update(alpha, GtGX, beta);
+    }
+  }
+
+ private:
+  const EqualityConstraint& G_;
+  RCP<const Map> xmap_;
+};
+
+}  // namespace
+
+SMALBE::SMALBE() { setParameters(Teuchos::null); }
+
+SMALBE::SMALBE(RCP<Teuchos::ParameterList> params) { setParameters(params); }
+
+RCP<const Teuchos::ParameterList> SMALBE::getValidParameters() const {
+  using Teuchos::rcp;
+  auto pl = rcp(new Teuchos::ParameterList("SMALBE"));
+  CommonParameters d;
+  d.maxIterations = 100000;  // total inner iterations are limited by the inner solver
+  addCommonParameters(*pl, d);
+  pl->remove("Maximum Iterations");
+  auto nonneg = rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1e300));
+  pl->set("M", 0.0, "inner precision ||g^P|| <= min(M ||Gx||, eta); 0: 100 ||A||", nonneg);
+  pl->set("rho", 0.0, "penalty rho; 0: ||A||", nonneg);
+  pl->set("eta", 0.1, "inner precision cap as a multiple of ||b||",
+          rcp(new Teuchos::EnhancedNumberValidator<double>(1e-300, 1e300)));
+  pl->set("beta", 2.0, "update factor of M (M/beta) or rho (beta rho)",
+          rcp(new Teuchos::EnhancedNumberValidator<double>(1.0 + 1e-12, 1e300)));
+  Teuchos::setStringToIntegralParameter<int>("Penalty Update", "M",
+                                             "what changes when L does not grow enough: M <- M/beta or rho <- beta rho",
+                                             Teuchos::tuple<std::string>("M", "rho"), Teuchos::tuple<int>(0, 1), pl.get());
+  pl->set("Maximum Outer Iterations", 100, "outer (multiplier) iterations",
+          rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000000)));
+  Teuchos::ParameterList& inner = pl->sublist("Inner Solver", false, "inner bound/circle QP solver");
+  Teuchos::setStringToIntegralParameter<int>("Type", "MPGP", "inner solver", Teuchos::tuple<std::string>("MPRGP", "MPGP"),
+                                             Teuchos::tuple<int>(0, 1), &inner);
+  addCommonParameters(inner, CommonParameters());
+  return pl;
+}
+
+void SMALBE::setParameters(RCP<Teuchos::ParameterList> params) {
+  if (params.is_null()) params = Teuchos::rcp(new Teuchos::ParameterList("SMALBE"));
+  params->validateParametersAndSetDefaults(*getValidParameters());
+  params_ = params;
+  Teuchos::ParameterList common(*params);
+  common.set("Maximum Iterations", 0);
+  s_.common = readCommonParameters(common);
+  s_.M = params->get<double>("M");
+  s_.rho = params->get<double>("rho");
+  s_.eta = params->get<double>("eta");
+  s_.beta = params->get<double>("beta");
+  s_.updateRho = Teuchos::getIntegralValue<int>(*params, "Penalty Update") == 1;
+  s_.maxOuter = params->get<int>("Maximum Outer Iterations");
+  output_.setVerbosity(s_.common.verbosity);
+  if (innerFromParameters_) {
+    auto innerParams = Teuchos::rcp(new Teuchos::ParameterList(params->sublist("Inner Solver")));
+    const std::string type = innerParams->get<std::string>("Type");
+    innerParams->remove("Type");
+    inner_ = QPSolverFactory().create(type, innerParams);
+  }
+}
+
+void SMALBE::setOutputStream(RCP<Teuchos::FancyOStream> out) {
+  output_.setStream(out);
+  if (!inner_.is_null()) inner_->setOutputStream(out);
+}
+
+void SMALBE::setEqualityConstraint(RCP<const EqualityConstraint> G) {
+  TRIBOS_REQUIRE(!G.is_null(), "SMALBE::setEqualityConstraint: G is null");
+  G_ = G;
+}
+
+void SMALBE::setInnerSolver(RCP<QPSolver> inner) {
+  TRIBOS_REQUIRE(!inner.is_null(), "SMALBE::setInnerSolver: inner solver is null");
+  inner_ = inner;
+  innerFromParameters_ = false;
+}
+
+void SMALBE::setMultiplier(const Vector& mu0) { mu0_ = Teuchos::rcp(new Vector(mu0, Teuchos::Copy)); }
+
+const Vector& SMALBE::multiplier() const {
+  TRIBOS_REQUIRE(!mu_.is_null(), "SMALBE::multiplier: no solve has been done yet");
+  return *mu_;
+}
+
+SC SMALBE::innerTolerance(SC M, SC normGx, SC eta, SC tol) const {
+  // ||Gx|| of the previous outer iterate stands in for that of the inner one
+  const SC t = normGx > 0 ? std::min(M * normGx, eta) : eta;
+  return std::max(t, tol);
+}
+
+QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& Omega, Vector& x) {
+  TRIBOS_REQUIRE(!G_.is_null(), "SMALBE::solve: no equality constraint (call setEqualityConstraint)");
+  QPStatus st;
+  const RCP<const Map> xmap = x.getMap();
+  const EqualityConstraint& G = *G_;
+  Omega.project(x);
+
+  const SC normA = hessianNorm_ > 0 ? hessianNorm_ : estimateNorm(A, s_.common.powerIterations, st.n_A);
+  long notCounted = 0;  // G'G is not the Hessian
+  const SC normGtG = estimateNorm(NormalOperator(G, xmap), s_.common.powerIterations, notCounted);
+  const SC normB = b.norm2();
+  SC rho = s_.rho > 0 ? s_.rho : normA;
+  SC M = s_.M > 0 ? s_.M : 100 * normA;
+  const SC rho0 = rho, M0 = M;
+  const SC eta = s_.eta * (normB > 0 ? normB : 1.0);
+  const SC tol = toleranceOverride_ >= 0 ? toleranceOverride_ : std::max(s_.common.rtol * normB, s_.common.atol);
+
+  mu_ = Teuchos::rcp(new Vector(G.rangeMap()));
+  if (!mu0_.is_null()) Tpetra::deep_copy(*mu_, *mu0_);
+  Vector& mu = *mu_;
+  Vector Gx(G.rangeMap()), Gtmu(xmap), b_in(xmap), gP(xmap);
+  g_ = Teuchos::rcp(new Vector(xmap));
+  Vector& g = *g_;
+  G.apply(x, Gx);
+  SC normGx = Gx.norm2();
+  SC innerTol = innerTolerance(M, normGx, eta, tol);
+  SC Lprev = 0;
+  std::vector<SC> GxHistory;
+  auto& out = output_.stream();
+
+  for (int k = 0; k < s_.maxOuter; ++k) {
+    // inner problem: min L(x, mu, rho) = 1/2 x'(A + rho G'G)x - (b - G'mu)'x over Omega
+    G.applyTranspose(mu, Gtmu);
+    b_in.update(1.0, b, -1.0, Gtmu, 0.0);
+    AugmentedHessian H(A, G, rho);
+    inner_->setHessianNorm(normA + rho * normGtG);
+    inner_->setTolerance(innerTol);
+    const QPStatus ist = inner_->solve(H, b_in, Omega, x);
+    st.iterations += ist.iterations;
+    st.cg_steps += ist.cg_steps;
+    st.expansion_steps += ist.expansion_steps;
+    st.proportioning_steps += ist.proportioning_steps;
+    st.n_A += ist.n_A;
+    if (!inner_->gradient().is_null()) {
+      Tpetra::deep_copy(g, *inner_->gradient());
+    } else {
+      H.apply(x, g);
+      ++st.n_A;
+      g.update(-1.0, b_in, 1.0);
+    }
+    Omega.projectedGradient(x, g, gP);
+    st.norm_gP = gP.norm2();
+    G.apply(x, Gx);
+    normGx = Gx.norm2();
+    const SC L = 0.5 * (x.dot(g) - x.dot(b_in));  // L(x, mu, rho) = 1/2 x'(g - b_in)
+    mu.update(rho, Gx, 1.0);                        // now g = Ax - b + G'mu
+    st.norm_Gx = normGx;
+    st.outer_iterations = k + 1;
+    if (output_.wants(Verbosity::Medium))
+      out << "SMALBE outer " << std::setw(4) << k + 1 << " ||g^P|| " << std::scientific << std::setprecision(3)
+          << st.norm_gP << " ||Gx|| " << normGx << " rho " << rho << " M " << M << " inner " << ist.iterations
+          << " its, tol " << innerTol << "\n";
+    if (st.norm_gP <= tol && normGx <= tol) {
+      st.converged = true;
+      st.reason = "||g^P|| <= tolerance and ||Gx|| <= tolerance";
+      break;
+    }
+    // semi-monotonicity: L must grow by rho/2 ||Gx||^2, else tighten
+    if (k > 0 && L < Lprev + 0.5 * rho * normGx * normGx) {
+      if (s_.updateRho) rho *= s_.beta;
+      else M /= s_.beta;
+    }
+    Lprev = L;
+    // ||Gx|| that does not decrease over a window of outer iterations with
+    // solved inner problems: strengthen the penalty
+    GxHistory.push_back(normGx);
+    const size_t w = static_cast<size_t>(s_.stagnationWindow);
+    if (GxHistory.size() > w && normGx > 0.9 * GxHistory[GxHistory.size() - 1 - w] && ist.converged) {
+      rho *= s_.beta;
+      GxHistory.clear();
+    }
+    if (M < M0 * minMFactor) {
+      st.reason = "M fell below its floor (M0 * 1e-10): the set {G x = 0} and Omega look inconsistent";
+      break;
+    }
+    if (rho > rho0 * maxRhoFactor) {
+      st.reason = "rho grew beyond its cap (rho0 * 1e6) with ||Gx|| = " + std::to_string(normGx) +
+                  " stagnating: the set {G x = 0} and Omega look inconsistent";
+      break;
+    }
+    innerTol = innerTolerance(M, normGx, eta, tol);
+  }
+  if (!st.converged && st.reason.empty())
+    st.reason = "Maximum Outer Iterations (" + std::to_string(s_.maxOuter) + ") reached";
+  if (output_.wants(Verbosity::Low)) out << "SMALBE: " << st << " (tolerance " << tol << ")\n";
+  return st;
+}
+
+}  // namespace QP
+}  // namespace Tribos
