@@ -1,0 +1,152 @@
+// SparseMatrix conversions and products, the compressed-column path of the
+// reader (no sample uses it), and the error message for a missing dataset.
+#include <hdf5.h>
+
+#include <cstdio>
+
+#include "Tribos_FCLIB.hpp"
+#include "fclib_test_util.hpp"
+
+using namespace Tribos::FCLIB;
+
+namespace {
+
+// A = [ 1 0 2 ]
+//     [ 0 0 3 ]
+//     [ 4 5 0 ]
+//     [ 0 6 0 ]
+const int kRows = 4, kCols = 3;
+const double kDense[kRows][kCols] = {{1, 0, 2}, {0, 0, 3}, {4, 5, 0}, {0, 6, 0}};
+
+SparseMatrix fromCSCExample() {
+  return SparseMatrix::fromCSC(kRows, kCols, {0, 2, 4, 6}, {0, 2, 3, 2, 1, 0},
+                               {1, 4, 6, 5, 3, 2}, "csc");
+}
+
+void checkConversions() {
+  const SparseMatrix csr =
+      SparseMatrix::fromCSR(kRows, kCols, {0, 2, 3, 5, 6}, {2, 0, 2, 1, 0, 1},
+                            {2, 1, 3, 5, 4, 6}, "csr");  // unsorted rows on purpose
+  const SparseMatrix csc = fromCSCExample();
+  // Triplets in scrambled order, with (2,0) split into 1 + 3.
+  const SparseMatrix tri = SparseMatrix::fromTriplets(
+      kRows, kCols, {3, 2, 0, 1, 2, 0, 2}, {1, 0, 2, 2, 1, 0, 0}, {6, 1, 2, 3, 5, 1, 3}, "tri");
+  FCLIB_CHECK(bitwiseEqual(csr, csc), "CSR and CSC differ");
+  FCLIB_CHECK(bitwiseEqual(csr, tri), "CSR and triplets differ");
+  FCLIB_CHECK(csr.nnz() == 6, csr.nnz());
+
+  const std::vector<double> x = {1, -2, 3}, y = {1, 2, -1, 0.5};
+  std::vector<double> Ax, Aty;
+  csr.multiply(x, Ax);
+  csr.multiplyTranspose(y, Aty);
+  for (int i = 0; i < kRows; ++i) {
+    double s = 0;
+    for (int j = 0; j < kCols; ++j) s += kDense[i][j] * x[j];
+    FCLIB_CHECK(Ax[i] == s, "A x row " << i);
+  }
+  for (int j = 0; j < kCols; ++j) {
+    double s = 0;
+    for (int i = 0; i < kRows; ++i) s += kDense[i][j] * y[i];
+    FCLIB_CHECK(Aty[j] == s, "A' y column " << j);
+  }
+}
+
+template <typename F>
+void expectThrow(F f, const std::string& what) {
+  try {
+    f();
+    FCLIB_CHECK(false, "no exception: " << what);
+  } catch (const std::runtime_error& e) {
+    std::cout << "expected error: " << e.what() << std::endl;
+  }
+}
+
+void checkValidation() {
+  expectThrow([] { SparseMatrix::fromTriplets(2, 2, {0, 2}, {0, 0}, {1, 1}, "row out of range"); },
+              "row out of range");
+  expectThrow([] { SparseMatrix::fromCSR(2, 2, {0, 2, 1}, {0, 1}, {1, 1}, "bad pointers"); },
+              "decreasing pointers");
+  expectThrow([] { SparseMatrix::fromCSC(2, 2, {0, 1, 3}, {0, 1}, {1, 1}, "short"); },
+              "pointers past the data");
+}
+
+void writeInt(hid_t g, const char* name, int v) {
+  hsize_t one = 1;
+  hid_t s = H5Screate_simple(1, &one, nullptr);
+  hid_t d = H5Dcreate2(g, name, H5T_STD_I32LE, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v);
+  H5Dclose(d);
+  H5Sclose(s);
+}
+
+template <typename T>
+void writeArray(hid_t g, const char* name, hid_t fileType, hid_t memType, const std::vector<T>& v) {
+  hsize_t n = v.size();
+  hid_t s = H5Screate_simple(1, &n, nullptr);
+  hid_t d = H5Dcreate2(g, name, fileType, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dwrite(d, memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Dclose(d);
+  H5Sclose(s);
+}
+
+// A hand-made global file whose H (4 x 3, one contact) is stored as compressed
+// columns; M = identity as triplets. 'withW' false leaves out vectors/w.
+void writeHandMadeGlobal(const std::string& path, bool withW) {
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t g = H5Gcreate2(file, "fclib_global", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t H = H5Gcreate2(g, "H", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  writeInt(H, "nzmax", 6);
+  writeInt(H, "m", kRows);
+  writeInt(H, "n", kCols);
+  writeInt(H, "nz", -1);
+  writeArray<int>(H, "p", H5T_STD_I32LE, H5T_NATIVE_INT, {0, 2, 4, 6});
+  writeArray<int>(H, "i", H5T_STD_I32LE, H5T_NATIVE_INT, {0, 2, 3, 2, 1, 0});
+  writeArray<double>(H, "x", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {1, 4, 6, 5, 3, 2});
+  H5Gclose(H);
+  hid_t M = H5Gcreate2(g, "M", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  writeInt(M, "nzmax", 4);
+  writeInt(M, "m", kRows);
+  writeInt(M, "n", kRows);
+  writeInt(M, "nz", 4);
+  writeArray<int>(M, "p", H5T_STD_I32LE, H5T_NATIVE_INT, {0, 1, 2, 3});
+  writeArray<int>(M, "i", H5T_STD_I32LE, H5T_NATIVE_INT, {0, 1, 2, 3});
+  writeArray<double>(M, "x", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {1, 1, 1, 1});
+  H5Gclose(M);
+  hid_t v = H5Gcreate2(g, "vectors", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  writeArray<double>(v, "f", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {0, 0, 0, 0});
+  writeArray<double>(v, "mu", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {0.3});
+  if (withW) writeArray<double>(v, "w", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {0, 0, 0});
+  H5Gclose(v);
+  writeInt(g, "spacedim", 3);
+  H5Gclose(g);
+  H5Fclose(file);
+}
+
+void checkCompressedColumnFile() {
+  const std::string path = fclib_test::scratchPath("sparse", "csc.hdf5");
+  writeHandMadeGlobal(path, true);
+  const GlobalProblem P = readGlobal(path);
+  FCLIB_CHECK(bitwiseEqual(P.H, fromCSCExample()), "H read from a CSC file");
+  FCLIB_CHECK(readInfo(path).title.empty(), "missing info is empty");
+
+  writeHandMadeGlobal(path, false);
+  try {
+    readGlobal(path);
+    FCLIB_CHECK(false, "missing w not detected");
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    std::cout << "expected error: " << what << std::endl;
+    FCLIB_CHECK(what == "FCLIB file " + path + ": group fclib_global/vectors has no dataset w",
+                what);
+  }
+  std::remove(path.c_str());
+}
+
+}  // namespace
+
+int main() {
+  checkConversions();
+  checkValidation();
+  checkCompressedColumnFile();
+  return fclib_test::finish("fclib_test_sparse");
+}
