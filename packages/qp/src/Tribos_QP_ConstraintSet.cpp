@@ -98,6 +98,12 @@ ConstraintSet ConstraintSet::fixedOutside(const std::vector<char>& keep) const {
   return c;
 }
 
+bool ConstraintSet::onlyBounds() const {
+  for (const Circle& c : circles_)
+    if (!c.fixed) return false;
+  return true;
+}
+
 bool ConstraintSet::circleActive(SC x1, SC x2, SC r) const {
   return std::hypot(x1, x2) >= r * (1.0 - circleTolerance);
 }

@@ -29,7 +29,8 @@ class ConstraintSet {
 
   // --- queries ---
   RCP<const Map> map() const { return map_; }
-  bool onlyBounds() const { return circles_.empty(); }
+  // No circle left to move (all circles absent or frozen by fixedOutside).
+  bool onlyBounds() const;
   int numCircles() const { return static_cast<int>(circles_.size()); }
   const std::vector<SC>& radii() const { return r_; }
 
