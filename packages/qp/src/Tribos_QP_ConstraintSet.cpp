@@ -99,9 +99,12 @@ ConstraintSet ConstraintSet::fixedOutside(const std::vector<char>& keep) const {
 }
 
 bool ConstraintSet::onlyBounds() const {
+  int local = 1;
   for (const Circle& c : circles_)
-    if (!c.fixed) return false;
-  return true;
+    if (!c.fixed) local = 0;
+  int all = 0;  // global, so that every rank takes the same decision
+  Teuchos::reduceAll(*map_->getComm(), Teuchos::REDUCE_MIN, local, Teuchos::outArg(all));
+  return all == 1;
 }
 
 bool ConstraintSet::circleActive(SC x1, SC x2, SC r) const {

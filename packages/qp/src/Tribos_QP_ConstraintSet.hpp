@@ -29,9 +29,10 @@ class ConstraintSet {
 
   // --- queries ---
   RCP<const Map> map() const { return map_; }
-  // No circle left to move (all circles absent or frozen by fixedOutside).
+  // No circle left to move on any rank (circles absent or frozen by
+  // fixedOutside). Collective.
   bool onlyBounds() const;
-  int numCircles() const { return static_cast<int>(circles_.size()); }
+  int numCircles() const { return static_cast<int>(circles_.size()); }  // local count
   const std::vector<SC>& radii() const { return r_; }
 
   // --- operations (collective where a reduction is needed) ---

@@ -324,3 +324,87 @@ class CountingOperator : public Operator {
 };
 
 }  // namespace qptest
+
+namespace qptest {
+
+// Exact solution of min 1/2 x'Ax - b'x s.t. lo <= x <= up (entries may be
+// infinite) and G x = 0 (rows of G, possibly none), by enumerating all
+// active sets: for each, solve the KKT system of the free part and accept
+// the one that is feasible with multipliers of the right sign. Strict
+// convexity makes it unique. Returns false if none is found.
+inline bool enumerateActiveSets(const Dense& A, const Vec& b, const Vec& lo, const Vec& up,
+                                const std::vector<Vec>& G, Vec& x, Vec& mu, double tol = 1e-10) {
+  const int n = A.n, m = static_cast<int>(G.size());
+  std::vector<int> state(n, 0);  // 0 free, 1 at lower, 2 at upper
+  auto allowed = [&](int i, int s) { return s == 0 || (s == 1 && std::isfinite(lo[i])) || (s == 2 && std::isfinite(up[i])); };
+  for (;;) {
+    bool valid = true;
+    for (int i = 0; i < n; ++i) valid = valid && allowed(i, state[i]);
+    if (valid) {
+      std::vector<int> F;
+      Vec xs(n, 0.0);
+      for (int i = 0; i < n; ++i) {
+        if (state[i] == 0) F.push_back(i);
+        else xs[i] = state[i] == 1 ? lo[i] : up[i];
+      }
+      const int nf = static_cast<int>(F.size()), k = nf + m;
+      std::vector<Vec> K(k, Vec(k, 0.0));
+      Vec r(k, 0.0);
+      const Vec Axs = matvec(A, xs);
+      for (int a = 0; a < nf; ++a) {
+        for (int c = 0; c < nf; ++c) K[a][c] = A(F[a], F[c]);
+        for (int j = 0; j < m; ++j) K[a][nf + j] = K[nf + j][a] = G[j][F[a]];
+        r[a] = b[F[a]] - Axs[F[a]];
+      }
+      for (int j = 0; j < m; ++j) r[nf + j] = -dot(G[j], xs);
+      bool solved = true;
+      Vec z;
+      try {
+        z = k > 0 ? denseSolve(K, r) : Vec();
+      } catch (...) {
+        solved = false;
+      }
+      if (solved) {
+        Vec xc = xs, muc(m);
+        for (int a = 0; a < nf; ++a) xc[F[a]] = z[a];
+        for (int j = 0; j < m; ++j) muc[j] = z[nf + j];
+        Vec g = matvec(A, xc);
+        for (int i = 0; i < n; ++i) {
+          g[i] -= b[i];
+          for (int j = 0; j < m; ++j) g[i] += G[j][i] * muc[j];
+        }
+        bool ok = true;
+        for (int i = 0; i < n && ok; ++i) {
+          ok = xc[i] >= lo[i] - tol && xc[i] <= up[i] + tol;
+          if (state[i] == 1) ok = ok && g[i] >= -tol;
+          if (state[i] == 2) ok = ok && g[i] <= tol;
+        }
+        if (ok) {
+          x = xc;
+          mu = muc;
+          return true;
+        }
+      }
+    }
+    int i = 0;  // next state (odometer)
+    while (i < n && state[i] == 2) state[i++] = 0;
+    if (i == n) return false;
+    ++state[i];
+  }
+}
+
+// Largest |x_i - ref_i| over the global vector.
+inline double maxError(const Vector& x, const Vec& ref) {
+  const Vec xg = gather(x);
+  double m = 0;
+  for (size_t i = 0; i < ref.size(); ++i) m = std::max(m, std::abs(xg[i] - ref[i]));
+  return m;
+}
+
+inline Vec gradient(const Dense& A, const Vec& b, const Vec& x) {
+  Vec g = matvec(A, x);
+  for (size_t i = 0; i < g.size(); ++i) g[i] -= b[i];
+  return g;
+}
+
+}  // namespace qptest

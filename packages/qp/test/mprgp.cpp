@@ -1,0 +1,199 @@
+// mprgp.cpp: MPRGP on random SPD problems with bounds, distributed on 1 or 2
+// ranks, against rank-independent dense references computed here:
+// enumeration of active sets (n <= 8), projected gradient to 1e-15 (n = 40),
+// and the unconstrained solve A x = b when no bound is active. Also: KKT of
+// every solution, exact count of Hessian applications, projection of an
+// infeasible start, the non-SPD and circle errors, and the iteration limit.
+#include <Teuchos_ParameterList.hpp>
+
+#include "QPTestUtils.hpp"
+#include "Tribos_QP_MPRGP.hpp"
+
+using namespace qptest;
+using namespace Tribos::QP;
+
+namespace {
+
+struct Run {
+  QPStatus st;
+  Vec x;
+  long counted = 0;
+};
+
+RCP<Teuchos::ParameterList> params(double rtol, int maxIt = 1000) {
+  auto p = Teuchos::rcp(new Teuchos::ParameterList);
+  p->set("Relative Tolerance", rtol);
+  p->set("Maximum Iterations", maxIt);
+  return p;
+}
+
+Run solve(QPSolver& solver, const RCP<const Comm>& comm, const Dense& A, const Vec& b, const SetSpec& s, const Vec& x0) {
+  auto map = pairMap(A.n, comm);
+  CountingOperator Aop(toCrs(map, A));
+  auto bv = toVector(map, b);
+  auto x = toVector(map, x0);
+  ConstraintSet Omega = makeSet(map, s);
+  Run r;
+  r.st = solver.solve(Aop, *bv, Omega, *x);
+  r.x = gather(*x);
+  r.counted = Aop.count;
+  return r;
+}
+
+// n_A = power iterations + initial gradient + one per CG / proportioning
+// step + two per expansion step (A p, then A x after the projection).
+void checkCounts(Checker& check, const Run& r, int power, const std::string& name) {
+  check(r.counted == r.st.n_A, name + ": n_A = " + std::to_string(r.st.n_A) + " but A applied " + std::to_string(r.counted));
+  const long expected = power + 1 + r.st.cg_steps + r.st.proportioning_steps + 2L * r.st.expansion_steps;
+  check(r.st.n_A == expected, name + ": n_A = " + std::to_string(r.st.n_A) + ", step accounting gives " + std::to_string(expected));
+  check(r.st.iterations == r.st.cg_steps + r.st.expansion_steps + r.st.proportioning_steps, name + ": step counts add up");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard guard(&argc, &argv);
+  auto comm = Tpetra::getDefaultComm();
+  Checker check;
+  check.rank = comm->getRank();
+  try {
+    // 1. lower bounds, n = 8, several seeds: exact solution by enumeration
+    for (uint32_t seed = 1; seed <= 4; ++seed) {
+      const int n = 8;
+      Dense A = randomSPD(n, seed);
+      Vec b = randomVec(n, 100 + seed, -1, 1);
+      SetSpec s{"LLLLLLFL", randomVec(n, 200 + seed, -0.3, 0.1), Vec(n, inf), {}};
+      s.lo[6] = -inf;
+      Vec xref, mu;
+      check(enumerateActiveSets(A, b, s.lo, s.up, {}, xref, mu), "enumeration found the solution");
+      MPRGP solver(params(1e-11));
+      Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
+      const std::string name = "lower bounds seed " + std::to_string(seed);
+      check(r.st.converged, name + ": converged (" + r.st.reason + ")");
+      double err = 0;
+      for (int i = 0; i < n; ++i) err = std::max(err, std::abs(r.x[i] - xref[i]));
+      check(err < 1e-8, name + ": |x - x_enum| = " + str(err));
+      const double kkt = kktViolation(s, r.x, gradient(A, b, r.x));
+      check(kkt < 1e-9, name + ": KKT violation " + str(kkt));
+      checkCounts(check, r, 20, name);
+    }
+
+    // 2. boxes, n = 6: enumeration over free / lower / upper
+    for (uint32_t seed = 11; seed <= 13; ++seed) {
+      const int n = 6;
+      Dense A = randomSPD(n, seed);
+      Vec b = randomVec(n, 100 + seed, -2, 2);
+      SetSpec s{"BBBBBB", Vec(n, -0.2), Vec(n, 0.3), {}};
+      Vec xref, mu;
+      check(enumerateActiveSets(A, b, s.lo, s.up, {}, xref, mu), "box enumeration found the solution");
+      MPRGP solver(params(1e-11));
+      Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
+      const std::string name = "box seed " + std::to_string(seed);
+      check(r.st.converged, name + ": converged");
+      double err = 0;
+      for (int i = 0; i < n; ++i) err = std::max(err, std::abs(r.x[i] - xref[i]));
+      check(err < 1e-8, name + ": |x - x_enum| = " + str(err));
+      check(kktViolation(s, r.x, gradient(A, b, r.x)) < 1e-9, name + ": KKT");
+      checkCounts(check, r, 20, name);
+    }
+
+    // 3. n = 40, mix of lower, box and free, given ||A|| bound: projected-gradient reference
+    {
+      const int n = 40;
+      Dense A = randomSPD(n, 21);
+      Vec b = randomVec(n, 22, -1, 1);
+      SetSpec s{std::string(n, 'F'), randomVec(n, 23, -0.5, 0.0), Vec(n, inf), {}};
+      Vec up = randomVec(n, 24, 0.05, 0.5);
+      for (int i = 0; i < n; ++i) {
+        s.kind[i] = "LLBF"[i % 4];
+        if (s.kind[i] == 'B') s.up[i] = up[i];
+        if (s.kind[i] == 'F') s.lo[i] = -inf;
+      }
+      const Vec xref = projectedGradientReference(A, b, s, Vec(n, 0.0));
+      double normF = 0;
+      for (double v : A.a) normF += v * v;
+      MPRGP solver(params(1e-11));
+      solver.setHessianNorm(std::sqrt(normF));  // ||A||_F >= ||A||_2
+      Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
+      check(r.st.converged, "n=40 mix: converged");
+      double err = 0;
+      for (int i = 0; i < n; ++i) err = std::max(err, std::abs(r.x[i] - xref[i]));
+      check(err < 1e-8, "n=40 mix: |x - x_PG| = " + str(err));
+      check(kktViolation(s, r.x, gradient(A, b, r.x)) < 1e-9, "n=40 mix: KKT");
+      check(r.st.expansion_steps + r.st.proportioning_steps > 0, "n=40 mix: the active set changed (a real test)");
+      checkCounts(check, r, 0, "n=40 mix (no power iterations)");
+    }
+
+    // 4. inactive bounds: the CG solution, by CG steps only
+    {
+      const int n = 20;
+      Dense A = randomSPD(n, 31);
+      Vec b = randomVec(n, 32, -1, 1);
+      SetSpec s{std::string(n, 'L'), Vec(n, -1e3), Vec(n, inf), {}};
+      const Vec xref = denseSolve(A, b);
+      MPRGP solver(params(1e-12));
+      Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
+      double err = 0;
+      for (int i = 0; i < n; ++i) err = std::max(err, std::abs(r.x[i] - xref[i]));
+      check(r.st.converged && err < 1e-9, "inactive bounds: x = A^-1 b, error " + str(err));
+      check(r.st.expansion_steps == 0 && r.st.proportioning_steps == 0, "inactive bounds: only CG steps");
+      check(r.st.cg_steps <= n + 5, "inactive bounds: CG finite termination, " + std::to_string(r.st.cg_steps) + " steps");
+      checkCounts(check, r, 20, "inactive bounds");
+    }
+
+    // 5. infeasible start: projected first (0 iterations returns P(x0)), then solved
+    {
+      const int n = 8;
+      Dense A = randomSPD(n, 41);
+      Vec b = randomVec(n, 42, -1, 1);
+      SetSpec s{"LLLLBBBB", Vec(n, 0.0), Vec(n, inf), {}};
+      for (int i = 4; i < 8; ++i) s.up[i] = 0.5;
+      Vec x0 = {-3, 2, -1, 0.5, -7, 9, 0.25, -0.1};
+      Vec px0 = x0;
+      denseProject(s, px0, x0);
+      MPRGP zero(params(1e-11, 0));
+      Run r0 = solve(zero, comm, A, b, s, x0);
+      double err = 0;
+      for (int i = 0; i < n; ++i) err = std::max(err, std::abs(r0.x[i] - px0[i]));
+      check(err == 0, "infeasible start: projected, error " + str(err));
+      check(!r0.st.converged && r0.st.reason.find("Maximum Iterations") != std::string::npos,
+            "Maximum Iterations = 0: not converged with reason: " + r0.st.reason);
+      Vec xref, mu;
+      enumerateActiveSets(A, b, s.lo, s.up, {}, xref, mu);
+      MPRGP solver(params(1e-11));
+      Run r = solve(solver, comm, A, b, s, x0);
+      err = 0;
+      for (int i = 0; i < n; ++i) err = std::max(err, std::abs(r.x[i] - xref[i]));
+      check(r.st.converged && err < 1e-8, "infeasible start: solution error " + str(err));
+    }
+
+    // 6. iteration limit on a larger problem: not converged, with reason
+    {
+      const int n = 40;
+      Dense A = randomSPD(n, 51, 0.01);
+      Vec b = randomVec(n, 52, -1, 1);
+      SetSpec s{std::string(n, 'L'), Vec(n, 0.0), Vec(n, inf), {}};
+      MPRGP solver(params(1e-12, 3));
+      Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
+      check(!r.st.converged && r.st.iterations == 3 && !r.st.reason.empty(), "iteration limit: " + r.st.reason);
+    }
+
+    // 7. errors: indefinite Hessian, circles
+    {
+      const int n = 6;
+      Dense A{n, Vec(n * n, 0.0)};
+      for (int i = 0; i < n; ++i) A(i, i) = i % 2 ? -2.0 : 1.0;
+      SetSpec s{std::string(n, 'L'), Vec(n, -10.0), Vec(n, inf), {}};
+      MPRGP solver(params(1e-10));
+      std::string msg;
+      check(throwsWith([&] { solve(solver, comm, A, Vec(n, 1.0), s, Vec(n, 0.0)); }, "not positive definite", &msg),
+            "indefinite Hessian: Tribos::Error naming it: " + msg);
+      SetSpec c{"CCCCLL", Vec(n, 0.0), Vec(n, inf), {1.0, 1.0, 1.0}};
+      check(throwsWith([&] { solve(solver, comm, randomSPD(n, 3), Vec(n, 1.0), c, Vec(n, 0.0)); }, "circles", &msg),
+            "MPRGP with circles: error naming them: " + msg);
+    }
+  } catch (const std::exception& e) {
+    check(false, std::string("unexpected exception: ") + e.what());
+  }
+  return check.finish(*comm);
+}
