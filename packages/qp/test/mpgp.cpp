@@ -1,0 +1,180 @@
+// mpgp.cpp: MPGP on random SPD problems with disks (friction), and with mixes
+// of disks, bounds, fixed and free components, on 1 or 2 ranks, against a
+// dense projected-gradient reference computed here (rank independent); KKT of
+// every solution (disk multipliers lambda >= 0, tangential gradient 0), exact
+// n_A, radius 0, inactive disks = A^-1 b, infeasible start, and the
+// fixedOutside blocks used by block Gauss-Seidel (MPGP on the disks with the
+// bounds frozen, MPRGP on the bounds with the disks frozen).
+#include <Teuchos_ParameterList.hpp>
+
+#include "QPTestUtils.hpp"
+#include "Tribos_QP_MPGP.hpp"
+#include "Tribos_QP_MPRGP.hpp"
+
+using namespace qptest;
+using namespace Tribos::QP;
+
+namespace {
+
+struct Run {
+  QPStatus st;
+  Vec x;
+  long counted = 0;
+};
+
+RCP<Teuchos::ParameterList> params(double rtol, int maxIt = 2000) {
+  auto p = Teuchos::rcp(new Teuchos::ParameterList);
+  p->set("Relative Tolerance", rtol);
+  p->set("Maximum Iterations", maxIt);
+  return p;
+}
+
+// keep: optional, per global index; entries with 0 are frozen by fixedOutside
+Run solve(QPSolver& solver, const RCP<const Comm>& comm, const Dense& A, const Vec& b, const SetSpec& s, const Vec& x0,
+          const std::vector<char>& keep = {}) {
+  auto map = pairMap(A.n, comm);
+  CountingOperator Aop(toCrs(map, A));
+  auto bv = toVector(map, b);
+  auto x = toVector(map, x0);
+  ConstraintSet Omega = makeSet(map, s);
+  if (!keep.empty()) {
+    std::vector<char> keepLocal(map->getNodeNumElements());
+    for (size_t l = 0; l < keepLocal.size(); ++l) keepLocal[l] = keep[map->getGlobalElement(static_cast<LO>(l))];
+    Omega = Omega.fixedOutside(keepLocal);
+  }
+  Run r;
+  r.st = solver.solve(Aop, *bv, Omega, *x);
+  r.x = gather(*x);
+  r.counted = Aop.count;
+  return r;
+}
+
+void checkCounts(Checker& check, const Run& r, int power, const std::string& name) {
+  check(r.counted == r.st.n_A, name + ": n_A = " + std::to_string(r.st.n_A) + " but A applied " + std::to_string(r.counted));
+  const long expected = power + 1 + r.st.cg_steps + r.st.proportioning_steps + 2L * r.st.expansion_steps;
+  check(r.st.n_A == expected, name + ": n_A = " + std::to_string(r.st.n_A) + ", step accounting gives " + std::to_string(expected));
+}
+
+double maxDiff(const Vec& a, const Vec& b) {
+  double m = 0;
+  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
+  return m;
+}
+
+int countActiveCircles(const SetSpec& s, const Vec& x) {
+  int k = 0;
+  for (int i = 0; i < s.n(); i += 2)
+    if (s.kind[i] == 'C' && std::hypot(x[i], x[i + 1]) > s.r[i / 2] * (1 - 1e-8)) ++k;
+  return k;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard guard(&argc, &argv);
+  auto comm = Tpetra::getDefaultComm();
+  Checker check;
+  check.rank = comm->getRank();
+  try {
+    // 1. disks only: 6 circles, random radii, some active, some not
+    for (uint32_t seed = 1; seed <= 3; ++seed) {
+      const int n = 12;
+      Dense A = randomSPD(n, seed);
+      Vec b = randomVec(n, 100 + seed, -0.4, 0.4);
+      SetSpec s{std::string(n, 'C'), {}, {}, randomVec(n / 2, 300 + seed, 0.05, 0.8)};
+      const Vec xref = projectedGradientReference(A, b, s, Vec(n, 0.0));
+      MPGP solver(params(1e-11));
+      Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
+      const std::string name = "disks seed " + std::to_string(seed);
+      check(r.st.converged, name + ": converged (" + r.st.reason + ")");
+      check(maxDiff(r.x, xref) < 1e-8, name + ": |x - x_PG| = " + str(maxDiff(r.x, xref)));
+      check(kktViolation(s, r.x, gradient(A, b, r.x)) < 1e-9, name + ": KKT " + str(kktViolation(s, r.x, gradient(A, b, r.x))));
+      const int active = countActiveCircles(s, xref);
+      check(active > 0 && active < n / 2, name + ": reference has active and inactive disks (" + std::to_string(active) + ")");
+      checkCounts(check, r, 20, name);
+    }
+
+    // 2. mix: disks, lower bounds, boxes, free, fixed, and a disk of radius 0
+    for (uint32_t seed = 7; seed <= 8; ++seed) {
+      const int n = 20;
+      Dense A = randomSPD(n, seed);
+      Vec b = randomVec(n, 100 + seed, -1.5, 1.5);
+      SetSpec s{"CCCCCCCCLLLLBBBBFFXX", randomVec(n, 400 + seed, -0.3, 0.0), randomVec(n, 500 + seed, 0.05, 0.3),
+                randomVec(n / 2, 300 + seed, 0.05, 0.5)};
+      s.r[1] = 0.0;
+      Vec x0(n, 0.0);
+      x0[18] = 0.25;  // fixed components keep their start values
+      x0[19] = -0.5;
+      const Vec xref = projectedGradientReference(A, b, s, x0);
+      MPGP solver(params(1e-11));
+      Run r = solve(solver, comm, A, b, s, x0);
+      const std::string name = "mix seed " + std::to_string(seed);
+      check(r.st.converged, name + ": converged (" + r.st.reason + ")");
+      check(maxDiff(r.x, xref) < 1e-8, name + ": |x - x_PG| = " + str(maxDiff(r.x, xref)));
+      SetSpec sk = s;  // KKT on the non-fixed part: fixed entries carry any gradient
+      check(kktViolation(sk, r.x, gradient(A, b, r.x)) < 1e-9, name + ": KKT");
+      check(r.x[2] == 0 && r.x[3] == 0, name + ": radius 0 keeps the pair at 0");
+      check(r.x[18] == 0.25 && r.x[19] == -0.5, name + ": fixed entries unchanged");
+      checkCounts(check, r, 20, name);
+    }
+
+    // 3. inactive disks: the unconstrained solution, by CG steps only
+    {
+      const int n = 16;
+      Dense A = randomSPD(n, 31);
+      Vec b = randomVec(n, 32, -1, 1);
+      SetSpec s{std::string(n, 'C'), {}, {}, Vec(n / 2, 1e3)};
+      const Vec xref = denseSolve(A, b);
+      MPGP solver(params(1e-12));
+      Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
+      check(r.st.converged && maxDiff(r.x, xref) < 1e-9, "inactive disks: x = A^-1 b, error " + str(maxDiff(r.x, xref)));
+      check(r.st.expansion_steps == 0 && r.st.proportioning_steps == 0, "inactive disks: only CG steps");
+    }
+
+    // 4. infeasible start is projected onto the disks first
+    {
+      const int n = 8;
+      Dense A = randomSPD(n, 41);
+      Vec b = randomVec(n, 42, -1, 1);
+      SetSpec s{"CCCCLLBB", Vec(n, 0.0), Vec(n, 0.5), {0.3, 0.2}};
+      Vec x0 = {3, 4, -0.1, 0.1, -2, 1, 7, -7};
+      Vec px0 = x0;
+      denseProject(s, px0, x0);
+      MPGP zero(params(1e-11, 0));
+      Run r0 = solve(zero, comm, A, b, s, x0);
+      check(maxDiff(r0.x, px0) < 1e-15, "MPGP infeasible start projected, error " + str(maxDiff(r0.x, px0)));
+      check(!r0.st.converged && !r0.st.reason.empty(), "Maximum Iterations = 0: not converged with reason");
+      MPGP solver(params(1e-11));
+      Run r = solve(solver, comm, A, b, s, x0);
+      const Vec xref = projectedGradientReference(A, b, s, x0);
+      check(r.st.converged && maxDiff(r.x, xref) < 1e-8, "MPGP from infeasible start: error " + str(maxDiff(r.x, xref)));
+    }
+
+    // 5. block Gauss-Seidel pieces via fixedOutside
+    {
+      const int n = 16;
+      Dense A = randomSPD(n, 61);
+      Vec b = randomVec(n, 62, -1.5, 1.5);
+      SetSpec s{"CCCCCCCCLLLLLLLL", Vec(n, 0.0), Vec(n, inf), randomVec(n / 2, 63, 0.1, 0.4)};
+      Vec x0 = {0.05, 0, 0, 0.1, -0.1, 0, 0, 0, 0.2, 0, 0.1, 0.3, 0, 0, 0.05, 0.1};
+      std::vector<char> keepDisks(n, 0), keepBounds(n, 0);
+      for (int i = 0; i < n; ++i) (s.kind[i] == 'C' ? keepDisks : keepBounds)[i] = 1;
+      SetSpec sDisks = s, sBounds = s;  // the frozen blocks as fixed entries of the reference
+      for (int i = 0; i < n; ++i) (keepDisks[i] ? sBounds : sDisks).kind[i] = 'X';
+      MPGP mpgp(params(1e-11));
+      Run rd = solve(mpgp, comm, A, b, s, x0, keepDisks);
+      const Vec refD = projectedGradientReference(A, b, sDisks, x0);
+      check(rd.st.converged && maxDiff(rd.x, refD) < 1e-8, "MPGP on the disk block: error " + str(maxDiff(rd.x, refD)));
+      check(maxDiff(Vec(rd.x.begin() + 8, rd.x.end()), Vec(x0.begin() + 8, x0.end())) == 0, "bound block frozen");
+      MPRGP mprgp(params(1e-11));
+      Run rb = solve(mprgp, comm, A, b, s, x0, keepBounds);
+      const Vec refB = projectedGradientReference(A, b, sBounds, x0);
+      check(rb.st.converged && maxDiff(rb.x, refB) < 1e-8, "MPRGP on the bound block: error " + str(maxDiff(rb.x, refB)));
+      check(maxDiff(Vec(rb.x.begin(), rb.x.begin() + 8), Vec(x0.begin(), x0.begin() + 8)) == 0, "disk block frozen");
+      checkCounts(check, rb, 20, "MPRGP bound block");
+    }
+  } catch (const std::exception& e) {
+    check(false, std::string("unexpected exception: ") + e.what());
+  }
+  return check.finish(*comm);
+}
