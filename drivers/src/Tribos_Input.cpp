@@ -1,0 +1,335 @@
+#include "Tribos_Input.hpp"
+
+#include <Teuchos_Array.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_XMLParameterListHelpers.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Input {
+
+using Teuchos::Array;
+using Teuchos::ParameterList;
+using Teuchos::tuple;
+
+namespace {
+
+const Array<std::string> kFaces = tuple<std::string>("xmin", "xmax", "ymin", "ymax", "zmin", "zmax");
+
+RCP<Teuchos::StringValidator> choice(const Array<std::string>& names) {
+  return rcp(new Teuchos::StringValidator(names));
+}
+template <class T>
+RCP<Teuchos::EnhancedNumberValidator<T>> range(T lo, T hi) {
+  return rcp(new Teuchos::EnhancedNumberValidator<T>(lo, hi));
+}
+
+// "xyz", "z", "xz": which displacement components a Dirichlet condition fixes.
+class ComponentsValidator : public Teuchos::ParameterEntryValidator {
+ public:
+  void validate(const Teuchos::ParameterEntry& entry, const std::string& name, const std::string& list) const override {
+    const std::string v = Teuchos::any_cast<std::string>(entry.getAny());
+    bool ok = !v.empty();
+    for (char c : v) ok = ok && (c == 'x' || c == 'y' || c == 'z');
+    TRIBOS_REQUIRE(ok, "parameter \"" << list << "/" << name << "\" = \"" << v
+                                      << "\": valid values are non-empty combinations of x, y, z (e.g. \"xyz\", \"z\")");
+  }
+  const std::string getXMLTypeName() const override { return "ComponentsValidator"; }
+  void printDoc(const std::string& doc, std::ostream& out) const override { out << "# " << doc << "\n"; }
+  ValidStringsList validStringValues() const override { return Teuchos::null; }
+};
+
+ParameterList makeDirichletItem() {
+  ParameterList p("Dirichlet item");
+  p.set("Face", "xmin", "named boundary face", choice(kFaces));
+  p.set("Components", "xyz", "fixed components", rcp(new ComponentsValidator));
+  p.set("Value", Array<double>(3, 0.0), "prescribed displacement (x, y, z)");
+  return p;
+}
+
+ParameterList makeTractionItem() {
+  ParameterList p("Traction item");
+  p.set("Face", "xmax", "named boundary face", choice(kFaces));
+  p.set("Value", Array<double>(3, 0.0), "surface traction (x, y, z), force per area");
+  return p;
+}
+
+}  // namespace
+
+const ParameterList& dirichletItem() {
+  static const ParameterList p = makeDirichletItem();
+  return p;
+}
+const ParameterList& tractionItem() {
+  static const ParameterList p = makeTractionItem();
+  return p;
+}
+
+RCP<const ParameterList> validParameters() {
+  static RCP<ParameterList> pl;
+  if (!pl.is_null()) return pl;
+  pl = Teuchos::parameterList("Tribos");
+  pl->set("Problem Name", "tribos", "name of the problem in the summary");
+  ParameterList& mesh = pl->sublist("Mesh", false, "structured box mesh");
+  mesh.set("Element", "Tet4", "cell type", choice(tuple<std::string>("Tet4", "Hex8")));
+  mesh.set("X Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along x");
+  mesh.set("Y Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along y");
+  mesh.set("Z Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along z");
+  mesh.set("Cells", Array<int>(Teuchos::tuple<int>(4, 4, 4)), "cells along x, y, z (used when Level = 0)");
+  mesh.set("Level", 0, "refinement level; 0 uses Cells", range<int>(0, 1000));
+  mesh.set("Level Rule", "Cells Per Unit Length",
+           "how Level sets the cells: k cells per unit length, or the semismooth* prism rule "
+           "nx = ceil(2^((L+4)/2)), ny = nz = ceil(2^((L+2)/2))",
+           choice(tuple<std::string>("Cells Per Unit Length", "Prism")));
+  mesh.set("Partitioner", "Structured", "Structured (a grid of boxes) or METIS",
+           choice(tuple<std::string>("Structured", "METIS")));
+  mesh.set("Subdomain Grid", Array<int>(Teuchos::tuple<int>(1, 1, 1)), "boxes along x, y, z (Structured)");
+  mesh.set("Subdomains", 1, "number of subdomains (METIS)", range<int>(1, 1000000));
+  ParameterList& mat = pl->sublist("Material", false, "isotropic linear elastic material");
+  mat.set("Young's Modulus", 2.1e11, "E > 0", range<double>(1e-300, 1e300));
+  mat.set("Poisson's Ratio", 0.3, "0 <= nu < 0.5", range<double>(0.0, 0.4999999));
+  ParameterList& bc = pl->sublist("Boundary Conditions", false, "Dirichlet conditions and loads");
+  bc.sublist("Dirichlet", false, "one sublist per condition: Face, Components, Value");
+  bc.sublist("Traction", false, "one sublist per load: Face, Value");
+  bc.set("Volume Force", Array<double>(3, 0.0), "volume force density (x, y, z)");
+  ParameterList& contact = pl->sublist("Contact", false, "contact with a rigid plane (see docs)");
+  contact.set("Enabled", false, "solve a contact problem");
+  ParameterList& solver = pl->sublist("Solver", false, "solution algorithm");
+  solver.set("Type", "Monolithic", "Monolithic (assembled global solve) or FETI",
+             choice(tuple<std::string>("Monolithic", "FETI")));
+  solver.sublist("Monolithic").setParameters(*Fem::MonolithicSystem::getValidParameters());
+  ParameterList& out = pl->sublist("Output", false, "result files");
+  out.set("Directory", "output", "directory for the HDF5/XDMF files (overridden by --output)");
+  out.set("Base Name", "solution", "file name without extension");
+  out.set("Write Results", true, "write the HDF5/XDMF result files");
+  return pl;
+}
+
+namespace {
+
+std::string joinNames(const ParameterList& list) {
+  std::string s;
+  for (auto it = list.begin(); it != list.end(); ++it) s += (s.empty() ? "" : ", ") + list.name(it);
+  return s;
+}
+
+void validateItems(ParameterList& collection, const ParameterList& item, const std::string& path) {
+  for (auto it = collection.begin(); it != collection.end(); ++it) {
+    const std::string name = collection.name(it);
+    TRIBOS_REQUIRE(collection.isSublist(name), "parameter \"" << path << "/" << name
+                                                              << "\" must be a sublist with keys: " << joinNames(item));
+    ParameterList& sub = collection.sublist(name);
+    TRIBOS_REQUIRE(sub.isParameter("Face"), "\"" << path << "/" << name << "\" has no \"Face\"; valid faces: xmin, xmax, ymin, ymax, zmin, zmax");
+    for (auto jt = sub.begin(); jt != sub.end(); ++jt)
+      TRIBOS_REQUIRE(item.isParameter(sub.name(jt)), "unknown parameter \"" << path << "/" << name << "/" << sub.name(jt)
+                                                                           << "\"; valid: " << joinNames(item));
+    sub.validateParametersAndSetDefaults(item, 0);
+    const auto& v = sub.get<Array<double>>("Value");
+    TRIBOS_REQUIRE(v.size() == 3, "\"" << path << "/" << name << "/Value\" needs 3 components, got " << v.size());
+  }
+}
+
+// Recursive validation with messages naming the full path of the parameter.
+void validateLevel(ParameterList& user, const ParameterList& valid, const std::string& path) {
+  for (auto it = user.begin(); it != user.end(); ++it) {
+    const std::string name = user.name(it);
+    const std::string full = path.empty() ? name : path + "/" + name;
+    TRIBOS_REQUIRE(valid.isParameter(name), "unknown parameter \"" << full << "\"; valid at this level: " << joinNames(valid));
+    TRIBOS_REQUIRE(user.isSublist(name) == valid.isSublist(name),
+                   "parameter \"" << full << "\" must be " << (valid.isSublist(name) ? "a sublist" : "a value, not a sublist"));
+  }
+  user.validateParametersAndSetDefaults(valid, 0);
+  for (auto it = valid.begin(); it != valid.end(); ++it) {
+    const std::string name = valid.name(it);
+    if (!valid.isSublist(name)) continue;
+    const std::string full = path.empty() ? name : path + "/" + name;
+    if (full == "Boundary Conditions/Dirichlet") {
+      validateItems(user.sublist(name), dirichletItem(), full);
+    } else if (full == "Boundary Conditions/Traction") {
+      validateItems(user.sublist(name), tractionItem(), full);
+    } else {
+      validateLevel(user.sublist(name), valid.sublist(name), full);
+    }
+  }
+}
+
+// Teuchos' messages carry a stack of throw locations; keep the sentence.
+std::string cleanTeuchosMessage(const std::string& what) {
+  std::string msg = what;
+  const auto pos = msg.find("Error,");
+  if (pos != std::string::npos) msg = msg.substr(pos);
+  const auto line = msg.find("Throw number");
+  if (line != std::string::npos) msg = msg.substr(0, line);
+  while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
+  return msg;
+}
+
+}  // namespace
+
+void validate(ParameterList& params, const std::string& source) {
+  try {
+    validateLevel(params, *validParameters(), "");
+    const auto& mesh = params.sublist("Mesh");
+    for (const char* key : {"X Range", "Y Range", "Z Range"}) {
+      const auto& r = mesh.get<Array<double>>(key);
+      TRIBOS_REQUIRE(r.size() == 2 && r[1] > r[0], "\"Mesh/" << key << "\" must be {lo, hi} with lo < hi");
+    }
+    for (const char* key : {"Cells", "Subdomain Grid"}) {
+      const auto& c = mesh.get<Array<int>>(key);
+      TRIBOS_REQUIRE(c.size() == 3 && c[0] > 0 && c[1] > 0 && c[2] > 0, "\"Mesh/" << key << "\" must be 3 positive integers");
+    }
+    const auto& vf = params.sublist("Boundary Conditions").get<Array<double>>("Volume Force");
+    TRIBOS_REQUIRE(vf.size() == 3, "\"Boundary Conditions/Volume Force\" needs 3 components");
+  } catch (const Error& e) {
+    throw Error(source + ": " + e.what());
+  } catch (const std::exception& e) {
+    throw Error(source + ": " + cleanTeuchosMessage(e.what()));
+  }
+}
+
+void applyOverride(ParameterList& params, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  TRIBOS_REQUIRE(eq != std::string::npos && eq > 0, "--set \"" << assignment << "\": expected \"Sublist/Key=value\"");
+  const std::string path = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+  std::vector<std::string> parts;
+  std::stringstream ss(path);
+  for (std::string p; std::getline(ss, p, '/');) parts.push_back(p);
+  ParameterList* user = &params;
+  const ParameterList* valid = validParameters().get();
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& p = parts[i];
+    const bool collection = valid->name() == "Dirichlet" || valid->name() == "Traction";
+    if (collection) {
+      valid = valid->name() == "Dirichlet" ? &dirichletItem() : &tractionItem();
+    } else {
+      TRIBOS_REQUIRE(valid->isSublist(p), "--set \"" << assignment << "\": no sublist \"" << p
+                                                     << "\"; valid: " << joinNames(*valid));
+      valid = &valid->sublist(p);
+    }
+    user = &user->sublist(p);
+  }
+  const std::string& key = parts.back();
+  if (valid->name() == "Dirichlet" || valid->name() == "Traction")
+    throw Error("--set \"" + assignment + "\": name a key inside a condition, e.g. \"" + path + "/Face\"");
+  TRIBOS_REQUIRE(valid->isParameter(key) && !valid->isSublist(key),
+                 "--set \"" << assignment << "\": unknown parameter \"" << path << "\"; valid: " << joinNames(*valid));
+  const Teuchos::any& proto = valid->getEntry(key).getAny();
+  try {
+    if (proto.type() == typeid(int)) {
+      size_t used = 0;
+      const int v = std::stoi(value, &used);
+      TRIBOS_REQUIRE(used == value.size(), "not an integer");
+      user->set(key, v);
+    } else if (proto.type() == typeid(double)) {
+      size_t used = 0;
+      const double v = std::stod(value, &used);
+      TRIBOS_REQUIRE(used == value.size(), "not a number");
+      user->set(key, v);
+    } else if (proto.type() == typeid(bool)) {
+      TRIBOS_REQUIRE(value == "true" || value == "false", "not true/false");
+      user->set(key, value == "true");
+    } else if (proto.type() == typeid(std::string)) {
+      user->set(key, value);
+    } else if (proto.type() == typeid(Array<double>)) {
+      user->set(key, Teuchos::fromStringToArray<double>(value));
+    } else if (proto.type() == typeid(Array<int>)) {
+      user->set(key, Teuchos::fromStringToArray<int>(value));
+    } else {
+      throw Error("unsupported type");
+    }
+  } catch (const std::exception& e) {
+    throw Error("--set \"" + assignment + "\": value \"" + value + "\" does not fit the type of \"" + path +
+                "\" (" + e.what() + ")");
+  }
+}
+
+RCP<ParameterList> read(const std::string& file, const std::vector<std::string>& overrides) {
+  {
+    std::ifstream probe(file);
+    TRIBOS_REQUIRE(probe.good(), "cannot open input file \"" << file << "\"");
+  }
+  RCP<ParameterList> params;
+  try {
+    params = Teuchos::getParametersFromXmlFile(file);
+  } catch (const std::exception& e) {
+    throw Error("input file \"" + file + "\" is not a valid parameter list: " + cleanTeuchosMessage(e.what()));
+  }
+  for (const auto& o : overrides) applyOverride(*params, o);
+  validate(*params, "input file \"" + file + "\"");
+  return params;
+}
+
+Mesh::BoxSpec boxSpec(const ParameterList& params) {
+  const auto& m = params.sublist("Mesh");
+  Mesh::BoxSpec spec;
+  spec.type = Mesh::cellTypeFromName(m.get<std::string>("Element"));
+  const auto& x = m.get<Array<double>>("X Range");
+  const auto& y = m.get<Array<double>>("Y Range");
+  const auto& z = m.get<Array<double>>("Z Range");
+  spec.x = {x[0], x[1]};
+  spec.y = {y[0], y[1]};
+  spec.z = {z[0], z[1]};
+  const int level = m.get<int>("Level");
+  if (level == 0) {
+    const auto& c = m.get<Array<int>>("Cells");
+    spec.cells = {c[0], c[1], c[2]};
+  } else if (m.get<std::string>("Level Rule") == "Prism") {
+    spec.cells = Mesh::prismLevelCells(level);
+  } else {
+    const double len[3] = {x[1] - x[0], y[1] - y[0], z[1] - z[0]};
+    for (int a = 0; a < 3; ++a) spec.cells[a] = std::max(1, static_cast<int>(std::lround(level * len[a])));
+  }
+  return spec;
+}
+
+Mesh::DecompositionSpec decompositionSpec(const ParameterList& params) {
+  const auto& m = params.sublist("Mesh");
+  Mesh::DecompositionSpec dec;
+  dec.partitioner = m.get<std::string>("Partitioner");
+  const auto& g = m.get<Array<int>>("Subdomain Grid");
+  dec.grid = {g[0], g[1], g[2]};
+  dec.subdomains = m.get<int>("Subdomains");
+  return dec;
+}
+
+Fem::Material material(const ParameterList& params) {
+  const auto& m = params.sublist("Material");
+  Fem::Material mat;
+  mat.E = m.get<double>("Young's Modulus");
+  mat.nu = m.get<double>("Poisson's Ratio");
+  return mat;
+}
+
+Fem::LoadCase loadCase(const ParameterList& params) {
+  const auto& bc = params.sublist("Boundary Conditions");
+  Fem::LoadCase loads;
+  const auto& d = bc.sublist("Dirichlet");
+  for (auto it = d.begin(); it != d.end(); ++it) {
+    const auto& item = d.sublist(d.name(it));
+    Fem::DirichletCondition c;
+    c.face = item.get<std::string>("Face");
+    const std::string comps = item.get<std::string>("Components");
+    for (int k = 0; k < 3; ++k) c.fix[k] = comps.find("xyz"[k]) != std::string::npos;
+    const auto& v = item.get<Array<double>>("Value");
+    c.value = {v[0], v[1], v[2]};
+    loads.dirichlet.push_back(c);
+  }
+  const auto& t = bc.sublist("Traction");
+  for (auto it = t.begin(); it != t.end(); ++it) {
+    const auto& item = t.sublist(t.name(it));
+    const auto& v = item.get<Array<double>>("Value");
+    loads.tractions.push_back({item.get<std::string>("Face"), {v[0], v[1], v[2]}});
+  }
+  const auto& vf = bc.get<Array<double>>("Volume Force");
+  loads.volumeForce = {vf[0], vf[1], vf[2]};
+  return loads;
+}
+
+}  // namespace Input
+}  // namespace Tribos

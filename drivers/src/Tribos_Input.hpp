@@ -1,0 +1,46 @@
+// Tribos_Input.hpp: the XML parameter file of a Tribos run. Sublists "Mesh",
+// "Material", "Boundary Conditions", "Contact", "Solver", "Output"; every entry
+// is validated against validParameters() before any work, so a misspelled key
+// or an unknown choice stops the run with a message naming it.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+#include <vector>
+
+#include "Tribos_Discretization.hpp"
+#include "Tribos_Elasticity.hpp"
+#include "Tribos_Loads.hpp"
+#include "Tribos_Monolithic.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace Input {
+
+// The complete tree of valid parameters with defaults and documentation.
+// Sublists of "Boundary Conditions/Dirichlet" and ".../Traction" may have any
+// name; each is checked against the item lists returned here.
+RCP<const Teuchos::ParameterList> validParameters();
+const Teuchos::ParameterList& dirichletItem();
+const Teuchos::ParameterList& tractionItem();
+
+// Reads the file, applies "Sublist/Key=value" overrides typed as in the valid
+// list, validates and fills defaults. Throws Tribos::Error naming the file,
+// the parameter and the valid choices.
+RCP<Teuchos::ParameterList> read(const std::string& file, const std::vector<std::string>& overrides);
+
+// Validates an in-memory list in place (as read() does after parsing).
+void validate(Teuchos::ParameterList& params, const std::string& source);
+
+// Overrides one entry: path "Sublist/.../Key", value as text.
+void applyOverride(Teuchos::ParameterList& params, const std::string& assignment);
+
+// Builders from a validated list.
+Mesh::BoxSpec boxSpec(const Teuchos::ParameterList& params);
+Mesh::DecompositionSpec decompositionSpec(const Teuchos::ParameterList& params);
+Fem::Material material(const Teuchos::ParameterList& params);
+Fem::LoadCase loadCase(const Teuchos::ParameterList& params);
+
+}  // namespace Input
+}  // namespace Tribos

@@ -1,0 +1,23 @@
+// Tribos_Run.hpp: one run of the XML-driven solver: set up the discretization,
+// solve with the algorithm the parameters choose, write results and summary.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+
+#include "Tribos_Summary.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+
+struct RunOptions {
+  std::string outputDir;     // overrides Output/Directory when non-empty
+  bool verify = false;       // also solve monolithically and compare
+  std::string inputName;     // for the summary
+};
+
+// Runs the problem; returns the summary (identical on every rank).
+IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm);
+
+}  // namespace Tribos

@@ -1,0 +1,27 @@
+// Tribos_Error.hpp: one exception type for input and setup errors, so drivers
+// can print the message (which names the file, parameter or mesh entity) and
+// exit cleanly instead of crashing.
+#pragma once
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace Tribos {
+
+class Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& what) : std::runtime_error(what) {}
+};
+
+}  // namespace Tribos
+
+// TRIBOS_REQUIRE(cond, "message " << value): throws Tribos::Error when cond fails.
+#define TRIBOS_REQUIRE(cond, msg)            \
+  do {                                       \
+    if (!(cond)) {                           \
+      std::ostringstream tribos_os_;         \
+      tribos_os_ << msg;                     \
+      throw ::Tribos::Error(tribos_os_.str()); \
+    }                                        \
+  } while (0)

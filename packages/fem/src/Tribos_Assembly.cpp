@@ -1,0 +1,123 @@
+#include "Tribos_Assembly.hpp"
+
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Map.hpp>
+
+#include <algorithm>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Fem {
+
+std::vector<Point> cellCoordinates(const Mesh::Mesh& mesh, int cell) {
+  std::vector<Point> X(mesh.nodesPerCell());
+  for (int a = 0; a < mesh.nodesPerCell(); ++a) X[a] = mesh.coords[mesh.cell(cell)[a]];
+  return X;
+}
+
+namespace {
+
+// Sparsity of the dof graph: dofs of nodes sharing a cell are coupled.
+LocalCsr dofPattern(int numNodes, const std::vector<int>& conn, int npc) {
+  std::vector<std::vector<int>> adj(numNodes);
+  for (size_t c = 0; c < conn.size(); c += npc)
+    for (int a = 0; a < npc; ++a)
+      for (int b = 0; b < npc; ++b) adj[conn[c + a]].push_back(conn[c + b]);
+  LocalCsr A;
+  A.rows = A.cols = 3 * numNodes;
+  A.rowptr.assign(A.rows + 1, 0);
+  for (int n = 0; n < numNodes; ++n) {
+    auto& nb = adj[n];
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    for (int c = 0; c < 3; ++c) {
+      for (int m : nb)
+        for (int d = 0; d < 3; ++d) A.col.push_back(3 * m + d);
+      A.rowptr[3 * n + c + 1] = static_cast<int>(A.col.size());
+    }
+  }
+  A.val.assign(A.col.size(), 0.0);
+  return A;
+}
+
+void addEntry(LocalCsr& A, int i, int j, double v) {
+  auto first = A.col.begin() + A.rowptr[i], last = A.col.begin() + A.rowptr[i + 1];
+  auto it = std::lower_bound(first, last, j);
+  A.val[it - A.col.begin()] += v;
+}
+
+}  // namespace
+
+SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const Material& mat,
+                                  const LoadCase& loads) {
+  SubdomainSystem sys;
+  sys.id = sub.id;
+  sys.nodes = sub.nodes;
+  const int npc = mesh.nodesPerCell(), nl = static_cast<int>(sub.nodes.size());
+  sys.K = dofPattern(nl, sub.connectivity, npc);
+  sys.f.assign(3 * nl, 0.0);
+  const bool hasVolumeForce = loads.volumeForce[0] != 0 || loads.volumeForce[1] != 0 || loads.volumeForce[2] != 0;
+  for (size_t k = 0; k < sub.cells.size(); ++k) {
+    const int* ln = &sub.connectivity[k * npc];
+    const auto X = cellCoordinates(mesh, sub.cells[k]);
+    const auto Ke = elementStiffness(mesh.type, X, mat);
+    for (int a = 0; a < 3 * npc; ++a)
+      for (int b = 0; b < 3 * npc; ++b) addEntry(sys.K, 3 * ln[a / 3] + a % 3, 3 * ln[b / 3] + b % 3, Ke[a * 3 * npc + b]);
+    if (hasVolumeForce) {
+      const auto fe = cellVolumeForces(mesh.type, X, loads.volumeForce);
+      for (int a = 0; a < 3 * npc; ++a) sys.f[3 * ln[a / 3] + a % 3] += fe[a];
+    }
+  }
+  // Tractions act on the facets whose cell belongs to this subdomain.
+  std::vector<char> mine(mesh.numCells(), 0);
+  for (int c : sub.cells) mine[c] = 1;
+  for (const auto& t : loads.tractions)
+    for (const Mesh::Facet& facet : mesh.face(t.face)) {
+      if (!mine[facet.cell]) continue;
+      std::vector<Point> X;
+      for (int n : facet.nodes) X.push_back(mesh.coords[n]);
+      const auto fe = facetTractionForces(X, t.traction);
+      for (size_t a = 0; a < facet.nodes.size(); ++a)
+        for (int d = 0; d < 3; ++d) sys.f[3 * sub.localNode(facet.nodes[a]) + d] += fe[3 * a + d];
+    }
+  std::vector<Point> X(nl);
+  for (int n = 0; n < nl; ++n) X[n] = mesh.coords[sub.nodes[n]];
+  sys.R = rigidBodyModes(X);
+  return sys;
+}
+
+RCP<CrsMatrix> toTpetra(const LocalCsr& A, const RCP<const Comm>& comm) {
+  TRIBOS_REQUIRE(comm->getSize() == 1, "toTpetra expects a serial communicator");
+  auto map = rcp(new Map(static_cast<Tpetra::global_size_t>(A.rows), 0, comm));
+  Teuchos::ArrayRCP<size_t> rowptr(A.rows + 1);
+  Teuchos::ArrayRCP<LO> col(A.col.size());
+  Teuchos::ArrayRCP<SC> val(A.val.size());
+  std::copy(A.rowptr.begin(), A.rowptr.end(), rowptr.begin());
+  std::copy(A.col.begin(), A.col.end(), col.begin());
+  std::copy(A.val.begin(), A.val.end(), val.begin());
+  auto K = rcp(new CrsMatrix(map, map, rowptr, col, val));
+  K->expertStaticFillComplete(map, map);
+  return K;
+}
+
+std::vector<double> globalLoadVector(const Mesh::Mesh& mesh, const LoadCase& loads) {
+  std::vector<double> f(3 * static_cast<size_t>(mesh.numNodes()), 0.0);
+  const int npc = mesh.nodesPerCell();
+  for (int c = 0; c < mesh.numCells(); ++c) {
+    const auto fe = cellVolumeForces(mesh.type, cellCoordinates(mesh, c), loads.volumeForce);
+    for (int a = 0; a < 3 * npc; ++a) f[3 * mesh.cell(c)[a / 3] + a % 3] += fe[a];
+  }
+  for (const auto& t : loads.tractions)
+    for (const Mesh::Facet& facet : mesh.face(t.face)) {
+      std::vector<Point> X;
+      for (int n : facet.nodes) X.push_back(mesh.coords[n]);
+      const auto fe = facetTractionForces(X, t.traction);
+      for (size_t a = 0; a < facet.nodes.size(); ++a)
+        for (int d = 0; d < 3; ++d) f[3 * facet.nodes[a] + d] += fe[3 * a + d];
+    }
+  return f;
+}
+
+}  // namespace Fem
+}  // namespace Tribos

@@ -1,0 +1,39 @@
+// Tribos_Assembly.hpp: subdomain stiffness K_s, load f_s and rigid-body kernel R_s.
+#pragma once
+
+#include <vector>
+
+#include "Tribos_Decomposition.hpp"
+#include "Tribos_Elasticity.hpp"
+#include "Tribos_LocalCsr.hpp"
+#include "Tribos_Loads.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace Fem {
+
+// Everything FETI needs of one subdomain. Dirichlet conditions are not applied
+// here: in Total FETI they become rows of B, so K_s is always floating.
+struct SubdomainSystem {
+  int id = -1;
+  std::vector<int> nodes;     // local node -> global node
+  LocalCsr K;                 // 3n x 3n, symmetric positive semidefinite
+  std::vector<double> f;      // tractions and volume forces of the subdomain's own cells
+  std::vector<double> R;      // 3n x 6, column-major, orthonormal columns spanning ker K
+  int numDofs() const { return 3 * static_cast<int>(nodes.size()); }
+};
+
+SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const Material& mat,
+                                  const LoadCase& loads);
+
+// Cell node coordinates.
+std::vector<Point> cellCoordinates(const Mesh::Mesh& mesh, int cell);
+
+// K_s as a Tpetra::CrsMatrix on the given (typically serial) communicator.
+RCP<CrsMatrix> toTpetra(const LocalCsr& A, const RCP<const Comm>& comm);
+
+// Global load vector (3 numNodes), every rank computes it in full.
+std::vector<double> globalLoadVector(const Mesh::Mesh& mesh, const LoadCase& loads);
+
+}  // namespace Fem
+}  // namespace Tribos

@@ -1,0 +1,52 @@
+// Tribos_Elasticity.hpp: 3D isotropic linear elasticity on P1 tetrahedra and
+// Q1 hexahedra (2x2x2 Gauss): element stiffness, loads and stresses.
+// DOF layout everywhere: dof = 3 * node + component.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "Tribos_Mesh.hpp"
+
+namespace Tribos {
+namespace Fem {
+
+using Point = std::array<double, 3>;
+
+struct Material {
+  double E = 1.0;    // Young's modulus
+  double nu = 0.3;   // Poisson's ratio
+  double lameLambda() const { return E * nu / ((1 + nu) * (1 - 2 * nu)); }
+  double lameMu() const { return E / (2 * (1 + nu)); }
+  // Voigt stress-strain matrix D (6x6, row-major), strain order xx,yy,zz,yz,xz,xy
+  // with engineering shear strains.
+  std::array<double, 36> D() const;
+};
+
+// Element stiffness (row-major, 3*npc x 3*npc) of a cell with the given nodes.
+std::vector<double> elementStiffness(Mesh::CellType type, const std::vector<Point>& X, const Material& mat);
+
+// Shape function gradients dN/dx (npc x 3, row-major) at reference point xi
+// (ignored for Tet4); returns det J.
+double shapeGradients(Mesh::CellType type, const std::vector<Point>& X, const Point& xi, std::vector<double>& dN);
+
+// Cauchy stress (Voigt) at the cell centre from the cell's nodal displacements.
+std::array<double, 6> cellStress(Mesh::CellType type, const std::vector<Point>& X, const std::vector<double>& ue,
+                                 const Material& mat);
+double vonMises(const std::array<double, 6>& s);
+
+// Consistent nodal forces of a constant traction t on a facet (3 or 4 nodes).
+std::vector<double> facetTractionForces(const std::vector<Point>& X, const Point& t);
+// Nodal weights of the facet area (integral of each shape function), used to
+// turn a traction bound into nodal slip bounds.
+std::vector<double> facetNodalAreas(const std::vector<Point>& X);
+// Consistent nodal forces of a constant volume force b on a cell.
+std::vector<double> cellVolumeForces(Mesh::CellType type, const std::vector<Point>& X, const Point& b);
+
+// Rigid-body modes of a set of points: 3 translations and the rotations
+// (y,-x,0), (0,-z,y), (z,0,-x), orthonormalized (modified Gram-Schmidt twice).
+// Column-major, 3*n x 6.
+std::vector<double> rigidBodyModes(const std::vector<Point>& X);
+
+}  // namespace Fem
+}  // namespace Tribos

@@ -1,0 +1,33 @@
+#include "Tribos_Loads.hpp"
+
+#include <cmath>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Fem {
+
+std::map<long long, double> constrainedDofs(const Mesh::Mesh& mesh, const std::vector<DirichletCondition>& bcs) {
+  std::map<long long, double> dofs;
+  std::map<long long, std::string> source;
+  for (const auto& bc : bcs) {
+    for (int n : mesh.faceNodes(bc.face))
+      for (int c = 0; c < 3; ++c) {
+        if (!bc.fix[c]) continue;
+        const long long dof = 3LL * n + c;
+        auto it = dofs.find(dof);
+        if (it != dofs.end()) {
+          TRIBOS_REQUIRE(std::abs(it->second - bc.value[c]) <= 1e-14 * (1 + std::abs(bc.value[c])),
+                         "Dirichlet conditions on faces " << source[dof] << " and " << bc.face
+                                                          << " prescribe different values at node " << n);
+          continue;
+        }
+        dofs[dof] = bc.value[c];
+        source[dof] = bc.face;
+      }
+  }
+  return dofs;
+}
+
+}  // namespace Fem
+}  // namespace Tribos

@@ -1,0 +1,38 @@
+// Tribos_Loads.hpp: boundary conditions and loads on named faces.
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "Tribos_Elasticity.hpp"
+#include "Tribos_Mesh.hpp"
+
+namespace Tribos {
+namespace Fem {
+
+// u_c = value_c on a face for every component c with fix[c] (e.g. only u_z = 0).
+struct DirichletCondition {
+  std::string face;
+  std::array<bool, 3> fix{true, true, true};
+  Point value{0, 0, 0};
+};
+
+struct TractionCondition {
+  std::string face;
+  Point traction{0, 0, 0};
+};
+
+struct LoadCase {
+  std::vector<DirichletCondition> dirichlet;
+  std::vector<TractionCondition> tractions;
+  Point volumeForce{0, 0, 0};
+};
+
+// Global dof (3 node + c) -> prescribed value. Faces meeting at an edge may
+// both constrain a dof; conflicting values are an error naming both faces.
+std::map<long long, double> constrainedDofs(const Mesh::Mesh& mesh, const std::vector<DirichletCondition>& bcs);
+
+}  // namespace Fem
+}  // namespace Tribos

@@ -1,0 +1,188 @@
+#include "Tribos_Monolithic.hpp"
+
+#include <Amesos2.hpp>
+#include <BelosLinearProblem.hpp>
+#include <BelosSolverFactory.hpp>
+#include <BelosTpetraAdapter.hpp>
+#include <MueLu_CreateTpetraPreconditioner.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Vector.hpp>
+#include <Tpetra_Import.hpp>
+
+#include <Teuchos_DefaultSerialComm.hpp>
+
+#include <mpi.h>
+
+#include "Tribos_Assembly.hpp"
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Fem {
+
+MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const Material& mat, const LoadCase& loads,
+                                   const RCP<const Comm>& comm)
+    : disc_(disc), comm_(comm) {
+  const Mesh::Mesh& mesh = disc.mesh;
+  std::vector<GO> gids;
+  // Dof GIDs follow the rank-contiguous node numbering, so every rank owns a
+  // contiguous block (what Amesos2 and MueLu handle best).
+  const auto& index = disc.nodeIndex();
+  for (int n : disc.ownedNodes())
+    for (int c = 0; c < 3; ++c) gids.push_back(3 * index[n] + c);
+  map_ = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(), gids, 0, comm));
+  const auto bc = constrainedDofs(mesh, loads.dirichlet);
+  const int npc = mesh.nodesPerCell(), ne = 3 * npc;
+  K_ = rcp(new CrsMatrix(map_, mesh.type == Mesh::CellType::Tet4 ? 60 : 81));
+  // Element-level symmetric elimination of the Dirichlet dofs: their columns
+  // move to the right-hand side, their rows keep only the diagonal, so K stays
+  // SPD and CG applies.
+  std::vector<double> lift(3 * static_cast<size_t>(mesh.numNodes()), 0.0);
+  std::vector<GO> dofs(ne);
+  std::vector<SC> row(ne);
+  for (int c : disc.localCells()) {
+    const auto Ke = elementStiffness(mesh.type, cellCoordinates(mesh, c), mat);
+    std::vector<double> ubar(ne, 0.0);
+    std::vector<char> fixed(ne, 0);
+    for (int a = 0; a < ne; ++a) {
+      dofs[a] = 3 * index[mesh.cell(c)[a / 3]] + a % 3;
+      auto it = bc.find(3LL * mesh.cell(c)[a / 3] + a % 3);
+      if (it != bc.end()) fixed[a] = 1, ubar[a] = it->second;
+    }
+    for (int a = 0; a < ne; ++a) {
+      for (int b = 0; b < ne; ++b) {
+        const double k = Ke[a * ne + b];
+        if (fixed[a] || fixed[b]) {
+          row[b] = (a == b) ? k : 0.0;
+          if (!fixed[a] && fixed[b]) lift[dofs[a]] -= k * ubar[b];
+          if (fixed[a] && a == b) lift[dofs[a]] += k * ubar[a];
+        } else {
+          row[b] = k;
+        }
+      }
+      K_->insertGlobalValues(dofs[a], Teuchos::ArrayView<const GO>(dofs), Teuchos::ArrayView<const SC>(row));
+    }
+  }
+  K_->fillComplete();
+  // The load of a fixed dof is replaced by K_aa ubar_a (from lift).
+  std::vector<double> f = globalLoadVector(mesh, loads);
+  for (const auto& d : bc) f[d.first] = 0.0;
+  // lift is indexed by dof GID (rank-contiguous numbering), f by mesh node.
+  MPI_Allreduce(MPI_IN_PLACE, lift.data(), static_cast<int>(lift.size()), MPI_DOUBLE, MPI_SUM,
+                *Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm)->getRawMpiComm());
+  f_ = rcp(new Vector(map_));
+  auto fv = f_->getDataNonConst();
+  for (size_t i = 0; i < map_->getNodeNumElements(); ++i) {
+    const GO g = map_->getGlobalElement(static_cast<LO>(i));
+    const int node = disc.ownedNodes()[i / 3];
+    fv[i] = f[3LL * node + i % 3] + lift[g];
+  }
+}
+
+RCP<const Teuchos::ParameterList> MonolithicSystem::getValidParameters() {
+  static RCP<Teuchos::ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::parameterList("Monolithic");
+    pl->set("Linear Solver", "CG+MueLu", "CG+MueLu (iterative, any size) or Direct (Amesos2 KLU2, small problems)",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("CG+MueLu", "Direct"))));
+    pl->set("Tolerance", 1e-10, "relative residual of the CG solve",
+            rcp(new Teuchos::EnhancedNumberValidator<double>(1e-16, 1.0)));
+    pl->set("Maximum Iterations", 2000, "CG iteration limit",
+            rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
+  }
+  return pl;
+}
+
+MonolithicResult MonolithicSystem::solve(const Teuchos::ParameterList& params) const {
+  MonolithicResult res;
+  auto u = rcp(new Vector(map_));
+  const std::string kind = params.get<std::string>("Linear Solver");
+  if (kind == "Direct") {
+    // Amesos2 KLU2 of this Trilinos build returns wrong solutions on
+    // communicators of more than one rank, so the matrix is gathered on rank 0
+    // and factored there on a serial communicator.
+    const GO n = static_cast<GO>(map_->getGlobalNumElements());
+    auto rootMap = rcp(new Map(n, comm_->getRank() == 0 ? n : 0, 0, comm_));
+    Import toRoot(map_, rootMap);
+    auto K0 = Tpetra::importAndFillCompleteCrsMatrix<CrsMatrix>(K_, toRoot, rootMap, rootMap);
+    Vector f0(rootMap), u0(rootMap);
+    f0.doImport(*f_, toRoot, Tpetra::INSERT);
+    if (comm_->getRank() == 0) {
+      auto serial = rcp(new Teuchos::SerialComm<int>());
+      auto smap = rcp(new Map(n, 0, serial));
+      auto Ks = rcp(new CrsMatrix(smap, K0->getNodeMaxNumRowEntries()));
+      Teuchos::Array<GO> cols(K0->getNodeMaxNumRowEntries());
+      Teuchos::Array<SC> vals(K0->getNodeMaxNumRowEntries());
+      for (GO i = 0; i < n; ++i) {
+        size_t len = 0;
+        K0->getGlobalRowCopy(i, cols(), vals(), len);
+        Ks->insertGlobalValues(i, cols(0, len), vals(0, len));
+      }
+      Ks->fillComplete();
+      auto fs = rcp(new Vector(smap)), us = rcp(new Vector(smap));
+      { auto src = f0.getData(); auto dst = fs->getDataNonConst(); std::copy(src.begin(), src.end(), dst.begin()); }
+      auto solver = Amesos2::create<CrsMatrix, MultiVector>("KLU2", Ks, us, fs);
+      solver->symbolicFactorization().numericFactorization().solve();
+      { auto src = us->getData(); auto dst = u0.getDataNonConst(); std::copy(src.begin(), src.end(), dst.begin()); }
+    }
+    u->doExport(u0, toRoot, Tpetra::INSERT);
+    res.converged = true;
+  } else {
+    Teuchos::ParameterList mueluParams;
+    mueluParams.set("verbosity", "none");
+    mueluParams.set("coarse: max size", 1000);
+    mueluParams.set("number of equations", 3);
+    // The coarse level is smoothed, not factored: the distributed Amesos2 KLU2
+    // of this Trilinos build is unreliable (see the Direct branch).
+    mueluParams.set("coarse: type", "RELAXATION");
+    mueluParams.sublist("coarse: params").set("relaxation: type", "Symmetric Gauss-Seidel");
+    mueluParams.sublist("coarse: params").set("relaxation: sweeps", 4);
+    // Rigid-body modes of the whole body as the near null space.
+    auto nullspace = rcp(new MultiVector(map_, 6));
+    auto coords = rcp(new MultiVector(map_, 3));
+    for (size_t i = 0; i < map_->getNodeNumElements(); ++i) {
+      const auto& x = disc_.mesh.coords[disc_.ownedNodes()[i / 3]];
+      const int c = static_cast<int>(i % 3);
+      nullspace->replaceLocalValue(i, c, 1.0);
+      const double rot[3][3] = {{x[1], -x[0], 0}, {0, -x[2], x[1]}, {x[2], 0, -x[0]}};
+      for (int r = 0; r < 3; ++r) nullspace->replaceLocalValue(i, 3 + r, rot[r][c]);
+      for (int d = 0; d < 3; ++d) coords->replaceLocalValue(i, d, x[d]);
+    }
+    mueluParams.sublist("user data").set("Nullspace", nullspace);
+    RCP<Operator> M = MueLu::CreateTpetraPreconditioner<SC, LO, GO, Node>(
+        Teuchos::rcp_const_cast<Operator>(Teuchos::rcp_implicit_cast<const Operator>(K_)), mueluParams);
+    using Problem = Belos::LinearProblem<SC, MultiVector, Operator>;
+    auto problem = rcp(new Problem(K_, u, f_));
+    problem->setLeftPrec(M);
+    TRIBOS_REQUIRE(problem->setProblem(), "Belos could not set up the monolithic problem");
+    auto belosParams = Teuchos::parameterList();
+    belosParams->set("Convergence Tolerance", params.get<double>("Tolerance"));
+    belosParams->set("Maximum Iterations", params.get<int>("Maximum Iterations"));
+    Belos::SolverFactory<SC, MultiVector, Operator> factory;
+    auto solver = factory.create("CG", belosParams);
+    solver->setProblem(problem);
+    res.converged = solver->solve() == Belos::Converged;
+    res.iterations = solver->getNumIters();
+  }
+  Vector r(map_);
+  K_->apply(*u, r);
+  r.update(1.0, *f_, -1.0);
+  res.relativeResidual = r.norm2() / std::max(f_->norm2(), 1e-300);
+  res.u = gatherToAll(*u, disc_);
+  return res;
+}
+
+std::vector<double> gatherToAll(const Vector& v, const Mesh::Discretization& disc) {
+  std::vector<double> full(3 * static_cast<size_t>(disc.mesh.numNodes()), 0.0);
+  auto data = v.getData();
+  const auto& owned = disc.ownedNodes();
+  TRIBOS_REQUIRE(data.size() == 3 * owned.size(), "gatherToAll: vector does not match the owned nodes");
+  for (size_t i = 0; i < data.size(); ++i) full[3 * owned[i / 3] + i % 3] = data[i];
+  auto mpiComm = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(v.getMap()->getComm());
+  MPI_Allreduce(MPI_IN_PLACE, full.data(), static_cast<int>(full.size()), MPI_DOUBLE, MPI_SUM,
+                *mpiComm->getRawMpiComm());
+  return full;
+}
+
+}  // namespace Fem
+}  // namespace Tribos

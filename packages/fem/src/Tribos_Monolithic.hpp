@@ -1,0 +1,52 @@
+// Tribos_Monolithic.hpp: the assembled global elasticity problem K u = f with
+// Dirichlet conditions, distributed by node ownership and solved by Belos CG
+// preconditioned with MueLu (rigid-body modes as near null space) or by an
+// Amesos2 direct solver. It is the reference FETI is checked against.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+#include <vector>
+
+#include "Tribos_Discretization.hpp"
+#include "Tribos_Elasticity.hpp"
+#include "Tribos_Loads.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace Fem {
+
+struct MonolithicResult {
+  std::vector<double> u;   // replicated displacement, 3 numNodes
+  int iterations = 0;      // Belos iterations (0 for a direct solve)
+  double relativeResidual = 0;
+  bool converged = false;
+};
+
+class MonolithicSystem {
+ public:
+  MonolithicSystem(const Mesh::Discretization& disc, const Material& mat, const LoadCase& loads,
+                   const RCP<const Comm>& comm);
+
+  // "Linear Solver": "CG+MueLu" | "Direct"; "Tolerance"; "Maximum Iterations".
+  MonolithicResult solve(const Teuchos::ParameterList& params) const;
+  static RCP<const Teuchos::ParameterList> getValidParameters();
+
+  RCP<const CrsMatrix> matrix() const { return K_; }
+  RCP<const Vector> rhs() const { return f_; }
+
+ private:
+  const Mesh::Discretization& disc_;
+  RCP<const Comm> comm_;
+  RCP<const Map> map_;
+  RCP<CrsMatrix> K_;
+  RCP<Vector> f_;
+};
+
+// Replicates a vector on the owned-node dof map (3 per owned node, in
+// ownedNodes() order) into a full array indexed 3 node + c.
+std::vector<double> gatherToAll(const Vector& v, const Mesh::Discretization& disc);
+
+}  // namespace Fem
+}  // namespace Tribos

@@ -1,0 +1,74 @@
+#include "Tribos_Summary.hpp"
+
+#include <sys/resource.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace Tribos {
+namespace IO {
+
+namespace {
+std::string number(double v) {
+  if (!std::isfinite(v)) return "null";  // JSON has no inf/nan
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+std::string quote(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\', out += c;
+    else if (c == '\n') out += "\\n";
+    else out += c;
+  }
+  return out + "\"";
+}
+}  // namespace
+
+void Summary::put(const std::string& key, std::string json) {
+  for (auto& e : entries_)
+    if (e.first == key) {
+      e.second = std::move(json);
+      return;
+    }
+  entries_.emplace_back(key, std::move(json));
+}
+
+Summary& Summary::set(const std::string& key, double v) { put(key, number(v)); return *this; }
+Summary& Summary::set(const std::string& key, long long v) { put(key, std::to_string(v)); return *this; }
+Summary& Summary::set(const std::string& key, bool v) { put(key, v ? "true" : "false"); return *this; }
+Summary& Summary::set(const std::string& key, const std::string& v) { put(key, quote(v)); return *this; }
+Summary& Summary::set(const std::string& key, const std::vector<double>& v) {
+  std::string s = "[";
+  for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + number(v[i]);
+  put(key, s + "]");
+  return *this;
+}
+Summary& Summary::set(const std::string& key, const Summary& object) { put(key, object.toJson(1)); return *this; }
+
+bool Summary::has(const std::string& key) const {
+  for (const auto& e : entries_)
+    if (e.first == key) return true;
+  return false;
+}
+
+std::string Summary::toJson(int indent) const {
+  const std::string pad(2 * (indent + 1), ' '), end(2 * indent, ' ');
+  std::ostringstream os;
+  os << "{\n";
+  for (size_t i = 0; i < entries_.size(); ++i)
+    os << pad << quote(entries_[i].first) << ": " << entries_[i].second << (i + 1 < entries_.size() ? ",\n" : "\n");
+  os << end << "}";
+  return os.str();
+}
+
+double peakRssMb() {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024.0;  // Linux reports kB
+}
+
+}  // namespace IO
+}  // namespace Tribos

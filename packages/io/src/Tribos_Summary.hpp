@@ -1,0 +1,36 @@
+// Tribos_Summary.hpp: the run summary, one flat-ish JSON object that scripts
+// read (keys in insertion order; values are numbers, strings, booleans, arrays
+// of numbers or nested objects).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace Tribos {
+namespace IO {
+
+class Summary {
+ public:
+  Summary& set(const std::string& key, double v);
+  Summary& set(const std::string& key, long long v);
+  Summary& set(const std::string& key, int v) { return set(key, static_cast<long long>(v)); }
+  Summary& set(const std::string& key, bool v);
+  Summary& set(const std::string& key, const std::string& v);
+  Summary& set(const std::string& key, const char* v) { return set(key, std::string(v)); }
+  Summary& set(const std::string& key, const std::vector<double>& v);
+  Summary& set(const std::string& key, const Summary& object);
+  std::string toJson(int indent = 0) const;
+  bool has(const std::string& key) const;
+
+ private:
+  void put(const std::string& key, std::string json);
+  std::vector<std::pair<std::string, std::string>> entries_;  // key, JSON text
+};
+
+// Peak resident memory of this process in MB (getrusage).
+double peakRssMb();
+
+}  // namespace IO
+}  // namespace Tribos

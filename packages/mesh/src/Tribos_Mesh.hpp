@@ -1,0 +1,65 @@
+// Tribos_Mesh.hpp: structured box meshes of P1 tetrahedra or Q1 hexahedra with
+// named boundary faces. The mesh is small enough to be replicated on every rank;
+// each rank then assembles only the subdomains it owns.
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace Tribos {
+namespace Mesh {
+
+enum class CellType { Tet4, Hex8 };
+
+int nodesPerCell(CellType type);
+std::string cellTypeName(CellType type);
+CellType cellTypeFromName(const std::string& name);  // "Tet4" | "Hex8"
+
+// A boundary facet: a triangle (Tet4) or quadrilateral (Hex8) of one cell.
+struct Facet {
+  std::vector<int> nodes;  // global node ids, counter-clockwise seen from outside
+  int cell = -1;
+};
+
+struct BoxSpec {
+  std::array<double, 2> x{0, 1}, y{0, 1}, z{0, 1};
+  std::array<int, 3> cells{1, 1, 1};
+  CellType type = CellType::Hex8;
+};
+
+class Mesh {
+ public:
+  CellType type = CellType::Hex8;
+  std::vector<std::array<double, 3>> coords;    // per node
+  std::vector<int> connectivity;                // nodesPerCell() ids per cell
+  std::map<std::string, std::vector<Facet>> faces;  // named boundary faces
+
+  int nodesPerCell() const { return Mesh::nodesPerCellOf(type); }
+  int numNodes() const { return static_cast<int>(coords.size()); }
+  int numCells() const { return static_cast<int>(connectivity.size()) / nodesPerCell(); }
+  const int* cell(int c) const { return &connectivity[static_cast<size_t>(c) * nodesPerCell()]; }
+
+  // Sorted unique node ids of a named face; throws naming the face and the
+  // valid names when it does not exist.
+  std::vector<int> faceNodes(const std::string& name) const;
+  const std::vector<Facet>& face(const std::string& name) const;
+  std::vector<std::string> faceNames() const;
+
+ private:
+  static int nodesPerCellOf(CellType t) { return t == CellType::Tet4 ? 4 : 8; }
+};
+
+// Box [x0,x1]x[y0,y1]x[z0,z1] with nx,ny,nz hexahedral cells; for Tet4 each
+// hexahedron is split into 6 tetrahedra around its main diagonal (Kuhn split),
+// which is conforming because every hexahedron is split the same way.
+// Faces: xmin, xmax, ymin, ymax, zmin, zmax.
+Mesh generateBox(const BoxSpec& spec);
+
+// Number of hexahedra along each axis for level L of the semismooth* prism:
+// nx = ceil(2^((L+4)/2)), ny = nz = ceil(2^((L+2)/2)).
+std::array<int, 3> prismLevelCells(int L);
+
+}  // namespace Mesh
+}  // namespace Tribos
