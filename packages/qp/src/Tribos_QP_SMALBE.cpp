@@ -224,7 +224,7 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
     GxHistory.push_back(normGx);
     const size_t w = static_cast<size_t>(s_.stagnationWindow);
     if (GxHistory.size() > w && normGx > 0.9 * GxHistory[GxHistory.size() - 1 - w] && ist.converged) {
-      rho *= s_.beta;
+      rho *= stagnationRhoFactor;
       GxHistory.clear();
     }
     if (M < M0 * minMFactor) {
@@ -233,7 +233,8 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
     }
     if (rho > rho0 * maxRhoFactor) {
       st.reason = "rho grew beyond its cap (rho0 * 1e6) with ||Gx|| = " + std::to_string(normGx) +
-                  " stagnating: the set {G x = 0} and Omega look inconsistent";
+                  " stagnating over " + std::to_string(s_.stagnationWindow) +
+                  " outer iterations: the set {G x = 0} and Omega look inconsistent";
       break;
     }
     innerTol = innerTolerance(M, normGx, eta, tol);

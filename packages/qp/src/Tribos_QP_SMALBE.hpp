@@ -39,6 +39,9 @@ class SMALBE : public QPSolver {
   // give up when M < M0 * minMFactor or rho > rho0 * maxRhoFactor.
   static constexpr SC minMFactor = 1e-10;
   static constexpr SC maxRhoFactor = 1e6;
+  // ||Gx|| not reduced by 10% over a window of outer iterations whose inner
+  // problems were solved: rho <- stagnationRhoFactor * rho.
+  static constexpr SC stagnationRhoFactor = 10;
 
  private:
   struct Settings {
