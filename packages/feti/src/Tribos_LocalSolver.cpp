@@ -1,0 +1,143 @@
+#include "Tribos_LocalSolver.hpp"
+
+#include <Amesos2.hpp>
+#include <Teuchos_DefaultSerialComm.hpp>
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_MultiVector.hpp>
+
+#include <cholmod.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+
+namespace {
+
+class CholmodSolver : public LocalSolver {
+ public:
+  CholmodSolver() {
+    cholmod_start(&common_);
+    common_.print = 0;
+  }
+  ~CholmodSolver() override {
+    if (L_) cholmod_free_factor(&L_, &common_);
+    cholmod_finish(&common_);
+  }
+  void factor(const LocalCsr& A) override {
+    TRIBOS_REQUIRE(A.rows == A.cols, "CHOLMOD: matrix is not square (" << A.rows << " x " << A.cols << ")");
+    n_ = A.rows;
+    // A symmetric CSR matrix is its own CSC; stype = 1 makes CHOLMOD read the upper triangle.
+    cholmod_sparse S;
+    std::memset(&S, 0, sizeof S);
+    S.nrow = S.ncol = A.rows;
+    S.nzmax = A.val.size();
+    S.p = const_cast<int*>(A.rowptr.data());
+    S.i = const_cast<int*>(A.col.data());
+    S.x = const_cast<double*>(A.val.data());
+    S.stype = 1;
+    S.itype = CHOLMOD_INT;
+    S.xtype = CHOLMOD_REAL;
+    S.dtype = CHOLMOD_DOUBLE;
+    S.sorted = 1;
+    S.packed = 1;
+    if (L_) cholmod_free_factor(&L_, &common_);
+    L_ = cholmod_analyze(&S, &common_);
+    TRIBOS_REQUIRE(L_ != nullptr, "CHOLMOD analysis failed (status " << common_.status << ")");
+    cholmod_factorize(&S, L_, &common_);
+    TRIBOS_REQUIRE(common_.status == CHOLMOD_OK && L_->minor == L_->n,
+                   "CHOLMOD: matrix of size " << n_ << " is not positive definite (pivot " << L_->minor << ")");
+  }
+  void solve(const double* b, double* x, int nrhs) const override {
+    cholmod_dense B;
+    std::memset(&B, 0, sizeof B);
+    B.nrow = n_;
+    B.ncol = nrhs;
+    B.nzmax = static_cast<size_t>(n_) * nrhs;
+    B.d = n_;
+    B.x = const_cast<double*>(b);
+    B.xtype = CHOLMOD_REAL;
+    B.dtype = CHOLMOD_DOUBLE;
+    cholmod_dense* X = cholmod_solve(CHOLMOD_A, L_, &B, &common_);
+    TRIBOS_REQUIRE(X != nullptr, "CHOLMOD solve failed");
+    std::copy(static_cast<double*>(X->x), static_cast<double*>(X->x) + static_cast<size_t>(n_) * nrhs, x);
+    cholmod_free_dense(&X, &common_);
+  }
+  std::string name() const override { return "CHOLMOD"; }
+  int size() const override { return n_; }
+  double factorMemoryMb() const override {
+    if (!L_) return 0;
+    // Supernodal factors store xsize values; simplicial ones nzmax.
+    const double entries = L_->is_super ? static_cast<double>(L_->xsize) : static_cast<double>(L_->nzmax);
+    return entries * 8.0 / 1048576.0;
+  }
+
+ private:
+  mutable cholmod_common common_;
+  cholmod_factor* L_ = nullptr;
+  int n_ = 0;
+};
+
+// Amesos2 on a serial communicator: the matrix is wrapped once in Tpetra.
+class Amesos2Solver : public LocalSolver {
+ public:
+  explicit Amesos2Solver(std::string solverName) : solverName_(std::move(solverName)) {}
+  void factor(const LocalCsr& A) override {
+    n_ = A.rows;
+    auto comm = rcp(new Teuchos::SerialComm<int>());
+    map_ = rcp(new Map(static_cast<Tpetra::global_size_t>(n_), 0, comm));
+    Teuchos::ArrayRCP<size_t> rowptr(A.rowptr.size());
+    Teuchos::ArrayRCP<LO> col(A.col.size());
+    Teuchos::ArrayRCP<SC> val(A.val.size());
+    std::copy(A.rowptr.begin(), A.rowptr.end(), rowptr.begin());
+    std::copy(A.col.begin(), A.col.end(), col.begin());
+    std::copy(A.val.begin(), A.val.end(), val.begin());
+    K_ = rcp(new CrsMatrix(map_, map_, rowptr, col, val));
+    K_->expertStaticFillComplete(map_, map_);
+    X_ = rcp(new MultiVector(map_, 1));
+    B_ = rcp(new MultiVector(map_, 1));
+    solver_ = Amesos2::create<CrsMatrix, MultiVector>(solverName_, K_, X_, B_);
+    solver_->symbolicFactorization().numericFactorization();
+  }
+  void solve(const double* b, double* x, int nrhs) const override {
+    if (static_cast<int>(B_->getNumVectors()) != nrhs) {
+      X_ = rcp(new MultiVector(map_, nrhs));
+      B_ = rcp(new MultiVector(map_, nrhs));
+    }
+    for (int j = 0; j < nrhs; ++j) {
+      auto col = B_->getDataNonConst(j);
+      std::copy(b + static_cast<size_t>(j) * n_, b + static_cast<size_t>(j + 1) * n_, col.begin());
+    }
+    solver_->setX(X_);
+    solver_->setB(B_);
+    solver_->solve();
+    for (int j = 0; j < nrhs; ++j) {
+      auto col = X_->getData(j);
+      std::copy(col.begin(), col.end(), x + static_cast<size_t>(j) * n_);
+    }
+  }
+  std::string name() const override { return solverName_; }
+  int size() const override { return n_; }
+
+ private:
+  std::string solverName_;
+  int n_ = 0;
+  RCP<const Map> map_;
+  RCP<CrsMatrix> K_;
+  mutable RCP<MultiVector> X_, B_;
+  RCP<Amesos2::Solver<CrsMatrix, MultiVector>> solver_;
+};
+
+}  // namespace
+
+std::vector<std::string> localSolverNames() { return {"CHOLMOD", "KLU2", "Tacho"}; }
+
+RCP<LocalSolver> createLocalSolver(const std::string& name) {
+  if (name == "CHOLMOD") return rcp(new CholmodSolver());
+  if (name == "KLU2" || name == "Tacho") return rcp(new Amesos2Solver(name));
+  throw Error("unknown local solver \"" + name + "\"; valid: CHOLMOD, KLU2, Tacho");
+}
+
+}  // namespace Tribos

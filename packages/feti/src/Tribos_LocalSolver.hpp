@@ -1,0 +1,32 @@
+// Tribos_LocalSolver.hpp: sparse direct solvers for matrices that live on one
+// rank (subdomain stiffness matrices, K_rr of the semismooth* reduction).
+// Backends: CHOLMOD (supernodal Cholesky, the fast one on 3D elasticity) and
+// Amesos2 (KLU2, Tacho) on a serial communicator. Chosen by name.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "Tribos_LocalCsr.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+
+class LocalSolver {
+ public:
+  virtual ~LocalSolver() = default;
+  // A: symmetric positive definite, both triangles stored, sorted columns.
+  virtual void factor(const LocalCsr& A) = 0;
+  // x = A^-1 b for nrhs right-hand sides stored column after column (length n each).
+  virtual void solve(const double* b, double* x, int nrhs = 1) const = 0;
+  virtual std::string name() const = 0;
+  virtual int size() const = 0;
+  // Memory held by the factor, MB (0 when the backend does not report it).
+  virtual double factorMemoryMb() const { return 0.0; }
+};
+
+// "CHOLMOD" | "KLU2" | "Tacho". Unknown names throw, listing the valid ones.
+RCP<LocalSolver> createLocalSolver(const std::string& name);
+std::vector<std::string> localSolverNames();
+
+}  // namespace Tribos
