@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iomanip>
 
+#include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Vector.hpp>
 
 #include "Tribos_Error.hpp"
@@ -36,6 +37,7 @@ SC GradientProjectionSolver::curvature(const Vector& p, const Vector& Ap, const 
 
 QPStatus GradientProjectionSolver::solve(const Operator& A, const Vector& b, const ConstraintSet& Omega, Vector& x) {
   checkSet(Omega);
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::QP::" + name_ + "::solve"));
   TRIBOS_REQUIRE(x.getLocalLength() == Omega.map()->getNodeNumElements() &&
                      b.getLocalLength() == x.getLocalLength(),
                  name_ << "::solve: x (" << x.getLocalLength() << " local entries), b (" << b.getLocalLength()
@@ -124,8 +126,6 @@ QPStatus GradientProjectionSolver::solve(const Operator& A, const Vector& b, con
   if (output_.wants(Verbosity::Low)) out << name_ << ": " << st << " (tolerance " << tol << ")\n";
   return st;
 }
-
-// ---------------------------------------------------------------- MPRGP
 
 }  // namespace QP
 }  // namespace Tribos

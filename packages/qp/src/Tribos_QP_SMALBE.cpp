@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Vector.hpp>
 
 #include "Tribos_Error.hpp"
@@ -75,7 +76,7 @@ RCP<const Teuchos::ParameterList> SMALBE::getValidParameters() const {
   CommonParameters d;
   d.maxIterations = 100000;  // total inner iterations are limited by the inner solver
   addCommonParameters(*pl, d);
-  pl->remove("Maximum Iterations");
+  pl->getEntryRCP("Maximum Iterations")->setDocString("limit on the total number of inner iterations");
   auto nonneg = rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1e300));
   pl->set("M", 0.0, "inner precision ||g^P|| <= min(M ||Gx||, eta); 0: 100 ||A||", nonneg);
   pl->set("rho", 0.0, "penalty rho; 0: ||A||", nonneg);
@@ -99,9 +100,7 @@ void SMALBE::setParameters(RCP<Teuchos::ParameterList> params) {
   if (params.is_null()) params = Teuchos::rcp(new Teuchos::ParameterList("SMALBE"));
   params->validateParametersAndSetDefaults(*getValidParameters());
   params_ = params;
-  Teuchos::ParameterList common(*params);
-  common.set("Maximum Iterations", 0);
-  s_.common = readCommonParameters(common);
+  s_.common = readCommonParameters(*params);
   s_.M = params->get<double>("M");
   s_.rho = params->get<double>("rho");
   s_.eta = params->get<double>("eta");
@@ -148,6 +147,7 @@ SC SMALBE::innerTolerance(SC M, SC normGx, SC eta, SC tol) const {
 
 QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& Omega, Vector& x) {
   TRIBOS_REQUIRE(!G_.is_null(), "SMALBE::solve: no equality constraint (call setEqualityConstraint)");
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::QP::SMALBE::solve"));
   QPStatus st;
   const RCP<const Map> xmap = x.getMap();
   const EqualityConstraint& G = *G_;
@@ -226,6 +226,10 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
     if (GxHistory.size() > w && normGx > 0.9 * GxHistory[GxHistory.size() - 1 - w] && ist.converged) {
       rho *= stagnationRhoFactor;
       GxHistory.clear();
+    }
+    if (st.iterations >= s_.common.maxIterations) {
+      st.reason = "Maximum Iterations (" + std::to_string(s_.common.maxIterations) + " inner iterations in total) reached";
+      break;
     }
     if (M < M0 * minMFactor) {
       st.reason = "M fell below its floor (M0 * 1e-10): the set {G x = 0} and Omega look inconsistent";

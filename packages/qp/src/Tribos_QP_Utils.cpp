@@ -59,8 +59,8 @@ SC estimateNorm(const Operator& A, int iterations, long& n_A, SC safety) {
   {
     auto vv = v.getDataNonConst();
     const auto& map = *A.getDomainMap();
-    for (size_t i = 0; i < vv.size(); ++i) {
-      const GO gid = map.getGlobalElement(static_cast<LO>(i));
+    for (LO i = 0; i < static_cast<LO>(vv.size()); ++i) {
+      const GO gid = map.getGlobalElement(i);
       vv[i] = 1.0 + 0.5 * std::sin(1.0 + 0.7 * static_cast<double>(gid));
     }
   }

@@ -5,7 +5,7 @@
 
 #include "QPTestUtils.hpp"
 #include "Tribos_QP_Factory.hpp"
-#include "Tribos_QP_SMALBE.hpp"
+#include "Tribos_QP.hpp"
 
 using namespace qptest;
 using namespace Tribos::QP;

@@ -32,7 +32,7 @@ class DenseRowsConstraint : public EqualityConstraint {
     auto xv = x.getData();
     Vec part(rows_.size(), 0.0), sum(rows_.size(), 0.0);
     for (size_t j = 0; j < rows_.size(); ++j)
-      for (size_t l = 0; l < xv.size(); ++l) part[j] += rows_[j][xmap_->getGlobalElement(l)] * xv[l];
+      for (LO l = 0; l < static_cast<LO>(xv.size()); ++l) part[j] += rows_[j][xmap_->getGlobalElement(l)] * xv[l];
     Teuchos::reduceAll(*xmap_->getComm(), Teuchos::REDUCE_SUM, static_cast<int>(part.size()), part.data(), sum.data());
     auto gv = Gx.getDataNonConst();
     for (size_t j = 0; j < sum.size(); ++j) gv[j] = sum[j];
@@ -40,7 +40,7 @@ class DenseRowsConstraint : public EqualityConstraint {
   void applyTranspose(const Vector& y, Vector& Gty) const override {
     auto yv = y.getData();
     auto tv = Gty.getDataNonConst();
-    for (size_t l = 0; l < tv.size(); ++l) {
+    for (LO l = 0; l < static_cast<LO>(tv.size()); ++l) {
       tv[l] = 0;
       for (size_t j = 0; j < rows_.size(); ++j) tv[l] += rows_[j][xmap_->getGlobalElement(l)] * yv[j];
     }
