@@ -111,23 +111,27 @@ bool ConstraintSet::circleActive(SC x1, SC x2, SC r) const {
   return std::hypot(x1, x2) >= r * (1.0 - circleTolerance);
 }
 
+SC ConstraintSet::projectScalar(size_t i, SC v) const {
+  if (kind_[i] == Kind::Lower) return std::max(v, lo_[i]);
+  if (kind_[i] == Kind::Box) return std::min(std::max(v, lo_[i]), up_[i]);
+  return v;  // Free; Fixed entries are never moved by the callers
+}
+
+void ConstraintSet::projectCircle(size_t k, SC& v1, SC& v2) const {
+  const SC nv = std::hypot(v1, v2);
+  if (nv > r_[k]) {  // P(v) = v min(1, r_k/||v||)
+    const SC s = r_[k] / nv;
+    v1 *= s;
+    v2 *= s;
+  }
+}
+
 void ConstraintSet::project(Vector& x) const {
   checkComplete();
   auto xv = x.getDataNonConst();
-  for (size_t i = 0; i < kind_.size(); ++i) {
-    if (kind_[i] == Kind::Lower) xv[i] = std::max(xv[i], lo_[i]);
-    else if (kind_[i] == Kind::Box) xv[i] = std::min(std::max(xv[i], lo_[i]), up_[i]);
-  }
-  for (size_t k = 0; k < circles_.size(); ++k) {
-    const Circle& c = circles_[k];
-    if (c.fixed) continue;
-    const SC nx = std::hypot(xv[c.i1], xv[c.i2]);
-    if (nx > r_[k]) {  // P(x_k) = x_k min(1, r_k/||x_k||)
-      const SC s = r_[k] / nx;
-      xv[c.i1] *= s;
-      xv[c.i2] *= s;
-    }
-  }
+  for (size_t i = 0; i < kind_.size(); ++i) xv[i] = projectScalar(i, xv[i]);
+  for (size_t k = 0; k < circles_.size(); ++k)
+    if (!circles_[k].fixed) projectCircle(k, xv[circles_[k].i1], xv[circles_[k].i2]);
 }
 
 SC ConstraintSet::maxFeasibleStep(const Vector& x, const Vector& p) const {
@@ -246,12 +250,19 @@ void ConstraintSet::choppedGradient(const Vector& x, const Vector& g, Vector& be
 
 void ConstraintSet::reducedFreeGradient(const Vector& x, const Vector& g, SC alpha_bar, Vector& phit) const {
   TRIBOS_REQUIRE(alpha_bar > 0, "ConstraintSet::reducedFreeGradient: alpha_bar = " << alpha_bar << " must be > 0");
-  // phit = (x - P(x - alpha_bar phi)) / alpha_bar
-  Vector y(x, Teuchos::Copy);
+  // phit = (x - P(x - alpha_bar phi)) / alpha_bar, block by block (P is separable)
   freeGradient(x, g, phit);
-  y.update(-alpha_bar, phit, 1.0);
-  project(y);
-  phit.update(1.0 / alpha_bar, x, -1.0 / alpha_bar, y, 0.0);
+  auto xv = x.getData();
+  auto fv = phit.getDataNonConst();
+  for (size_t i = 0; i < kind_.size(); ++i)
+    if (kind_[i] != Kind::Circle) fv[i] = (xv[i] - projectScalar(i, xv[i] - alpha_bar * fv[i])) / alpha_bar;
+  for (size_t k = 0; k < circles_.size(); ++k) {
+    const Circle& c = circles_[k];
+    SC y1 = xv[c.i1] - alpha_bar * fv[c.i1], y2 = xv[c.i2] - alpha_bar * fv[c.i2];
+    if (!c.fixed) projectCircle(k, y1, y2);
+    fv[c.i1] = (xv[c.i1] - y1) / alpha_bar;
+    fv[c.i2] = (xv[c.i2] - y2) / alpha_bar;
+  }
 }
 
 void ConstraintSet::projectedGradient(const Vector& x, const Vector& g, Vector& gP) const {

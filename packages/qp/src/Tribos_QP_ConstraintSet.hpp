@@ -59,6 +59,8 @@ class ConstraintSet {
   void checkIndex(LO i, const char* what) const;
   void checkComplete() const;
   bool circleActive(SC x1, SC x2, SC r) const;
+  SC projectScalar(size_t i, SC v) const;
+  void projectCircle(size_t k, SC& v1, SC& v2) const;
 
   RCP<const Map> map_;
   std::vector<Kind> kind_;

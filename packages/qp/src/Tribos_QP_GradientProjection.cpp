@@ -35,6 +35,11 @@ SC GradientProjectionSolver::curvature(const Vector& p, const Vector& Ap, const 
   return pAp;
 }
 
+Vector& GradientProjectionSolver::work(const Vector& x) {
+  if (work_.is_null() || work_->getMap().get() != x.getMap().get()) work_ = Teuchos::rcp(new Vector(x.getMap()));
+  return *work_;
+}
+
 QPStatus GradientProjectionSolver::solve(const Operator& A, const Vector& b, const ConstraintSet& Omega, Vector& x) {
   checkSet(Omega);
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::QP::" + name_ + "::solve"));

@@ -36,6 +36,8 @@ class GradientProjectionSolver : public QPSolver {
 
   // p'Ap for a nonzero direction p; throws if the Hessian is not positive definite.
   static SC curvature(const Vector& p, const Vector& Ap, const char* where);
+  // A work vector on x's map, kept between steps to avoid reallocation.
+  Vector& work(const Vector& x);
 
   std::string name_;
   CommonParameters params_;
@@ -43,6 +45,9 @@ class GradientProjectionSolver : public QPSolver {
   SC hessianNorm_ = -1;        // <= 0: estimate
   QPOutput output_;
   RCP<Vector> g_;
+
+ private:
+  RCP<Vector> work_;
 };
 
 }  // namespace QP

@@ -12,7 +12,8 @@ MPGP::MPGP(RCP<Teuchos::ParameterList> params) : GradientProjectionSolver("MPGP"
 long MPGP::proportioningStep(const Operator& A, const Vector& b, const ConstraintSet& Omega, SC alpha_bar, Vector& x,
                              Vector& g, const Vector&) {
   // gradient projection step x <- P(x - alpha_bar g); fixed components stay put
-  Vector d(g, Teuchos::Copy);
+  Vector& d = work(x);
+  Tpetra::deep_copy(d, g);
   Omega.zeroFixed(d);
   x.update(-alpha_bar, d, 1.0);
   Omega.project(x);

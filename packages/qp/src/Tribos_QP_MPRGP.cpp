@@ -22,7 +22,7 @@ long MPRGP::proportioningStep(const Operator& A, const Vector&, const Constraint
                               const Vector& beta) {
   // exact line search along -beta; beta points into the set, so only an
   // upper bound of a box can cut the step
-  Vector Abeta(x.getMap());
+  Vector& Abeta = work(x);
   A.apply(beta, Abeta);
   const SC bAb = curvature(beta, Abeta, "MPRGP");
   const SC alpha = std::min(g.dot(beta) / bAb, Omega.maxFeasibleStep(x, beta));
