@@ -143,6 +143,12 @@ void validateLevel(ParameterList& user, const ParameterList& valid, const std::s
     TRIBOS_REQUIRE(valid.isParameter(name), "unknown parameter \"" << full << "\"; valid at this level: " << joinNames(valid));
     TRIBOS_REQUIRE(user.isSublist(name) == valid.isSublist(name),
                    "parameter \"" << full << "\" must be " << (valid.isSublist(name) ? "a sublist" : "a value, not a sublist"));
+    if (!valid.isSublist(name)) {
+      const auto& given = user.getEntry(name).getAny();
+      const auto& wanted = valid.getEntry(name).getAny();
+      TRIBOS_REQUIRE(given.type() == wanted.type(), "parameter \"" << full << "\" has type " << given.typeName()
+                                                                   << " but must be of type " << wanted.typeName());
+    }
   }
   user.validateParametersAndSetDefaults(valid, 0);
   for (auto it = valid.begin(); it != valid.end(); ++it) {
@@ -159,15 +165,27 @@ void validateLevel(ParameterList& user, const ParameterList& valid, const std::s
   }
 }
 
-// Teuchos' messages carry a stack of throw locations; keep the sentence.
+// Teuchos' messages start with a throw location; keep the sentences that
+// name the parameter, the value and the valid choices, on one line.
 std::string cleanTeuchosMessage(const std::string& what) {
   std::string msg = what;
-  const auto pos = msg.find("Error,");
+  auto pos = msg.find("\nThe \"");
+  if (pos == std::string::npos) pos = msg.find("Error,");
   if (pos != std::string::npos) msg = msg.substr(pos);
-  const auto line = msg.find("Throw number");
-  if (line != std::string::npos) msg = msg.substr(0, line);
-  while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
-  return msg;
+  std::string out;
+  bool blank = false;
+  for (char c : msg) {
+    if (c == '\n') {
+      blank = true;
+      continue;
+    }
+    if (blank && !out.empty()) out += "; ";
+    blank = false;
+    out += c;
+  }
+  const auto anon = out.find("ANONYMOUS->");
+  if (anon != std::string::npos) out.erase(anon, 11);
+  return out;
 }
 
 }  // namespace

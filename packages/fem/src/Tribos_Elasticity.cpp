@@ -123,6 +123,31 @@ double shapeGradients(Mesh::CellType type, const std::vector<Point>& X, const Po
   return det;
 }
 
+std::vector<double> shapeFunctions(Mesh::CellType type, const Point& xi) {
+  if (type == Mesh::CellType::Tet4) return {1 - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2]};
+  double N[8], dNdxi[8][3];
+  hexShape(xi, N, dNdxi);
+  return std::vector<double>(N, N + 8);
+}
+
+std::vector<QuadraturePoint> accurateQuadrature(Mesh::CellType type) {
+  if (type == Mesh::CellType::Tet4) {
+    // Keast's 5-point rule (degree 3) on the unit tetrahedron of volume 1/6.
+    const double a = 0.5, b = 1.0 / 6.0;
+    return {{{0.25, 0.25, 0.25}, -2.0 / 15.0},
+            {{a, b, b}, 3.0 / 40.0},
+            {{b, a, b}, 3.0 / 40.0},
+            {{b, b, a}, 3.0 / 40.0},
+            {{b, b, b}, 3.0 / 40.0}};
+  }
+  const double g[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, w[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  std::vector<QuadraturePoint> q;
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) q.push_back({{g[i], g[j], g[k]}, w[i] * w[j] * w[k]});
+  return q;
+}
+
 std::vector<double> elementStiffness(Mesh::CellType type, const std::vector<Point>& X, const Material& mat) {
   const int npc = Mesh::nodesPerCell(type), n = 3 * npc;
   std::vector<double> Ke(n * n, 0.0), dN;

@@ -30,6 +30,18 @@ std::vector<double> elementStiffness(Mesh::CellType type, const std::vector<Poin
 // (ignored for Tet4); returns det J.
 double shapeGradients(Mesh::CellType type, const std::vector<Point>& X, const Point& xi, std::vector<double>& dN);
 
+// Shape function values at reference point xi (Tet4: barycentric on the unit
+// tetrahedron (0,0,0),(1,0,0),(0,1,0),(0,0,1); Hex8: trilinear on [-1,1]^3).
+std::vector<double> shapeFunctions(Mesh::CellType type, const Point& xi);
+
+struct QuadraturePoint {
+  Point xi;
+  double weight;  // in reference coordinates
+};
+// A rule exact for polynomials of degree 3 (Tet4: 5 points; Hex8: 3x3x3 Gauss),
+// for error norms of quadratic manufactured solutions.
+std::vector<QuadraturePoint> accurateQuadrature(Mesh::CellType type);
+
 // Cauchy stress (Voigt) at the cell centre from the cell's nodal displacements.
 std::array<double, 6> cellStress(Mesh::CellType type, const std::vector<Point>& X, const std::vector<double>& ue,
                                  const Material& mat);

@@ -11,20 +11,22 @@ std::map<long long, double> constrainedDofs(const Mesh::Mesh& mesh, const std::v
   std::map<long long, double> dofs;
   std::map<long long, std::string> source;
   for (const auto& bc : bcs) {
-    for (int n : mesh.faceNodes(bc.face))
+    for (int n : mesh.faceNodes(bc.face)) {
+      const Point value = bc.field ? bc.field(mesh.coords[n]) : bc.value;
       for (int c = 0; c < 3; ++c) {
         if (!bc.fix[c]) continue;
         const long long dof = 3LL * n + c;
         auto it = dofs.find(dof);
         if (it != dofs.end()) {
-          TRIBOS_REQUIRE(std::abs(it->second - bc.value[c]) <= 1e-14 * (1 + std::abs(bc.value[c])),
+          TRIBOS_REQUIRE(std::abs(it->second - value[c]) <= 1e-12 * (1 + std::abs(value[c])),
                          "Dirichlet conditions on faces " << source[dof] << " and " << bc.face
                                                           << " prescribe different values at node " << n);
           continue;
         }
-        dofs[dof] = bc.value[c];
+        dofs[dof] = value[c];
         source[dof] = bc.face;
       }
+    }
   }
   return dofs;
 }

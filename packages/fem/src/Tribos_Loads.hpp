@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -17,6 +18,9 @@ struct DirichletCondition {
   std::string face;
   std::array<bool, 3> fix{true, true, true};
   Point value{0, 0, 0};
+  // When set, the prescribed value at a node is field(x) instead of value
+  // (e.g. a uniform-strain field for the patch test).
+  std::function<Point(const Point&)> field;
 };
 
 struct TractionCondition {

@@ -1,0 +1,187 @@
+// Elasticity: patch test, convergence to a manufactured solution, rigid-body
+// kernel of every subdomain. Runs on any number of ranks; results must not
+// depend on it.
+#include <Teuchos_ParameterList.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <cmath>
+#include <iostream>
+
+#include "Tribos_Assembly.hpp"
+#include "Tribos_Discretization.hpp"
+#include "Tribos_Monolithic.hpp"
+
+using namespace Tribos;
+using Fem::Point;
+
+static int failures = 0;
+#define CHECK(cond, msg)                                                             \
+  do {                                                                               \
+    if (!(cond)) {                                                                   \
+      std::cerr << "FAILED: " << msg << " (" #cond ")" << std::endl;                \
+      ++failures;                                                                    \
+    }                                                                                \
+  } while (0)
+
+static Teuchos::ParameterList solverParams(const std::string& kind) {
+  Teuchos::ParameterList p = *Fem::MonolithicSystem::getValidParameters();
+  p.set("Linear Solver", kind);
+  p.set("Tolerance", 1e-13);
+  return p;
+}
+
+static Mesh::Discretization makeDisc(Mesh::CellType type, std::array<int, 3> cells, int S, const Comm& comm) {
+  Mesh::BoxSpec spec;
+  spec.type = type;
+  spec.cells = cells;
+  Mesh::DecompositionSpec dec;
+  dec.partitioner = "METIS";
+  dec.subdomains = S;
+  return Mesh::Discretization(Mesh::generateBox(spec), spec, dec, comm.getSize(), comm.getRank());
+}
+
+static Fem::LoadCase allFacesDirichlet(std::function<Point(const Point&)> field) {
+  Fem::LoadCase loads;
+  for (const char* face : {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}) {
+    Fem::DirichletCondition bc;
+    bc.face = face;
+    bc.field = field;
+    loads.dirichlet.push_back(bc);
+  }
+  return loads;
+}
+
+// A uniform strain (with a rotation part) imposed on the boundary must be
+// reproduced at every interior node to round-off.
+static void patchTest(Mesh::CellType type, const std::string& solver, const RCP<const Comm>& comm) {
+  const double A[3][3] = {{1e-3, 2e-4, -3e-4}, {-1e-4, 5e-4, 2.5e-4}, {4e-4, -2e-4, -6e-4}};
+  const Point b = {1e-3, -2e-3, 5e-4};
+  auto exact = [&](const Point& x) {
+    Point u;
+    for (int i = 0; i < 3; ++i) u[i] = b[i] + A[i][0] * x[0] + A[i][1] * x[1] + A[i][2] * x[2];
+    return u;
+  };
+  auto disc = makeDisc(type, {3, 3, 4}, 3, *comm);
+  Fem::Material mat{2.1e11, 0.3};
+  Fem::MonolithicSystem sys(disc, mat, allFacesDirichlet(exact), comm);
+  const auto res = sys.solve(solverParams(solver));
+  double err = 0, scale = 0;
+  for (int n = 0; n < disc.mesh.numNodes(); ++n) {
+    const Point u = exact(disc.mesh.coords[n]);
+    for (int c = 0; c < 3; ++c) {
+      err = std::max(err, std::abs(res.u[3 * n + c] - u[c]));
+      scale = std::max(scale, std::abs(u[c]));
+    }
+  }
+  if (comm->getRank() == 0)
+    std::cout << "patch test " << Mesh::cellTypeName(type) << " " << solver << ": max error / max u = " << err / scale
+              << std::endl;
+  CHECK(err / scale < 1e-9, "patch test " << Mesh::cellTypeName(type) << " with " << solver);
+}
+
+// u = c (y^2, z^2, x^2) has div u = 0, so -div sigma = -mu Laplace u = -2 mu c (1,1,1):
+// a constant volume force. Errors in L2 and energy norms over local cells.
+static std::pair<double, double> manufacturedErrors(Mesh::CellType type, int n, const RCP<const Comm>& comm) {
+  const double c = 1e-3;
+  Fem::Material mat{1.0, 0.25};
+  auto exact = [&](const Point& x) { return Point{c * x[1] * x[1], c * x[2] * x[2], c * x[0] * x[0]}; };
+  auto disc = makeDisc(type, {n, n, n}, std::min(4, comm->getSize() * 2), *comm);
+  auto loads = allFacesDirichlet(exact);
+  // Equilibrium div sigma + b = 0 with div sigma = mu Laplace u = 2 mu c (1,1,1).
+  const double b = -2 * mat.lameMu() * c;
+  loads.volumeForce = {b, b, b};
+  Fem::MonolithicSystem sys(disc, mat, loads, comm);
+  const auto res = sys.solve(solverParams("CG+MueLu"));
+  const auto D = mat.D();
+  double l2 = 0, en = 0;
+  const int npc = disc.mesh.nodesPerCell();
+  for (int cell : disc.localCells()) {
+    const auto X = Fem::cellCoordinates(disc.mesh, cell);
+    for (const auto& q : Fem::accurateQuadrature(type)) {
+      std::vector<double> dN;
+      const double det = Fem::shapeGradients(type, X, q.xi, dN);
+      const auto N = Fem::shapeFunctions(type, q.xi);
+      Point x{}, uh{};
+      double grad[3][3] = {};  // grad[i][j] = d(uh_i - u_i)/dx_j
+      for (int a = 0; a < npc; ++a) {
+        const int node = disc.mesh.cell(cell)[a];
+        for (int i = 0; i < 3; ++i) {
+          x[i] += N[a] * X[a][i];
+          uh[i] += N[a] * res.u[3 * node + i];
+          for (int j = 0; j < 3; ++j) grad[i][j] += dN[3 * a + j] * res.u[3 * node + i];
+        }
+      }
+      const Point u = exact(x);
+      grad[0][1] -= 2 * c * x[1];
+      grad[1][2] -= 2 * c * x[2];
+      grad[2][0] -= 2 * c * x[0];
+      const double eps[6] = {grad[0][0], grad[1][1], grad[2][2], grad[1][2] + grad[2][1], grad[0][2] + grad[2][0],
+                             grad[0][1] + grad[1][0]};
+      double energy = 0;
+      for (int r = 0; r < 6; ++r)
+        for (int k = 0; k < 6; ++k) energy += eps[r] * D[6 * r + k] * eps[k];
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i) d2 += (uh[i] - u[i]) * (uh[i] - u[i]);
+      l2 += q.weight * det * d2;
+      en += q.weight * det * energy;
+    }
+  }
+  double sums[2] = {l2, en}, total[2];
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 2, sums, total);
+  return {std::sqrt(total[0]), std::sqrt(total[1])};
+}
+
+static void convergenceTest(Mesh::CellType type, const RCP<const Comm>& comm) {
+  std::vector<std::pair<double, double>> e;
+  for (int n : {2, 4, 8}) e.push_back(manufacturedErrors(type, n, comm));
+  for (size_t k = 1; k < e.size(); ++k) {
+    const double rL2 = std::log2(e[k - 1].first / e[k].first), rE = std::log2(e[k - 1].second / e[k].second);
+    if (comm->getRank() == 0)
+      std::cout << Mesh::cellTypeName(type) << " refinement " << k << ": L2 " << e[k].first << " (rate " << rL2
+                << "), energy " << e[k].second << " (rate " << rE << ")" << std::endl;
+    if (k + 1 == e.size()) {
+      CHECK(rL2 > 1.8 && rL2 < 2.3, Mesh::cellTypeName(type) << " L2 rate " << rL2 << " should be ~2");
+      CHECK(rE > 0.9 && rE < 1.3, Mesh::cellTypeName(type) << " energy rate " << rE << " should be ~1");
+    }
+  }
+}
+
+// K_s R_s = 0 and R_s orthonormal (rank 6) for every subdomain of this rank.
+static void kernelTest(Mesh::CellType type, const RCP<const Comm>& comm) {
+  auto disc = makeDisc(type, {6, 4, 4}, 5, *comm);
+  Fem::Material mat{2.1e11, 0.3};
+  for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s) {
+    const auto sys = Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, {});
+    const int n = sys.numDofs();
+    double kmax = 0;
+    for (double v : sys.K.val) kmax = std::max(kmax, std::abs(v));
+    double worst = 0, orth = 0;
+    std::vector<double> KR(n);
+    for (int j = 0; j < 6; ++j) {
+      sys.K.multiply(&sys.R[j * n], KR.data());
+      for (double v : KR) worst = std::max(worst, std::abs(v) / kmax);
+      for (int i = 0; i < 6; ++i) {
+        double dot = 0;
+        for (int k = 0; k < n; ++k) dot += sys.R[i * n + k] * sys.R[j * n + k];
+        orth = std::max(orth, std::abs(dot - (i == j ? 1.0 : 0.0)));
+      }
+    }
+    CHECK(worst < 1e-13, "subdomain " << s << ": max |K R| / max |K| = " << worst);
+    CHECK(orth < 1e-12, "subdomain " << s << ": R'R - I = " << orth << " (rank 6)");
+  }
+}
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard guard(&argc, &argv);
+  auto comm = Tpetra::getDefaultComm();
+  for (auto type : {Mesh::CellType::Tet4, Mesh::CellType::Hex8}) {
+    patchTest(type, "Direct", comm);
+    patchTest(type, "CG+MueLu", comm);
+    convergenceTest(type, comm);
+    kernelTest(type, comm);
+  }
+  int total = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, failures, Teuchos::outArg(total));
+  if (comm->getRank() == 0) std::cout << (total ? "FAILED" : "all elasticity checks passed") << std::endl;
+  return total ? 1 : 0;
+}

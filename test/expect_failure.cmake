@@ -1,0 +1,16 @@
+# Runs a command that must fail: non-zero exit, a message matching EXPECT on
+# stderr, and no result file in OUTDIR.
+file(REMOVE_RECURSE ${OUTDIR})
+separate_arguments(cmd UNIX_COMMAND "${COMMAND}")
+execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "expected failure, got exit 0\n${out}")
+endif()
+if(NOT err MATCHES "${EXPECT}")
+  message(FATAL_ERROR "error message does not match '${EXPECT}':\n${err}")
+endif()
+file(GLOB results ${OUTDIR}/*.h5 ${OUTDIR}/*.xmf ${OUTDIR}/*.tmp)
+if(results)
+  message(FATAL_ERROR "failed run left files: ${results}")
+endif()
+message(STATUS "failed as expected: ${err}")
