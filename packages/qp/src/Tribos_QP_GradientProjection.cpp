@@ -124,9 +124,13 @@ QPStatus GradientProjectionSolver::solve(const Operator& A, const Vector& b, con
       step = "proportioning";
     }
     Omega.choppedGradient(x, g, beta);
-    if (output_.wants(Verbosity::Medium))
+    if (output_.wants(Verbosity::Medium)) {
       out << name_ << " it " << std::setw(5) << st.iterations << " " << std::setw(13) << step
-          << " ||g^P|| " << std::scientific << std::setprecision(3) << st.norm_gP << " n_A " << st.n_A << "\n";
+          << " ||g^P|| " << std::scientific << std::setprecision(3) << st.norm_gP << " n_A " << st.n_A;
+      if (output_.wants(Verbosity::High))  // the proportioning test that chose the step
+        out << " ||beta||^2 " << betaBeta << " Gamma^2 phit'phi " << Gamma2 * phitPhi;
+      out << "\n";
+    }
   }
   if (output_.wants(Verbosity::Low)) out << name_ << ": " << st << " (tolerance " << tol << ")\n";
   return st;
