@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_FetiProblem.hpp"
+#include "Tribos_ProjectedCG.hpp"
 
 namespace Tribos {
 namespace Input {
@@ -104,6 +106,9 @@ RCP<const ParameterList> validParameters() {
   solver.set("Type", "Monolithic", "Monolithic (assembled global solve) or FETI",
              choice(tuple<std::string>("Monolithic", "FETI")));
   solver.sublist("Monolithic").setParameters(*Fem::MonolithicSystem::getValidParameters());
+  ParameterList& feti = solver.sublist("FETI", false, "Total FETI: local solver, gluing, dual solver");
+  feti.setParameters(*Feti::FetiProblem::getValidParameters());
+  feti.sublist("Projected CG").setParameters(*Feti::ProjectedCG::getValidParameters());
   ParameterList& out = pl->sublist("Output", false, "result files");
   out.set("Directory", "output", "directory for the HDF5/XDMF files (overridden by --output)");
   out.set("Base Name", "solution", "file name without extension");

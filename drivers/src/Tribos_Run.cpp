@@ -8,6 +8,8 @@
 
 #include "Tribos_Assembly.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_FetiDual.hpp"
+#include "Tribos_ProjectedCG.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_ResultWriter.hpp"
@@ -94,9 +96,37 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
     summary.set("relative_residual", res.relativeResidual);
     summary.set("converged", res.converged);
   } else {
-    throw Error("Solver/Type = " + type + " is not available in this build");
+    const auto& fetiParams = params.sublist("Solver").sublist("FETI");
+    Teuchos::ParameterList problemParams;
+    problemParams.set("Local Solver", fetiParams.get<std::string>("Local Solver"));
+    problemParams.set("Gluing", fetiParams.get<std::string>("Gluing"));
+    auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, Feti::ContactSpec{}, problemParams, comm));
+    Feti::FetiDual dual(problem);
+    setupTime = seconds(t0);
+    const auto t2 = std::chrono::steady_clock::now();
+    Feti::ProjectedCG pcg(fetiParams.sublist("Projected CG"));
+    Vector lambda(problem->dualMap());
+    const auto st = pcg.solve(dual, lambda);
+    u = problem->nodalDisplacement(*dual.recoverPrimal(lambda));
+    solveTime = seconds(t2);
+    summary.set("primal_dofs", static_cast<long long>(problem->primalMap()->getGlobalNumElements()));
+    summary.set("dual_dofs", static_cast<long long>(problem->dualMap()->getGlobalNumElements()));
+    summary.set("outer_iterations", st.iterations);
+    summary.set("n_A", st.n_A);
+    summary.set("relative_residual", st.relativeResidual);
+    summary.set("converged", st.converged);
+    summary.set("local_solver", problem->localSolverName());
+    summary.set("time_factor_s", maxOverRanks(problem->factorTime(), *comm));
+    summary.set("factor_memory_mb", maxOverRanks(problem->factorMemoryMb(), *comm));
   }
   (void)t1;
+  if (options.verify) {
+    Fem::MonolithicSystem reference(disc, mat, loads, comm);
+    const auto ref = reference.solve(params.sublist("Solver").sublist("Monolithic"));
+    double diff = 0, norm = 0;
+    for (size_t i = 0; i < u.size(); ++i) diff += (u[i] - ref.u[i]) * (u[i] - ref.u[i]), norm += ref.u[i] * ref.u[i];
+    summary.set("verify_rel_diff_u", std::sqrt(diff / std::max(norm, 1e-300)));
+  }
   summary.set("time_setup_s", maxOverRanks(setupTime, *comm));
   summary.set("time_solve_s", maxOverRanks(solveTime, *comm));
 

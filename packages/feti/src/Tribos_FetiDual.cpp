@@ -1,0 +1,45 @@
+#include "Tribos_FetiDual.hpp"
+
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Vector.hpp>
+
+namespace Tribos {
+namespace Feti {
+
+FetiDual::FetiDual(RCP<const FetiProblem> problem) : problem_(problem) {
+  F_ = rcp(new DualOperator(problem));
+  coarse_ = rcp(new CoarseSpace(problem));
+  // h = B K+ f - c
+  Vector z(problem->primalMap());
+  problem->applyKplus(problem->f(), z);
+  h_ = rcp(new Vector(problem->dualMap()));
+  problem->B()->apply(z, *h_);
+  h_->update(-1.0, problem->c(), 1.0);
+  problem->applyRt(problem->f(), e_);
+  lambdaTilde_ = rcp(new Vector(problem->dualMap()));
+  coarse_->particularSolution(e_, *lambdaTilde_);
+}
+
+RCP<Vector> FetiDual::recoverPrimal(const Vector& lambda) const {
+  const FetiProblem& p = *problem_;
+  // alpha from r = F lambda - h on the equality rows (one extra F application,
+  // not counted in the solver's n_A).
+  Vector r(p.dualMap());
+  const long long count = F_->applications();
+  F_->apply(lambda, r);
+  F_->setCount(count);
+  r.update(-1.0, *h_, 1.0);
+  const auto alpha = coarse_->amplitudes(r);
+  Vector rhs(p.primalMap());
+  p.B()->apply(lambda, rhs, Teuchos::TRANS);
+  rhs.update(1.0, p.f(), -1.0);
+  auto u = rcp(new Vector(p.primalMap()));
+  p.applyKplus(rhs, *u);
+  Vector Ra(p.primalMap());
+  p.applyR(alpha, Ra);
+  u->update(1.0, Ra, 1.0);
+  return u;
+}
+
+}  // namespace Feti
+}  // namespace Tribos

@@ -1,0 +1,323 @@
+#include "Tribos_FetiProblem.hpp"
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Feti {
+
+namespace {
+
+MPI_Comm rawComm(const Comm& comm) {
+  return *dynamic_cast<const Teuchos::MpiComm<int>&>(comm).getRawMpiComm();
+}
+
+// Outward unit normal of a face of the box.
+std::array<double, 3> faceNormal(const std::string& face) {
+  static const std::map<std::string, std::array<double, 3>> normals = {
+      {"xmin", {-1, 0, 0}}, {"xmax", {1, 0, 0}}, {"ymin", {0, -1, 0}},
+      {"ymax", {0, 1, 0}},  {"zmin", {0, 0, -1}}, {"zmax", {0, 0, 1}}};
+  auto it = normals.find(face);
+  TRIBOS_REQUIRE(it != normals.end(), "Contact/Face: unknown face \"" << face << "\"; valid: xmin, xmax, ymin, ymax, zmin, zmax");
+  return it->second;
+}
+
+// Two unit tangents completing n to a right-handed orthonormal frame (n, t1, t2).
+void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::array<double, 3>& t2) {
+  const std::array<double, 3> e = std::abs(n[0]) < 0.9 ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
+  t1 = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+  const double s = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+  for (double& v : t1) v /= s;
+  t2 = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+}
+
+}  // namespace
+
+std::array<int, 6> fixingDofs(const std::vector<double>& R, int n) {
+  std::vector<double> W(R);  // working copy, column-major n x 6
+  std::vector<char> used(n, 0);
+  std::array<int, 6> rows{};
+  std::array<int, 6> colOrder = {0, 1, 2, 3, 4, 5};
+  for (int k = 0; k < 6; ++k) {
+    int bestRow = -1, bestCol = -1;
+    double best = -1;
+    for (int jj = k; jj < 6; ++jj) {
+      const int j = colOrder[jj];
+      for (int i = 0; i < n; ++i)
+        if (!used[i] && std::abs(W[j * n + i]) > best) best = std::abs(W[j * n + i]), bestRow = i, bestCol = jj;
+    }
+    TRIBOS_REQUIRE(best > 1e-12, "fixing dofs: the rigid-body modes have rank " << k << " < 6");
+    std::swap(colOrder[k], colOrder[bestCol]);
+    const int j = colOrder[k];
+    rows[k] = bestRow;
+    used[bestRow] = 1;
+    // Eliminate column j from the remaining columns using the pivot row.
+    for (int mm = k + 1; mm < 6; ++mm) {
+      const int m = colOrder[mm];
+      const double factor = W[m * n + bestRow] / W[j * n + bestRow];
+      for (int i = 0; i < n; ++i) W[m * n + i] -= factor * W[j * n + i];
+    }
+  }
+  return rows;
+}
+
+RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
+  static RCP<Teuchos::ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::parameterList("FETI");
+    pl->set("Local Solver", "CHOLMOD", "sparse direct solver for the regularized subdomain matrices",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("CHOLMOD", "KLU2", "Tacho"))));
+    pl->set("Gluing", "Non-redundant", "gluing rows between subdomain copies of a node: a chain (Non-redundant) or all pairs (Full)",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Non-redundant", "Full"))));
+  }
+  return pl;
+}
+
+FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& mat, const Fem::LoadCase& loads,
+                         const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm)
+    : disc_(disc), comm_(comm) {
+  Teuchos::ParameterList p(params);
+  p.validateParametersAndSetDefaults(*getValidParameters(), 0);
+  localSolverName_ = p.get<std::string>("Local Solver");
+  const int S = disc.numSubdomains();
+  primalOffsets_.assign(S + 1, 0);
+  for (int s = 0; s < S; ++s) primalOffsets_[s + 1] = primalOffsets_[s] + 3 * static_cast<GO>(disc.subdomains[s].nodes.size());
+  for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s)
+    systems_.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, loads));
+  const GO first = primalOffsets_[disc.firstLocalSubdomain()], last = primalOffsets_[disc.endLocalSubdomain()];
+  primalMap_ = rcp(new Map(static_cast<Tpetra::global_size_t>(primalOffsets_[S]), static_cast<size_t>(last - first), 0, comm));
+  f_ = rcp(new Vector(primalMap_));
+  {
+    auto fv = f_->getDataNonConst();
+    size_t k = 0;
+    for (const auto& sys : systems_)
+      for (double v : sys.f) fv[k++] = v;
+  }
+  const auto rows = buildRows(loads, contact, p.get<std::string>("Gluing"));
+  buildB(rows);
+  buildContact(rows, contact);
+  factorSubdomains();
+}
+
+std::vector<DualRow> FetiProblem::buildRows(const Fem::LoadCase& loads, const ContactSpec& contact,
+                                            const std::string& gluing) {
+  const Mesh::Mesh& mesh = disc_.mesh;
+  // Subdomain copies of every node, ascending.
+  std::vector<std::vector<int>> copies(mesh.numNodes());
+  for (const auto& sd : disc_.subdomains)
+    for (int n : sd.nodes) copies[n].push_back(sd.id);
+  std::vector<DualRow> rows;
+  const bool full = gluing == "Full";
+  for (int n = 0; n < mesh.numNodes(); ++n) {
+    const auto& cp = copies[n];
+    for (size_t i = 0; i + 1 < cp.size(); ++i)
+      for (size_t j = i + 1; j < (full ? cp.size() : i + 2); ++j)
+        for (int c = 0; c < 3; ++c) {
+          DualRow r{DualRow::Gluing};
+          r.node = n;
+          r.sub[0] = cp[i];
+          r.sub[1] = cp[j];
+          r.dir[c] = 1.0;
+          rows.push_back(r);
+        }
+  }
+  const auto bc = Fem::constrainedDofs(mesh, loads.dirichlet);
+  std::vector<char> constrained(mesh.numNodes(), 0);
+  for (const auto& d : bc) {
+    DualRow r{DualRow::Dirichlet};
+    r.node = static_cast<int>(d.first / 3);
+    r.sub[0] = copies[r.node].front();
+    r.dir[d.first % 3] = 1.0;
+    r.c = d.second;
+    rows.push_back(r);
+    constrained[r.node] = 1;
+  }
+  if (contact.enabled) {
+    const auto n = faceNormal(contact.face);
+    std::array<double, 3> t1, t2;
+    tangents(n, t1, t2);
+    // Nodes with a Dirichlet condition are not contact nodes.
+    for (int node : mesh.faceNodes(contact.face)) {
+      if (constrained[node]) continue;
+      DualRow r{DualRow::Normal};
+      r.node = node;
+      r.sub[0] = copies[node].front();
+      r.dir = n;
+      r.c = contact.gap;
+      rows.push_back(r);
+      r.kind = DualRow::Tangent1;
+      r.dir = t1;
+      r.c = 0;
+      rows.push_back(r);
+      r.kind = DualRow::Tangent2;
+      r.dir = t2;
+      rows.push_back(r);
+    }
+  }
+  for (auto& r : rows) r.owner = disc_.layout.owner(r.sub[0]);
+  // Per rank: equality rows, normal rows, tangential pairs.
+  auto group = [](const DualRow& r) { return r.kind == DualRow::Normal ? 1 : (r.kind >= DualRow::Tangent1 ? 2 : 0); };
+  std::stable_sort(rows.begin(), rows.end(), [&](const DualRow& a, const DualRow& b) {
+    return a.owner != b.owner ? a.owner < b.owner : group(a) < group(b);
+  });
+  return rows;
+}
+
+void FetiProblem::buildB(const std::vector<DualRow>& rows) {
+  const int me = comm_->getRank();
+  GO first = 0;
+  size_t mine = 0;
+  for (const auto& r : rows) {
+    if (r.owner < me) ++first;
+    if (r.owner == me) ++mine;
+  }
+  dualMap_ = rcp(new Map(static_cast<Tpetra::global_size_t>(rows.size()), mine, 0, comm_));
+  B_ = rcp(new CrsMatrix(dualMap_, 6));
+  c_ = rcp(new Vector(dualMap_));
+  auto cv = c_->getDataNonConst();
+  GO gid = first;
+  for (const auto& r : rows) {
+    if (r.owner != me) continue;
+    std::vector<GO> cols;
+    std::vector<SC> vals;
+    for (int k = 0; k < (r.kind == DualRow::Gluing ? 2 : 1); ++k) {
+      const int s = r.sub[k];
+      const GO base = primalOffsets_[s] + 3 * static_cast<GO>(disc_.subdomains[s].localNode(r.node));
+      for (int c = 0; c < 3; ++c)
+        if (r.dir[c] != 0.0) cols.push_back(base + c), vals.push_back(k == 0 ? r.dir[c] : -r.dir[c]);
+    }
+    B_->insertGlobalValues(gid, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const SC>(vals));
+    cv[gid - first] = r.c;
+    isEquality_.push_back(r.kind == DualRow::Gluing || r.kind == DualRow::Dirichlet);
+    ++gid;
+  }
+  B_->fillComplete(primalMap_, dualMap_);
+}
+
+void FetiProblem::buildContact(const std::vector<DualRow>& rows, const ContactSpec& contact) {
+  if (!contact.enabled) return;
+  const int me = comm_->getRank();
+  contact_.normal = faceNormal(contact.face);
+  tangents(contact_.normal, contact_.t1, contact_.t2);
+  // Area of the contact face attached to every node (for traction slip bounds).
+  std::vector<double> area(disc_.mesh.numNodes(), 0.0);
+  for (const auto& facet : disc_.mesh.face(contact.face)) {
+    std::vector<Fem::Point> X;
+    for (int n : facet.nodes) X.push_back(disc_.mesh.coords[n]);
+    const auto w = Fem::facetNodalAreas(X);
+    for (size_t a = 0; a < facet.nodes.size(); ++a) area[facet.nodes[a]] += w[a];
+  }
+  LO lid = 0;
+  for (const auto& r : rows) {
+    if (r.owner != me) continue;
+    if (r.kind == DualRow::Normal) {
+      contact_.normalRows.push_back(lid);
+      contact_.nodes.push_back(r.node);
+      contact_.nodalArea.push_back(area[r.node]);
+    } else if (r.kind == DualRow::Tangent1 || r.kind == DualRow::Tangent2) {
+      contact_.tangentRows.push_back(lid);
+    }
+    ++lid;
+  }
+}
+
+void FetiProblem::factorSubdomains() {
+  const auto t0 = std::chrono::steady_clock::now();
+  for (const auto& sys : systems_) {
+    LocalCsr Kreg = sys.K;
+    const int n = sys.numDofs();
+    const double rho = Kreg.maxAbsDiagonal();
+    for (int i : fixingDofs(sys.R, n))
+      for (int k = Kreg.rowptr[i]; k < Kreg.rowptr[i + 1]; ++k)
+        if (Kreg.col[k] == i) Kreg.val[k] += rho;
+    auto solver = createLocalSolver(localSolverName_);
+    solver->factor(Kreg);
+    Kreg_.push_back(solver);
+  }
+  factorTime_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double FetiProblem::factorMemoryMb() const {
+  double mb = 0;
+  for (const auto& s : Kreg_) mb += s->factorMemoryMb();
+  return mb;
+}
+
+void FetiProblem::applyKplus(const Vector& p, Vector& z) const {
+  auto pv = p.getData();
+  auto zv = z.getDataNonConst();
+  size_t offset = 0;
+  for (size_t k = 0; k < systems_.size(); ++k) {
+    Kreg_[k]->solve(pv.getRawPtr() + offset, zv.getRawPtr() + offset, 1);
+    offset += systems_[k].numDofs();
+  }
+}
+
+void FetiProblem::applyK(const Vector& p, Vector& z) const {
+  auto pv = p.getData();
+  auto zv = z.getDataNonConst();
+  size_t offset = 0;
+  for (const auto& sys : systems_) {
+    sys.K.multiply(pv.getRawPtr() + offset, zv.getRawPtr() + offset);
+    offset += sys.numDofs();
+  }
+}
+
+void FetiProblem::applyRt(const Vector& p, std::vector<double>& y) const {
+  y.assign(6 * static_cast<size_t>(numSubdomains()), 0.0);
+  auto pv = p.getData();
+  size_t offset = 0;
+  for (const auto& sys : systems_) {
+    const int n = sys.numDofs();
+    for (int j = 0; j < 6; ++j) {
+      double s = 0;
+      for (int i = 0; i < n; ++i) s += sys.R[static_cast<size_t>(j) * n + i] * pv[offset + i];
+      y[6 * sys.id + j] = s;
+    }
+    offset += n;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, y.data(), static_cast<int>(y.size()), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
+}
+
+void FetiProblem::applyR(const std::vector<double>& a, Vector& z) const {
+  auto zv = z.getDataNonConst();
+  size_t offset = 0;
+  for (const auto& sys : systems_) {
+    const int n = sys.numDofs();
+    for (int i = 0; i < n; ++i) {
+      double s = 0;
+      for (int j = 0; j < 6; ++j) s += sys.R[static_cast<size_t>(j) * n + i] * a[6 * sys.id + j];
+      zv[offset + i] = s;
+    }
+    offset += n;
+  }
+}
+
+std::vector<double> FetiProblem::nodalDisplacement(const Vector& u) const {
+  std::vector<double> full(3 * static_cast<size_t>(disc_.mesh.numNodes()), 0.0);
+  auto uv = u.getData();
+  size_t offset = 0;
+  for (const auto& sys : systems_) {
+    for (size_t a = 0; a < sys.nodes.size(); ++a) {
+      const int node = sys.nodes[a];
+      if (disc_.nodeFirstSubdomain()[node] != sys.id) continue;
+      for (int c = 0; c < 3; ++c) full[3 * static_cast<size_t>(node) + c] = uv[offset + 3 * a + c];
+    }
+    offset += sys.numDofs();
+  }
+  MPI_Allreduce(MPI_IN_PLACE, full.data(), static_cast<int>(full.size()), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
+  return full;
+}
+
+}  // namespace Feti
+}  // namespace Tribos

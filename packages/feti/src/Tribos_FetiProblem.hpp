@@ -1,0 +1,124 @@
+// Tribos_FetiProblem.hpp: Total FETI discretization of an elastic body split
+// into subdomains, optionally in contact with a rigid plane.
+//
+//   min 1/2 u'Ku - u'f   s.t.  B_E u = c_E (gluing + Dirichlet),  N u <= d,
+//   (+ Tresca/Coulomb friction on the tangential rows T1, T2)
+//
+// Every subdomain is floating (Dirichlet conditions are rows of B), so the
+// kernel R of K is known from coordinates. The dual problem is
+//   F = B K+ B',  h = B K+ f - c,  G = R'B',  e = R'f.
+// Primal dofs: subdomain after subdomain, each rank owning a contiguous block.
+// Dual dofs: per rank, equality rows first, then normal contact rows, then the
+// tangential pairs (t1, t2) of the same contact nodes, so every friction disk
+// lives on one rank.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_SerialDenseMatrix.hpp>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "Tribos_Assembly.hpp"
+#include "Tribos_Discretization.hpp"
+#include "Tribos_LocalSolver.hpp"
+#include "Tribos_Loads.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace Feti {
+
+// Contact of one face with a rigid plane: u . n <= gap at every node of the
+// face (n the outward normal of the face), two tangents per node.
+struct ContactSpec {
+  bool enabled = false;
+  std::string face = "zmin";
+  double gap = 0.0;
+};
+
+// One row of B, described on every rank (cheap) so numbering is global.
+struct DualRow {
+  enum Kind { Gluing, Dirichlet, Normal, Tangent1, Tangent2 } kind;
+  int node = -1;            // mesh node
+  int sub[2] = {-1, -1};    // subdomains (second only for gluing)
+  std::array<double, 3> dir{0, 0, 0};  // coefficient vector on the 3 dofs (Dirichlet: unit vector)
+  double c = 0.0;           // right-hand side
+  int owner = 0;            // rank
+};
+
+// The contact structure of this rank's dual dofs (local indices).
+struct LocalContact {
+  std::vector<LO> normalRows;       // lambda_I rows, one per local contact node
+  std::vector<LO> tangentRows;      // 2 per contact node: t1, t2
+  std::vector<int> nodes;           // mesh node of each local contact node
+  std::vector<double> nodalArea;    // contact-face area attached to the node
+  std::array<double, 3> normal{0, 0, 0}, t1{0, 0, 0}, t2{0, 0, 0};
+};
+
+class FetiProblem {
+ public:
+  // Parameters: "Local Solver" (CHOLMOD | KLU2 | Tacho), "Gluing" (Non-redundant | Full).
+  FetiProblem(const Mesh::Discretization& disc, const Fem::Material& mat, const Fem::LoadCase& loads,
+              const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm);
+  static RCP<const Teuchos::ParameterList> getValidParameters();
+
+  const RCP<const Comm>& comm() const { return comm_; }
+  RCP<const Map> primalMap() const { return primalMap_; }
+  RCP<const Map> dualMap() const { return dualMap_; }
+  RCP<const CrsMatrix> B() const { return B_; }
+  const Vector& f() const { return *f_; }
+  const Vector& c() const { return *c_; }
+  const LocalContact& contact() const { return contact_; }
+  // Local dual rows that are equality rows (gluing, Dirichlet).
+  const std::vector<char>& isEqualityRow() const { return isEquality_; }
+  int numSubdomains() const { return disc_.numSubdomains(); }
+  int numLocalSubdomains() const { return static_cast<int>(systems_.size()); }
+  const Fem::SubdomainSystem& subdomain(int k) const { return systems_[k]; }
+  // Offset of subdomain s in the primal numbering (replicated, size S+1).
+  const std::vector<GO>& primalOffsets() const { return primalOffsets_; }
+  const Mesh::Discretization& discretization() const { return disc_; }
+
+  // z = K+ p on this rank's subdomains (generalized inverse by fixing nodes).
+  void applyKplus(const Vector& p, Vector& z) const;
+  // z = K p (block diagonal).
+  void applyK(const Vector& p, Vector& z) const;
+  // y = R' p (replicated coarse vector of length 6S); z = R a (primal).
+  void applyRt(const Vector& p, std::vector<double>& y) const;
+  void applyR(const std::vector<double>& a, Vector& z) const;
+  // Replicated global nodal displacement (3 numNodes) from the first copy of
+  // each node.
+  std::vector<double> nodalDisplacement(const Vector& u) const;
+
+  double factorTime() const { return factorTime_; }
+  double factorMemoryMb() const;
+  const std::string& localSolverName() const { return localSolverName_; }
+
+ private:
+  std::vector<DualRow> buildRows(const Fem::LoadCase& loads, const ContactSpec& contact, const std::string& gluing);
+  void buildB(const std::vector<DualRow>& rows);
+  void buildContact(const std::vector<DualRow>& rows, const ContactSpec& contact);
+  void factorSubdomains();
+
+  const Mesh::Discretization& disc_;
+  RCP<const Comm> comm_;
+  std::string localSolverName_;
+  std::vector<Fem::SubdomainSystem> systems_;      // this rank's subdomains
+  std::vector<RCP<LocalSolver>> Kreg_;              // factorizations of K_s + rho sum e_i e_i'
+  std::vector<GO> primalOffsets_;
+  RCP<const Map> primalMap_, dualMap_;
+  RCP<CrsMatrix> B_;
+  RCP<Vector> f_, c_;
+  std::vector<char> isEquality_;
+  LocalContact contact_;
+  double factorTime_ = 0;
+};
+
+// The 6 rows of R (n x 6, column-major) chosen by greedy complete pivoting:
+// R_I is then nonsingular and well conditioned, so adding rho to those
+// diagonal entries of K makes it nonsingular and its inverse a generalized
+// inverse of K (K K_reg^-1 K = K, see docs/feti.md).
+std::array<int, 6> fixingDofs(const std::vector<double>& R, int n);
+
+}  // namespace Feti
+}  // namespace Tribos

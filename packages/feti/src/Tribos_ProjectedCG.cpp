@@ -1,0 +1,84 @@
+#include "Tribos_ProjectedCG.hpp"
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <cmath>
+
+namespace Tribos {
+namespace Feti {
+
+RCP<const Teuchos::ParameterList> ProjectedCG::getValidParameters() {
+  static RCP<Teuchos::ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::parameterList("Projected CG");
+    pl->set("Tolerance", 1e-10, "relative norm of the projected dual residual",
+            rcp(new Teuchos::EnhancedNumberValidator<double>(1e-16, 1.0)));
+    pl->set("Maximum Iterations", 1000, "iteration limit", rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
+    pl->set("Preconditioner", "Lumped", "None or Lumped (P B K B' P)",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("None", "Lumped"))));
+  }
+  return pl;
+}
+
+ProjectedCG::ProjectedCG(const Teuchos::ParameterList& params) {
+  Teuchos::ParameterList p(params);
+  p.validateParametersAndSetDefaults(*getValidParameters(), 0);
+  tol_ = p.get<double>("Tolerance");
+  maxIter_ = p.get<int>("Maximum Iterations");
+  preconditioner_ = p.get<std::string>("Preconditioner");
+}
+
+PCGStatus ProjectedCG::solve(const FetiDual& dual, Vector& lambda) const {
+  const FetiProblem& prob = dual.problem();
+  const CoarseSpace& coarse = dual.coarse();
+  const DualOperator& F = *dual.F();
+  const auto map = prob.dualMap();
+  const long long n_A0 = F.applications();
+  // M^-1 w = P B K B' P w (lumped): cheap and effective on 3D elasticity.
+  Vector pw(prob.primalMap()), Kpw(prob.primalMap()), tmp(map);
+  auto precondition = [&](const Vector& w, Vector& y) {
+    if (preconditioner_ == "None") {
+      y.assign(w);
+      return;
+    }
+    prob.B()->apply(w, pw, Teuchos::TRANS);
+    prob.applyK(pw, Kpw);
+    prob.B()->apply(Kpw, tmp);
+    coarse.project(tmp, y);
+  };
+  lambda.assign(dual.lambdaTilde());
+  Vector g(map), w(map), y(map), p(map), q(map);
+  F.apply(lambda, g);
+  g.update(-1.0, dual.h(), 1.0);  // g = F lambda - h
+  coarse.project(g, w);
+  Vector Ph(map);
+  coarse.project(dual.h(), Ph);
+  const double norm0 = std::max(Ph.norm2(), 1e-300);
+  PCGStatus st;
+  precondition(w, y);
+  p.assign(y);
+  double wy = w.dot(y);
+  st.relativeResidual = w.norm2() / norm0;
+  while (st.relativeResidual > tol_ && st.iterations < maxIter_) {
+    F.apply(p, q);
+    const double alpha = wy / p.dot(q);
+    lambda.update(-alpha, p, 1.0);
+    g.update(-alpha, q, 1.0);
+    coarse.project(g, w);
+    precondition(w, y);
+    const double wyNew = w.dot(y);
+    p.update(1.0, y, wyNew / wy);
+    wy = wyNew;
+    ++st.iterations;
+    st.relativeResidual = w.norm2() / norm0;
+    if (!out_.is_null()) *out_ << "PCG " << st.iterations << "  ||Pg||/||Ph|| = " << st.relativeResidual << "\n";
+  }
+  st.converged = st.relativeResidual <= tol_;
+  st.n_A = F.applications() - n_A0;
+  return st;
+}
+
+}  // namespace Feti
+}  // namespace Tribos

@@ -1,0 +1,38 @@
+// Tribos_ProjectedCG.hpp: the FETI dual solve without inequality constraints:
+// conjugate gradients on the projected dual problem
+//   P F P lambda^ = P (h - F lambda~),  lambda = lambda~ + lambda^,
+// with an optional lumped preconditioner P B K B' P.
+#pragma once
+
+#include <Teuchos_FancyOStream.hpp>
+#include <Teuchos_ParameterList.hpp>
+
+#include "Tribos_FetiDual.hpp"
+
+namespace Tribos {
+namespace Feti {
+
+struct PCGStatus {
+  bool converged = false;
+  int iterations = 0;
+  long long n_A = 0;
+  double relativeResidual = 0;  // ||P(h - F lambda)|| / ||P h||
+};
+
+class ProjectedCG {
+ public:
+  explicit ProjectedCG(const Teuchos::ParameterList& params);
+  static RCP<const Teuchos::ParameterList> getValidParameters();
+  void setOutputStream(RCP<Teuchos::FancyOStream> out) { out_ = out; }
+  // lambda on output: the multipliers satisfying G lambda = e.
+  PCGStatus solve(const FetiDual& dual, Vector& lambda) const;
+
+ private:
+  double tol_;
+  int maxIter_;
+  std::string preconditioner_;
+  RCP<Teuchos::FancyOStream> out_;
+};
+
+}  // namespace Feti
+}  // namespace Tribos
