@@ -253,13 +253,33 @@ double FetiProblem::factorMemoryMb() const {
   return mb;
 }
 
+namespace {
+// x <- (I - R R') x for orthonormal R (n x 6, column-major).
+void removeKernel(const std::vector<double>& R, int n, double* x) {
+  for (int j = 0; j < 6; ++j) {
+    const double* r = &R[static_cast<size_t>(j) * n];
+    double dot = 0;
+    for (int i = 0; i < n; ++i) dot += r[i] * x[i];
+    for (int i = 0; i < n; ++i) x[i] -= dot * r[i];
+  }
+}
+}  // namespace
+
+// K+ = (I - RR') K_reg^-1 (I - RR') is still a generalized inverse (R'K = 0),
+// symmetric, and free of the large near-kernel components of K_reg^-1 (the
+// subdomain pinned at six dofs is soft along its rigid modes), which would
+// otherwise cancel only after B and the projector and cost accuracy.
 void FetiProblem::applyKplus(const Vector& p, Vector& z) const {
   auto pv = p.getData();
   auto zv = z.getDataNonConst();
   size_t offset = 0;
   for (size_t k = 0; k < systems_.size(); ++k) {
-    Kreg_[k]->solve(pv.getRawPtr() + offset, zv.getRawPtr() + offset, 1);
-    offset += systems_[k].numDofs();
+    const int n = systems_[k].numDofs();
+    work_.assign(pv.getRawPtr() + offset, pv.getRawPtr() + offset + n);
+    removeKernel(systems_[k].R, n, work_.data());
+    Kreg_[k]->solve(work_.data(), zv.getRawPtr() + offset, 1);
+    removeKernel(systems_[k].R, n, zv.getRawPtr() + offset);
+    offset += n;
   }
 }
 

@@ -112,6 +112,7 @@ class FetiProblem {
   std::vector<char> isEquality_;
   LocalContact contact_;
   double factorTime_ = 0;
+  mutable std::vector<double> work_;
 };
 
 // The 6 rows of R (n x 6, column-major) chosen by greedy complete pivoting:
