@@ -1,0 +1,365 @@
+#include "Tribos_ContactReduction.hpp"
+
+#include <cholmod.h>
+
+#include <Teuchos_Time.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_LocalSolver.hpp"
+
+namespace Tribos {
+namespace Semismooth {
+
+namespace {
+
+// CHOLMOD on a fixed pattern: the fill-reducing ordering and the symbolic
+// factor are computed once; every factor() is a numeric refactorization.
+class CholmodPatternSolver : public PatternSolver {
+ public:
+  explicit CholmodPatternSolver(const LocalCsr& pattern) : A_(pattern) {
+    cholmod_start(&common_);
+    common_.print = 0;
+    L_ = cholmod_analyze(view(), &common_);
+    TRIBOS_REQUIRE(L_ != nullptr, "CHOLMOD analysis failed (status " << common_.status << ")");
+  }
+  ~CholmodPatternSolver() override {
+    if (L_) cholmod_free_factor(&L_, &common_);
+    cholmod_finish(&common_);
+  }
+  void factor(const std::vector<double>& values) override {
+    A_.val = values;
+    cholmod_factorize(view(), L_, &common_);
+    TRIBOS_REQUIRE(common_.status == CHOLMOD_OK && L_->minor == L_->n,
+                   "CHOLMOD: matrix of size " << A_.rows << " is not positive definite (pivot " << L_->minor << ")");
+  }
+  void solve(const double* b, double* x, int nrhs) const override {
+    cholmod_dense B;
+    std::memset(&B, 0, sizeof B);
+    B.nrow = A_.rows;
+    B.ncol = nrhs;
+    B.nzmax = B.d = A_.rows;
+    B.nzmax *= nrhs;
+    B.x = const_cast<double*>(b);
+    B.xtype = CHOLMOD_REAL;
+    B.dtype = CHOLMOD_DOUBLE;
+    cholmod_dense* X = cholmod_solve(CHOLMOD_A, L_, &B, &common_);
+    TRIBOS_REQUIRE(X != nullptr, "CHOLMOD solve failed");
+    std::copy_n(static_cast<double*>(X->x), static_cast<size_t>(A_.rows) * nrhs, x);
+    cholmod_free_dense(&X, &common_);
+  }
+
+ private:
+  // A symmetric CSR matrix is its own CSC; stype = 1 reads the upper triangle.
+  cholmod_sparse* view() {
+    std::memset(&S_, 0, sizeof S_);
+    S_.nrow = S_.ncol = A_.rows;
+    S_.nzmax = A_.col.size();
+    S_.p = A_.rowptr.data();
+    S_.i = A_.col.data();
+    S_.x = A_.val.data();
+    S_.stype = 1;
+    S_.itype = CHOLMOD_INT;
+    S_.xtype = CHOLMOD_REAL;
+    S_.dtype = CHOLMOD_DOUBLE;
+    S_.sorted = 1;
+    S_.packed = 1;
+    return &S_;
+  }
+  LocalCsr A_;
+  cholmod_sparse S_;
+  mutable cholmod_common common_;
+  cholmod_factor* L_ = nullptr;
+};
+
+// Any other backend of createLocalSolver(): full factorization each time.
+class GenericPatternSolver : public PatternSolver {
+ public:
+  GenericPatternSolver(const std::string& name, const LocalCsr& pattern)
+      : A_(pattern), solver_(createLocalSolver(name)) {}
+  void factor(const std::vector<double>& values) override {
+    A_.val = values;
+    solver_->factor(A_);
+  }
+  void solve(const double* b, double* x, int nrhs) const override { solver_->solve(b, x, nrhs); }
+
+ private:
+  LocalCsr A_;
+  RCP<LocalSolver> solver_;
+};
+
+// Orthonormal frame (t1, t2, n) with n the normalized outward normal.
+std::array<double, 9> tangentFrame(const std::array<double, 3>& normal) {
+  const double len = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  TRIBOS_REQUIRE(len > 0, "contact node with a zero normal");
+  const std::array<double, 3> n{normal[0] / len, normal[1] / len, normal[2] / len};
+  // The coordinate axis least aligned with n gives a well-conditioned t1.
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(n[k]) < std::abs(n[axis])) axis = k;
+  std::array<double, 3> e{0, 0, 0};
+  e[axis] = 1;
+  std::array<double, 3> t1{e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+  const double l1 = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+  for (double& v : t1) v /= l1;
+  const std::array<double, 3> t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+  std::array<double, 9> R{};
+  for (int a = 0; a < 3; ++a) {
+    R[3 * a + 0] = t1[a];
+    R[3 * a + 1] = t2[a];
+    R[3 * a + 2] = n[a];
+  }
+  return R;
+}
+
+// K~ = Q' K Q with Q = diag(R_I) (identity on nodes without a frame). K must
+// have the node-block structure of an elasticity matrix: the three rows of a
+// node share their columns, which come in complete node triples.
+LocalCsr rotate(const LocalCsr& K, const std::vector<const std::array<double, 9>*>& R) {
+  const int N = K.rows / 3;
+  LocalCsr Kt = K;
+  for (int I = 0; I < N; ++I) {
+    const int len = K.rowptr[3 * I + 1] - K.rowptr[3 * I];
+    for (int p = 0; p < 3; ++p)
+      TRIBOS_REQUIRE(K.rowptr[3 * I + p + 1] - K.rowptr[3 * I + p] == len && len % 3 == 0,
+                     "semismooth*: K must consist of full 3x3 node blocks (row " << 3 * I + p << ")");
+    for (int k = 0; k < len; k += 3) {
+      const int J = K.col[K.rowptr[3 * I] + k] / 3;
+      if (!R[I] && !R[J]) continue;
+      double B[3][3], C[3][3];
+      for (int p = 0; p < 3; ++p)
+        for (int q = 0; q < 3; ++q) {
+          const int pos = K.rowptr[3 * I + p] + k + q;
+          TRIBOS_REQUIRE(K.col[pos] == 3 * J + q, "semismooth*: K must consist of full 3x3 node blocks");
+          B[p][q] = K.val[pos];
+        }
+      for (int p = 0; p < 3; ++p)  // C = B R_J
+        for (int b = 0; b < 3; ++b) {
+          double s = 0;
+          for (int q = 0; q < 3; ++q) s += B[p][q] * (R[J] ? (*R[J])[3 * q + b] : double(q == b));
+          C[p][b] = s;
+        }
+      for (int a = 0; a < 3; ++a)  // R_I' C
+        for (int b = 0; b < 3; ++b) {
+          double s = 0;
+          for (int p = 0; p < 3; ++p) s += (R[I] ? (*R[I])[3 * p + a] : double(p == a)) * C[p][b];
+          Kt.val[K.rowptr[3 * I + a] + k + b] = s;
+        }
+    }
+  }
+  return Kt;
+}
+
+}  // namespace
+
+std::unique_ptr<PatternSolver> createPatternSolver(const std::string& name, const LocalCsr& pattern) {
+  if (name == "CHOLMOD") return std::make_unique<CholmodPatternSolver>(pattern);
+  return std::make_unique<GenericPatternSolver>(name, pattern);
+}
+
+ContactReduction::ContactReduction(const ContactProblem& p, const std::string& localSolver)
+    : numNodes_(p.numNodes()), m_(static_cast<int>(p.contact.size())), contact_(p.contact), solverName_(localSolver) {
+  Teuchos::Time timer("reduction");
+  timer.start();
+  const int n = 3 * numNodes_;
+  TRIBOS_REQUIRE(p.K.rows == n && p.K.cols == n && static_cast<int>(p.f.size()) == n,
+                 "semismooth*: K is " << p.K.rows << " x " << p.K.cols << ", f has " << p.f.size() << " entries");
+  TRIBOS_REQUIRE(m_ > 0, "semismooth*: no contact nodes");
+
+  // Frames and the reduced numbering x = (x_1, ..., x_m), x_i = (tau1, tau2, nu).
+  std::vector<const std::array<double, 9>*> R(numNodes_, nullptr);
+  frame_.resize(m_);
+  std::vector<int> reducedOfDof(n, -1);
+  for (int i = 0; i < m_; ++i) {
+    const int node = contact_[i].node;
+    TRIBOS_REQUIRE(node >= 0 && node < numNodes_, "semismooth*: contact node " << node << " out of range");
+    TRIBOS_REQUIRE(reducedOfDof[3 * node] < 0, "semismooth*: contact node " << node << " listed twice");
+    TRIBOS_REQUIRE(contact_[i].g >= 0, "semismooth*: negative slip bound at node " << node);
+    frame_[i] = tangentFrame(contact_[i].normal);
+    for (int k = 0; k < 3; ++k) {
+      TRIBOS_REQUIRE(!p.dirichlet.count(3LL * node + k),
+                     "semismooth*: contact node " << node << " has a prescribed dof; exclude it from contact");
+      reducedOfDof[3 * node + k] = 3 * i + k;
+    }
+  }
+  for (int i = 0; i < m_; ++i) R[contact_[i].node] = &frame_[i];
+  const LocalCsr Kt = rotate(p.K, R);
+  std::vector<double> ft = p.f;
+  for (int i = 0; i < m_; ++i) {
+    const double* fi = &p.f[3 * contact_[i].node];
+    for (int k = 0; k < 3; ++k)
+      ft[3 * contact_[i].node + k] = frame_[i][k] * fi[0] + frame_[i][3 + k] * fi[1] + frame_[i][6 + k] * fi[2];
+  }
+
+  // Free dofs in natural order (keeps CSR columns sorted).
+  uPrescribed_.assign(n, 0.0);
+  freeOfDof_.assign(n, -1);
+  for (int dof = 0; dof < n; ++dof) {
+    auto it = p.dirichlet.find(dof);
+    if (it != p.dirichlet.end()) {
+      uPrescribed_[dof] = it->second;
+      continue;
+    }
+    freeOfDof_[dof] = static_cast<int>(dofOfFree_.size());
+    dofOfFree_.push_back(dof);
+  }
+  const int nf = static_cast<int>(dofOfFree_.size());
+  reducedOfFree_.assign(nf, -1);
+  freeOfReduced_.assign(3 * m_, -1);
+  for (int j = 0; j < nf; ++j) {
+    reducedOfFree_[j] = reducedOfDof[dofOfFree_[j]];
+    if (reducedOfFree_[j] >= 0) freeOfReduced_[reducedOfFree_[j]] = j;
+  }
+
+  // K~ on the free dofs; prescribed values move to the right-hand side.
+  Kfree_.rows = Kfree_.cols = nf;
+  Kfree_.rowptr.assign(1, 0);
+  fFree_.assign(nf, 0.0);
+  for (int j = 0; j < nf; ++j) {
+    const int dof = dofOfFree_[j];
+    fFree_[j] = ft[dof];
+    for (int pos = Kt.rowptr[dof]; pos < Kt.rowptr[dof + 1]; ++pos) {
+      const int c = freeOfDof_[Kt.col[pos]];
+      if (c >= 0) {
+        Kfree_.col.push_back(c);
+        Kfree_.val.push_back(Kt.val[pos]);
+      } else {
+        fFree_[j] -= Kt.val[pos] * uPrescribed_[Kt.col[pos]];
+      }
+    }
+    Kfree_.rowptr.push_back(static_cast<int>(Kfree_.col.size()));
+  }
+  tangentialEntries_.resize(m_);
+  for (int i = 0; i < m_; ++i)
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const int row = freeOfReduced_[3 * i + a], col = freeOfReduced_[3 * i + b];
+        auto first = Kfree_.col.begin() + Kfree_.rowptr[row], last = Kfree_.col.begin() + Kfree_.rowptr[row + 1];
+        tangentialEntries_[i][2 * a + b] = static_cast<int>(std::lower_bound(first, last, col) - Kfree_.col.begin());
+      }
+
+  // K_rr, padded with the identity on the contact dofs so that it shares the
+  // pattern (and the symbolic analysis) with the Newton matrices.
+  std::vector<double> vals = Kfree_.val;
+  for (int j = 0; j < nf; ++j)
+    for (int pos = Kfree_.rowptr[j]; pos < Kfree_.rowptr[j + 1]; ++pos)
+      if (reducedOfFree_[j] >= 0 || reducedOfFree_[Kfree_.col[pos]] >= 0) vals[pos] = (Kfree_.col[pos] == j) ? 1.0 : 0.0;
+  Krr_ = createPatternSolver(solverName_, Kfree_);
+  Krr_->factor(vals);
+
+  // l = f_c - K_cr K_rr^-1 f_r.
+  std::vector<double> rhs = fFree_;
+  for (int j = 0; j < nf; ++j)
+    if (reducedOfFree_[j] >= 0) rhs[j] = 0;
+  krrSolve(rhs, zf_);
+  std::vector<double> t;
+  multiplyFree(zf_, t);
+  l_.assign(3 * m_, 0.0);
+  for (int j = 0; j < 3 * m_; ++j) l_[j] = fFree_[freeOfReduced_[j]] - t[freeOfReduced_[j]];
+  timer.stop();
+  reductionSeconds_ = timer.totalElapsedTime();
+}
+
+ContactReduction::~ContactReduction() = default;
+
+void ContactReduction::krrSolve(const std::vector<double>& rhsFree, std::vector<double>& zFree) const {
+  zFree.resize(rhsFree.size());
+  Krr_->solve(rhsFree.data(), zFree.data(), 1);
+}
+
+void ContactReduction::multiplyFree(const std::vector<double>& v, std::vector<double>& y) const {
+  y.resize(Kfree_.rows);
+  Kfree_.multiply(v.data(), y.data());
+}
+
+void ContactReduction::applyS(const std::vector<double>& x, std::vector<double>& Sx) const {
+  const int nf = Kfree_.rows;
+  std::vector<double> v(nf, 0.0), t, z;
+  for (int j = 0; j < 3 * m_; ++j) v[freeOfReduced_[j]] = x[j];
+  multiplyFree(v, t);  // t_r = K_rc x
+  for (int j = 0; j < 3 * m_; ++j) t[freeOfReduced_[j]] = 0;
+  krrSolve(t, z);  // z_r = K_rr^-1 K_rc x, z_c = 0
+  for (int j = 0; j < nf; ++j)
+    if (reducedOfFree_[j] < 0) v[j] = -z[j];
+  multiplyFree(v, t);  // t_c = K_cc x - K_cr z_r
+  Sx.resize(3 * m_);
+  for (int j = 0; j < 3 * m_; ++j) Sx[j] = t[freeOfReduced_[j]];
+}
+
+std::vector<double> ContactReduction::denseS() const {
+  const int nc = 3 * m_;
+  std::vector<double> S(static_cast<size_t>(nc) * nc), e(nc, 0.0), col;
+  for (int j = 0; j < nc; ++j) {
+    e[j] = 1;
+    applyS(e, col);
+    std::copy(col.begin(), col.end(), S.begin() + static_cast<size_t>(j) * nc);
+    e[j] = 0;
+  }
+  return S;
+}
+
+std::vector<double> ContactReduction::nodalMaxDiagonalKcc() const {
+  std::vector<double> dmax(m_, 0.0);
+  for (int j = 0; j < 3 * m_; ++j) {
+    const int row = freeOfReduced_[j];
+    for (int pos = Kfree_.rowptr[row]; pos < Kfree_.rowptr[row + 1]; ++pos)
+      if (Kfree_.col[pos] == row) dmax[j / 3] = std::max(dmax[j / 3], Kfree_.val[pos]);
+  }
+  return dmax;
+}
+
+void ContactReduction::newtonSolve(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
+                                   const std::vector<double>& rhs, std::vector<double>& dx, std::vector<double>& Sdx) {
+  Teuchos::Time timer("newton factor");
+  timer.start();
+  const int nf = Kfree_.rows;
+  // Fixed contact components are decoupled (unit row and column), so the
+  // pattern stays that of K~_free.
+  std::vector<double> vals = Kfree_.val;
+  auto fixed = [&](int j) { return reducedOfFree_[j] >= 0 && !freeComp[reducedOfFree_[j]]; };
+  for (int j = 0; j < nf; ++j)
+    for (int pos = Kfree_.rowptr[j]; pos < Kfree_.rowptr[j + 1]; ++pos)
+      if (fixed(j) || fixed(Kfree_.col[pos])) vals[pos] = (Kfree_.col[pos] == j) ? 1.0 : 0.0;
+  for (int i = 0; i < m_; ++i)
+    if (freeComp[3 * i] && freeComp[3 * i + 1])
+      for (int q = 0; q < 4; ++q) vals[tangentialEntries_[i][q]] += G[i][q];
+  if (!newton_) newton_ = createPatternSolver(solverName_, Kfree_);
+  newton_->factor(vals);
+  timer.stop();
+  newtonFactorSeconds_ += timer.totalElapsedTime();
+
+  std::vector<double> b(nf, 0.0), v(nf), t;
+  for (int j = 0; j < 3 * m_; ++j)
+    if (freeComp[j]) b[freeOfReduced_[j]] = rhs[j];
+  newton_->solve(b.data(), v.data(), 1);
+  dx.assign(3 * m_, 0.0);
+  for (int j = 0; j < 3 * m_; ++j) dx[j] = freeComp[j] ? v[freeOfReduced_[j]] : 0.0;
+  // The r-rows give v_r = -K_rr^-1 K_rF dx_F, hence (K~ v)_c = S dx.
+  multiplyFree(v, t);
+  Sdx.resize(3 * m_);
+  for (int j = 0; j < 3 * m_; ++j) Sdx[j] = t[freeOfReduced_[j]];
+}
+
+std::vector<double> ContactReduction::displacement(const std::vector<double>& x) const {
+  const int nf = Kfree_.rows;
+  std::vector<double> v(nf, 0.0), t, ur;
+  for (int j = 0; j < 3 * m_; ++j) v[freeOfReduced_[j]] = x[j];
+  multiplyFree(v, t);
+  for (int j = 0; j < nf; ++j) t[j] = reducedOfFree_[j] >= 0 ? 0.0 : fFree_[j] - t[j];
+  krrSolve(t, ur);
+  std::vector<double> u = uPrescribed_;
+  for (int j = 0; j < nf; ++j) u[dofOfFree_[j]] = reducedOfFree_[j] >= 0 ? v[j] : ur[j];
+  for (int i = 0; i < m_; ++i) {  // u_i = R_i x_i
+    const int node = contact_[i].node;
+    const double* xi = &x[3 * i];
+    for (int a = 0; a < 3; ++a)
+      u[3 * node + a] = frame_[i][3 * a] * xi[0] + frame_[i][3 * a + 1] * xi[1] + frame_[i][3 * a + 2] * xi[2];
+  }
+  return u;
+}
+
+}  // namespace Semismooth
+}  // namespace Tribos

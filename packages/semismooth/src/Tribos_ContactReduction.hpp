@@ -1,0 +1,113 @@
+// Tribos_ContactReduction.hpp: reduction of a linear elastic body in contact
+// with rigid planes to its contact boundary (Section 3 of the semismooth*
+// paper). Contact dofs are rotated to a per-node frame (tau1, tau2, nu); all
+// other free dofs (r) are eliminated:
+//     S = K_cc - K_cr K_rr^-1 K_rc,   l = f_c - K_cr K_rr^-1 f_r.
+// S is never formed (except on request for small meshes): it is applied with
+// one sparse Cholesky factorization of K_rr. The same fixed sparsity pattern
+// serves the Newton matrices, so the symbolic analysis is done once.
+#pragma once
+
+#include <array>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Tribos_LocalCsr.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace Semismooth {
+
+// One contact node i: non-penetration u_i . normal <= d, Tresca slip bound g.
+struct ContactNode {
+  int node = -1;
+  std::array<double, 3> normal{0, 0, -1};  // outward unit normal of the body
+  double g = 0.0;                          // slip bound (a force: traction bound x nodal area)
+  double d = 0.0;                          // gap
+};
+
+// The discrete problem: K (3 dof per node, dof = 3 node + c, both triangles,
+// sorted columns, unconstrained), f, prescribed dofs, contact nodes. Contact
+// nodes must not carry prescribed dofs.
+struct ContactProblem {
+  LocalCsr K;
+  std::vector<double> f;
+  std::map<long long, double> dirichlet;  // dof -> prescribed value
+  std::vector<ContactNode> contact;
+  int numNodes() const { return K.rows / 3; }
+};
+
+// Sparse symmetric positive definite solver on one fixed pattern: factor()
+// may be called repeatedly with new values (analysis once for CHOLMOD).
+class PatternSolver {
+ public:
+  virtual ~PatternSolver() = default;
+  virtual void factor(const std::vector<double>& values) = 0;
+  virtual void solve(const double* b, double* x, int nrhs = 1) const = 0;
+};
+// "CHOLMOD" keeps the symbolic analysis; other names of createLocalSolver()
+// re-factor from scratch.
+std::unique_ptr<PatternSolver> createPatternSolver(const std::string& name, const LocalCsr& pattern);
+
+class ContactReduction {
+ public:
+  // Rotates K, applies the prescribed values, factors K_rr.
+  ContactReduction(const ContactProblem& problem, const std::string& localSolver);
+  ~ContactReduction();
+
+  int numContactNodes() const { return m_; }
+  int numReduced() const { return 3 * m_; }
+  const std::vector<double>& l() const { return l_; }
+  const ContactNode& contactNode(int i) const { return contact_[i]; }
+  // Columns t1, t2, n of the frame of contact node i (row-major 3x3: R[a][k]
+  // is component a of frame vector k); x_i = R' u_i.
+  const std::array<double, 9>& frame(int i) const { return frame_[i]; }
+
+  // Sx = S x (one K_rr solve).
+  void applyS(const std::vector<double>& x, std::vector<double>& Sx) const;
+  // S as a dense column-major (3m)^2 array (3m solves): small meshes only.
+  std::vector<double> denseS() const;
+  // Largest diagonal entry of K_cc per contact node; K_cc >= S, so 1/this
+  // bounds 1/diag(S) from below.
+  std::vector<double> nodalMaxDiagonalKcc() const;
+
+  // Newton step in the full primal space. freeComp[3i+k]: component k of node
+  // i is free (else dx = 0); G[i]: 2x2 row-major curvature added on the
+  // tangential pair of node i. Solves (S_FF + G_FF) dx_F = rhs_F and returns
+  // dx and S dx (the latter from one product, no extra solve).
+  void newtonSolve(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
+                   const std::vector<double>& rhs, std::vector<double>& dx, std::vector<double>& Sdx);
+
+  // Full displacement (3 per node, global coordinates) for contact values x:
+  // u_r = K_rr^-1 (f_r - K_rc x).
+  std::vector<double> displacement(const std::vector<double>& x) const;
+
+  double reductionSeconds() const { return reductionSeconds_; }
+  double newtonFactorSeconds() const { return newtonFactorSeconds_; }
+
+ private:
+  void krrSolve(const std::vector<double>& rhsFree, std::vector<double>& zFree) const;
+  // y = Kfree v restricted to c, v given on the free dofs.
+  void multiplyFree(const std::vector<double>& v, std::vector<double>& y) const;
+
+  int numNodes_ = 0, m_ = 0;
+  std::vector<ContactNode> contact_;
+  std::vector<std::array<double, 9>> frame_;
+  std::vector<int> freeOfDof_;     // global dof -> free index or -1 (prescribed)
+  std::vector<int> dofOfFree_;     // free index -> global dof
+  std::vector<int> reducedOfFree_; // free index -> index in x (3i+k) or -1 (an r dof)
+  std::vector<int> freeOfReduced_; // 3i+k -> free index
+  LocalCsr Kfree_;                 // rotated K on the free dofs, natural order
+  std::vector<double> fFree_;      // rotated f minus the prescribed-value lifting
+  std::vector<double> uPrescribed_;// global dof vector with prescribed values (rotated frame = global there)
+  std::vector<double> l_, zf_;     // zf = K_rr^-1 f_r (padded with zeros on c)
+  std::vector<std::array<int, 4>> tangentialEntries_;  // positions in Kfree_ of the tau block of node i
+  std::unique_ptr<PatternSolver> Krr_, newton_;
+  std::string solverName_;
+  double reductionSeconds_ = 0, newtonFactorSeconds_ = 0;
+};
+
+}  // namespace Semismooth
+}  // namespace Tribos

@@ -1,0 +1,85 @@
+// From a mesh to the semismooth* contact problem: one assembly of the whole
+// body, rigid-plane contact on a named face, Tresca slip bounds from a
+// traction bound.
+#include <Teuchos_Time.hpp>
+
+#include <cmath>
+#include <set>
+
+#include "Tribos_Assembly.hpp"
+#include "Tribos_Decomposition.hpp"
+#include "Tribos_Error.hpp"
+#include "Tribos_SemismoothStarNewton.hpp"
+
+namespace Tribos {
+namespace Semismooth {
+
+ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
+                                   const std::string& contactFace, double gap, double slipBoundTraction) {
+  TRIBOS_REQUIRE(slipBoundTraction >= 0, "semismooth*: negative slip bound traction " << slipBoundTraction);
+  // One subdomain covering the mesh: its K and f are the global ones.
+  const Mesh::Subdomain whole = Mesh::extractSubdomains(mesh, std::vector<int>(mesh.numCells(), 0), 1)[0];
+  Fem::SubdomainSystem sys = Fem::assembleSubdomain(mesh, whole, material, loads);
+  for (int i = 0; i < static_cast<int>(whole.nodes.size()); ++i)
+    TRIBOS_REQUIRE(whole.nodes[i] == i, "semismooth*: the mesh has unused nodes");
+
+  ContactProblem p;
+  p.K = std::move(sys.K);
+  p.f = std::move(sys.f);
+  p.dirichlet = Fem::constrainedDofs(mesh, loads.dirichlet);
+
+  // Outward area-weighted nodal normals (facets are counter-clockwise seen
+  // from outside) and nodal areas.
+  const int N = mesh.numNodes();
+  std::vector<std::array<double, 3>> normal(N, {0, 0, 0});
+  std::vector<double> area(N, 0.0);
+  for (const Mesh::Facet& facet : mesh.face(contactFace)) {
+    std::vector<Fem::Point> X;
+    for (int v : facet.nodes) X.push_back(mesh.coords[v]);
+    const size_t nv = X.size();
+    const Fem::Point& p0 = X[0];
+    const Fem::Point& p1 = X[1];
+    const Fem::Point& p2 = X[2];
+    const Fem::Point& p3 = nv == 4 ? X[3] : X[0];
+    // Quadrilateral: (x2 - x0) x (x3 - x1); triangle: (x1 - x0) x (x2 - x0).
+    double e1[3], e2[3];
+    for (int c = 0; c < 3; ++c) {
+      e1[c] = nv == 4 ? p2[c] - p0[c] : p1[c] - p0[c];
+      e2[c] = nv == 4 ? p3[c] - p1[c] : p2[c] - p0[c];
+    }
+    const double nrm[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const std::vector<double> w = Fem::facetNodalAreas(X);
+    for (size_t a = 0; a < nv; ++a) {
+      for (int c = 0; c < 3; ++c) normal[facet.nodes[a]][c] += nrm[c];
+      area[facet.nodes[a]] += w[a];
+    }
+  }
+  for (int node : mesh.faceNodes(contactFace)) {
+    if (p.dirichlet.count(3LL * node) || p.dirichlet.count(3LL * node + 1) || p.dirichlet.count(3LL * node + 2))
+      continue;
+    ContactNode cn;
+    cn.node = node;
+    cn.normal = normal[node];
+    cn.g = slipBoundTraction * area[node];
+    cn.d = gap;
+    p.contact.push_back(cn);
+  }
+  TRIBOS_REQUIRE(!p.contact.empty(), "semismooth*: face \"" << contactFace << "\" has no unconstrained nodes");
+  return p;
+}
+
+SemismoothResult solveFromMesh(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
+                               const std::string& contactFace, double gap, double slipBoundTraction,
+                               const Teuchos::ParameterList& params, std::ostream* log) {
+  Teuchos::Time timer("assembly");
+  timer.start();
+  const ContactProblem problem = buildContactProblem(mesh, material, loads, contactFace, gap, slipBoundTraction);
+  timer.stop();
+  SemismoothStarNewton solver(problem, params);
+  SemismoothResult result = solver.solve(log);
+  result.assemblySeconds = timer.totalElapsedTime();
+  return result;
+}
+
+}  // namespace Semismooth
+}  // namespace Tribos

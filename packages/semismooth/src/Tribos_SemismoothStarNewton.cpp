@@ -1,0 +1,252 @@
+#include "Tribos_SemismoothStarNewton.hpp"
+
+#include <Teuchos_Array.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_Time.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_LocalSolver.hpp"
+
+namespace Tribos {
+namespace Semismooth {
+
+namespace {
+
+double norm2(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s);
+}
+
+// In-place Cholesky A = L L' of a dense column-major SPD matrix, then solve.
+void denseCholeskySolve(std::vector<double>& A, int n, std::vector<double>& b) {
+  auto at = [&](int i, int j) -> double& { return A[static_cast<size_t>(j) * n + i]; };
+  for (int j = 0; j < n; ++j) {
+    double s = at(j, j);
+    for (int k = 0; k < j; ++k) s -= at(j, k) * at(j, k);
+    TRIBOS_REQUIRE(s > 0, "semismooth*: dense Newton matrix is not positive definite");
+    at(j, j) = std::sqrt(s);
+    for (int i = j + 1; i < n; ++i) {
+      double t = at(i, j);
+      for (int k = 0; k < j; ++k) t -= at(i, k) * at(j, k);
+      at(i, j) = t / at(j, j);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < i; ++k) b[i] -= at(i, k) * b[k];
+    b[i] /= at(i, i);
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    for (int k = i + 1; k < n; ++k) b[i] -= at(k, i) * b[k];
+    b[i] /= at(i, i);
+  }
+}
+
+bool inContact(NodeState s) { return s == NodeState::ContactStick || s == NodeState::ContactSlip; }
+bool sticks(NodeState s) { return s == NodeState::NoContactStick || s == NodeState::ContactStick; }
+
+}  // namespace
+
+RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
+  using Teuchos::tuple;
+  auto pl = rcp(new Teuchos::ParameterList("SemismoothStarNewton"));
+  pl->set("Tolerance", 1e-8, "stop when ||S x^ - l + y^|| <= Tolerance ||l|| after an approximation step",
+          rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1.0)));
+  pl->set("Maximum Iterations", 50, "maximum number of Newton steps",
+          rcp(new Teuchos::EnhancedNumberValidator<int>(0, 100000)));
+  pl->set("Dense Schur", false, "form S densely (3m K_rr solves) and solve the Newton systems densely; small meshes only");
+  Teuchos::Array<std::string> solvers;
+  for (const std::string& s : localSolverNames()) solvers.push_back(s);
+  pl->set("Local Solver", "CHOLMOD", "sparse direct solver for K_rr and the Newton matrices",
+          rcp(new Teuchos::StringValidator(solvers)));
+  pl->set("Step Scaling", "Scalar",
+          "a of the approximation step: Scalar a = 1/max diag K_cc, or Nodal a_i = 1/max diag of node i's block of K_cc "
+          "(K_cc >= S, so both are below 1/diag S)",
+          rcp(new Teuchos::StringValidator(tuple<std::string>("Scalar", "Nodal"))));
+  pl->set("Step Size Factor", 10.0,
+          "multiplies a; larger a lets the multiplier y rather than x decide stick/slip and contact, which avoids "
+          "cycling of the stick/slip sets (1 cycles on the prism at level 2; 10 gives 6-7 iterations)", rcp(new Teuchos::EnhancedNumberValidator<double>(1e-12, 1e12)));
+  return pl;
+}
+
+SemismoothStarNewton::SemismoothStarNewton(const ContactProblem& problem, const Teuchos::ParameterList& params)
+    : params_(params), contact_(problem.contact), numNodes_(problem.numNodes()) {
+  params_.validateParametersAndSetDefaults(*getValidParameters());
+  reduction_ = std::make_unique<ContactReduction>(problem, params_.get<std::string>("Local Solver"));
+  const int m = reduction_->numContactNodes();
+  const std::vector<double> dmax = reduction_->nodalMaxDiagonalKcc();
+  const double factor = params_.get<double>("Step Size Factor");
+  a_.assign(m, 0.0);
+  const double global = *std::max_element(dmax.begin(), dmax.end());
+  for (int i = 0; i < m; ++i) {
+    const double dii = params_.get<std::string>("Step Scaling") == "Nodal" ? dmax[i] : global;
+    TRIBOS_REQUIRE(dii > 0, "semismooth*: K_cc has a non-positive diagonal at contact node " << contact_[i].node);
+    a_[i] = factor / dii;
+  }
+  if (params_.get<bool>("Dense Schur")) {
+    Teuchos::Time timer("dense S");
+    timer.start();
+    denseS_ = reduction_->denseS();
+    timer.stop();
+    denseSeconds_ = timer.totalElapsedTime();
+  }
+}
+
+SemismoothStarNewton::~SemismoothStarNewton() = default;
+
+void SemismoothStarNewton::applyS(const std::vector<double>& x, std::vector<double>& Sx) const {
+  if (denseS_.empty()) return reduction_->applyS(x, Sx);
+  const int n = static_cast<int>(x.size());
+  Sx.assign(n, 0.0);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) Sx[i] += denseS_[static_cast<size_t>(j) * n + i] * x[j];
+}
+
+// w = x - a (S x - l); x^ = prox_{a psi}(w) node by node, y^ = (w - x^)/a, so
+// that y^ lies in d psi(x^):
+//   x^_nu = min(w_nu, d_i),  x^_tau = w_tau max(0, 1 - a g_i / ||w_tau||).
+// A node is in contact when y^_nu > 0 (weak contact, w_nu = d_i, counts as
+// no contact) and sticks when x^_tau = 0.
+SemismoothStarNewton::Approximation SemismoothStarNewton::approximationStep(const std::vector<double>& x,
+                                                                            const std::vector<double>& Sx) const {
+  const std::vector<double>& l = reduction_->l();
+  const int m = reduction_->numContactNodes();
+  Approximation ap;
+  ap.x.resize(3 * m);
+  ap.y.resize(3 * m);
+  ap.state.resize(m);
+  for (int i = 0; i < m; ++i) {
+    const double a = a_[i], g = contact_[i].g, d = contact_[i].d;
+    double w[3];
+    for (int k = 0; k < 3; ++k) w[k] = x[3 * i + k] - a * (Sx[3 * i + k] - l[3 * i + k]);
+    const bool contact = w[2] > d;
+    ap.x[3 * i + 2] = contact ? d : w[2];
+    const double wt = std::hypot(w[0], w[1]);
+    const bool stick = wt <= a * g;
+    const double shrink = stick ? 0.0 : 1.0 - a * g / wt;
+    ap.x[3 * i] = shrink * w[0];
+    ap.x[3 * i + 1] = shrink * w[1];
+    for (int k = 0; k < 3; ++k) ap.y[3 * i + k] = (w[k] - ap.x[3 * i + k]) / a;
+    ap.state[i] = contact ? (stick ? NodeState::ContactStick : NodeState::ContactSlip)
+                          : (stick ? NodeState::NoContactStick : NodeState::NoContactSlip);
+    ap.contact += contact;
+    ap.stick += stick;
+  }
+  ap.slip = m - ap.stick;
+  return ap;
+}
+
+// Newton step: S dx + dy = -residual with, per node,
+//   no contact: dy_nu = 0;   contact: dx_nu = 0;
+//   stick: dx_tau = 0;       slide: dy_tau = (g/||x^_tau||)(I - t t') dx_tau, t = x^_tau/||x^_tau||.
+// Eliminating dy leaves (S_FF + G_FF) dx_F = -residual_F on the free components F.
+void SemismoothStarNewton::newtonStep(const Approximation& ap, const std::vector<double>& residual,
+                                      std::vector<double>& dx, std::vector<double>& Sdx) {
+  const int m = reduction_->numContactNodes(), nc = 3 * m;
+  std::vector<char> freeComp(nc, 0);
+  std::vector<std::array<double, 4>> G(m, {0, 0, 0, 0});
+  for (int i = 0; i < m; ++i) {
+    freeComp[3 * i + 2] = !inContact(ap.state[i]);
+    if (sticks(ap.state[i])) continue;
+    freeComp[3 * i] = freeComp[3 * i + 1] = 1;
+    const double xt = std::hypot(ap.x[3 * i], ap.x[3 * i + 1]);
+    const double t[2] = {ap.x[3 * i] / xt, ap.x[3 * i + 1] / xt}, c = contact_[i].g / xt;
+    for (int p = 0; p < 2; ++p)
+      for (int q = 0; q < 2; ++q) G[i][2 * p + q] = c * ((p == q) - t[p] * t[q]);
+  }
+  std::vector<double> rhs(nc);
+  for (int j = 0; j < nc; ++j) rhs[j] = -residual[j];
+  if (denseS_.empty()) return reduction_->newtonSolve(freeComp, G, rhs, dx, Sdx);
+
+  std::vector<int> F;
+  for (int j = 0; j < nc; ++j)
+    if (freeComp[j]) F.push_back(j);
+  const int nF = static_cast<int>(F.size());
+  std::vector<double> A(static_cast<size_t>(nF) * nF), b(nF);
+  for (int q = 0; q < nF; ++q) {
+    b[q] = rhs[F[q]];
+    for (int p = 0; p < nF; ++p) {
+      double v = denseS_[static_cast<size_t>(F[q]) * nc + F[p]];
+      const int i = F[p] / 3;
+      if (F[p] / 3 == F[q] / 3 && F[p] % 3 < 2 && F[q] % 3 < 2) v += G[i][2 * (F[p] % 3) + F[q] % 3];
+      A[static_cast<size_t>(q) * nF + p] = v;
+    }
+  }
+  if (nF > 0) denseCholeskySolve(A, nF, b);
+  dx.assign(nc, 0.0);
+  for (int q = 0; q < nF; ++q) dx[F[q]] = b[q];
+  applyS(dx, Sdx);
+}
+
+SemismoothResult SemismoothStarNewton::solve(std::ostream* log) {
+  Teuchos::Time timer("semismooth*");
+  timer.start();
+  const double factorBefore = reduction_->newtonFactorSeconds();
+  const int m = reduction_->numContactNodes(), nc = 3 * m;
+  const std::vector<double>& l = reduction_->l();
+  const double lnorm = norm2(l), scale = lnorm > 0 ? lnorm : 1.0;
+  const double tol = params_.get<double>("Tolerance");
+  const int maxIt = params_.get<int>("Maximum Iterations");
+
+  SemismoothResult res;
+  res.numNodes = numNodes_;
+  res.numContactNodes = m;
+  std::vector<double> x(nc, 0.0), Sx(nc, 0.0), Sxh, r(nc), dx, Sdx;
+  Approximation ap;
+  if (log)
+    *log << "semismooth* Newton: " << m << " contact nodes, " << numNodes_ << " nodes, ||l|| = " << lnorm << "\n"
+         << "  iter   ||S x^ - l + y^||/||l||  contact   stick    slip\n";
+  for (int k = 0;; ++k) {
+    ap = approximationStep(x, Sx);
+    applyS(ap.x, Sxh);
+    for (int j = 0; j < nc; ++j) r[j] = Sxh[j] - l[j] + ap.y[j];
+    const double rel = norm2(r) / scale;
+    res.residuals.push_back(rel);
+    res.numContact.push_back(ap.contact);
+    res.numStick.push_back(ap.stick);
+    res.numSlip.push_back(ap.slip);
+    if (log)
+      *log << "  " << std::setw(4) << k << "   " << std::scientific << std::setprecision(6) << std::setw(22) << rel
+           << std::defaultfloat << std::setw(9) << ap.contact << std::setw(8) << ap.stick << std::setw(8) << ap.slip
+           << "\n";
+    if (rel <= tol) {
+      res.converged = true;
+      break;
+    }
+    if (k == maxIt) break;
+    newtonStep(ap, r, dx, Sdx);
+    for (int j = 0; j < nc; ++j) {
+      x[j] = ap.x[j] + dx[j];
+      Sx[j] = Sxh[j] + Sdx[j];
+    }
+    res.iterations = k + 1;
+  }
+  if (log)
+    *log << (res.converged ? "  converged" : "  NOT converged") << " after " << res.iterations << " Newton steps\n";
+
+  res.x = ap.x;
+  res.y = ap.y;
+  res.state = ap.state;
+  res.u = reduction_->displacement(ap.x);
+  res.contactNodes.resize(m);
+  res.lambdaN.resize(m);
+  res.lambdaT.resize(m);
+  for (int i = 0; i < m; ++i) {
+    res.contactNodes[i] = contact_[i].node;
+    res.lambdaN[i] = ap.y[3 * i + 2];
+    const auto& R = reduction_->frame(i);
+    for (int c = 0; c < 3; ++c) res.lambdaT[i][c] = R[3 * c] * ap.y[3 * i] + R[3 * c + 1] * ap.y[3 * i + 1];
+  }
+  timer.stop();
+  res.solverSeconds = timer.totalElapsedTime();
+  res.reductionSeconds = reduction_->reductionSeconds() + denseSeconds_;
+  res.newtonFactorSeconds = reduction_->newtonFactorSeconds() - factorBefore;
+  return res;
+}
+
+}  // namespace Semismooth
+}  // namespace Tribos

@@ -1,0 +1,98 @@
+// Tribos_SemismoothStarNewton.hpp: the semismooth* Newton method of Gfrerer
+// and Outrata for contact with Tresca friction, on the contact boundary:
+//     0 in S x - l + d psi(x),
+//     psi(x) = sum_i g_i ||x_tau,i|| + indicator(x_nu,i <= d_i).
+// Each iteration: an approximation step (a proximal step, node by node in
+// closed form) gives (x^, y^) with y^ in d psi(x^); a Newton step linearizes
+// the graph of d psi at (x^, y^) and solves a sparse SPD system in the full
+// primal space. Serial: the whole problem lives on one process.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <array>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "Tribos_ContactReduction.hpp"
+#include "Tribos_Loads.hpp"
+#include "Tribos_Mesh.hpp"
+
+namespace Tribos {
+namespace Semismooth {
+
+// The rule chosen per node at the last approximation point.
+enum class NodeState { NoContactStick, NoContactSlip, ContactStick, ContactSlip };
+
+struct SemismoothResult {
+  bool converged = false;
+  int iterations = 0;                 // Newton steps
+  std::vector<double> residuals;      // ||S x^ - l + y^|| / ||l|| after each approximation step
+  std::vector<int> numContact, numStick, numSlip;  // per approximation step
+  int numNodes = 0, numContactNodes = 0;
+  std::vector<int> contactNodes;      // mesh node of contact node i
+  std::vector<double> x, y;           // reduced solution x^ and multiplier y^ (3 per node: tau1, tau2, nu)
+  std::vector<double> u;              // full displacement, 3 per mesh node, global coordinates
+  // Multipliers of K u - f + B' lambda = 0: lambdaN_i = y_nu >= 0 and the
+  // tangential part in global coordinates; the plane's force on the body is
+  // -(lambdaN_i n_i + lambdaT_i).
+  std::vector<double> lambdaN;
+  std::vector<std::array<double, 3>> lambdaT;
+  std::vector<NodeState> state;
+  double assemblySeconds = 0, reductionSeconds = 0, solverSeconds = 0;
+  double newtonFactorSeconds = 0;     // part of solverSeconds
+};
+
+class SemismoothStarNewton {
+ public:
+  // Reduces the problem (factors K_rr; forms S densely if "Dense Schur").
+  SemismoothStarNewton(const ContactProblem& problem, const Teuchos::ParameterList& params);
+  ~SemismoothStarNewton();
+
+  // "Tolerance", "Maximum Iterations", "Dense Schur", "Local Solver",
+  // "Step Scaling", "Step Size Factor", "Verbose".
+  static RCP<const Teuchos::ParameterList> getValidParameters();
+
+  // Runs the iteration from x = 0; log (optional) gets one line per iteration.
+  SemismoothResult solve(std::ostream* log = nullptr);
+
+  const ContactReduction& reduction() const { return *reduction_; }
+  // The step lengths a_i of the approximation step.
+  const std::vector<double>& stepSizes() const { return a_; }
+
+ private:
+  struct Approximation {
+    std::vector<double> x, y;
+    std::vector<NodeState> state;
+    int contact = 0, stick = 0, slip = 0;
+  };
+  Approximation approximationStep(const std::vector<double>& x, const std::vector<double>& Sx) const;
+  void applyS(const std::vector<double>& x, std::vector<double>& Sx) const;
+  void newtonStep(const Approximation& ap, const std::vector<double>& residual, std::vector<double>& dx,
+                  std::vector<double>& Sdx);
+
+  Teuchos::ParameterList params_;
+  std::unique_ptr<ContactReduction> reduction_;
+  std::vector<ContactNode> contact_;
+  std::vector<double> a_;       // per contact node
+  std::vector<double> denseS_;  // only with "Dense Schur"
+  double denseSeconds_ = 0;     // forming denseS_ (part of the reduction)
+  int numNodes_ = 0;
+};
+
+// Assembles K and f of the whole mesh, takes the contact face on a rigid
+// plane at distance gap (outward facet normals; nodes with a prescribed dof
+// are not contact nodes), nodal slip bounds g_i = slipBoundTraction x nodal
+// area, and solves. Timings of all three phases are in the result.
+SemismoothResult solveFromMesh(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
+                               const std::string& contactFace, double gap, double slipBoundTraction,
+                               const Teuchos::ParameterList& params, std::ostream* log);
+
+// The contact problem solveFromMesh() solves (for tests and other drivers).
+ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
+                                   const std::string& contactFace, double gap, double slipBoundTraction);
+
+}  // namespace Semismooth
+}  // namespace Tribos
