@@ -1,0 +1,91 @@
+// kkt.cpp: the computed solution of the prism (L = 4) satisfies the Tresca
+// KKT conditions node by node, checked from the full displacement u and the
+// contact forces alone, with K and f of the unreduced problem and frames of
+// its own (n from the problem, u_t = u - (u.n) n):
+//   (K u - f)_j + (B' lambda)_j = 0 at every unprescribed dof j,
+//   B' lambda at contact node i = lambdaN_i n_i + lambdaT_i,
+//   u_n <= d,  lambdaN >= 0,  lambdaN (u_n - d) = 0,  ||lambdaT|| <= g,
+//   ||lambdaT|| < g => u_t = 0,  u_t != 0 => lambdaT = g u_t / ||u_t||.
+// Tolerances: equilibrium 1e-6 ||f|| (the stopping rule is 1e-8 ||l|| on the
+// reduced residual); the pointwise conditions 1e-9 relative to the node's
+// scale (they hold by construction of the approximation step up to rounding).
+#include "SemismoothTestUtils.hpp"
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard scope(&argc, &argv);
+  using namespace Tribos;
+  Semismooth::MeshContactProblem pr = sstest::prism(4);
+  const Semismooth::ContactProblem p =
+      Semismooth::buildContactProblem(pr.mesh, pr.material, pr.loads, pr.contactFace, pr.gap, pr.slipBoundTraction);
+  Semismooth::SemismoothStarNewton solver(p, pr.solverParams);
+  const Semismooth::SemismoothResult r = solver.solve(&std::cout);
+  SS_CHECK(r.converged, "no convergence");
+  const int n = p.K.rows, m = static_cast<int>(p.contact.size());
+  SS_CHECK(static_cast<int>(r.u.size()) == n, "u has " << r.u.size() << " entries");
+
+  // Equilibrium at the unprescribed dofs.
+  std::vector<double> res(n);
+  p.K.multiply(r.u.data(), res.data());
+  for (int j = 0; j < n; ++j) res[j] -= p.f[j];
+  double umax = 0;
+  for (double v : r.u) umax = std::max(umax, std::abs(v));
+  for (int i = 0; i < m; ++i) {
+    const auto& nn = p.contact[i].normal;
+    const double len = std::sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+    for (int c = 0; c < 3; ++c) res[3 * p.contact[i].node + c] += r.lambdaN[i] * nn[c] / len + r.lambdaT[i][c];
+  }
+  double rn = 0, fn = 0;
+  for (int j = 0; j < n; ++j) {
+    fn += p.f[j] * p.f[j];
+    if (!p.dirichlet.count(j)) rn += res[j] * res[j];
+  }
+  std::cout << "equilibrium residual " << std::sqrt(rn / fn) << " ||f||\n";
+  SS_CHECK(std::sqrt(rn) <= 1e-6 * std::sqrt(fn), "equilibrium residual " << std::sqrt(rn / fn) << " ||f||");
+  // Prescribed dofs keep their values.
+  for (const auto& [dof, value] : p.dirichlet) SS_CHECK(r.u[dof] == value, "dof " << dof << " moved");
+
+  int stick = 0, slip = 0, contact = 0;
+  for (int i = 0; i < m; ++i) {
+    const auto& node = p.contact[i];
+    double nv[3], un = 0;
+    const double len = std::sqrt(node.normal[0] * node.normal[0] + node.normal[1] * node.normal[1] +
+                                 node.normal[2] * node.normal[2]);
+    for (int c = 0; c < 3; ++c) nv[c] = node.normal[c] / len;
+    for (int c = 0; c < 3; ++c) un += r.u[3 * node.node + c] * nv[c];
+    double ut[3], lt[3], utn = 0, ltn = 0, ltDotN = 0;
+    for (int c = 0; c < 3; ++c) {
+      ut[c] = r.u[3 * node.node + c] - un * nv[c];
+      lt[c] = r.lambdaT[i][c];
+      utn += ut[c] * ut[c];
+      ltn += lt[c] * lt[c];
+      ltDotN += lt[c] * nv[c];
+    }
+    utn = std::sqrt(utn);
+    ltn = std::sqrt(ltn);
+    const double uTol = 1e-9 * umax, gTol = 1e-9 * std::max(node.g, 1.0);
+    const double lnScale = std::max(std::abs(r.lambdaN[i]), node.g) + 1.0;
+    SS_CHECK(std::abs(ltDotN) <= gTol, "node " << node.node << ": tangential force has a normal part");
+    SS_CHECK(un <= node.d + uTol, "node " << node.node << ": penetration u_n - d = " << un - node.d);
+    SS_CHECK(r.lambdaN[i] >= -1e-9 * lnScale, "node " << node.node << ": lambda_n = " << r.lambdaN[i]);
+    SS_CHECK(std::abs(r.lambdaN[i] * (un - node.d)) <= 1e-9 * lnScale * umax,
+             "node " << node.node << ": complementarity " << r.lambdaN[i] * (un - node.d));
+    SS_CHECK(ltn <= node.g + gTol, "node " << node.node << ": ||lambda_t|| = " << ltn << " > g = " << node.g);
+    if (r.lambdaN[i] > 0) ++contact;
+    if (utn <= uTol) {
+      ++stick;
+    } else {
+      ++slip;
+      double err = 0;
+      for (int c = 0; c < 3; ++c) err = std::max(err, std::abs(lt[c] - node.g * ut[c] / utn));
+      SS_CHECK(err <= 1e-8 * node.g, "node " << node.node << ": slipping with lambda_t != g u_t/||u_t|| (" << err << ")");
+    }
+    if (ltn < node.g * (1 - 1e-8)) SS_CHECK(utn <= uTol, "node " << node.node << ": slips below the bound");
+  }
+  std::cout << "contact " << contact << ", no contact " << m - contact << ", stick " << stick << ", slip " << slip
+            << "\n";
+  SS_CHECK(contact > 0 && contact < m && stick > 0 && slip > 0,
+           "the benchmark must show contact, no contact, stick and slip");
+  SS_CHECK(contact == r.numContact.back() && stick == r.numStick.back() && slip == r.numSlip.back(),
+           "the solver's counts differ from the ones found here");
+  return sstest::finish();
+}
