@@ -18,7 +18,7 @@
 namespace {
 
 const char* kUsage =
-    "usage: tribos INPUT.xml [--output DIR] [--summary FILE.json] [--set \"Sublist/Key=value\" ...] [--verify]\n";
+    "usage: tribos INPUT.xml [--output DIR] [--summary FILE.json] [--set \"Sublist/Key=value\" ...] [--verify] [--verbose]\n";
 
 struct Args {
   std::string input, summary;
@@ -38,6 +38,7 @@ Args parse(int argc, char** argv) {
     else if (s == "--summary") a.summary = next("--summary");
     else if (s == "--set") a.overrides.push_back(next("--set"));
     else if (s == "--verify") a.options.verify = true;
+    else if (s == "--verbose") a.options.verbose = true;
     else if (s == "--help" || s == "-h") throw Tribos::Error(kUsage);
     else if (!s.empty() && s[0] == '-') throw Tribos::Error("unknown option " + s + "\n" + kUsage);
     else {

@@ -11,6 +11,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_FetiProblem.hpp"
+#include "Tribos_FrictionSolver.hpp"
 #include "Tribos_ProjectedCG.hpp"
 
 namespace Tribos {
@@ -100,11 +101,22 @@ RCP<const ParameterList> validParameters() {
   bc.sublist("Dirichlet", false, "one sublist per condition: Face, Components, Value");
   bc.sublist("Traction", false, "one sublist per load: Face, Value");
   bc.set("Volume Force", Array<double>(3, 0.0), "volume force density (x, y, z)");
-  ParameterList& contact = pl->sublist("Contact", false, "contact with a rigid plane (see docs)");
+  ParameterList& contact = pl->sublist("Contact", false, "contact of a face with a rigid plane");
   contact.set("Enabled", false, "solve a contact problem");
+  contact.set("Face", "zmin", "contact face; the rigid plane lies a distance Gap beyond it", choice(kFaces));
+  contact.set("Gap", 0.0, "initial normal gap between the face and the plane");
+  contact.set("Friction Law", "Coulomb", "Frictionless, Tresca (given slip bound) or Coulomb",
+              choice(tuple<std::string>("Frictionless", "Tresca", "Coulomb")));
+  contact.set("Friction Coefficient", 0.3, "Coulomb friction coefficient F", range<double>(0.0, 1e6));
+  contact.set("Slip Bound Traction", 0.0, "Tresca slip bound as a traction (force per area)", range<double>(0.0, 1e300));
   ParameterList& solver = pl->sublist("Solver", false, "solution algorithm");
   solver.set("Type", "Monolithic", "Monolithic (assembled global solve) or FETI",
              choice(tuple<std::string>("Monolithic", "FETI")));
+  solver.set("Outer Algorithm", "Algorithm2",
+             "contact problems: Tresca (Algorithm 1 with the given slip bound; also frictionless), "
+             "MSA+Algorithm1 or Algorithm2 (Coulomb), SemismoothStarNewton (Tresca)",
+             choice(tuple<std::string>("Tresca", "MSA+Algorithm1", "Algorithm2", "SemismoothStarNewton")));
+  Friction::FrictionSolverFactory::addValidParameters(solver);
   solver.sublist("Monolithic").setParameters(*Fem::MonolithicSystem::getValidParameters());
   ParameterList& feti = solver.sublist("FETI", false, "Total FETI: local solver, gluing, dual solver");
   feti.setParameters(*Feti::FetiProblem::getValidParameters());
@@ -206,6 +218,18 @@ void validate(ParameterList& params, const std::string& source) {
     for (const char* key : {"Cells", "Subdomain Grid"}) {
       const auto& c = mesh.get<Array<int>>(key);
       TRIBOS_REQUIRE(c.size() == 3 && c[0] > 0 && c[1] > 0 && c[2] > 0, "\"Mesh/" << key << "\" must be 3 positive integers");
+    }
+    const auto& contact = params.sublist("Contact");
+    const auto& solver = params.sublist("Solver");
+    if (contact.get<bool>("Enabled")) {
+      const std::string law = contact.get<std::string>("Friction Law"), outer = solver.get<std::string>("Outer Algorithm");
+      const bool coulomb = law == "Coulomb";
+      TRIBOS_REQUIRE(solver.get<std::string>("Type") == "FETI" || outer == "SemismoothStarNewton",
+                     "contact problems are solved by FETI (Solver/Type = FETI) or by Solver/Outer Algorithm = SemismoothStarNewton");
+      TRIBOS_REQUIRE(!coulomb || outer == "MSA+Algorithm1" || outer == "Algorithm2",
+                     "Contact/Friction Law = Coulomb needs Solver/Outer Algorithm = MSA+Algorithm1 or Algorithm2, not " << outer);
+      TRIBOS_REQUIRE(coulomb || outer == "Tresca" || outer == "SemismoothStarNewton",
+                     "Contact/Friction Law = " << law << " needs Solver/Outer Algorithm = Tresca or SemismoothStarNewton, not " << outer);
     }
     const auto& vf = params.sublist("Boundary Conditions").get<Array<double>>("Volume Force");
     TRIBOS_REQUIRE(vf.size() == 3, "\"Boundary Conditions/Volume Force\" needs 3 components");

@@ -8,7 +8,9 @@
 
 #include "Tribos_Assembly.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_FetiContact.hpp"
 #include "Tribos_FetiDual.hpp"
+#include "Tribos_FrictionSolver.hpp"
 #include "Tribos_ProjectedCG.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_Monolithic.hpp"
@@ -56,6 +58,18 @@ std::vector<IO::Field> cellFields(const Mesh::Discretization& disc, const Fem::M
   return {vm, sub, rank};
 }
 
+// Contact nodes with their forces, slip and status, as a ParaView point set.
+IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::ContactNodeResults& r) {
+  IO::PointSet ps;
+  ps.name = "contact";
+  IO::Field normal{"normal_force", 1, r.normalForce}, tangential{"tangential_force", 3, r.tangentialForce},
+      slip{"slip", 3, r.slip}, status{"status", 1, {}}, gap{"gap", 1, r.gap};
+  for (int s : r.status) status.values.push_back(s);
+  for (int n : r.nodes) ps.coords.push_back(disc.mesh.coords[n]);
+  ps.fields = {normal, tangential, slip, status, gap};
+  return ps;
+}
+
 }  // namespace
 
 IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) {
@@ -80,6 +94,7 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
   summary.set("cells", disc.mesh.numCells());
 
   std::vector<double> u;
+  Contact::ContactNodeResults contactNodes;
   const auto t1 = std::chrono::steady_clock::now();
   double setupTime = 0, solveTime = 0;
   if (type == "Monolithic") {
@@ -100,21 +115,68 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
     Teuchos::ParameterList problemParams;
     problemParams.set("Local Solver", fetiParams.get<std::string>("Local Solver"));
     problemParams.set("Gluing", fetiParams.get<std::string>("Gluing"));
-    auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, Feti::ContactSpec{}, problemParams, comm));
-    Feti::FetiDual dual(problem);
+    const auto& contactParams = params.sublist("Contact");
+    Feti::ContactSpec contact;
+    contact.enabled = contactParams.get<bool>("Enabled");
+    contact.face = contactParams.get<std::string>("Face");
+    contact.gap = contactParams.get<double>("Gap");
+    auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, contact, problemParams, comm));
+    auto dual = rcp(new Feti::FetiDual(problem));
     setupTime = seconds(t0);
     const auto t2 = std::chrono::steady_clock::now();
-    Feti::ProjectedCG pcg(fetiParams.sublist("Projected CG"));
     Vector lambda(problem->dualMap());
-    const auto st = pcg.solve(dual, lambda);
-    u = problem->nodalDisplacement(*dual.recoverPrimal(lambda));
-    solveTime = seconds(t2);
+    RCP<Vector> uPrimal;
+    if (!contact.enabled) {
+      Feti::ProjectedCG pcg(fetiParams.sublist("Projected CG"));
+      const auto st = pcg.solve(*dual, lambda);
+      uPrimal = dual->recoverPrimal(lambda);
+      summary.set("outer_iterations", st.iterations);
+      summary.set("n_A", st.n_A);
+      summary.set("relative_residual", st.relativeResidual);
+      summary.set("converged", st.converged);
+      solveTime = seconds(t2);
+    } else {
+      Contact::FrictionSpec friction;
+      friction.law = contactParams.get<std::string>("Friction Law");
+      friction.coefficient = contactParams.get<double>("Friction Coefficient");
+      friction.slipBoundTraction = contactParams.get<double>("Slip Bound Traction");
+      Contact::FetiContactProblem cp(dual, friction);
+      const std::string outer = params.sublist("Solver").get<std::string>("Outer Algorithm");
+      auto solver = Friction::FrictionSolverFactory().create(outer, params.sublist("Solver"));
+      if (options.verbose) solver->setOutputStream(Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout)));
+      Vector x(problem->dualMap());
+      const long long n_A0 = dual->F()->applications();
+      const auto st = solver->solve(cp.contactDual(), x);
+      const long long n_A = dual->F()->applications() - n_A0;
+      lambda.assign(*cp.multipliers(x));
+      uPrimal = dual->recoverPrimal(lambda);
+      solveTime = seconds(t2);
+      summary.set("outer_algorithm", outer);
+      summary.set("friction_law", friction.law);
+      summary.set("outer_iterations", st.outer_iterations);
+      summary.set("msa_iterations", st.msa_iterations);
+      summary.set("inner_iterations", st.inner_iterations);
+      summary.set("n_A", static_cast<long long>(n_A));
+      summary.set("n_A_qpp", static_cast<long long>(st.n_A_qpp));
+      summary.set("n_A_qpq", static_cast<long long>(st.n_A_qpq));
+      summary.set("converged", st.converged);
+      summary.set("stop_reason", st.reason);
+      summary.set("slip_bound_change", st.slip_bound_change);
+      summary.set("history", st.history);
+      const auto kkt = Contact::checkKKT(*problem, *uPrimal, lambda, st.slipBound);
+      IO::Summary k;
+      k.set("equilibrium", kkt.equilibrium).set("equality", kkt.equality).set("nonpenetration", kkt.nonpenetration);
+      k.set("complementarity", kkt.complementarity).set("friction_law", kkt.frictionLaw);
+      summary.set("kkt", k);
+      Contact::ContactCounts counts;
+      contactNodes = Contact::contactResults(*problem, *uPrimal, lambda, st.slipBound, counts);
+      IO::Summary c;
+      c.set("nodes", counts.nodes).set("active", counts.active).set("stick", counts.stick).set("slip", counts.slip);
+      summary.set("contact", c);
+    }
+    u = problem->nodalDisplacement(*uPrimal);
     summary.set("primal_dofs", static_cast<long long>(problem->primalMap()->getGlobalNumElements()));
     summary.set("dual_dofs", static_cast<long long>(problem->dualMap()->getGlobalNumElements()));
-    summary.set("outer_iterations", st.iterations);
-    summary.set("n_A", st.n_A);
-    summary.set("relative_residual", st.relativeResidual);
-    summary.set("converged", st.converged);
     summary.set("local_solver", problem->localSolverName());
     summary.set("time_factor_s", maxOverRanks(problem->factorTime(), *comm));
     summary.set("factor_memory_mb", maxOverRanks(problem->factorMemoryMb(), *comm));
@@ -136,7 +198,9 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
     if (comm->getRank() == 0) makeDirectory(dir);
     comm->barrier();
     IO::ResultWriter writer(disc, comm);
-    writer.write(dir, out.get<std::string>("Base Name"), u, {}, cellFields(disc, mat, u));
+    std::vector<IO::PointSet> points;
+    if (!contactNodes.nodes.empty() || params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, contactNodes));
+    writer.write(dir, out.get<std::string>("Base Name"), u, {}, cellFields(disc, mat, u), points);
     summary.set("output", dir + "/" + out.get<std::string>("Base Name") + ".xmf");
   }
   double maxU = 0;

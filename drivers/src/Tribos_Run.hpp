@@ -14,6 +14,7 @@ namespace Tribos {
 struct RunOptions {
   std::string outputDir;     // overrides Output/Directory when non-empty
   bool verify = false;       // also solve monolithically and compare
+  bool verbose = false;      // print solver iterations
   std::string inputName;     // for the summary
 };
 

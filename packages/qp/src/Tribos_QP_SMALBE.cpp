@@ -10,38 +10,13 @@
 #include <Tpetra_Vector.hpp>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_QP_AugmentedHessian.hpp"
 #include "Tribos_QP_Factory.hpp"
 
 namespace Tribos {
 namespace QP {
 
 namespace {
-
-// H = A + rho G'G, the Hessian of the augmented Lagrangian in x. One
-// application of H costs one application of A.
-class AugmentedHessian : public Operator {
- public:
-  AugmentedHessian(const Operator& A, const EqualityConstraint& G, SC rho) : A_(A), G_(G), rho_(rho) {}
-  RCP<const Map> getDomainMap() const override { return A_.getDomainMap(); }
-  RCP<const Map> getRangeMap() const override { return A_.getRangeMap(); }
-  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
-             SC beta = 0) const override {
-    Vector AX(getRangeMap()), GX(G_.rangeMap()), GtGX(getDomainMap());
-    for (size_t j = 0; j < X.getNumVectors(); ++j) {
-      auto Xj = X.getVector(j);
-      A_.apply(*Xj, AX);
-      G_.apply(*Xj, GX);
-      G_.applyTranspose(GX, GtGX);
-      AX.update(rho_, GtGX, 1.0);
-      Y.getVectorNonConst(j)->update(alpha, AX, beta);
-    }
-  }
-
- private:
-  const Operator& A_;
-  const EqualityConstraint& G_;
-  SC rho_;
-};
 
 // G'G, only to estimate ||G||^2 for alpha_bar of the inner problems.
 class NormalOperator : public Operator {

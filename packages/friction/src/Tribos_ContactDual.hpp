@@ -1,0 +1,57 @@
+// Tribos_ContactDual.hpp: the dual contact problem the friction algorithms
+// solve, with no knowledge of where it comes from (FETI, FCLIB, ...):
+//
+//   min 1/2 x'Ax - b'x   s.t.  x_N,k >= l_k                (normal, one per contact k)
+//                              ||(x_T1,k, x_T2,k)|| <= g_k  (tangential pair)
+//                              G x = 0                      (optional)
+//
+// The normal contact force of contact k is x_N,k + normalOffset_k. Tresca
+// problems give g; Coulomb problems give the friction coefficients F_k and
+// g_k = F_k (normal force). The algorithms' defaults (rho, M) assume the
+// problem is scaled so that ||A|| is about 1; FetiContactProblem does that.
+#pragma once
+
+#include <vector>
+
+#include "Tribos_QP_ConstraintSet.hpp"
+#include "Tribos_QP_EqualityConstraint.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace Friction {
+
+struct ContactDual {
+  RCP<const Operator> A;
+  RCP<const Vector> b;
+  RCP<const QP::EqualityConstraint> G;  // null: no equality constraint
+  std::vector<LO> normalRows;           // local index of x_N,k
+  std::vector<LO> tangentRows;          // local indices of x_T1,k, x_T2,k (2 per contact)
+  std::vector<SC> normalLower;          // l_k (usually 0), local
+  std::vector<SC> normalOffset;         // local
+  std::vector<SC> slipBound;            // Tresca g_k, local
+  std::vector<SC> frictionCoefficient;  // Coulomb F_k, local
+
+  RCP<const Map> map() const { return b->getMap(); }
+  int numLocalContacts() const { return static_cast<int>(normalRows.size()); }
+  long long numGlobalContacts() const;
+
+  // Omega(g): the product set with slip bounds g (local, one per contact).
+  QP::ConstraintSet constraintSet(const std::vector<SC>& g) const;
+  // Normal forces of the local contacts.
+  std::vector<SC> normalForce(const Vector& x) const;
+  // Coulomb slip bound g_k = F_k max(normal force_k, 0).
+  std::vector<SC> coulombSlipBound(const Vector& x) const;
+  // Masks of the local indices of the normal + equality block (lambda_c: every
+  // index that is not tangential) and of the tangential block (lambda_t).
+  std::vector<char> normalBlockMask() const;
+  std::vector<char> tangentBlockMask() const;
+  // Checks sizes and that every index is in range; throws naming the entry.
+  void check() const;
+};
+
+// ||a - b|| over all ranks for local vectors.
+SC globalNorm(const std::vector<SC>& a, const Comm& comm);
+SC globalDistance(const std::vector<SC>& a, const std::vector<SC>& b, const Comm& comm);
+
+}  // namespace Friction
+}  // namespace Tribos

@@ -1,0 +1,371 @@
+#include "Tribos_FrictionSolver.hpp"
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <cmath>
+#include <iomanip>
+
+#include "Tribos_BlockGaussSeidel.hpp"
+#include "Tribos_Error.hpp"
+#include "Tribos_QP.hpp"
+#include "Tribos_QP_AugmentedHessian.hpp"
+
+namespace Tribos {
+namespace Friction {
+
+using Teuchos::ParameterList;
+
+namespace {
+
+template <class T>
+RCP<Teuchos::EnhancedNumberValidator<T>> range(T lo, T hi) {
+  return rcp(new Teuchos::EnhancedNumberValidator<T>(lo, hi));
+}
+
+// Solver sublist validated against the solver's own valid parameters.
+RCP<ParameterList> solverList(const ParameterList& parent, const std::string& name, const QP::QPSolver& solver) {
+  auto pl = rcp(new ParameterList(parent.isSublist(name) ? parent.sublist(name) : ParameterList(name)));
+  pl->validateParametersAndSetDefaults(*solver.getValidParameters());
+  return pl;
+}
+
+RCP<QP::QPSolver> makeQPSolver(const std::string& type, const ParameterList& parent, const std::string& name) {
+  QP::QPSolverFactory factory;
+  auto solver = factory.create(type, Teuchos::null);
+  solver->setParameters(solverList(parent, name, *solver));
+  return solver;
+}
+
+SC estimateHessianNorm(const Operator& A, long& n_A) { return QP::estimateNorm(A, 20, n_A); }
+
+}  // namespace
+
+// ---------------------------------------------------------------- Algorithm 1
+
+RCP<const ParameterList> Algorithm1::validParameters() {
+  static RCP<ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::parameterList("Algorithm 1");
+    pl->set("Inner Minimization", "Block Gauss-Seidel",
+            "MPRGP on the normal block then MPGP on the tangential block (Block Gauss-Seidel), or one MPGP over the product set",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Block Gauss-Seidel", "MPGP"))));
+    pl->set("Sweeps", 1, "block Gauss-Seidel sweeps per inner minimization", range<int>(1, 1000));
+    QP::QPSolverFactory factory;
+    auto smalbe = factory.create("SMALBE", Teuchos::null);
+    ParameterList& s = pl->sublist("SMALBE");
+    s.setParameters(*smalbe->getValidParameters());
+    s.set("Relative Tolerance", 1e-6);
+    // Measured on the seed brick (docs/benchmarks.md): M = 0.1 ||A|| keeps
+    // the inner solves inexact enough; problems are scaled to ||A|| = 1.
+    s.set("M", 0.1);
+    s.set("Maximum Outer Iterations", 500);
+    pl->sublist("MPRGP").setParameters(*factory.create("MPRGP", Teuchos::null)->getValidParameters());
+    pl->sublist("MPGP").setParameters(*factory.create("MPGP", Teuchos::null)->getValidParameters());
+  }
+  return pl;
+}
+
+RCP<const ParameterList> Algorithm1::getValidParameters() const { return validParameters(); }
+
+Algorithm1::Algorithm1(const ParameterList& params) : params_(params) {
+  params_.validateParametersAndSetDefaults(*validParameters());
+}
+
+FrictionStatus Algorithm1::solve(const ContactDual& dual, Vector& x) { return solve(dual, dual.slipBound, x); }
+
+FrictionStatus Algorithm1::solve(const ContactDual& dual, const std::vector<SC>& g, Vector& x) {
+  dual.check();
+  FrictionStatus st;
+  const auto Omega = dual.constraintSet(g);
+  // Inner solvers: the bound block by MPRGP, the circle block by MPGP.
+  RCP<QP::QPSolver> inner;
+  RCP<BlockGaussSeidel> bgs;
+  RCP<QP::QPSolver> mpgp = makeQPSolver("MPGP", params_, "MPGP");
+  if (params_.get<std::string>("Inner Minimization") == "Block Gauss-Seidel") {
+    bgs = rcp(new BlockGaussSeidel(makeQPSolver("MPRGP", params_, "MPRGP"), mpgp, params_.get<int>("Sweeps"),
+                                   dual.normalBlockMask(), dual.tangentBlockMask()));
+    inner = bgs;
+  } else {
+    inner = mpgp;
+  }
+  if (!out_.is_null()) inner->setOutputStream(out_);
+  long powerN_A = 0;
+  if (normA_ <= 0) normA_ = estimateHessianNorm(*dual.A, powerN_A);
+  const auto& sp = params_.sublist("SMALBE");
+  const SC tol = std::max(sp.get<double>("Relative Tolerance") * dual.b->norm2(), sp.get<double>("Absolute Tolerance"));
+  QP::QPStatus qs;
+  if (dual.G.is_null()) {
+    // No equality constraint: the inner solver alone, repeated (block
+    // Gauss-Seidel does a fixed number of sweeps per call).
+    inner->setHessianNorm(normA_);
+    inner->setTolerance(tol);
+    const int maxCalls = bgs.is_null() ? 1 : sp.get<int>("Maximum Outer Iterations") * 10;
+    for (int k = 0; k < maxCalls; ++k) {
+      const auto s = inner->solve(*dual.A, *dual.b, Omega, x);
+      qs.n_A += s.n_A;
+      qs.iterations += s.iterations;
+      qs.norm_gP = s.norm_gP;
+      qs.converged = s.converged;
+      qs.reason = s.reason;
+      qs.outer_iterations = k + 1;
+      if (s.converged) break;
+    }
+  } else {
+    auto smalbeParams = rcp(new ParameterList(sp));
+    QP::SMALBE smalbe(smalbeParams);
+    smalbe.setEqualityConstraint(dual.G);
+    smalbe.setInnerSolver(inner);
+    smalbe.setHessianNorm(normA_);
+    smalbe.setTolerance(tol);
+    if (!out_.is_null()) smalbe.setOutputStream(out_);
+    if (warmStart_ && !mu_.is_null()) smalbe.setMultiplier(*mu_);
+    qs = smalbe.solve(*dual.A, *dual.b, Omega, x);
+    mu_ = rcp(new Vector(smalbe.multiplier(), Teuchos::Copy));
+  }
+  st.converged = qs.converged;
+  st.reason = qs.reason;
+  st.outer_iterations = qs.outer_iterations;
+  st.inner_iterations = qs.iterations;
+  st.n_A = qs.n_A + powerN_A;
+  st.n_A_qpp = bgs.is_null() ? 0 : bgs->n_A_qpp();
+  st.n_A_qpq = bgs.is_null() ? qs.n_A : bgs->n_A_qpq();
+  st.norm_gP = qs.norm_gP;
+  st.norm_Gx = qs.norm_Gx;
+  st.slipBound = g;
+  st.history.push_back(qs.norm_gP);
+  return st;
+}
+
+// ---------------------------------------------------------------- MSA
+
+RCP<const ParameterList> MSA::validParameters() {
+  static RCP<ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::parameterList("MSA");
+    pl->set("Tolerance", 1e-4, "stop when ||g(l+1) - g(l)|| <= Tolerance ||g(l+1)||", range<double>(1e-15, 1.0));
+    pl->set("Maximum Iterations", 50, "successive approximations", range<int>(1, 100000));
+    pl->set("Initial Slip Bound", "Zero", "g(0): Zero, or F times the frictionless normal force (Frictionless)",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Zero", "Frictionless"))));
+  }
+  return pl;
+}
+
+RCP<const ParameterList> MSA::getValidParameters() const { return validParameters(); }
+
+MSA::MSA(const ParameterList& params, const ParameterList& algorithm1) : params_(params), tresca_(algorithm1) {
+  params_.validateParametersAndSetDefaults(*validParameters());
+}
+
+FrictionStatus MSA::solve(const ContactDual& dual, Vector& x) {
+  FrictionStatus st;
+  const auto& comm = *dual.map()->getComm();
+  if (!out_.is_null()) tresca_.setOutputStream(out_);
+  tresca_.setWarmStart(true);
+  long powerN_A = 0;
+  tresca_.setHessianNorm(estimateHessianNorm(*dual.A, powerN_A));
+  st.n_A = powerN_A;
+  auto accumulate = [&](const FrictionStatus& s) {
+    st.outer_iterations += s.outer_iterations;
+    st.inner_iterations += s.inner_iterations;
+    st.n_A += s.n_A;
+    st.n_A_qpp += s.n_A_qpp;
+    st.n_A_qpq += s.n_A_qpq;
+    st.norm_gP = s.norm_gP;
+    st.norm_Gx = s.norm_Gx;
+  };
+  std::vector<SC> g(dual.numLocalContacts(), 0.0);
+  if (params_.get<std::string>("Initial Slip Bound") == "Frictionless") {
+    accumulate(tresca_.solve(dual, g, x));
+    g = dual.coulombSlipBound(x);
+  }
+  const SC eps = params_.get<double>("Tolerance");
+  const int maxIter = params_.get<int>("Maximum Iterations");
+  for (int l = 1; l <= maxIter; ++l) {
+    const auto s = tresca_.solve(dual, g, x);
+    accumulate(s);
+    const auto gNew = dual.coulombSlipBound(x);
+    const SC norm = globalNorm(gNew, comm);
+    st.slip_bound_change = globalDistance(gNew, g, comm) / (norm > 0 ? norm : 1.0);
+    st.history.push_back(st.slip_bound_change);
+    st.msa_iterations = l;
+    st.slipBound = g;
+    if (!out_.is_null())
+      *out_ << "MSA " << std::setw(3) << l << "  ||g(l+1) - g(l)||/||g(l+1)|| = " << std::scientific << std::setprecision(3)
+            << st.slip_bound_change << "  SMALBE outer " << s.outer_iterations << "  n_A " << s.n_A << "\n";
+    if (!s.converged) {
+      st.reason = "Tresca step " + std::to_string(l) + " did not converge: " + s.reason;
+      return st;
+    }
+    if (st.slip_bound_change <= eps || norm == 0) {
+      st.converged = true;
+      st.reason = "slip bound fixed point reached";
+      return st;
+    }
+    g = gNew;
+  }
+  st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of MSA reached";
+  return st;
+}
+
+// ---------------------------------------------------------------- Algorithm 2
+
+RCP<const ParameterList> Algorithm2::validParameters() {
+  static RCP<ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::parameterList("Algorithm 2");
+    pl->set("Relative Tolerance", 1e-6, "stop when ||g^P|| and ||G lambda|| <= tol ||b||", range<double>(1e-15, 1.0));
+    pl->set("Slip Bound Tolerance", 1e-4, "and ||g(l+1) - g(l)|| <= tol ||g(l+1)||", range<double>(1e-15, 1.0));
+    pl->set("Maximum Iterations", 200, "outer iterations", range<int>(1, 100000));
+    pl->set("rho", 0.0, "penalty; 0 means ||A||", range<double>(0.0, 1e300));
+    pl->set("M", 0.0, "inner precision control; 0 means ||A||", range<double>(0.0, 1e300));
+    pl->set("eta", 0.1, "inner precision cap, as a multiple of ||b||", range<double>(1e-300, 1e300));
+    pl->set("beta", 2.0, "M <- M / beta when the augmented Lagrangian does not grow enough", range<double>(1.0 + 1e-12, 1e6));
+    QP::QPSolverFactory factory;
+    pl->sublist("MPRGP").setParameters(*factory.create("MPRGP", Teuchos::null)->getValidParameters());
+    pl->sublist("MPGP").setParameters(*factory.create("MPGP", Teuchos::null)->getValidParameters());
+  }
+  return pl;
+}
+
+RCP<const ParameterList> Algorithm2::getValidParameters() const { return validParameters(); }
+
+Algorithm2::Algorithm2(const ParameterList& params) : params_(params) {
+  params_.validateParametersAndSetDefaults(*validParameters());
+}
+
+namespace {
+// G as "no constraint": Gx = 0 in a one-entry replicated space.
+class NoEquality : public QP::EqualityConstraint {
+ public:
+  explicit NoEquality(const RCP<const Comm>& comm)
+      : map_(rcp(new Map(1, 0, comm, Tpetra::LocallyReplicated))) {}
+  RCP<const Map> rangeMap() const override { return map_; }
+  void apply(const Vector&, Vector& Gx) const override { Gx.putScalar(0.0); }
+  void applyTranspose(const Vector&, Vector& Gty) const override { Gty.putScalar(0.0); }
+
+ private:
+  RCP<const Map> map_;
+};
+// G'G, only to bound the norm of the augmented Hessian.
+class NormalOperator : public Operator {
+ public:
+  NormalOperator(const QP::EqualityConstraint& G, RCP<const Map> xmap) : G_(G), xmap_(xmap), Gx_(G.rangeMap()) {}
+  RCP<const Map> getDomainMap() const override { return xmap_; }
+  RCP<const Map> getRangeMap() const override { return xmap_; }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
+             SC beta = 0) const override {
+    Vector GtGx(xmap_);
+    for (size_t j = 0; j < X.getNumVectors(); ++j) {
+      G_.apply(*X.getVector(j), Gx_);
+      G_.applyTranspose(Gx_, GtGx);
+      Y.getVectorNonConst(j)->update(alpha, GtGx, beta);
+    }
+  }
+
+ private:
+  const QP::EqualityConstraint& G_;
+  RCP<const Map> xmap_;
+  mutable Vector Gx_;
+};
+}  // namespace
+
+FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
+  dual.check();
+  FrictionStatus st;
+  const auto& comm = *dual.map()->getComm();
+  const RCP<const QP::EqualityConstraint> G =
+      dual.G.is_null() ? RCP<const QP::EqualityConstraint>(rcp(new NoEquality(dual.map()->getComm()))) : dual.G;
+  auto mprgp = makeQPSolver("MPRGP", params_, "MPRGP");
+  auto mpgp = makeQPSolver("MPGP", params_, "MPGP");
+  if (!out_.is_null()) mprgp->setOutputStream(out_), mpgp->setOutputStream(out_);
+  const SC normA = estimateHessianNorm(*dual.A, st.n_A);
+  const SC normB = dual.b->norm2();
+  SC rho = params_.get<double>("rho") > 0 ? params_.get<double>("rho") : normA;
+  SC M = params_.get<double>("M") > 0 ? params_.get<double>("M") : normA;
+  const SC eta = params_.get<double>("eta") * (normB > 0 ? normB : 1.0);
+  const SC beta = params_.get<double>("beta");
+  const SC tol = params_.get<double>("Relative Tolerance") * normB;
+  const SC slipTol = params_.get<double>("Slip Bound Tolerance");
+  const auto normalMask = dual.normalBlockMask(), tangentMask = dual.tangentBlockMask();
+  // ||A + rho G'G|| <= ||A|| + rho ||G'G||; ||G'G|| by the power method once
+  // (1 for the orthonormal FETI constraint), not counted as Hessian work.
+  SC normGtG = 0;
+  if (!dual.G.is_null()) {
+    long notCounted = 0;
+    normGtG = QP::estimateNorm(NormalOperator(*G, dual.map()), 20, notCounted);
+  }
+  Vector mu(G->rangeMap()), Gx(G->rangeMap()), Gtmu(dual.map()), bIn(dual.map()), grad(dual.map()), gP(dual.map());
+  QP::AugmentedHessian H(*dual.A, *G, rho);
+  std::vector<SC> g = dual.coulombSlipBound(x);
+  G->apply(x, Gx);
+  SC normGx = Gx.norm2(), Lprev = 0;
+  const int maxIter = params_.get<int>("Maximum Iterations");
+  for (int l = 1; l <= maxIter; ++l) {
+    G->applyTranspose(mu, Gtmu);
+    bIn.update(1.0, *dual.b, -1.0, Gtmu, 0.0);
+    H.setRho(rho);
+    // The first blocks start from G x = 0, where M ||G x|| would ask for an
+    // exact solve of a problem whose slip bound is still a guess: use eta.
+    const SC innerTol = std::max(tol, l == 1 ? eta : std::min(M * normGx, eta));
+    for (auto* s : {&mprgp, &mpgp}) {
+      (*s)->setHessianNorm(normA + rho * normGtG);
+      (*s)->setTolerance(innerTol);
+    }
+    // lambda_c with lambda_t fixed, then lambda_t in Lambda_t(F lambda_N(l+1)).
+    const auto sc = mprgp->solve(H, bIn, dual.constraintSet(g).fixedOutside(normalMask), x);
+    const std::vector<SC> gNew = dual.coulombSlipBound(x);
+    const auto Omega = dual.constraintSet(gNew);
+    const auto stt = mpgp->solve(H, bIn, Omega.fixedOutside(tangentMask), x);
+    st.n_A += sc.n_A + stt.n_A;
+    st.n_A_qpp += sc.n_A;
+    st.n_A_qpq += stt.n_A;
+    st.inner_iterations += sc.iterations + stt.iterations;
+    Tpetra::deep_copy(grad, *mpgp->gradient());
+    Omega.projectedGradient(x, grad, gP);
+    st.norm_gP = gP.norm2();
+    G->apply(x, Gx);
+    normGx = Gx.norm2();
+    const SC L = 0.5 * (x.dot(grad) - x.dot(bIn));
+    mu.update(rho, Gx, 1.0);
+    const SC gNorm = globalNorm(gNew, comm);
+    st.slip_bound_change = globalDistance(gNew, g, comm) / (gNorm > 0 ? gNorm : 1.0);
+    st.history.push_back(st.slip_bound_change);
+    st.outer_iterations = l;
+    st.norm_Gx = normGx;
+    st.slipBound = gNew;
+    if (!out_.is_null())
+      *out_ << "Algorithm 2 " << std::setw(3) << l << "  ||g^P|| " << std::scientific << std::setprecision(3)
+            << st.norm_gP << "  ||G lambda|| " << normGx << "  dg " << st.slip_bound_change << "  rho " << rho
+            << "  M " << M << "  n_A " << sc.n_A << "+" << stt.n_A << "\n";
+    g = gNew;
+    if (st.norm_gP <= tol && normGx <= tol && st.slip_bound_change <= slipTol) {
+      st.converged = true;
+      st.reason = "projected gradient, ||G lambda|| and slip-bound change below tolerance";
+      return st;
+    }
+    if (l > 1 && L < Lprev + 0.5 * rho * normGx * normGx) M /= beta;
+    Lprev = L;
+  }
+  st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of Algorithm 2 reached";
+  return st;
+}
+
+// ---------------------------------------------------------------- factory
+
+RCP<FrictionSolver> FrictionSolverFactory::create(const std::string& name, const ParameterList& params) const {
+  auto sub = [&](const char* n) { return params.isSublist(n) ? params.sublist(n) : ParameterList(n); };
+  if (name == "Tresca") return rcp(new Algorithm1(sub("Algorithm 1")));
+  if (name == "MSA+Algorithm1") return rcp(new MSA(sub("MSA"), sub("Algorithm 1")));
+  if (name == "Algorithm2") return rcp(new Algorithm2(sub("Algorithm 2")));
+  throw Error("Solver/Outer Algorithm: unknown \"" + name + "\"; valid: Tresca, MSA+Algorithm1, Algorithm2");
+}
+
+void FrictionSolverFactory::addValidParameters(ParameterList& solverList) {
+  solverList.sublist("Algorithm 1").setParameters(*Algorithm1::validParameters());
+  solverList.sublist("MSA").setParameters(*MSA::validParameters());
+  solverList.sublist("Algorithm 2").setParameters(*Algorithm2::validParameters());
+}
+
+}  // namespace Friction
+}  // namespace Tribos

@@ -1,0 +1,103 @@
+// Tribos_FrictionSolver.hpp: outer algorithms for contact with friction on a
+// ContactDual, chosen by name in Belos' factory style:
+//   "Tresca"          Algorithm 1 (SMALBE over Lambda_t(g) x Lambda_c) with the given slip bound g
+//   "MSA+Algorithm1"  Coulomb by successive approximations g <- F lambda_N, each a Tresca solve
+//   "Algorithm2"      Coulomb by the fused loop of Kucera's Algorithm 2
+#pragma once
+
+#include <Teuchos_FancyOStream.hpp>
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+#include <vector>
+
+#include "Tribos_ContactDual.hpp"
+
+namespace Tribos {
+namespace Friction {
+
+struct FrictionStatus {
+  bool converged = false;
+  std::string reason;
+  int outer_iterations = 0;  // SMALBE outer iterations (summed over MSA steps) or Algorithm 2 loops
+  int msa_iterations = 0;
+  int inner_iterations = 0;
+  long n_A = 0;              // Hessian multiplications of the whole solve
+  long n_A_qpp = 0;          // ... in the bound-constrained (normal) solver
+  long n_A_qpq = 0;          // ... in the circle-constrained (tangential) solver
+  SC norm_gP = 0, norm_Gx = 0;
+  SC slip_bound_change = 0;  // last relative change of g (Coulomb)
+  std::vector<SC> history;   // per outer step: relative change of g (Coulomb) or ||g^P|| (Tresca)
+  std::vector<SC> slipBound; // the slip bound of the returned solution (local)
+};
+
+class FrictionSolver {
+ public:
+  virtual ~FrictionSolver() = default;
+  // x: initial guess on input (projected if infeasible), solution on output.
+  virtual FrictionStatus solve(const ContactDual& dual, Vector& x) = 0;
+  virtual RCP<const Teuchos::ParameterList> getValidParameters() const = 0;
+  void setOutputStream(RCP<Teuchos::FancyOStream> out) { out_ = out; }
+
+ protected:
+  RCP<Teuchos::FancyOStream> out_;
+};
+
+// Algorithm 1: SMALBE for G x = 0 with the inner minimization by block
+// Gauss-Seidel (MPRGP + MPGP, "Sweeps") or one joint MPGP. Without G the
+// inner solver runs alone to the tolerance.
+class Algorithm1 : public FrictionSolver {
+ public:
+  explicit Algorithm1(const Teuchos::ParameterList& params);
+  FrictionStatus solve(const ContactDual& dual, Vector& x) override;  // g = dual.slipBound
+  FrictionStatus solve(const ContactDual& dual, const std::vector<SC>& g, Vector& x);
+  RCP<const Teuchos::ParameterList> getValidParameters() const override;
+  static RCP<const Teuchos::ParameterList> validParameters();
+  // Keeps the SMALBE multiplier between solves (warm start of MSA steps).
+  void setWarmStart(bool on) { warmStart_ = on; }
+  void setHessianNorm(SC normA) { normA_ = normA; }
+
+ private:
+  Teuchos::ParameterList params_;
+  bool warmStart_ = false;
+  RCP<Vector> mu_;
+  SC normA_ = -1;
+};
+
+class MSA : public FrictionSolver {
+ public:
+  MSA(const Teuchos::ParameterList& params, const Teuchos::ParameterList& algorithm1);
+  FrictionStatus solve(const ContactDual& dual, Vector& x) override;
+  RCP<const Teuchos::ParameterList> getValidParameters() const override;
+  static RCP<const Teuchos::ParameterList> validParameters();
+
+ private:
+  Teuchos::ParameterList params_;
+  Algorithm1 tresca_;
+};
+
+class Algorithm2 : public FrictionSolver {
+ public:
+  explicit Algorithm2(const Teuchos::ParameterList& params);
+  FrictionStatus solve(const ContactDual& dual, Vector& x) override;
+  RCP<const Teuchos::ParameterList> getValidParameters() const override;
+  static RCP<const Teuchos::ParameterList> validParameters();
+
+ private:
+  Teuchos::ParameterList params_;
+};
+
+// The parameter list an outer algorithm reads: a sublist of the "Solver"
+// list named after the algorithm ("Algorithm 1", "MSA", "Algorithm 2").
+class FrictionSolverFactory {
+ public:
+  // name: "Tresca" | "MSA+Algorithm1" | "Algorithm2"; params: the list with
+  // sublists "Algorithm 1", "MSA", "Algorithm 2" (missing ones take defaults).
+  RCP<FrictionSolver> create(const std::string& name, const Teuchos::ParameterList& params) const;
+  static std::vector<std::string> supportedNames() { return {"Tresca", "MSA+Algorithm1", "Algorithm2"}; }
+  // Valid sublists "Algorithm 1", "MSA", "Algorithm 2" for input validation.
+  static void addValidParameters(Teuchos::ParameterList& solverList);
+};
+
+}  // namespace Friction
+}  // namespace Tribos
