@@ -311,6 +311,16 @@ std::vector<double> ContactReduction::nodalMaxDiagonalKcc() const {
   return dmax;
 }
 
+std::vector<double> ContactReduction::diagonalKcc() const {
+  std::vector<double> diag(3 * m_, 0.0);
+  for (int j = 0; j < 3 * m_; ++j) {
+    const int row = freeOfReduced_[j];
+    for (int pos = Kfree_.rowptr[row]; pos < Kfree_.rowptr[row + 1]; ++pos)
+      if (Kfree_.col[pos] == row) diag[j] = Kfree_.val[pos];
+  }
+  return diag;
+}
+
 void ContactReduction::newtonSolve(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
                                    const std::vector<double>& rhs, std::vector<double>& dx, std::vector<double>& Sdx) {
   Teuchos::Time timer("newton factor");

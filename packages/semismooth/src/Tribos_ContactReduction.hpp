@@ -72,6 +72,8 @@ class ContactReduction {
   // Largest diagonal entry of K_cc per contact node; K_cc >= S, so 1/this
   // bounds 1/diag(S) from below.
   std::vector<double> nodalMaxDiagonalKcc() const;
+  // diag(K_cc), 3 per contact node.
+  std::vector<double> diagonalKcc() const;
 
   // Newton step in the full primal space. freeComp[3i+k]: component k of node
   // i is free (else dx = 0); G[i]: 2x2 row-major curvature added on the

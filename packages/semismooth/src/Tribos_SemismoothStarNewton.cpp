@@ -70,6 +70,14 @@ RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
   pl->set("Step Size Factor", 10.0,
           "multiplies a; larger a lets the multiplier y rather than x decide stick/slip and contact, which avoids "
           "cycling of the stick/slip sets (1 cycles on the prism at level 2; 10 gives 6-7 iterations)", rcp(new Teuchos::EnhancedNumberValidator<double>(1e-12, 1e12)));
+  pl->set("Newton Solver", "Sparse Direct",
+          "Sparse Direct: factor the Newton matrix in the full primal space each step (the method of the paper); "
+          "Reduced CG: conjugate gradients on (S_FF + G_FF) dx_F = b_F, S applied by K_rr solves, Jacobi-preconditioned "
+          "with diag(K_cc + G) (no factorization per step)",
+          rcp(new Teuchos::StringValidator(tuple<std::string>("Sparse Direct", "Reduced CG"))));
+  pl->set("CG Tolerance", 1e-12, "Reduced CG: relative residual", rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1.0)));
+  pl->set("CG Maximum Iterations", 2000, "Reduced CG: iteration limit",
+          rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
   return pl;
 }
 
@@ -160,6 +168,8 @@ void SemismoothStarNewton::newtonStep(const Approximation& ap, const std::vector
   }
   std::vector<double> rhs(nc);
   for (int j = 0; j < nc; ++j) rhs[j] = -residual[j];
+  if (denseS_.empty() && params_.get<std::string>("Newton Solver") == "Reduced CG")
+    return reducedCG(freeComp, G, rhs, dx, Sdx);
   if (denseS_.empty()) return reduction_->newtonSolve(freeComp, G, rhs, dx, Sdx);
 
   std::vector<int> F;
@@ -182,10 +192,65 @@ void SemismoothStarNewton::newtonStep(const Approximation& ap, const std::vector
   applyS(dx, Sdx);
 }
 
+// Preconditioned CG on (S_FF + G_FF) dx_F = rhs_F; S dx is accumulated from
+// the products S p of the iteration.
+void SemismoothStarNewton::reducedCG(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
+                                     const std::vector<double>& rhs, std::vector<double>& dx, std::vector<double>& Sdx) {
+  const int nc = static_cast<int>(rhs.size());
+  if (diagKcc_.empty()) diagKcc_ = reduction_->diagonalKcc();
+  auto applyA = [&](const std::vector<double>& v, std::vector<double>& Sv, std::vector<double>& Av) {
+    applyS(v, Sv);
+    Av = Sv;
+    for (int j = 0; j < nc; ++j) {
+      if (!freeComp[j]) {
+        Av[j] = 0;
+        continue;
+      }
+      if (j % 3 < 2) {
+        const int i = j / 3, p = j % 3;
+        Av[j] += G[i][2 * p] * v[3 * i] + G[i][2 * p + 1] * v[3 * i + 1];
+      }
+    }
+  };
+  std::vector<double> r(nc), z(nc), p(nc), Sp, Ap;
+  dx.assign(nc, 0.0);
+  Sdx.assign(nc, 0.0);
+  for (int j = 0; j < nc; ++j) r[j] = freeComp[j] ? rhs[j] : 0.0;
+  const double bnorm = norm2(r), tol = params_.get<double>("CG Tolerance") * bnorm;
+  const int maxIt = params_.get<int>("CG Maximum Iterations");
+  auto precondition = [&]() {
+    for (int j = 0; j < nc; ++j) z[j] = freeComp[j] ? r[j] / (diagKcc_[j] + (j % 3 < 2 ? G[j / 3][3 * (j % 3)] : 0.0)) : 0.0;
+  };
+  precondition();
+  p = z;
+  double rz = 0;
+  for (int j = 0; j < nc; ++j) rz += r[j] * z[j];
+  for (int it = 0; it < maxIt && norm2(r) > tol; ++it) {
+    applyA(p, Sp, Ap);
+    ++cgIterations_;
+    double pAp = 0;
+    for (int j = 0; j < nc; ++j) pAp += p[j] * Ap[j];
+    const double alpha = rz / pAp;
+    for (int j = 0; j < nc; ++j) {
+      dx[j] += alpha * p[j];
+      Sdx[j] += alpha * Sp[j];
+      r[j] -= alpha * Ap[j];
+    }
+    precondition();
+    double rzNew = 0;
+    for (int j = 0; j < nc; ++j) rzNew += r[j] * z[j];
+    for (int j = 0; j < nc; ++j) p[j] = z[j] + rzNew / rz * p[j];
+    rz = rzNew;
+  }
+  TRIBOS_REQUIRE(norm2(r) <= tol || bnorm == 0, "semismooth*: Reduced CG did not reach " << params_.get<double>("CG Tolerance")
+                                                                                       << " in " << maxIt << " steps");
+}
+
 SemismoothResult SemismoothStarNewton::solve(std::ostream* log) {
   Teuchos::Time timer("semismooth*");
   timer.start();
   const double factorBefore = reduction_->newtonFactorSeconds();
+  const int cgBefore = cgIterations_;
   const int m = reduction_->numContactNodes(), nc = 3 * m;
   const std::vector<double>& l = reduction_->l();
   const double lnorm = norm2(l), scale = lnorm > 0 ? lnorm : 1.0;
@@ -245,6 +310,7 @@ SemismoothResult SemismoothStarNewton::solve(std::ostream* log) {
   res.solverSeconds = timer.totalElapsedTime();
   res.reductionSeconds = reduction_->reductionSeconds() + denseSeconds_;
   res.newtonFactorSeconds = reduction_->newtonFactorSeconds() - factorBefore;
+  res.cgIterations = cgIterations_ - cgBefore;
   return res;
 }
 

@@ -43,6 +43,7 @@ struct SemismoothResult {
   std::vector<NodeState> state;
   double assemblySeconds = 0, reductionSeconds = 0, solverSeconds = 0;
   double newtonFactorSeconds = 0;     // part of solverSeconds
+  int cgIterations = 0;               // "Newton Solver" = "Reduced CG": total CG steps (= K_rr solves)
 };
 
 class SemismoothStarNewton {
@@ -52,7 +53,8 @@ class SemismoothStarNewton {
   ~SemismoothStarNewton();
 
   // "Tolerance", "Maximum Iterations", "Dense Schur", "Local Solver",
-  // "Step Scaling", "Step Size Factor", "Verbose".
+  // "Step Scaling", "Step Size Factor", "Newton Solver", "CG Tolerance",
+  // "CG Maximum Iterations".
   static RCP<const Teuchos::ParameterList> getValidParameters();
 
   // Runs the iteration from x = 0; log (optional) gets one line per iteration.
@@ -70,6 +72,8 @@ class SemismoothStarNewton {
   };
   Approximation approximationStep(const std::vector<double>& x, const std::vector<double>& Sx) const;
   void applyS(const std::vector<double>& x, std::vector<double>& Sx) const;
+  void reducedCG(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
+                 const std::vector<double>& rhs, std::vector<double>& dx, std::vector<double>& Sdx);
   void newtonStep(const Approximation& ap, const std::vector<double>& residual, std::vector<double>& dx,
                   std::vector<double>& Sdx);
 
@@ -78,7 +82,9 @@ class SemismoothStarNewton {
   std::vector<ContactNode> contact_;
   std::vector<double> a_;       // per contact node
   std::vector<double> denseS_;  // only with "Dense Schur"
-  double denseSeconds_ = 0;     // forming denseS_ (part of the reduction)
+  double denseSeconds_ = 0;
+  std::vector<double> diagKcc_;  // Jacobi preconditioner of "Reduced CG"
+  int cgIterations_ = 0;     // forming denseS_ (part of the reduction)
   int numNodes_ = 0;
 };
 

@@ -1,7 +1,7 @@
 // sparse_vs_dense.cpp: on the smallest prism (L = 2) the sparse path (S
 // applied by K_rr solves, Newton steps in the full primal space) and the
 // dense-Schur path (S formed, Newton systems on the contact boundary) give
-// the same iterates to 1e-10; the contact frames are objective (the same
+// the same iterates to 1e-10, and Newton steps by CG agree to 1e-8; the contact frames are objective (the same
 // prism rotated in space gives the rotated solution); parameters are validated.
 #include "SemismoothTestUtils.hpp"
 
@@ -42,6 +42,17 @@ int main(int argc, char** argv) {
   SS_CHECK(relDiff(s.u, d.u) <= 1e-10, "u differs by " << relDiff(s.u, d.u));
   SS_CHECK(relDiff(s.x, d.x) <= 1e-10, "x differs by " << relDiff(s.x, d.x));
   SS_CHECK(relDiff(s.y, d.y) <= 1e-10, "y differs by " << relDiff(s.y, d.y));
+
+  // Newton steps by CG on the contact boundary: the same iterates up to the
+  // CG tolerance (1e-12).
+  {
+    Teuchos::ParameterList cgParams = sparseParams;
+    cgParams.set("Newton Solver", "Reduced CG");
+    const Semismooth::SemismoothResult c = solve(cgParams);
+    std::cout << "Reduced CG: u differs by " << relDiff(c.u, s.u) << ", " << c.cgIterations << " CG steps\n";
+    SS_CHECK(c.converged && c.iterations == s.iterations && relDiff(c.u, s.u) <= 1e-8,
+             "Reduced CG: u differs by " << relDiff(c.u, s.u));
+  }
 
   // The dense S is symmetric positive definite and agrees with applyS.
   {
