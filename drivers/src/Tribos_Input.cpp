@@ -249,21 +249,22 @@ void applyOverride(ParameterList& params, const std::string& assignment) {
   for (std::string p; std::getline(ss, p, '/');) parts.push_back(p);
   ParameterList* user = &params;
   const ParameterList* valid = validParameters().get();
+  std::string at;  // path of the current level
   for (size_t i = 0; i + 1 < parts.size(); ++i) {
     const std::string& p = parts[i];
-    const bool collection = valid->name() == "Dirichlet" || valid->name() == "Traction";
-    if (collection) {
-      valid = valid->name() == "Dirichlet" ? &dirichletItem() : &tractionItem();
+    if (at == "Boundary Conditions/Dirichlet" || at == "Boundary Conditions/Traction") {
+      valid = at == "Boundary Conditions/Dirichlet" ? &dirichletItem() : &tractionItem();
     } else {
       TRIBOS_REQUIRE(valid->isSublist(p), "--set \"" << assignment << "\": no sublist \"" << p
                                                      << "\"; valid: " << joinNames(*valid));
       valid = &valid->sublist(p);
     }
+    at += (at.empty() ? "" : "/") + p;
     user = &user->sublist(p);
   }
   const std::string& key = parts.back();
-  if (valid->name() == "Dirichlet" || valid->name() == "Traction")
-    throw Error("--set \"" + assignment + "\": name a key inside a condition, e.g. \"" + path + "/Face\"");
+  TRIBOS_REQUIRE(at != "Boundary Conditions/Dirichlet" && at != "Boundary Conditions/Traction",
+                 "--set \"" << assignment << "\": name a key inside a condition, e.g. \"" << path << "/Face\"");
   TRIBOS_REQUIRE(valid->isParameter(key) && !valid->isSublist(key),
                  "--set \"" << assignment << "\": unknown parameter \"" << path << "\"; valid: " << joinNames(*valid));
   const Teuchos::any& proto = valid->getEntry(key).getAny();

@@ -148,9 +148,9 @@ KKTResiduals checkKKT(const Feti::FetiProblem& p, const Vector& u, const Vector&
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, eq, Teuchos::outArg(eqGlobal));
   res.equality = std::sqrt(eqGlobal) / std::max(u.norm2(), 1e-300);
   const auto& lc = p.contact();
-  double maxLN = 0;
-  for (LO i : lc.normalRows) maxLN = std::max(maxLN, std::abs(l[i]));
-  maxLN = std::max(maxOver(maxLN, comm), 1e-300);
+  // Force scale: the largest multiplier (contact or reaction), so the
+  // measures stay meaningful when no contact is active.
+  const double maxLN = std::max(lambda.normInf(), 1e-300);
   const double c = maxLN / maxU;
   double pen = 0, comp = 0, fric = 0;
   for (size_t k = 0; k < lc.normalRows.size(); ++k) {

@@ -44,8 +44,8 @@ struct KKTResiduals {
   double equilibrium = 0;      // ||K u - f + B'lambda|| / ||f||
   double equality = 0;         // ||B_E u - c_E|| / ||u||  (gluing and Dirichlet rows)
   double nonpenetration = 0;   // max (N u - d)^+ / max |u|
-  double complementarity = 0;  // max |min(lambda_N, c (d - N u))| / max lambda_N,  c = max lambda_N / max |u|
-  double frictionLaw = 0;      // max ||lambda_T - P_B(g)(lambda_T + c T u)|| / max lambda_N
+  double complementarity = 0;  // max |min(lambda_N, c (d - N u))| / max |lambda|,  c = max |lambda| / max |u|
+  double frictionLaw = 0;      // max ||lambda_T - P_B(g)(lambda_T + c T u)|| / max |lambda|
 };
 
 struct ContactCounts {

@@ -50,7 +50,8 @@ RCP<const ParameterList> Algorithm1::validParameters() {
     pl->set("Inner Minimization", "Block Gauss-Seidel",
             "MPRGP on the normal block then MPGP on the tangential block (Block Gauss-Seidel), or one MPGP over the product set",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Block Gauss-Seidel", "MPGP"))));
-    pl->set("Sweeps", 1, "block Gauss-Seidel sweeps per inner minimization", range<int>(1, 1000));
+    pl->set("Sweeps", 1, "maximum block Gauss-Seidel sweeps per inner minimization (fewer when the inner tolerance is met)",
+            range<int>(1, 1000));
     QP::QPSolverFactory factory;
     auto smalbe = factory.create("SMALBE", Teuchos::null);
     ParameterList& s = pl->sublist("SMALBE");
@@ -59,7 +60,7 @@ RCP<const ParameterList> Algorithm1::validParameters() {
     // Measured on the seed brick (docs/benchmarks.md): M = 0.1 ||A|| keeps
     // the inner solves inexact enough; problems are scaled to ||A|| = 1.
     s.set("M", 0.1);
-    s.set("Maximum Outer Iterations", 500);
+    s.set("Maximum Outer Iterations", 1000);
     pl->sublist("MPRGP").setParameters(*factory.create("MPRGP", Teuchos::null)->getValidParameters());
     pl->sublist("MPGP").setParameters(*factory.create("MPGP", Teuchos::null)->getValidParameters());
   }
@@ -216,7 +217,7 @@ RCP<const ParameterList> Algorithm2::validParameters() {
     pl = Teuchos::parameterList("Algorithm 2");
     pl->set("Relative Tolerance", 1e-6, "stop when ||g^P|| and ||G lambda|| <= tol ||b||", range<double>(1e-15, 1.0));
     pl->set("Slip Bound Tolerance", 1e-4, "and ||g(l+1) - g(l)|| <= tol ||g(l+1)||", range<double>(1e-15, 1.0));
-    pl->set("Maximum Iterations", 200, "outer iterations", range<int>(1, 100000));
+    pl->set("Maximum Iterations", 1000, "outer iterations", range<int>(1, 100000));
     pl->set("rho", 0.0, "penalty; 0 means ||A||", range<double>(0.0, 1e300));
     pl->set("M", 0.0, "inner precision control; 0 means ||A||", range<double>(0.0, 1e300));
     pl->set("eta", 0.1, "inner precision cap, as a multiple of ||b||", range<double>(1e-300, 1e300));

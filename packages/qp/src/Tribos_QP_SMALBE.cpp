@@ -188,8 +188,11 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
       st.reason = "||g^P|| <= tolerance and ||Gx|| <= tolerance";
       break;
     }
-    // semi-monotonicity: L must grow by rho/2 ||Gx||^2, else tighten
-    if (k > 0 && L < Lprev + 0.5 * rho * normGx * normGx) {
+    // semi-monotonicity: L must grow by rho/2 ||Gx||^2, else tighten. The
+    // test presumes the inner problem was solved to its tolerance; an inner
+    // solver that stopped early (e.g. a fixed number of block Gauss-Seidel
+    // sweeps) says nothing about M.
+    if (k > 0 && ist.converged && L < Lprev + 0.5 * rho * normGx * normGx) {
       if (s_.updateRho) rho *= s_.beta;
       else M /= s_.beta;
     }

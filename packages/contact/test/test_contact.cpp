@@ -1,0 +1,289 @@
+// Contact with friction by FETI: KKT conditions, a reference solved without
+// FETI (dual of the assembled problem restricted to the contact rows),
+// Coulomb fixed point, agreement of the two Coulomb algorithms, the limits
+// F -> 0, large F and a pulled-away body, and rank independence (every run
+// also solves on rank 0 alone).
+#include <Teuchos_ParameterList.hpp>
+#include <Tpetra_Core.hpp>
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <cmath>
+#include <iostream>
+
+#include "Tribos_FetiContact.hpp"
+#include "Tribos_FrictionSolver.hpp"
+#include "Tribos_LocalSolver.hpp"
+#include "Tribos_Monolithic.hpp"
+#include "Tribos_QP.hpp"
+
+using namespace Tribos;
+
+static int failures = 0;
+#define CHECK(cond, msg)                                              \
+  do {                                                                \
+    if (!(cond)) {                                                    \
+      std::cerr << "FAILED: " << msg << " (" #cond ")" << std::endl; \
+      ++failures;                                                     \
+    }                                                                 \
+  } while (0)
+
+struct Setup {
+  std::string law = "Coulomb";
+  double F = 0.3, slipTraction = 0.0;
+  std::string algorithm = "Algorithm2";
+  double topLoad = -4e7;  // z traction on zmax
+  double gap = 0.0;
+};
+
+struct Result {
+  std::vector<double> u;           // nodal displacement, replicated
+  std::vector<double> normalForce; // per contact node, gathered by mesh node (replicated, 0 elsewhere)
+  Contact::KKTResiduals kkt;
+  Contact::ContactCounts counts;
+  Friction::FrictionStatus status;
+  double fixedPoint = 0;           // ||F lambda_N - g|| / ||g|| for Coulomb
+};
+
+static Mesh::Discretization makeDisc(const Comm& comm) {
+  Mesh::BoxSpec spec;
+  spec.type = Mesh::CellType::Tet4;
+  spec.x = {0, 3};
+  spec.cells = {6, 2, 2};
+  Mesh::DecompositionSpec dec;
+  dec.grid = {3, 1, 1};
+  return Mesh::Discretization(Mesh::generateBox(spec), spec, dec, comm.getSize(), comm.getRank());
+}
+
+static Fem::LoadCase loads(const Setup& s) {
+  Fem::LoadCase l;
+  Fem::DirichletCondition clamp;
+  clamp.face = "xmin";
+  l.dirichlet = {clamp};
+  l.tractions = {{"zmax", {0, 0, s.topLoad}}, {"xmax", {-2e7, 0, 0}}};
+  return l;
+}
+
+static const Fem::Material kSteel{21.2e10, 0.277};
+
+static Teuchos::ParameterList tightSolverParams() {
+  Teuchos::ParameterList p;
+  p.sublist("Algorithm 1").sublist("SMALBE").set("Relative Tolerance", 1e-9);
+  p.sublist("Algorithm 2").set("Relative Tolerance", 1e-9);
+  p.sublist("Algorithm 2").set("Slip Bound Tolerance", 1e-8);
+  p.sublist("MSA").set("Tolerance", 1e-8);
+  return p;
+}
+
+static Result solve(const Setup& s, const RCP<const Comm>& comm) {
+  auto disc = makeDisc(*comm);
+  Feti::ContactSpec contact;
+  contact.enabled = true;
+  contact.gap = s.gap;
+  auto problem = rcp(new Feti::FetiProblem(disc, kSteel, loads(s), contact, Teuchos::ParameterList(), comm));
+  auto dual = rcp(new Feti::FetiDual(problem));
+  Contact::FrictionSpec fs;
+  fs.law = s.law;
+  fs.coefficient = s.F;
+  fs.slipBoundTraction = s.slipTraction;
+  Contact::FetiContactProblem cp(dual, fs);
+  auto solver = Friction::FrictionSolverFactory().create(s.algorithm, tightSolverParams());
+  Vector x(problem->dualMap());
+  Result r;
+  r.status = solver->solve(cp.contactDual(), x);
+  auto lambda = cp.multipliers(x);
+  auto u = dual->recoverPrimal(*lambda);
+  r.u = problem->nodalDisplacement(*u);
+  r.kkt = Contact::checkKKT(*problem, *u, *lambda, r.status.slipBound);
+  const auto nodes = Contact::contactResults(*problem, *u, *lambda, r.status.slipBound, r.counts);
+  r.normalForce.assign(disc.mesh.numNodes(), 0.0);
+  for (size_t k = 0; k < nodes.nodes.size(); ++k) r.normalForce[nodes.nodes[k]] = nodes.normalForce[k];
+  const std::vector<double> mine(r.normalForce);
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), r.normalForce.data());
+  if (s.law == "Coulomb") {
+    const auto g = cp.contactDual().coulombSlipBound(x);
+    r.fixedPoint = Friction::globalDistance(g, r.status.slipBound, *comm) /
+                   std::max(Friction::globalNorm(g, *comm), 1e-300);
+  }
+  return r;
+}
+
+static double relDiff(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0, n = 0;
+  for (size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]), n += b[i] * b[i];
+  return std::sqrt(d / std::max(n, 1e-300));
+}
+
+// Reference without FETI, on rank 0 alone: K (Dirichlet eliminated) factored
+// by CHOLMOD, A = N K^-1 N' restricted to the contact rows (normal, t1, t2
+// per node, dense), solved by MPGP over Lambda_t(g) x Lambda_N, u recovered.
+static std::vector<double> referenceTresca(const Setup& s, const std::vector<double>& g, const RCP<const Comm>& self) {
+  auto disc = makeDisc(*self);
+  Fem::MonolithicSystem mono(disc, kSteel, loads(s), self);
+  const CrsMatrix& K = *mono.matrix();
+  const int n = static_cast<int>(K.getGlobalNumRows());
+  LocalCsr Kc;
+  Kc.rows = Kc.cols = n;
+  for (int i = 0; i < n; ++i) {
+    typename CrsMatrix::local_inds_host_view_type cols;
+    typename CrsMatrix::values_host_view_type vals;
+    K.getLocalRowView(i, cols, vals);
+    std::vector<std::pair<int, double>> row;
+    for (size_t k = 0; k < cols.extent(0); ++k) row.emplace_back(static_cast<int>(K.getColMap()->getGlobalElement(cols(k))), vals(k));
+    std::sort(row.begin(), row.end());
+    for (auto& e : row) Kc.col.push_back(e.first), Kc.val.push_back(e.second);
+    Kc.rowptr.push_back(static_cast<int>(Kc.col.size()));
+  }
+  auto Kinv = createLocalSolver("CHOLMOD");
+  Kinv->factor(Kc);
+  // Contact nodes: zmin nodes off the clamped face, frame (n, t1, t2) as in FETI.
+  std::vector<int> nodes;
+  for (int node : disc.mesh.faceNodes("zmin"))
+    if (disc.mesh.coords[node][0] > 1e-12) nodes.push_back(node);
+  const int nc = static_cast<int>(nodes.size()), m = 3 * nc;
+  const double frame[3][3] = {{0, 0, -1}, {0, 1, 0}, {-1, 0, 0}};  // n, t1 = e_x x n, t2 = n x t1
+  std::vector<double> Bt(static_cast<size_t>(n) * m, 0.0), KinvBt(Bt.size());
+  for (int k = 0; k < nc; ++k)
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) Bt[static_cast<size_t>(3 * k + r) * n + 3 * nodes[k] + c] = frame[r][c];
+  Kinv->solve(Bt.data(), KinvBt.data(), m);
+  std::vector<double> f(n), Kf(n);
+  {
+    auto fv = mono.rhs()->getData();
+    for (int i = 0; i < n; ++i) f[i] = fv[i];
+  }
+  Kinv->solve(f.data(), Kf.data(), 1);
+  auto map = rcp(new Map(m, 0, self));
+  auto A = rcp(new CrsMatrix(map, m));
+  Vector b(map);
+  std::vector<GO> cols(m);
+  for (int j = 0; j < m; ++j) cols[j] = j;
+  for (int i = 0; i < m; ++i) {
+    std::vector<double> row(m);
+    double bi = 0;
+    for (int j = 0; j < m; ++j) {
+      double sum = 0;
+      for (int q = 0; q < n; ++q) sum += Bt[static_cast<size_t>(i) * n + q] * KinvBt[static_cast<size_t>(j) * n + q];
+      row[j] = sum;
+    }
+    for (int q = 0; q < n; ++q) bi += Bt[static_cast<size_t>(i) * n + q] * Kf[q];
+    if (i % 3 == 0) bi -= s.gap;
+    b.replaceLocalValue(i, bi);
+    A->insertGlobalValues(i, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const SC>(row));
+  }
+  A->fillComplete();
+  QP::ConstraintSet Omega(map);
+  for (int k = 0; k < nc; ++k) {
+    Omega.setLower(3 * k, 0.0);
+    Omega.setCircle(3 * k + 1, 3 * k + 2, k);
+  }
+  // g is indexed by mesh node in the caller.
+  std::vector<double> radii(nc);
+  for (int k = 0; k < nc; ++k) radii[k] = g[nodes[k]];
+  Omega.setRadii(radii);
+  auto params = Teuchos::parameterList();
+  params->set("Relative Tolerance", 1e-12);
+  params->set("Maximum Iterations", 100000);
+  QP::MPGP mpgp(params);
+  Vector lambda(map);
+  const auto st = mpgp.solve(*A, b, Omega, lambda);
+  CHECK(st.converged, "reference MPGP converged");
+  std::vector<double> rhs(f);
+  auto lv = lambda.getData();
+  for (int j = 0; j < m; ++j)
+    for (int q = 0; q < n; ++q) rhs[q] -= Bt[static_cast<size_t>(j) * n + q] * lv[j];
+  std::vector<double> u(n);
+  Kinv->solve(rhs.data(), u.data(), 1);
+  return u;  // on a single rank the dof numbering is 3 node + c
+}
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard guard(&argc, &argv);
+  auto comm = Tpetra::getDefaultComm();
+  auto self = comm->split(comm->getRank() == 0 ? 0 : 1, comm->getRank());
+  const bool root = comm->getRank() == 0;
+  auto report = [&](const std::string& name, const Result& r) {
+    if (root)
+      std::cout << name << ": outer " << r.status.outer_iterations << ", n_A " << r.status.n_A << ", KKT eq "
+                << r.kkt.equilibrium << " pen " << r.kkt.nonpenetration << " compl " << r.kkt.complementarity
+                << " fric " << r.kkt.frictionLaw << ", active/stick/slip " << r.counts.active << "/" << r.counts.stick
+                << "/" << r.counts.slip << std::endl;
+  };
+  auto kktOk = [&](const std::string& name, const Result& r, double tol) {
+    CHECK(r.status.converged, name << " converged: " << r.status.reason);
+    CHECK(r.kkt.equilibrium < tol, name << " equilibrium " << r.kkt.equilibrium);
+    CHECK(r.kkt.equality < tol, name << " gluing/Dirichlet " << r.kkt.equality);
+    CHECK(r.kkt.nonpenetration < tol, name << " non-penetration " << r.kkt.nonpenetration);
+    CHECK(r.kkt.complementarity < tol, name << " complementarity " << r.kkt.complementarity);
+    CHECK(r.kkt.frictionLaw < tol, name << " friction law " << r.kkt.frictionLaw);
+  };
+
+  // Frictionless and Tresca: KKT to 1e-6 and the FETI-free reference.
+  Setup frictionless{"Frictionless", 0.0, 0.0, "Tresca"};
+  Setup tresca{"Tresca", 0.0, 2.0e6, "Tresca"};
+  for (const Setup& s : {frictionless, tresca}) {
+    const auto r = solve(s, comm);
+    report(s.law, r);
+    kktOk(s.law, r, 1e-6);
+    std::vector<double> gByNode(r.u.size() / 3, 0.0);
+    if (s.law == "Tresca") {
+      // Nodal slip bound = traction x nodal area (recomputed here).
+      auto disc = makeDisc(*self);
+      for (const auto& facet : disc.mesh.face("zmin")) {
+        std::vector<Fem::Point> X;
+        for (int nd : facet.nodes) X.push_back(disc.mesh.coords[nd]);
+        const auto w = Fem::facetNodalAreas(X);
+        for (size_t a = 0; a < w.size(); ++a) gByNode[facet.nodes[a]] += s.slipTraction * w[a];
+      }
+    }
+    std::vector<double> ref(r.u.size());
+    if (root) ref = referenceTresca(s, gByNode, self);
+    Teuchos::broadcast(*comm, 0, static_cast<int>(ref.size()), ref.data());
+    const double d = relDiff(r.u, ref);
+    if (root) std::cout << s.law << ": |u_FETI - u_ref| / |u_ref| = " << d << std::endl;
+    CHECK(d < 1e-6, s.law << ": FETI vs reference without FETI " << d);
+  }
+
+  // Coulomb: both outer algorithms, fixed point, agreement.
+  Setup coulombA2{"Coulomb", 0.3, 0.0, "Algorithm2"};
+  Setup coulombMSA{"Coulomb", 0.3, 0.0, "MSA+Algorithm1"};
+  const auto a2 = solve(coulombA2, comm), msa = solve(coulombMSA, comm);
+  report("Coulomb Algorithm2", a2);
+  report("Coulomb MSA+Algorithm1", msa);
+  kktOk("Coulomb Algorithm2", a2, 1e-5);
+  kktOk("Coulomb MSA", msa, 1e-5);
+  CHECK(a2.fixedPoint < 1e-6, "Algorithm 2 fixed point g = F lambda_N: " << a2.fixedPoint);
+  CHECK(msa.fixedPoint < 1e-6, "MSA fixed point g = F lambda_N: " << msa.fixedPoint);
+  const double dAlg = relDiff(a2.u, msa.u);
+  if (root) std::cout << "Algorithm2 vs MSA: " << dAlg << std::endl;
+  CHECK(dAlg < 1e-4, "Algorithm 2 and MSA displacements differ by " << dAlg);
+  CHECK(a2.counts.stick > 0 && a2.counts.slip > 0, "F = 0.3 has both stick and slip nodes");
+
+  // Limits.
+  const auto r0 = solve(frictionless, comm);
+  const auto tiny = solve(Setup{"Coulomb", 1e-9, 0.0, "Algorithm2"}, comm);
+  const double d0 = relDiff(tiny.u, r0.u);
+  CHECK(d0 < 1e-5, "F -> 0 gives the frictionless solution (to the solver tolerance): " << d0);
+  const auto large = solve(Setup{"Coulomb", 50.0, 0.0, "Algorithm2"}, comm);
+  report("F = 50", large);
+  CHECK(large.counts.active > 0 && large.counts.slip == 0, "large F: every active node sticks (" << large.counts.slip << " slip)");
+  Setup pulled{"Coulomb", 0.3, 0.0, "Algorithm2", +4e7};
+  const auto away = solve(pulled, comm);
+  report("pulled away", away);
+  CHECK(away.counts.active == 0, "pulled-away body has no active contact (" << away.counts.active << ")");
+  double maxN = 0;
+  for (double v : away.normalForce) maxN = std::max(maxN, std::abs(v));
+  CHECK(maxN == 0.0 || maxN < 1e-8 * 4e7, "pulled-away body: contact forces vanish (" << maxN << ")");
+
+  // Rank independence against rank 0 alone.
+  std::vector<double> serial(a2.u.size());
+  if (root) serial = solve(coulombA2, self).u;
+  Teuchos::broadcast(*comm, 0, static_cast<int>(serial.size()), serial.data());
+  const double dr = relDiff(a2.u, serial);
+  if (root) std::cout << "Coulomb Algorithm2 on " << comm->getSize() << " ranks vs 1: " << dr << std::endl;
+  CHECK(dr < 1e-6, "Coulomb solution on " << comm->getSize() << " ranks vs 1 differs by " << dr);
+
+  int total = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, failures, Teuchos::outArg(total));
+  return total ? 1 : 0;
+}
