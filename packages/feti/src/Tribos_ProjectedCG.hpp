@@ -1,7 +1,7 @@
 // Tribos_ProjectedCG.hpp: the FETI dual solve without inequality constraints:
 // conjugate gradients on the projected dual problem
 //   P F P lambda^ = P (h - F lambda~),  lambda = lambda~ + lambda^,
-// with an optional lumped preconditioner P B K B' P.
+// with an optional lumped preconditioner P B_D K B_D' P, B_D = (BB')^-1 B.
 #pragma once
 
 #include <Teuchos_FancyOStream.hpp>
