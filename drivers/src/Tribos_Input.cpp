@@ -12,6 +12,7 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_FrictionSolver.hpp"
+#include "Tribos_SemismoothStarNewton.hpp"
 #include "Tribos_ProjectedCG.hpp"
 
 namespace Tribos {
@@ -117,6 +118,7 @@ RCP<const ParameterList> validParameters() {
              "MSA+Algorithm1 or Algorithm2 (Coulomb), SemismoothStarNewton (Tresca)",
              choice(tuple<std::string>("Tresca", "MSA+Algorithm1", "Algorithm2", "SemismoothStarNewton")));
   Friction::FrictionSolverFactory::addValidParameters(solver);
+  solver.sublist("SemismoothStarNewton").setParameters(*Semismooth::SemismoothStarNewton::getValidParameters());
   solver.sublist("Monolithic").setParameters(*Fem::MonolithicSystem::getValidParameters());
   ParameterList& feti = solver.sublist("FETI", false, "Total FETI: local solver, gluing, dual solver");
   feti.setParameters(*Feti::FetiProblem::getValidParameters());

@@ -15,6 +15,7 @@
 #include "Tribos_Input.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_ResultWriter.hpp"
+#include "Tribos_SemismoothStarNewton.hpp"
 
 namespace Tribos {
 
@@ -70,6 +71,79 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
   return ps;
 }
 
+// Tresca friction by the semismooth* Newton method. The method is serial: rank
+// 0 solves, the displacement and the contact results are broadcast / kept on
+// rank 0 for output.
+std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Discretization& disc,
+                                    const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
+                                    IO::Summary& summary, Contact::ContactNodeResults& nodes) {
+  const auto& contact = params.sublist("Contact");
+  std::vector<double> u(3 * static_cast<size_t>(disc.mesh.numNodes()), 0.0);
+  double info[9] = {0};
+  std::vector<double> residuals;
+  if (comm.getRank() == 0) {
+    const auto r = Semismooth::solveFromMesh(disc.mesh, mat, loads, contact.get<std::string>("Face"),
+                                             contact.get<double>("Gap"), contact.get<double>("Slip Bound Traction"),
+                                             params.sublist("Solver").sublist("SemismoothStarNewton"),
+                                             verbose ? &std::cout : nullptr);
+    u = r.u;
+    residuals = r.residuals;
+    const int last = static_cast<int>(r.numContact.size()) - 1;
+    info[0] = r.converged;
+    info[1] = r.iterations;
+    info[2] = r.numContactNodes;
+    (void)last;
+    // Active nodes split into stick and slip (the method's own counts also
+    // classify nodes out of contact).
+    for (const auto st : r.state) {
+      info[3] += st == Semismooth::NodeState::ContactStick || st == Semismooth::NodeState::ContactSlip;
+      info[4] += st == Semismooth::NodeState::ContactStick;
+      info[5] += st == Semismooth::NodeState::ContactSlip;
+    }
+    const std::string face = contact.get<std::string>("Face");
+    const int axis = face[0] - 'x';
+    const double sign = face.substr(1) == "min" ? -1.0 : 1.0;  // outward normal = sign e_axis
+    info[6] = r.assemblySeconds;
+    info[7] = r.reductionSeconds;
+    info[8] = r.solverSeconds;
+    for (size_t i = 0; i < r.contactNodes.size(); ++i) {
+      const int node = r.contactNodes[i];
+      nodes.nodes.push_back(node);
+      nodes.normalForce.push_back(r.lambdaN[i]);
+      for (int d = 0; d < 3; ++d) {
+        nodes.tangentialForce.push_back(-r.lambdaT[i][d]);
+        nodes.slip.push_back(0.0);
+      }
+      const bool inContact = r.state[i] == Semismooth::NodeState::ContactStick || r.state[i] == Semismooth::NodeState::ContactSlip;
+      const bool slips = r.state[i] == Semismooth::NodeState::ContactSlip || r.state[i] == Semismooth::NodeState::NoContactSlip;
+      nodes.status.push_back(inContact ? (slips ? 2 : 1) : 0);
+      nodes.gap.push_back(contact.get<double>("Gap") - sign * u[3 * static_cast<size_t>(node) + axis]);
+    }
+  }
+  Teuchos::broadcast(comm, 0, static_cast<int>(u.size()), u.data());
+  Teuchos::broadcast(comm, 0, 9, info);
+  int nres = static_cast<int>(residuals.size());
+  Teuchos::broadcast(comm, 0, &nres);
+  residuals.resize(nres);
+  if (nres > 0) Teuchos::broadcast(comm, 0, nres, residuals.data());
+  summary.set("friction_law", "Tresca");
+  summary.set("converged", info[0] != 0.0);
+  summary.set("newton_iterations", static_cast<long long>(info[1]));
+  summary.set("outer_iterations", static_cast<long long>(info[1]));
+  summary.set("residuals", residuals);
+  summary.set("primal_dofs", 3LL * disc.mesh.numNodes());
+  summary.set("dual_dofs", 0);
+  summary.set("n_A", 0);
+  IO::Summary c;
+  c.set("nodes", static_cast<long long>(info[2])).set("active", static_cast<long long>(info[3]));
+  c.set("stick", static_cast<long long>(info[4])).set("slip", static_cast<long long>(info[5]));
+  summary.set("contact", c);
+  summary.set("time_assembly_s", info[6]);
+  summary.set("time_reduction_s", info[7]);
+  summary.set("time_newton_s", info[8]);
+  return u;
+}
+
 }  // namespace
 
 IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) {
@@ -97,7 +171,15 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
   Contact::ContactNodeResults contactNodes;
   const auto t1 = std::chrono::steady_clock::now();
   double setupTime = 0, solveTime = 0;
-  if (type == "Monolithic") {
+  const bool semismooth = params.sublist("Contact").get<bool>("Enabled") &&
+                          params.sublist("Solver").get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
+  if (semismooth) {
+    summary.set("algorithm", "SemismoothStarNewton");
+    setupTime = seconds(t0);
+    const auto t2 = std::chrono::steady_clock::now();
+    u = solveSemismooth(params, disc, mat, loads, *comm, options.verbose, summary, contactNodes);
+    solveTime = seconds(t2);
+  } else if (type == "Monolithic") {
     Fem::MonolithicSystem system(disc, mat, loads, comm);
     setupTime = seconds(t0);
     const auto t2 = std::chrono::steady_clock::now();
