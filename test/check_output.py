@@ -36,7 +36,8 @@ with h5py.File(xmf.replace(".xmf", ".h5"), "r") as f:
             print("FAILED: cell volumes min %g sum %g (box %g)" % (vols.min(), vols.sum(), volume))
             ok = False
     clamped = np.abs(X[:, 0]) < 1e-12
-    if np.abs(u[clamped]).max() > 1e-12 * np.abs(u).max():
+    # TFETI imposes Dirichlet rows through multipliers: to the solver tolerance.
+    if np.abs(u[clamped]).max() > 1e-5 * np.abs(u).max():
         print("FAILED: clamped nodes move")
         ok = False
     if "points/contact" in f:
