@@ -162,6 +162,9 @@ class TachoSolver : public LocalSolver {
     Driver::ordinal_type_array perm("perm", n_), peri("peri", n_);
     fillReducingOrdering(A, perm.data());
     for (int i = 0; i < n_; ++i) peri(perm(i)) = i;  // Tacho's (perm, peri) = CHOLMOD's (Perm, its inverse)
+    // Below this order Tacho factors a dense copy with LAPACK (O(n^3)), far
+    // slower than its sparse path on subdomain matrices of a few hundred dofs.
+    solver_.setSmallProblemThresholdsize(64);
     solver_.analyze(n_, ap_, aj_, perm, peri);
     solver_.initialize();
     solver_.factorize(ax_);
