@@ -1,7 +1,8 @@
 // Tribos_LocalSolver.hpp: sparse direct solvers for matrices that live on one
 // rank (subdomain stiffness matrices, K_rr of the semismooth* reduction).
 // Backends: CHOLMOD (supernodal Cholesky, the fast one on 3D elasticity) and
-// Amesos2 (KLU2, Tacho) on a serial communicator. Chosen by name.
+// Tacho (its own driver, see docs/feti.md) and KLU2 (Amesos2, serial
+// communicator). Chosen by name.
 #pragma once
 
 #include <string>

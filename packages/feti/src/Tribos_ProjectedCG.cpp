@@ -66,18 +66,16 @@ PCGStatus ProjectedCG::solve(const FetiDual& dual, Vector& lambda) const {
   const DualOperator& F = *dual.F();
   const auto map = prob.dualMap();
   const long long n_A0 = F.applications();
-  // Lumped preconditioner M^-1 = P B_D K B_D' P with B_D = (BB')^-1 B.
-  // The scaling matters: with the non-redundant chain gluing and the
-  // Dirichlet rows, BB' is not a multiple of the identity (cond(BB') = 32 at
-  // the cross points of 2x2x2 subdomains), and the unscaled P B K B' P is a
-  // worse operator than none (cond 1100 against 61 for PFP, docs/feti.md).
-  // (BB')^-1 is applied by an inner CG: BB' has few distinct eigenvalues
-  // (one small block per node), so CG is exact in a few dozen cheap steps.
-  //   M^-1 w = P (B^+)' K B^+ w,  B^+ = B'(BB')^+ = (B'B)^+ B'.
-  // The right factor is computed on the primal side, (B'B)^+ (B'w): B'w lies
-  // in range B' to round-off relative to ||w||, whereas w = Pg itself carries
-  // round-off relative to ||g|| >> ||w|| along ker B' once PCG has converged
-  // a few digits, which stalls a dual-side solve when the gluing is redundant.
+  // Lumped preconditioner M^-1 = P (B^+)' K B^+ P, B^+ = B'(BB')^+ = (B'B)^+ B',
+  // i.e. B_D K B_D' with B_D = (BB')^-1 B. The scaling matters: with the
+  // non-redundant chain gluing and the Dirichlet rows, BB' is not a multiple
+  // of the identity (cond(BB') = 32 on 2x2x2 subdomains), and the unscaled
+  // P B K B' P is a worse operator than none (cond 1970 against 82 for PFP,
+  // docs/feti.md). The right factor is computed on the primal side,
+  // (B'B)^+ (B'w): B'w lies in range B' to round-off relative to ||w||,
+  // whereas w = Pg carries round-off relative to ||g|| >> ||w|| along ker B'
+  // once PCG has gained a few digits, which stalls a dual-side solve when
+  // redundant gluing makes BB' singular.
   const CrsMatrix& B = *prob.B();
   Vector pw(prob.primalMap()), v(prob.primalMap()), Kv(prob.primalMap()), tmp(map), scaled(map);
   auto BtB = [&](const Vector& x, Vector& y) {
