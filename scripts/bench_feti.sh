@@ -7,7 +7,8 @@
 #   scripts/bench_feti.sh [BUILD_DIR] [OUT_DIR]
 #
 # Environment: ELEMENT=Hex8|Tet4 (default Hex8), SIZES="2 3 4 5",
-# RANKS="1 2", PRECONDITIONERS="None Lumped", EXTRA_SET="Key=value" (one more
+# RANKS="1 2", PRECONDITIONERS="None Lumped" (a dash stands for a space:
+# "Lumped-Unscaled"), EXTRA_SET="Key=value" (one more
 # --set, e.g. "Solver/FETI/Local Solver=Tacho").
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -33,7 +34,7 @@ for n in $SIZES; do
             --set "Mesh/Element=$ELEMENT"
             --set "Mesh/Subdomain Grid={$n,$n,$n}"
             --set "Mesh/Cells={$cells,$cells,$cells}"
-            --set "Solver/FETI/Projected CG/Preconditioner=$pc")
+            --set "Solver/FETI/Projected CG/Preconditioner=${pc//-/ }")
       [ -n "${EXTRA_SET:-}" ] && args+=(--set "$EXTRA_SET")
       "${MPIRUN[@]}" -np "$np" "$EXE" "${args[@]}" > "$OUT/$(basename "$json" .json).log" 2>&1 ||
         echo "run failed: $json (see the .log)" >&2
@@ -44,13 +45,13 @@ done
 /usr/bin/python3 - "$OUT" "$ELEMENT" <<'PY'
 import glob, json, os, sys
 out, element = sys.argv[1], sys.argv[2]
-order = {"None": 0, "Lumped": 1}
+order = {"None": 0, "Lumped": 1, "Lumped Unscaled": 2}
 print("| element | S | ranks | precond. | primal dofs | dual dofs | PCG it. | n_A | setup [s] | solve [s] | peak RSS [MB] | converged |")
 print("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|")
 entries = []
 for f in glob.glob(os.path.join(out, element + "_S*.json")):
     d = json.load(open(f))
-    p = os.path.basename(f).split("_")[2]
+    p = os.path.basename(f).split("_")[2].replace("-", " ")
     entries.append((d["subdomains"], order.get(p, 9), d["ranks"], p, d))
 for s, _, r, p, d in sorted(entries):
     print("| %s | %d | %d | %s | %d | %d | %d | %d | %.2f | %.2f | %.0f | %s |" % (
