@@ -44,7 +44,7 @@ RCP<const Teuchos::ParameterList> ProjectedCG::getValidParameters() {
     pl->set("Tolerance", 1e-10, "relative norm of the projected dual residual",
             rcp(new Teuchos::EnhancedNumberValidator<double>(1e-16, 1.0)));
     pl->set("Maximum Iterations", 1000, "iteration limit", rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
-    pl->set("Preconditioner", "None",
+    pl->set("Preconditioner", "Lumped",
             "None, Lumped (P B_D K B_D' P with B_D = (BB')^-1 B) or Lumped Unscaled (P B K B' P, for comparison "
             "only: worse than None with the chain gluing); see docs/feti.md",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("None", "Lumped", "Lumped Unscaled"))));
