@@ -1,0 +1,325 @@
+#include "Tribos_FCLIB_Solve.hpp"
+
+#include <Teuchos_LAPACK.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "Tribos_QP_Utils.hpp"
+
+namespace Tribos {
+namespace FCLIB {
+
+namespace {
+
+double seconds(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double normInf(const std::vector<double>& a) {
+  double s = 0;
+  for (double v : a) s = std::max(s, std::abs(v));
+  return s;
+}
+
+// Entries of 'defaults' missing from 'given' are added (sublists recursively),
+// so a user list overrides only what it names.
+void fillDefaults(Teuchos::ParameterList& given, const Teuchos::ParameterList& defaults) {
+  for (auto it = defaults.begin(); it != defaults.end(); ++it) {
+    const std::string& name = defaults.name(it);
+    const auto& entry = defaults.entry(it);
+    if (entry.isList())
+      fillDefaults(given.sublist(name), Teuchos::getValue<Teuchos::ParameterList>(entry));
+    else if (!given.isParameter(name))
+      given.setEntry(name, entry);
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- MassSolver
+
+MassSolver::MassSolver(const SparseMatrix& M, const std::string& name) {
+  if (M.m != M.n) throw std::runtime_error("MassSolver: M is not square");
+  LocalCsr A;
+  A.rows = M.m;
+  A.cols = M.n;
+  A.rowptr = M.rowptr;
+  A.col = M.col;
+  A.val = M.val;
+  const auto t0 = std::chrono::steady_clock::now();
+  solver_ = createLocalSolver(name);
+  solver_->factor(A);
+  factorSeconds_ = seconds(t0);
+}
+
+void MassSolver::solve(const std::vector<double>& b, std::vector<double>& x) const {
+  x.assign(b.size(), 0.0);
+  solver_->solve(b.data(), x.data(), 1);
+  ++solves_;
+}
+
+SolveM MassSolver::function() const {
+  return [this](const std::vector<double>& b, std::vector<double>& x) { solve(b, x); };
+}
+
+// ---------------------------------------------------------------- DelassusOperator
+
+DelassusOperator::DelassusOperator(const SparseMatrix& W, const RCP<const Map>& map) : W_(&W), map_(map) {}
+
+DelassusOperator::DelassusOperator(const SparseMatrix& H, std::shared_ptr<const MassSolver> M,
+                                   const RCP<const Map>& map)
+    : H_(&H), M_(std::move(M)), map_(map) {}
+
+void DelassusOperator::applyW(const std::vector<double>& x, std::vector<double>& y) const {
+  if (W_) {
+    W_->multiply(x, y);
+    return;
+  }
+  H_->multiply(x, z_);   // generalized forces
+  M_->solve(z_, y_);     // velocities
+  H_->multiplyTranspose(y_, y);
+}
+
+void DelassusOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp, SC alpha, SC beta) const {
+  // W is symmetric (up to the asymmetry of M), so the transpose mode is ignored.
+  for (size_t j = 0; j < X.getNumVectors(); ++j) {
+    {
+      auto xv = X.getVector(j)->getData();
+      x_.assign(xv.begin(), xv.end());
+    }
+    std::vector<double> Wx;
+    applyW(x_, Wx);
+    auto y = Y.getVectorNonConst(j);
+    auto yv = y->getDataNonConst();
+    for (size_t i = 0; i < Wx.size(); ++i)
+      yv[i] = (beta == 0.0 ? 0.0 : beta * yv[i]) + alpha * scale_ * Wx[i];
+  }
+}
+
+std::vector<double> DelassusOperator::dense() const {
+  const int n = static_cast<int>(map_->getGlobalNumElements());
+  std::vector<double> D(static_cast<size_t>(n) * n), e(n, 0.0), col;
+  if (H_) {
+    // All columns with one multi-right-hand-side solve: H e_j is column j of H.
+    const int ndof = H_->m;
+    std::vector<double> HE(static_cast<size_t>(ndof) * n, 0.0), MHE(HE.size());
+    for (int i = 0; i < ndof; ++i)
+      for (int k = H_->rowptr[i]; k < H_->rowptr[i + 1]; ++k) HE[static_cast<size_t>(H_->col[k]) * ndof + i] = H_->val[k];
+    M_->solve(HE.data(), MHE.data(), n);
+    for (int j = 0; j < n; ++j) {
+      std::vector<double> v(MHE.begin() + static_cast<size_t>(j) * ndof, MHE.begin() + static_cast<size_t>(j + 1) * ndof);
+      H_->multiplyTranspose(v, col);
+      std::copy(col.begin(), col.end(), D.begin() + static_cast<size_t>(j) * n);
+    }
+    return D;
+  }
+  for (int j = 0; j < n; ++j) {
+    e[j] = 1.0;
+    applyW(e, col);
+    e[j] = 0.0;
+    std::copy(col.begin(), col.end(), D.begin() + static_cast<size_t>(j) * n);
+  }
+  return D;
+}
+
+// ---------------------------------------------------------------- solve
+
+Teuchos::ParameterList defaultSolverParameters() {
+  Teuchos::ParameterList p("Solver");
+  auto& a1 = p.sublist("Algorithm 1");
+  a1.sublist("SMALBE").set("Relative Tolerance", 1e-12);
+  a1.sublist("SMALBE").set("Maximum Iterations", 1000000);
+  a1.sublist("MPRGP").set("Maximum Iterations", 1000000);
+  a1.sublist("MPGP").set("Maximum Iterations", 1000000);
+  auto& msa = p.sublist("MSA");
+  msa.set("Tolerance", 1e-11);
+  msa.set("Maximum Iterations", 500);
+  auto& a2 = p.sublist("Algorithm 2");
+  a2.set("Relative Tolerance", 1e-12);
+  a2.set("Slip Bound Tolerance", 1e-11);
+  a2.set("Maximum Iterations", 100000);
+  a2.sublist("MPRGP").set("Maximum Iterations", 1000000);
+  a2.sublist("MPGP").set("Maximum Iterations", 1000000);
+  return p;
+}
+
+namespace {
+
+// Counts applications of the wrapped operator (the Hessian work n_A).
+class CountingOperator : public Operator {
+ public:
+  explicit CountingOperator(const DelassusOperator& A) : A_(A) {}
+  RCP<const Map> getDomainMap() const override { return A_.getDomainMap(); }
+  RCP<const Map> getRangeMap() const override { return A_.getRangeMap(); }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode = Teuchos::NO_TRANS, SC alpha = 1,
+             SC beta = 0) const override {
+    count_ += static_cast<long long>(X.getNumVectors());
+    A_.apply(X, Y, mode, alpha, beta);
+  }
+  long long count() const { return count_; }
+
+ private:
+  const DelassusOperator& A_;
+  mutable long long count_ = 0;
+};
+
+// Tresca-style residuals of (r, u) with g = mu r_N, as checkKKT does for FETI:
+// forces and velocities are compared through c = max|r| / max|u|.
+void kktResiduals(const std::vector<double>& r, const std::vector<double>& u, const std::vector<double>& mu,
+                  SolveReport& rep) {
+  const double maxR = std::max(normInf(r), 1e-300), maxU = std::max(normInf(u), 1e-300);
+  const double c = maxR / maxU;
+  double pen = 0, comp = 0, fric = 0;
+  for (size_t k = 0; k < mu.size(); ++k) {
+    const double rN = r[3 * k], uN = u[3 * k];
+    pen = std::max(pen, std::max(-uN, 0.0));
+    comp = std::max(comp, std::abs(std::min(rN, c * uN)));
+    const double g = mu[k] * std::max(rN, 0.0);
+    // r_T is the projection of r_T - c u_T onto the disk of radius g.
+    double a = r[3 * k + 1] - c * u[3 * k + 1], b = r[3 * k + 2] - c * u[3 * k + 2];
+    const double n = std::hypot(a, b);
+    if (n > g) a *= (n > 0 ? g / n : 0.0), b *= (n > 0 ? g / n : 0.0);
+    fric = std::max(fric, std::hypot(r[3 * k + 1] - a, r[3 * k + 2] - b));
+  }
+  rep.kktNormal = pen / maxU;
+  rep.kktComplementarity = comp / maxR;
+  rep.kktFriction = fric / maxR;
+}
+
+// The common part: W (as op), q, mu -> r, u, status, err, spectrum.
+SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, const std::vector<double>& mu,
+                         const SolveOptions& options, const RCP<const Map>& map) {
+  SolveReport rep;
+  rep.algorithm = options.algorithm;
+  const int nc = static_cast<int>(mu.size());
+  const int n = 3 * nc;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (n > 0 && n <= options.denseSpectrumLimit) {
+    std::vector<double> D = op.dense();
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < i; ++j) {
+        const double s = 0.5 * (D[static_cast<size_t>(i) * n + j] + D[static_cast<size_t>(j) * n + i]);
+        D[static_cast<size_t>(i) * n + j] = D[static_cast<size_t>(j) * n + i] = s;
+      }
+    std::vector<double> eig(n), work(1);
+    int info = 0;
+    Teuchos::LAPACK<int, double> lapack;
+    lapack.SYEV('N', 'U', n, D.data(), n, eig.data(), work.data(), -1, &info);
+    work.resize(static_cast<size_t>(work[0]));
+    lapack.SYEV('N', 'U', n, D.data(), n, eig.data(), work.data(), static_cast<int>(work.size()), &info);
+    if (info == 0) {
+      rep.spectrumKnown = true;
+      rep.eigMin = eig.front();
+      rep.eigMax = eig.back();
+      rep.numericalRank = static_cast<int>(
+          std::count_if(eig.begin(), eig.end(), [&](double e) { return e > 1e-12 * rep.eigMax; }));
+    }
+  }
+  CountingOperator A(op);
+  long powerSteps = 0;
+  rep.normW = n > 0 ? QP::estimateNorm(op, 50, powerSteps) : 0.0;
+  rep.scale = rep.normW > 0 ? 1.0 / rep.normW : 1.0;
+  op.setScale(rep.scale);
+
+  Friction::ContactDual cd;
+  cd.A = Teuchos::rcpFromRef(A);
+  auto b = rcp(new Vector(map));
+  {
+    auto bv = b->getDataNonConst();
+    for (int i = 0; i < n; ++i) bv[i] = -rep.scale * q[i];
+  }
+  cd.b = b;
+  for (int k = 0; k < nc; ++k) {
+    cd.normalRows.push_back(3 * k);
+    cd.tangentRows.push_back(3 * k + 1);
+    cd.tangentRows.push_back(3 * k + 2);
+  }
+  cd.normalLower.assign(nc, 0.0);
+  cd.normalOffset.assign(nc, 0.0);
+  cd.slipBound.assign(nc, 0.0);
+  cd.frictionCoefficient = mu;
+  cd.check();
+
+  Teuchos::ParameterList params(options.solverParams);
+  fillDefaults(params, defaultSolverParameters());
+  auto solver = Friction::FrictionSolverFactory().create(options.algorithm, params);
+  if (options.verbose) solver->setOutputStream(Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout)));
+  rep.timeSetup = seconds(t0);
+  const auto t1 = std::chrono::steady_clock::now();
+  Vector x(map);
+  rep.status = solver->solve(cd, x);
+  rep.timeSolve = seconds(t1);
+  rep.n_A = A.count();
+  {
+    auto xv = x.getData();
+    rep.r.assign(xv.begin(), xv.end());
+  }
+  op.applyW(rep.r, rep.u);
+  for (int i = 0; i < n; ++i) rep.u[i] += q[i];
+  rep.err = naturalMapError(rep.r, rep.u, mu, q);
+  kktResiduals(rep.r, rep.u, mu, rep);
+  if (rep.spectrumKnown && rep.numericalRank < n) {
+    std::ostringstream s;
+    s << "W is singular (numerical rank " << rep.numericalRank << " of " << n
+      << "): the Tresca subproblems are convex but not strictly, so MPRGP/MPGP/SMALBE rate bounds and the "
+         "uniqueness of r do not apply";
+    rep.note = s.str();
+  }
+  return rep;
+}
+
+RCP<const Map> serialMap(int n, const RCP<const Comm>& comm) {
+  if (comm->getSize() != 1)
+    throw std::runtime_error("FCLIB solve: use a communicator of one rank (got " + std::to_string(comm->getSize()) + ")");
+  return rcp(new Map(static_cast<Tpetra::global_size_t>(n), 0, comm));
+}
+
+}  // namespace
+
+SolveReport solve(const LocalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm) {
+  checkDimensions(problem, "FCLIB solve");
+  if (problem.V || problem.R || problem.s)
+    throw std::runtime_error("FCLIB solve: mixed local problems (V, R, s) are not supported");
+  if (problem.spacedim != 3) throw std::runtime_error("FCLIB solve: only spacedim = 3 is supported");
+  const auto map = serialMap(3 * problem.numberOfContacts(), serialComm);
+  DelassusOperator op(problem.W, map);
+  return solveReduced(op, problem.q, problem.mu, options, map);
+}
+
+SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm) {
+  checkDimensions(problem, "FCLIB solve");
+  if (problem.G) throw std::runtime_error("FCLIB solve: global problems with equality constraints G are not supported");
+  if (problem.spacedim != 3) throw std::runtime_error("FCLIB solve: only spacedim = 3 is supported");
+  const auto t0 = std::chrono::steady_clock::now();
+  auto M = std::make_shared<const MassSolver>(problem.M, options.massSolver);
+  const auto map = serialMap(3 * problem.numberOfContacts(), serialComm);
+  // q = H' M^-1 f + w: the contact velocities at r = 0.
+  std::vector<double> vFree, q;
+  M->solve(problem.f, vFree);
+  problem.H.multiplyTranspose(vFree, q);
+  for (size_t i = 0; i < q.size(); ++i) q[i] += problem.w[i];
+  const double reduction = seconds(t0);
+  DelassusOperator op(problem.H, M, map);
+  SolveReport rep = solveReduced(op, q, problem.mu, options, map);
+  rep.timeSetup += reduction;
+  // v = M^-1 (H r + f), and u = H' v + w from it (the same as W r + q up to round-off).
+  std::vector<double> rhs;
+  problem.H.multiply(rep.r, rhs);
+  for (size_t i = 0; i < rhs.size(); ++i) rhs[i] += problem.f[i];
+  M->solve(rhs, rep.v);
+  problem.H.multiplyTranspose(rep.v, rep.u);
+  for (size_t i = 0; i < rep.u.size(); ++i) rep.u[i] += problem.w[i];
+  rep.err = naturalMapError(rep.r, rep.u, problem.mu, q);
+  kktResiduals(rep.r, rep.u, problem.mu, rep);
+  rep.massSolves = M->solves();
+  return rep;
+}
+
+}  // namespace FCLIB
+}  // namespace Tribos

@@ -1,0 +1,134 @@
+// Tribos_FCLIB_Solve.hpp: FCLIB problems solved by the friction algorithms of
+// packages/friction (MSA + Algorithm 1, Algorithm 2), the same ones that
+// solve the FETI contact problems.
+//
+// A local problem u = W r + q with Coulomb's law in De Saxce's form is, for a
+// given slip bound g, the Tresca QP
+//   min 1/2 r'W r + q'r   s.t.  r_N,k >= 0,  ||r_T,k|| <= g_k,
+// i.e. a ContactDual with A = s W, b = -s q (s = 1/||W||, so that ||A|| = 1
+// as the algorithms' defaults (rho, M) assume; the minimizer does not depend
+// on s), normal row 3k, tangential rows 3k+1, 3k+2, no equality constraint,
+// and friction coefficients mu_k. The Coulomb fixed point g = mu r_N then
+// gives r; with the Tresca optimality conditions and g = mu r_N, (r, W r + q)
+// satisfies Coulomb's law including the mu ||u_T|| term of the natural map,
+// which is what err checks (Tribos_FCLIB_Accuracy.hpp).
+//
+// A global problem (M, H, f, w) is reduced to W = H' M^-1 H, q = H' M^-1 f + w,
+// with W applied as an operator through one factorization of M (a
+// LocalSolver: KLU2 by default, an LU, because some LMGC mass matrices are
+// symmetric only to ~1e-7), and v = M^-1 (H r + f) recovered at the end.
+// Everything here is serial: use a communicator of one rank.
+//
+// W is only positive semidefinite when bodies are rigid and contacts are few
+// relative to their degrees of freedom. The QP solvers' convergence theory
+// (MPRGP, MPGP, SMALBE) assumes a Hessian positive definite on the feasible
+// set; with a singular W the Tresca subproblems are still convex, may have
+// many minimizers, and projected-gradient iterations still decrease the
+// residual, but no rate is guaranteed. The report carries the extreme
+// eigenvalues of W (for problems small enough to form W densely) so a run
+// says clearly when it is outside the guaranteed setting.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Tribos_FCLIB.hpp"
+#include "Tribos_FCLIB_Accuracy.hpp"
+#include "Tribos_FrictionSolver.hpp"
+#include "Tribos_LocalSolver.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace FCLIB {
+
+// A factorization of M giving the SolveM of Tribos_FCLIB_Accuracy.hpp.
+class MassSolver {
+ public:
+  // name: a LocalSolver ("KLU2", "CHOLMOD", "Tacho"; CHOLMOD and Tacho need M
+  // symmetric positive definite).
+  MassSolver(const SparseMatrix& M, const std::string& name);
+  void solve(const std::vector<double>& b, std::vector<double>& x) const;
+  void solve(const double* b, double* x, int nrhs) const { solver_->solve(b, x, nrhs); }
+  SolveM function() const;
+  int size() const { return solver_->size(); }
+  long long solves() const { return solves_; }
+  double factorSeconds() const { return factorSeconds_; }
+
+ private:
+  RCP<LocalSolver> solver_;
+  mutable long long solves_ = 0;
+  double factorSeconds_ = 0;
+};
+
+// s W as a Tpetra operator on a serial map of 3nc entries: W a stored sparse
+// matrix (local problem) or H' M^-1 H (global problem).
+class DelassusOperator : public Operator {
+ public:
+  DelassusOperator(const SparseMatrix& W, const RCP<const Map>& map);
+  DelassusOperator(const SparseMatrix& H, std::shared_ptr<const MassSolver> M, const RCP<const Map>& map);
+  void setScale(SC s) { scale_ = s; }
+  SC scale() const { return scale_; }
+  RCP<const Map> getDomainMap() const override { return map_; }
+  RCP<const Map> getRangeMap() const override { return map_; }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode = Teuchos::NO_TRANS, SC alpha = 1,
+             SC beta = 0) const override;
+  // y = W x (unscaled) on plain arrays.
+  void applyW(const std::vector<double>& x, std::vector<double>& y) const;
+  // W as a dense column-major n x n array (n applications).
+  std::vector<double> dense() const;
+
+ private:
+  const SparseMatrix* W_ = nullptr;
+  const SparseMatrix* H_ = nullptr;
+  std::shared_ptr<const MassSolver> M_;
+  RCP<const Map> map_;
+  SC scale_ = 1.0;
+  mutable std::vector<double> x_, y_, z_;
+};
+
+struct SolveOptions {
+  // "MSA+Algorithm1" | "Algorithm2" (or "Tresca" with the slip bound
+  // "Slip Bound" of the ParameterList below, rarely useful here).
+  std::string algorithm = "Algorithm2";
+  // The "Solver" list of the friction factory (sublists "Algorithm 1", "MSA",
+  // "Algorithm 2"); entries not given take the values of defaultSolverParameters().
+  Teuchos::ParameterList solverParams;
+  std::string massSolver = "KLU2";
+  // W is formed densely for its spectrum when 3nc does not exceed this.
+  int denseSpectrumLimit = 3000;
+  bool verbose = false;
+};
+
+// Tolerances tight enough for err <= 1e-8 on the samples: the friction
+// defaults (1e-6, 1e-4) are tuned for FETI runs, not for a comparison of
+// solvers at round-off level.
+Teuchos::ParameterList defaultSolverParameters();
+
+struct SolveReport {
+  Friction::FrictionStatus status;
+  std::string algorithm;
+  std::vector<double> r, u, v;   // v only for a global problem
+  NaturalMapError err;
+  long long n_A = 0;             // applications of W in the solve (incl. the norm estimate)
+  long long massSolves = 0;      // solves with M (global problem)
+  double normW = 0, scale = 1;   // ||W|| (power method) and s = 1/||W||
+  // Extreme eigenvalues of the symmetric part of W (when formed); the
+  // smallest relative to the largest tells whether W is singular.
+  bool spectrumKnown = false;
+  double eigMin = 0, eigMax = 0;
+  int numericalRank = -1;        // eigenvalues above 1e-12 eigMax
+  double timeSetup = 0, timeSolve = 0;
+  // Tresca-style residuals of the returned r with g = mu r_N, relative to
+  // max(||q||, ||W r||): the algorithms' own KKT view, next to err.
+  double kktNormal = 0, kktComplementarity = 0, kktFriction = 0;
+  std::string note;              // e.g. why a guarantee does not apply
+};
+
+SolveReport solve(const LocalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm);
+SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm);
+
+}  // namespace FCLIB
+}  // namespace Tribos
