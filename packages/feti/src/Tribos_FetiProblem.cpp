@@ -77,8 +77,10 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
     pl = Teuchos::parameterList("FETI");
     pl->set("Local Solver", "CHOLMOD", "sparse direct solver for the regularized subdomain matrices",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("CHOLMOD", "KLU2", "Tacho"))));
-    pl->set("Gluing", "Non-redundant", "gluing rows between subdomain copies of a node: a chain (Non-redundant) or all pairs (Full)",
-            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Non-redundant", "Full"))));
+    pl->set("Gluing", "Orthonormal",
+            "equality rows of B: Orthonormal (Helmert rows over the copies of a node, Dirichlet rows on every copy: "
+            "B_E B_E' = I), Non-redundant (chain u_i - u_i+1, Dirichlet on the first copy) or Full (all pairs)",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Orthonormal", "Non-redundant", "Full"))));
   }
   return pl;
 }
@@ -116,31 +118,49 @@ std::vector<DualRow> FetiProblem::buildRows(const Fem::LoadCase& loads, const Co
   std::vector<std::vector<int>> copies(mesh.numNodes());
   for (const auto& sd : disc_.subdomains)
     for (int n : sd.nodes) copies[n].push_back(sd.id);
-  std::vector<DualRow> rows;
-  const bool full = gluing == "Full";
-  for (int n = 0; n < mesh.numNodes(); ++n) {
-    const auto& cp = copies[n];
-    for (size_t i = 0; i + 1 < cp.size(); ++i)
-      for (size_t j = i + 1; j < (full ? cp.size() : i + 2); ++j)
-        for (int c = 0; c < 3; ++c) {
-          DualRow r{DualRow::Gluing};
-          r.node = n;
-          r.sub[0] = cp[i];
-          r.sub[1] = cp[j];
-          r.dir[c] = 1.0;
-          rows.push_back(r);
-        }
-  }
   const auto bc = Fem::constrainedDofs(mesh, loads.dirichlet);
   std::vector<char> constrained(mesh.numNodes(), 0);
-  for (const auto& d : bc) {
-    DualRow r{DualRow::Dirichlet};
-    r.node = static_cast<int>(d.first / 3);
-    r.sub[0] = copies[r.node].front();
-    r.dir[d.first % 3] = 1.0;
-    r.c = d.second;
-    rows.push_back(r);
-    constrained[r.node] = 1;
+  for (const auto& d : bc) constrained[d.first / 3] = 1;
+  std::vector<DualRow> rows;
+  const bool orthonormal = gluing == "Orthonormal", full = gluing == "Full";
+  for (int n = 0; n < mesh.numNodes(); ++n) {
+    const auto& cp = copies[n];
+    const int k = static_cast<int>(cp.size());
+    for (int c = 0; c < 3; ++c) {
+      DualRow r{DualRow::Gluing};
+      r.node = n;
+      r.dir[c] = 1.0;
+      auto dirichlet = bc.find(3LL * n + c);
+      if (dirichlet != bc.end()) {
+        // Orthonormal: u = value on every copy (k orthonormal rows, no gluing
+        // needed); otherwise on the first copy, the copies being glued.
+        r.kind = DualRow::Dirichlet;
+        r.c = dirichlet->second;
+        for (int i = 0; i < (orthonormal ? k : 1); ++i) {
+          r.copies = {{cp[i], 1.0}};
+          rows.push_back(r);
+        }
+        if (orthonormal) continue;
+        r.kind = DualRow::Gluing;
+        r.c = 0.0;
+      }
+      if (orthonormal) {
+        // Helmert rows: an orthonormal basis of {w in R^k : sum w = 0}.
+        for (int j = 1; j < k; ++j) {
+          const double s = 1.0 / std::sqrt(static_cast<double>(j) * (j + 1));
+          r.copies.clear();
+          for (int i = 0; i < j; ++i) r.copies.emplace_back(cp[i], s);
+          r.copies.emplace_back(cp[j], -j * s);
+          rows.push_back(r);
+        }
+        continue;
+      }
+      for (int i = 0; i + 1 < k; ++i)
+        for (int j = i + 1; j < (full ? k : i + 2); ++j) {
+          r.copies = {{cp[i], 1.0}, {cp[j], -1.0}};
+          rows.push_back(r);
+        }
+    }
   }
   if (contact.enabled) {
     const auto n = faceNormal(contact.face);
@@ -151,7 +171,7 @@ std::vector<DualRow> FetiProblem::buildRows(const Fem::LoadCase& loads, const Co
       if (constrained[node]) continue;
       DualRow r{DualRow::Normal};
       r.node = node;
-      r.sub[0] = copies[node].front();
+      r.copies = {{copies[node].front(), 1.0}};
       r.dir = n;
       r.c = contact.gap;
       rows.push_back(r);
@@ -164,7 +184,7 @@ std::vector<DualRow> FetiProblem::buildRows(const Fem::LoadCase& loads, const Co
       rows.push_back(r);
     }
   }
-  for (auto& r : rows) r.owner = disc_.layout.owner(r.sub[0]);
+  for (auto& r : rows) r.owner = disc_.layout.owner(r.copies.front().first);
   // Per rank: equality rows, normal rows, tangential pairs.
   auto group = [](const DualRow& r) { return r.kind == DualRow::Normal ? 1 : (r.kind >= DualRow::Tangent1 ? 2 : 0); };
   std::stable_sort(rows.begin(), rows.end(), [&](const DualRow& a, const DualRow& b) {
@@ -182,7 +202,9 @@ void FetiProblem::buildB(const std::vector<DualRow>& rows) {
     if (r.owner == me) ++mine;
   }
   dualMap_ = rcp(new Map(static_cast<Tpetra::global_size_t>(rows.size()), mine, 0, comm_));
-  B_ = rcp(new CrsMatrix(dualMap_, 6));
+  size_t maxCopies = 1;
+  for (const auto& r : rows) maxCopies = std::max(maxCopies, r.copies.size());
+  B_ = rcp(new CrsMatrix(dualMap_, 3 * maxCopies));
   c_ = rcp(new Vector(dualMap_));
   auto cv = c_->getDataNonConst();
   GO gid = first;
@@ -190,11 +212,10 @@ void FetiProblem::buildB(const std::vector<DualRow>& rows) {
     if (r.owner != me) continue;
     std::vector<GO> cols;
     std::vector<SC> vals;
-    for (int k = 0; k < (r.kind == DualRow::Gluing ? 2 : 1); ++k) {
-      const int s = r.sub[k];
+    for (const auto& [s, weight] : r.copies) {
       const GO base = primalOffsets_[s] + 3 * static_cast<GO>(disc_.subdomains[s].localNode(r.node));
       for (int c = 0; c < 3; ++c)
-        if (r.dir[c] != 0.0) cols.push_back(base + c), vals.push_back(k == 0 ? r.dir[c] : -r.dir[c]);
+        if (r.dir[c] != 0.0) cols.push_back(base + c), vals.push_back(weight * r.dir[c]);
     }
     B_->insertGlobalValues(gid, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const SC>(vals));
     cv[gid - first] = r.c;

@@ -41,8 +41,10 @@ struct ContactSpec {
 struct DualRow {
   enum Kind { Gluing, Dirichlet, Normal, Tangent1, Tangent2 } kind;
   int node = -1;            // mesh node
-  int sub[2] = {-1, -1};    // subdomains (second only for gluing)
-  std::array<double, 3> dir{0, 0, 0};  // coefficient vector on the 3 dofs (Dirichlet: unit vector)
+  // Copies of the node the row touches: (subdomain, weight); the row's entry
+  // at dof c of that copy is weight * dir[c]. Ascending subdomains.
+  std::vector<std::pair<int, double>> copies;
+  std::array<double, 3> dir{0, 0, 0};  // direction on the 3 dofs (unit vector for gluing and Dirichlet)
   double c = 0.0;           // right-hand side
   int owner = 0;            // rank
 };
@@ -58,7 +60,7 @@ struct LocalContact {
 
 class FetiProblem {
  public:
-  // Parameters: "Local Solver" (CHOLMOD | KLU2 | Tacho), "Gluing" (Non-redundant | Full).
+  // Parameters: "Local Solver" (CHOLMOD | KLU2 | Tacho), "Gluing" (Orthonormal | Non-redundant | Full).
   FetiProblem(const Mesh::Discretization& disc, const Fem::Material& mat, const Fem::LoadCase& loads,
               const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm);
   static RCP<const Teuchos::ParameterList> getValidParameters();

@@ -108,6 +108,8 @@ int main(int argc, char** argv) {
   const std::vector<Case> cases = {{Mesh::CellType::Tet4, {8, 4, 4}, 6, "Non-redundant"},
                                    {Mesh::CellType::Hex8, {8, 4, 4}, 6, "Non-redundant"},
                                    {Mesh::CellType::Hex8, {6, 3, 3}, 4, "Full"},
+                                   {Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal"},
+                                   {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Orthonormal", "Structured", {3, 2, 1}, true},
                                    {Mesh::CellType::Tet4, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true},
                                    {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true}};
   for (const auto& c : cases) {
