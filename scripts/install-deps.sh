@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Tribos builds against. Idempotent and quiet
-# when everything is present.
+# when everything is present. libopenblas0-serial becomes the system BLAS and
+# LAPACK (Debian alternatives): CHOLMOD's supernodal factor and solves run
+# about twice as fast as with the reference BLAS (docs/benchmarks.md); the
+# serial flavour keeps one thread per MPI rank.
 set -euo pipefail
 packages=(cmake g++ make pkg-config
   trilinos-all-dev libmetis-dev libhdf5-openmpi-dev libopenmpi-dev openmpi-bin
   libptscotch-dev libscotch-dev libmumps-dev libboost-dev libsuitesparse-dev
-  hdf5-tools python3-numpy python3-h5py)
+  libopenblas0-serial hdf5-tools python3-numpy python3-h5py)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
