@@ -277,7 +277,7 @@ SemismoothResult SemismoothStarNewton::solve(std::ostream* log) {
     if (log)
       *log << "  " << std::setw(4) << k << "   " << std::scientific << std::setprecision(6) << std::setw(22) << rel
            << std::defaultfloat << std::setw(9) << ap.contact << std::setw(8) << ap.stick << std::setw(8) << ap.slip
-           << "\n";
+           << std::endl;  // flushed: large levels take minutes per step
     if (rel <= tol) {
       res.converged = true;
       break;
