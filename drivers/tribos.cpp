@@ -1,6 +1,6 @@
 // tribos: the XML-driven solver.
 //   mpirun -np N tribos input/FILE.xml [--output DIR] [--summary FILE.json]
-//                      [--set "Sublist/Key=value" ...] [--verify]
+//                      [--set "Sublist/Key=value" ...] [--verify] [--export-fclib FILE.hdf5]
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Tpetra_Core.hpp>
 
@@ -18,7 +18,8 @@
 namespace {
 
 const char* kUsage =
-    "usage: tribos INPUT.xml [--output DIR] [--summary FILE.json] [--set \"Sublist/Key=value\" ...] [--verify] [--verbose]\n";
+    "usage: tribos INPUT.xml [--output DIR] [--summary FILE.json] [--set \"Sublist/Key=value\" ...] [--verify] [--verbose]\n"
+    "             [--export-fclib FILE.hdf5]\n";
 
 struct Args {
   std::string input, summary;
@@ -39,6 +40,7 @@ Args parse(int argc, char** argv) {
     else if (s == "--set") a.overrides.push_back(next("--set"));
     else if (s == "--verify") a.options.verify = true;
     else if (s == "--verbose") a.options.verbose = true;
+    else if (s == "--export-fclib") a.options.exportFclib = next("--export-fclib");
     else if (s == "--help" || s == "-h") throw Tribos::Error(kUsage);
     else if (!s.empty() && s[0] == '-') throw Tribos::Error("unknown option " + s + "\n" + kUsage);
     else {

@@ -8,6 +8,7 @@
 
 #include "Tribos_Assembly.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_FCLIB_Export.hpp"
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_FetiDual.hpp"
 #include "Tribos_FrictionSolver.hpp"
@@ -197,6 +198,7 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
     Teuchos::ParameterList problemParams;
     problemParams.set("Local Solver", fetiParams.get<std::string>("Local Solver"));
     problemParams.set("Gluing", fetiParams.get<std::string>("Gluing"));
+    problemParams.set("Formulation", fetiParams.get<std::string>("Formulation"));
     const auto& contactParams = params.sublist("Contact");
     Feti::ContactSpec contact;
     contact.enabled = contactParams.get<bool>("Enabled");
@@ -250,6 +252,13 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
       k.set("equilibrium", kkt.equilibrium).set("equality", kkt.equality).set("nonpenetration", kkt.nonpenetration);
       k.set("complementarity", kkt.complementarity).set("friction_law", kkt.frictionLaw);
       summary.set("kkt", k);
+      if (!options.exportFclib.empty()) {
+        // FCLIB global problem: assembled K, contact rows in the local frame, gaps, F (docs/fclib.md).
+        FCLIB::Info info{params.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + outer, ""};
+        FCLIB::exportFeti(options.exportFclib, *problem, mat, loads, friction.law, friction.coefficient, *uPrimal,
+                          lambda, info);
+        summary.set("fclib_export", options.exportFclib);
+      }
       Contact::ContactCounts counts;
       contactNodes = Contact::contactResults(*problem, *uPrimal, lambda, st.slipBound, counts);
       IO::Summary c;

@@ -16,6 +16,7 @@ struct RunOptions {
   bool verify = false;       // also solve monolithically and compare
   bool verbose = false;      // print solver iterations
   std::string inputName;     // for the summary
+  std::string exportFclib;   // write the contact problem and its solution as an FCLIB global problem
 };
 
 // Runs the problem; returns the summary (identical on every rank).

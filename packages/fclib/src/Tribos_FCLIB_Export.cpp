@@ -72,7 +72,8 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::Material& mat, c
     for (LO i = 0; i < static_cast<LO>(fv.size()); ++i) out.f[mono.rhs()->getMap()->getGlobalElement(i)] = fv[i];
   }
 
-  // The frame (N, T1, T2) = (-n, -t1, t2), right-handed, and r = (l_N, l_T1, -l_T2).
+  // The frame (N, T1, T2) = (-n, -t1, t2), right-handed, and r = (l_N, l_T1, -l_T2)
+  // (the force on the body, -B'lambda, is then H r).
   const double sign[3] = {-1.0, -1.0, 1.0};
   const std::array<double, 3>* dirs[3] = {&lc.normal, &lc.t1, &lc.t2};
   rows.clear(), cols.clear(), vals.clear();
@@ -85,7 +86,8 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::Material& mat, c
         const double h = sign[a] * (*dirs[a])[d];
         if (h != 0.0) rows.push_back(3 * node + d), cols.push_back(3 * nc + a), vals.push_back(h);
       }
-      solution.r.push_back(sign[a] * e[1 + a]);
+      // force on the body -lambda_a dir_a = r_a sign_a dir_a
+      solution.r.push_back(-sign[a] * e[1 + a]);
     }
     out.w.insert(out.w.end(), {e[4], 0.0, 0.0});
     out.mu.push_back(law == "Coulomb" ? coefficient : 0.0);

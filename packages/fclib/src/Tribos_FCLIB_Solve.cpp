@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -133,10 +134,14 @@ std::vector<double> DelassusOperator::dense() const {
 Teuchos::ParameterList defaultSolverParameters() {
   Teuchos::ParameterList p("Solver");
   auto& a1 = p.sublist("Algorithm 1");
-  a1.sublist("SMALBE").set("Relative Tolerance", 1e-12);
-  a1.sublist("SMALBE").set("Maximum Iterations", 1000000);
-  a1.sublist("MPRGP").set("Maximum Iterations", 1000000);
-  a1.sublist("MPGP").set("Maximum Iterations", 1000000);
+  // Without an equality constraint Algorithm 1 runs its inner solver alone;
+  // one MPGP over the product set runs to the tolerance, where block
+  // Gauss-Seidel with one sweep per call can exhaust its call budget first.
+  a1.set("Inner Minimization", "MPGP");
+  a1.sublist("SMALBE").set("Relative Tolerance", 1e-11);
+  a1.sublist("SMALBE").set("Maximum Iterations", 20000);
+  a1.sublist("MPRGP").set("Maximum Iterations", 20000);
+  a1.sublist("MPGP").set("Maximum Iterations", 20000);
   auto& msa = p.sublist("MSA");
   msa.set("Tolerance", 1e-11);
   msa.set("Maximum Iterations", 500);
@@ -144,8 +149,8 @@ Teuchos::ParameterList defaultSolverParameters() {
   a2.set("Relative Tolerance", 1e-12);
   a2.set("Slip Bound Tolerance", 1e-11);
   a2.set("Maximum Iterations", 100000);
-  a2.sublist("MPRGP").set("Maximum Iterations", 1000000);
-  a2.sublist("MPGP").set("Maximum Iterations", 1000000);
+  a2.sublist("MPRGP").set("Maximum Iterations", 20000);
+  a2.sublist("MPGP").set("Maximum Iterations", 20000);
   return p;
 }
 
@@ -226,6 +231,9 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   rep.normW = n > 0 ? QP::estimateNorm(op, 50, powerSteps) : 0.0;
   rep.scale = rep.normW > 0 ? 1.0 / rep.normW : 1.0;
   op.setScale(rep.scale);
+  if (options.verbose)
+    std::cout << "FCLIB: " << nc << " contacts, ||W|| ~ " << rep.normW << ", eig(W) in [" << rep.eigMin << ", "
+              << rep.eigMax << "], numerical rank " << rep.numericalRank << ", ||q|| " << std::sqrt(std::inner_product(q.begin(), q.end(), q.begin(), 0.0)) << "\n";
 
   Friction::ContactDual cd;
   cd.A = Teuchos::rcpFromRef(A);
