@@ -70,7 +70,7 @@ void DenseCholesky::solveUpperT(std::vector<double>& x) const {
 }
 
 CoarseSpace::CoarseSpace(RCP<const FetiProblem> problem) : problem_(problem) {
-  n_ = 6 * problem->numSubdomains();
+  n_ = problem->kernelOffsets().back();
   const CrsMatrix& B = *problem->B();
   // R rows at every primal dof that this rank's B rows touch.
   MultiVector Rmv(problem->primalMap(), 6);
@@ -79,7 +79,7 @@ CoarseSpace::CoarseSpace(RCP<const FetiProblem> problem) : problem_(problem) {
     for (int k = 0; k < problem->numLocalSubdomains(); ++k) {
       const auto& sys = problem->subdomain(k);
       const int n = sys.numDofs();
-      for (int j = 0; j < 6; ++j) {
+      for (int j = 0; j < Feti::FetiProblem::kernelDim(sys); ++j) {
         auto col = Rmv.getDataNonConst(j);
         for (int i = 0; i < n; ++i) col[offset + i] = sys.R[static_cast<size_t>(j) * n + i];
       }
@@ -101,7 +101,8 @@ CoarseSpace::CoarseSpace(RCP<const FetiProblem> problem) : problem_(problem) {
     for (size_t k = 0; k < cols.extent(0); ++k) {
       const GO gid = colMap->getGlobalElement(cols(k));
       const int s = static_cast<int>(std::upper_bound(offsets.begin(), offsets.end(), gid) - offsets.begin()) - 1;
-      for (int j = 0; j < 6; ++j) entries.emplace_back(6 * s + j, vals(k) * Rc[j][cols(k)]);
+      const auto& ko = problem->kernelOffsets();
+      for (int j = 0; j < ko[s + 1] - ko[s]; ++j) entries.emplace_back(ko[s] + j, vals(k) * Rc[j][cols(k)]);
     }
     std::sort(entries.begin(), entries.end());
     for (size_t k = 0; k < entries.size(); ++k) {

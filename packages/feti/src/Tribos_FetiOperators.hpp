@@ -51,7 +51,7 @@ class CoarseSpace {
  public:
   explicit CoarseSpace(RCP<const FetiProblem> problem);
 
-  int size() const { return n_; }  // 6S
+  int size() const { return n_; }  // total kernel dimension (6S in TFETI)
   // y = G x (replicated), x = G' y (local rows); rows restricted to a mask when given.
   void applyG(const Vector& x, std::vector<double>& y, const std::vector<char>* rows = nullptr) const;
   void applyGt(const std::vector<double>& y, Vector& x, const std::vector<char>* rows = nullptr) const;

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <map>
 
+#include <Teuchos_LAPACK.hpp>
+
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -43,33 +45,89 @@ void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::ar
 
 }  // namespace
 
-std::array<int, 6> fixingDofs(const std::vector<double>& R, int n) {
-  std::vector<double> W(R);  // working copy, column-major n x 6
+std::vector<int> fixingDofs(const std::vector<double>& R, int n) {
+  const int r = n > 0 ? static_cast<int>(R.size() / n) : 0;
+  std::vector<double> W(R);  // working copy, column-major n x r
   std::vector<char> used(n, 0);
-  std::array<int, 6> rows{};
-  std::array<int, 6> colOrder = {0, 1, 2, 3, 4, 5};
-  for (int k = 0; k < 6; ++k) {
+  std::vector<int> rows(r), colOrder(r);
+  for (int j = 0; j < r; ++j) colOrder[j] = j;
+  for (int k = 0; k < r; ++k) {
     int bestRow = -1, bestCol = -1;
     double best = -1;
-    for (int jj = k; jj < 6; ++jj) {
+    for (int jj = k; jj < r; ++jj) {
       const int j = colOrder[jj];
       for (int i = 0; i < n; ++i)
-        if (!used[i] && std::abs(W[j * n + i]) > best) best = std::abs(W[j * n + i]), bestRow = i, bestCol = jj;
+        if (!used[i] && std::abs(W[static_cast<size_t>(j) * n + i]) > best)
+          best = std::abs(W[static_cast<size_t>(j) * n + i]), bestRow = i, bestCol = jj;
     }
-    TRIBOS_REQUIRE(best > 1e-12, "fixing dofs: the rigid-body modes have rank " << k << " < 6");
+    TRIBOS_REQUIRE(best > 1e-12, "fixing dofs: the rigid-body modes have rank " << k << " < " << r);
     std::swap(colOrder[k], colOrder[bestCol]);
     const int j = colOrder[k];
     rows[k] = bestRow;
     used[bestRow] = 1;
     // Eliminate column j from the remaining columns using the pivot row.
-    for (int mm = k + 1; mm < 6; ++mm) {
+    for (int mm = k + 1; mm < r; ++mm) {
       const int m = colOrder[mm];
-      const double factor = W[m * n + bestRow] / W[j * n + bestRow];
-      for (int i = 0; i < n; ++i) W[m * n + i] -= factor * W[j * n + i];
+      const double factor = W[static_cast<size_t>(m) * n + bestRow] / W[static_cast<size_t>(j) * n + bestRow];
+      for (int i = 0; i < n; ++i) W[static_cast<size_t>(m) * n + i] -= factor * W[static_cast<size_t>(j) * n + i];
     }
   }
   return rows;
 }
+
+namespace {
+
+// FETI-1: the Dirichlet dofs of a subdomain are eliminated (row and column
+// replaced by the diagonal entry, the prescribed value moved to the load), and
+// the kernel keeps the rigid-body modes that vanish on them: R <- R N with N
+// an orthonormal basis of the null space of R restricted to those dofs.
+void eliminateDirichlet(Fem::SubdomainSystem& sys, const std::map<long long, double>& bc) {
+  const int n = sys.numDofs();
+  std::vector<char> fixed(n, 0);
+  std::vector<double> ubar(n, 0.0);
+  for (int a = 0; a < static_cast<int>(sys.nodes.size()); ++a)
+    for (int c = 0; c < 3; ++c) {
+      auto it = bc.find(3LL * sys.nodes[a] + c);
+      if (it != bc.end()) fixed[3 * a + c] = 1, ubar[3 * a + c] = it->second;
+    }
+  LocalCsr& K = sys.K;
+  std::vector<double> diag(n, 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int k = K.rowptr[i]; k < K.rowptr[i + 1]; ++k) {
+      if (K.col[k] == i) diag[i] = K.val[k];
+      if (!fixed[i] && fixed[K.col[k]]) sys.f[i] -= K.val[k] * ubar[K.col[k]];
+    }
+  for (int i = 0; i < n; ++i)
+    for (int k = K.rowptr[i]; k < K.rowptr[i + 1]; ++k)
+      if ((fixed[i] || fixed[K.col[k]]) && K.col[k] != i) K.val[k] = 0.0;
+  for (int i = 0; i < n; ++i)
+    if (fixed[i]) sys.f[i] = diag[i] * ubar[i];
+  // Null space of R_D (rows at fixed dofs) from the 6x6 Gram matrix R_D'R_D.
+  Teuchos::SerialDenseMatrix<int, double> gram(6, 6);
+  for (int i = 0; i < n; ++i)
+    if (fixed[i])
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b) gram(a, b) += sys.R[static_cast<size_t>(a) * n + i] * sys.R[static_cast<size_t>(b) * n + i];
+  Teuchos::LAPACK<int, double> lapack;
+  std::vector<double> w(6), work(64);
+  int info = 0;
+  lapack.SYEV('V', 'U', 6, gram.values(), 6, w.data(), work.data(), 64, &info);
+  TRIBOS_REQUIRE(info == 0, "FETI-1: eigen-decomposition of the Dirichlet rigid-mode Gram matrix failed");
+  std::vector<double> R;
+  const double scale = std::max(w[5], 1.0);
+  for (int a = 0; a < 6; ++a) {
+    if (w[a] > 1e-10 * scale) continue;  // mode moves a Dirichlet dof
+    std::vector<double> col(n, 0.0);
+    for (int b = 0; b < 6; ++b)
+      for (int i = 0; i < n; ++i) col[i] += sys.R[static_cast<size_t>(b) * n + i] * gram(b, a);
+    for (int i = 0; i < n; ++i)
+      if (fixed[i]) col[i] = 0.0;  // round-off
+    R.insert(R.end(), col.begin(), col.end());
+  }
+  sys.R = R;  // orthonormal: R N with N orthonormal
+}
+
+}  // namespace
 
 RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
   static RCP<Teuchos::ParameterList> pl;
@@ -77,6 +135,10 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
     pl = Teuchos::parameterList("FETI");
     pl->set("Local Solver", "CHOLMOD", "sparse direct solver for the regularized subdomain matrices",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("CHOLMOD", "KLU2", "Tacho"))));
+    pl->set("Formulation", "TFETI",
+            "TFETI (Dirichlet conditions as rows of B, every subdomain floating) or FETI-1 (Dirichlet dofs "
+            "eliminated in the subdomains; subdomains touching them keep only the rigid modes they allow)",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("TFETI", "FETI-1"))));
     pl->set("Gluing", "Orthonormal",
             "equality rows of B: Orthonormal (Helmert rows over the copies of a node, Dirichlet rows on every copy: "
             "B_E B_E' = I), Non-redundant (chain u_i - u_i+1, Dirichlet on the first copy) or Full (all pairs)",
@@ -94,8 +156,18 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& 
   const int S = disc.numSubdomains();
   primalOffsets_.assign(S + 1, 0);
   for (int s = 0; s < S; ++s) primalOffsets_[s + 1] = primalOffsets_[s] + 3 * static_cast<GO>(disc.subdomains[s].nodes.size());
-  for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s)
+  feti1_ = p.get<std::string>("Formulation") == "FETI-1";
+  const auto bc = Fem::constrainedDofs(disc.mesh, loads.dirichlet);
+  for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s) {
     systems_.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, loads));
+    if (feti1_) eliminateDirichlet(systems_.back(), bc);
+  }
+  // Kernel dimensions of all subdomains (6 in TFETI), replicated.
+  std::vector<int> dims(S, 0), all(S, 0);
+  for (const auto& sys : systems_) dims[sys.id] = sys.numDofs() > 0 ? static_cast<int>(sys.R.size() / sys.numDofs()) : 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, S, dims.data(), all.data());
+  kernelOffsets_.assign(S + 1, 0);
+  for (int s = 0; s < S; ++s) kernelOffsets_[s + 1] = kernelOffsets_[s] + all[s];
   const GO first = primalOffsets_[disc.firstLocalSubdomain()], last = primalOffsets_[disc.endLocalSubdomain()];
   primalMap_ = rcp(new Map(static_cast<Tpetra::global_size_t>(primalOffsets_[S]), static_cast<size_t>(last - first), 0, comm));
   f_ = rcp(new Vector(primalMap_));
@@ -131,6 +203,7 @@ std::vector<DualRow> FetiProblem::buildRows(const Fem::LoadCase& loads, const Co
       r.node = n;
       r.dir[c] = 1.0;
       auto dirichlet = bc.find(3LL * n + c);
+      if (dirichlet != bc.end() && feti1_) continue;  // eliminated in every copy
       if (dirichlet != bc.end()) {
         // Orthonormal: u = value on every copy (k orthonormal rows, no gluing
         // needed); otherwise on the first copy, the copies being glued.
@@ -275,9 +348,10 @@ double FetiProblem::factorMemoryMb() const {
 }
 
 namespace {
-// x <- (I - R R') x for orthonormal R (n x 6, column-major).
+// x <- (I - R R') x for orthonormal R (n x r, column-major).
 void removeKernel(const std::vector<double>& R, int n, double* x) {
-  for (int j = 0; j < 6; ++j) {
+  const int r = n > 0 ? static_cast<int>(R.size() / n) : 0;
+  for (int j = 0; j < r; ++j) {
     const double* r = &R[static_cast<size_t>(j) * n];
     double dot = 0;
     for (int i = 0; i < n; ++i) dot += r[i] * x[i];
@@ -315,15 +389,15 @@ void FetiProblem::applyK(const Vector& p, Vector& z) const {
 }
 
 void FetiProblem::applyRt(const Vector& p, std::vector<double>& y) const {
-  y.assign(6 * static_cast<size_t>(numSubdomains()), 0.0);
+  y.assign(static_cast<size_t>(kernelOffsets_.back()), 0.0);
   auto pv = p.getData();
   size_t offset = 0;
   for (const auto& sys : systems_) {
     const int n = sys.numDofs();
-    for (int j = 0; j < 6; ++j) {
+    for (int j = 0; j < kernelDim(sys); ++j) {
       double s = 0;
       for (int i = 0; i < n; ++i) s += sys.R[static_cast<size_t>(j) * n + i] * pv[offset + i];
-      y[6 * sys.id + j] = s;
+      y[kernelOffsets_[sys.id] + j] = s;
     }
     offset += n;
   }
@@ -337,7 +411,7 @@ void FetiProblem::applyR(const std::vector<double>& a, Vector& z) const {
     const int n = sys.numDofs();
     for (int i = 0; i < n; ++i) {
       double s = 0;
-      for (int j = 0; j < 6; ++j) s += sys.R[static_cast<size_t>(j) * n + i] * a[6 * sys.id + j];
+      for (int j = 0; j < kernelDim(sys); ++j) s += sys.R[static_cast<size_t>(j) * n + i] * a[kernelOffsets_[sys.id] + j];
       zv[offset + i] = s;
     }
     offset += n;

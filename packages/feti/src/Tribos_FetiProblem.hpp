@@ -60,7 +60,8 @@ struct LocalContact {
 
 class FetiProblem {
  public:
-  // Parameters: "Local Solver" (CHOLMOD | KLU2 | Tacho), "Gluing" (Orthonormal | Non-redundant | Full).
+  // Parameters: "Formulation" (TFETI | FETI-1), "Local Solver" (CHOLMOD | KLU2 | Tacho),
+  // "Gluing" (Orthonormal | Non-redundant | Full).
   FetiProblem(const Mesh::Discretization& disc, const Fem::Material& mat, const Fem::LoadCase& loads,
               const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm);
   static RCP<const Teuchos::ParameterList> getValidParameters();
@@ -85,7 +86,14 @@ class FetiProblem {
   void applyKplus(const Vector& p, Vector& z) const;
   // z = K p (block diagonal).
   void applyK(const Vector& p, Vector& z) const;
-  // y = R' p (replicated coarse vector of length 6S); z = R a (primal).
+  // Coarse numbering: subdomain s owns kernel columns [kernelOffsets()[s], kernelOffsets()[s+1])
+  // (6 each in TFETI; fewer in FETI-1 for subdomains touching Dirichlet dofs).
+  const std::vector<int>& kernelOffsets() const { return kernelOffsets_; }
+  static int kernelDim(const Fem::SubdomainSystem& sys) {
+    return sys.numDofs() > 0 ? static_cast<int>(sys.R.size() / sys.numDofs()) : 0;
+  }
+  bool isFeti1() const { return feti1_; }
+  // y = R' p (replicated coarse vector); z = R a (primal).
   void applyRt(const Vector& p, std::vector<double>& y) const;
   void applyR(const std::vector<double>& a, Vector& z) const;
   // Replicated global nodal displacement (3 numNodes) from the first copy of
@@ -108,6 +116,8 @@ class FetiProblem {
   std::vector<Fem::SubdomainSystem> systems_;      // this rank's subdomains
   std::vector<RCP<LocalSolver>> Kreg_;              // factorizations of K_s + rho sum e_i e_i'
   std::vector<GO> primalOffsets_;
+  std::vector<int> kernelOffsets_;
+  bool feti1_ = false;
   RCP<const Map> primalMap_, dualMap_;
   RCP<CrsMatrix> B_;
   RCP<Vector> f_, c_;
@@ -117,11 +127,11 @@ class FetiProblem {
   mutable std::vector<double> work_;
 };
 
-// The 6 rows of R (n x 6, column-major) chosen by greedy complete pivoting:
+// The r rows of R (n x r, column-major; r = 6 in TFETI) chosen by greedy complete pivoting:
 // R_I is then nonsingular and well conditioned, so adding rho to those
 // diagonal entries of K makes it nonsingular and its inverse a generalized
 // inverse of K (K K_reg^-1 K = K, see docs/feti.md).
-std::array<int, 6> fixingDofs(const std::vector<double>& R, int n);
+std::vector<int> fixingDofs(const std::vector<double>& R, int n);
 
 }  // namespace Feti
 }  // namespace Tribos

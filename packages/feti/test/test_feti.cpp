@@ -32,6 +32,7 @@ struct Case {
   std::string partitioner = "METIS";
   std::array<int, 3> grid{1, 1, 1};
   bool sameIterations = false;  // checked where round-off cannot move the count
+  std::string formulation = "TFETI";
 };
 
 static Mesh::Discretization makeDisc(const Case& c, const Comm& comm) {
@@ -69,6 +70,7 @@ static FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm) {
   auto disc = makeDisc(c, *comm);
   Teuchos::ParameterList p;
   p.set("Gluing", c.gluing);
+  p.set("Formulation", c.formulation);
   auto problem = rcp(new Feti::FetiProblem(disc, {2.1e11, 0.3}, loads(), {}, p, comm));
   // K K+ K = K on every local subdomain (columns of K applied to random-ish vectors).
   double worst = 0;
@@ -110,10 +112,12 @@ int main(int argc, char** argv) {
                                    {Mesh::CellType::Hex8, {6, 3, 3}, 4, "Full"},
                                    {Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal"},
                                    {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Orthonormal", "Structured", {3, 2, 1}, true},
+                                   {Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal", "METIS", {1, 1, 1}, false, "FETI-1"},
+                                   {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true, "FETI-1"},
                                    {Mesh::CellType::Tet4, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true},
                                    {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true}};
   for (const auto& c : cases) {
-    const std::string name = Mesh::cellTypeName(c.type) + " S=" + std::to_string(c.subdomains) + " " + c.gluing + " " + c.partitioner;
+    const std::string name = Mesh::cellTypeName(c.type) + " S=" + std::to_string(c.subdomains) + " " + c.gluing + " " + c.partitioner + " " + c.formulation;
     const auto feti = solveFeti(c, comm);
     auto disc = makeDisc(c, *comm);
     Fem::MonolithicSystem mono(disc, {2.1e11, 0.3}, loads(), comm);
