@@ -138,12 +138,12 @@ Teuchos::ParameterList defaultSolverParameters() {
   // one MPGP over the product set runs to the tolerance, where block
   // Gauss-Seidel with one sweep per call can exhaust its call budget first.
   a1.set("Inner Minimization", "MPGP");
-  a1.sublist("SMALBE").set("Relative Tolerance", 1e-11);
+  a1.sublist("SMALBE").set("Relative Tolerance", 1e-12);
   a1.sublist("SMALBE").set("Maximum Iterations", 20000);
   a1.sublist("MPRGP").set("Maximum Iterations", 20000);
   a1.sublist("MPGP").set("Maximum Iterations", 20000);
   auto& msa = p.sublist("MSA");
-  msa.set("Tolerance", 1e-11);
+  msa.set("Tolerance", 1e-13);
   msa.set("Maximum Iterations", 500);
   auto& a2 = p.sublist("Algorithm 2");
   a2.set("Relative Tolerance", 1e-12);
