@@ -218,6 +218,7 @@ RCP<const ParameterList> Algorithm2::validParameters() {
     pl->set("Relative Tolerance", 1e-6, "stop when ||g^P|| and ||G lambda|| <= tol ||b||", range<double>(1e-15, 1.0));
     pl->set("Slip Bound Tolerance", 1e-4, "and ||g(l+1) - g(l)|| <= tol ||g(l+1)||", range<double>(1e-15, 1.0));
     pl->set("Maximum Iterations", 1000, "outer iterations", range<int>(1, 100000));
+    pl->set("Inner Tolerance Floor", 1.0, "inner solves stop no lower than this times the outer tolerance", range<double>(1e-6, 1.0));
     pl->set("rho", 0.0, "penalty; 0 means ||A||", range<double>(0.0, 1e300));
     pl->set("M", 0.0, "inner precision control; 0 means ||A||", range<double>(0.0, 1e300));
     pl->set("eta", 0.1, "inner precision cap, as a multiple of ||b||", range<double>(1e-300, 1e300));
@@ -288,6 +289,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   const SC beta = params_.get<double>("beta");
   const SC tol = params_.get<double>("Relative Tolerance") * normB;
   const SC slipTol = params_.get<double>("Slip Bound Tolerance");
+  const SC innerFloor = params_.get<double>("Inner Tolerance Floor");
   const auto normalMask = dual.normalBlockMask(), tangentMask = dual.tangentBlockMask();
   // ||A + rho G'G|| <= ||A|| + rho ||G'G||; ||G'G|| by the power method once
   // (1 for the orthonormal FETI constraint), not counted as Hessian work.
@@ -308,7 +310,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
     H.setRho(rho);
     // The first blocks start from G x = 0, where M ||G x|| would ask for an
     // exact solve of a problem whose slip bound is still a guess: use eta.
-    const SC innerTol = std::max(tol, l == 1 ? eta : std::min(M * normGx, eta));
+    const SC innerTol = std::max(innerFloor * tol, l == 1 ? eta : std::min(M * normGx, eta));
     for (auto* s : {&mprgp, &mpgp}) {
       (*s)->setHessianNorm(normA + rho * normGtG);
       (*s)->setTolerance(innerTol);
