@@ -11,6 +11,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "Tribos_TestSupport.hpp"
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_LocalSolver.hpp"
@@ -19,14 +20,7 @@
 
 using namespace Tribos;
 
-static int failures = 0;
-#define CHECK(cond, msg)                                              \
-  do {                                                                \
-    if (!(cond)) {                                                    \
-      std::cerr << "FAILED: " << msg << " (" #cond ")" << std::endl; \
-      ++failures;                                                     \
-    }                                                                 \
-  } while (0)
+using Test::relDiff;
 
 struct Setup {
   std::string law = "Coulomb";
@@ -106,12 +100,6 @@ static Result solve(const Setup& s, const RCP<const Comm>& comm) {
                    std::max(Friction::globalNorm(g, *comm), 1e-300);
   }
   return r;
-}
-
-static double relDiff(const std::vector<double>& a, const std::vector<double>& b) {
-  double d = 0, n = 0;
-  for (size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]), n += b[i] * b[i];
-  return std::sqrt(d / std::max(n, 1e-300));
 }
 
 // Reference without FETI, on rank 0 alone: K (Dirichlet eliminated) factored
@@ -284,6 +272,6 @@ int main(int argc, char** argv) {
   CHECK(dr < 1e-6, "Coulomb solution on " << comm->getSize() << " ranks vs 1 differs by " << dr);
 
   int total = 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, failures, Teuchos::outArg(total));
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, Test::failures(), Teuchos::outArg(total));
   return total ? 1 : 0;
 }

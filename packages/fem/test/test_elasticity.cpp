@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "Tribos_TestSupport.hpp"
 #include "Tribos_Assembly.hpp"
 #include "Tribos_Discretization.hpp"
 #include "Tribos_Monolithic.hpp"
@@ -14,14 +15,6 @@
 using namespace Tribos;
 using Fem::Point;
 
-static int failures = 0;
-#define CHECK(cond, msg)                                                             \
-  do {                                                                               \
-    if (!(cond)) {                                                                   \
-      std::cerr << "FAILED: " << msg << " (" #cond ")" << std::endl;                \
-      ++failures;                                                                    \
-    }                                                                                \
-  } while (0)
 
 static Teuchos::ParameterList solverParams(const std::string& kind) {
   Teuchos::ParameterList p = *Fem::MonolithicSystem::getValidParameters();
@@ -181,7 +174,7 @@ int main(int argc, char** argv) {
     kernelTest(type, comm);
   }
   int total = 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, failures, Teuchos::outArg(total));
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, Test::failures(), Teuchos::outArg(total));
   if (comm->getRank() == 0) std::cout << (total ? "FAILED" : "all elasticity checks passed") << std::endl;
   return total ? 1 : 0;
 }

@@ -9,20 +9,14 @@
 #include <cmath>
 #include <iostream>
 
+#include "Tribos_TestSupport.hpp"
 #include "Tribos_FetiDual.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_ProjectedCG.hpp"
 
 using namespace Tribos;
 
-static int failures = 0;
-#define CHECK(cond, msg)                                              \
-  do {                                                                \
-    if (!(cond)) {                                                    \
-      std::cerr << "FAILED: " << msg << " (" #cond ")" << std::endl; \
-      ++failures;                                                     \
-    }                                                                 \
-  } while (0)
+using Test::relDiff;
 
 struct Case {
   Mesh::CellType type;
@@ -97,12 +91,6 @@ static FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm) {
   return {problem->nodalDisplacement(*dual.recoverPrimal(lambda)), st.iterations, worst};
 }
 
-static double relDiff(const std::vector<double>& a, const std::vector<double>& b) {
-  double d = 0, n = 0;
-  for (size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]), n += b[i] * b[i];
-  return std::sqrt(d / n);
-}
-
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
@@ -146,6 +134,6 @@ int main(int argc, char** argv) {
                 << ", K K+ K - K: " << feti.kernelError << ", ranks vs 1: " << rankDiff << std::endl;
   }
   int total = 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, failures, Teuchos::outArg(total));
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, Test::failures(), Teuchos::outArg(total));
   return total ? 1 : 0;
 }

@@ -7,19 +7,12 @@
 #include <map>
 #include <set>
 
+#include "Tribos_TestSupport.hpp"
 #include "Tribos_Decomposition.hpp"
 #include "Tribos_Mesh.hpp"
 
 using namespace Tribos::Mesh;
 
-static int failures = 0;
-#define CHECK(cond, msg)                                              \
-  do {                                                                \
-    if (!(cond)) {                                                    \
-      std::cerr << "FAILED: " << msg << " (" #cond ")" << std::endl; \
-      ++failures;                                                     \
-    }                                                                 \
-  } while (0)
 
 static double cellVolume(const Mesh& m, int c) {
   // Volume from the divergence theorem would need faces; for tets use the
@@ -141,7 +134,7 @@ int main(int argc, char** argv) {
         prev = r;
       }
     }
-  if (failures) std::cerr << failures << " checks failed" << std::endl;
+  if (Tribos::Test::failures()) std::cerr << Tribos::Test::failures() << " checks failed" << std::endl;
   else std::cout << "all mesh checks passed" << std::endl;
-  return failures ? 1 : 0;
+  return Tribos::Test::failures() ? 1 : 0;
 }

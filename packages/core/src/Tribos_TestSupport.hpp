@@ -1,0 +1,34 @@
+// Tribos_TestSupport.hpp: what the test programs share: a CHECK that counts
+// failures instead of stopping at the first, and relative differences.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+namespace Tribos {
+namespace Test {
+
+inline int& failures() {
+  static int count = 0;
+  return count;
+}
+
+// ||a - b|| / ||b|| (2-norms).
+inline double relDiff(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0, n = 0;
+  for (size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]), n += b[i] * b[i];
+  return std::sqrt(d / std::max(n, 1e-300));
+}
+
+}  // namespace Test
+}  // namespace Tribos
+
+#define CHECK(cond, msg)                                              \
+  do {                                                                \
+    if (!(cond)) {                                                    \
+      std::cerr << "FAILED: " << msg << " (" #cond ")" << std::endl; \
+      ++::Tribos::Test::failures();                                   \
+    }                                                                 \
+  } while (0)
