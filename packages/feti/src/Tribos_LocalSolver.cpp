@@ -17,6 +17,25 @@ namespace Tribos {
 
 namespace {
 
+// A CHOLMOD view (no copy) of a symmetric CSR matrix: it is its own CSC, and
+// stype = 1 makes CHOLMOD read the upper triangle. Pattern only when !values.
+cholmod_sparse cholmodView(const LocalCsr& A, bool values) {
+  cholmod_sparse S;
+  std::memset(&S, 0, sizeof S);
+  S.nrow = S.ncol = A.rows;
+  S.nzmax = A.val.size();
+  S.p = const_cast<int*>(A.rowptr.data());
+  S.i = const_cast<int*>(A.col.data());
+  S.x = values ? const_cast<double*>(A.val.data()) : nullptr;
+  S.stype = 1;
+  S.itype = CHOLMOD_INT;
+  S.xtype = values ? CHOLMOD_REAL : CHOLMOD_PATTERN;
+  S.dtype = CHOLMOD_DOUBLE;
+  S.sorted = 1;
+  S.packed = 1;
+  return S;
+}
+
 class CholmodSolver : public LocalSolver {
  public:
   CholmodSolver() {
@@ -30,20 +49,7 @@ class CholmodSolver : public LocalSolver {
   void factor(const LocalCsr& A) override {
     TRIBOS_REQUIRE(A.rows == A.cols, "CHOLMOD: matrix is not square (" << A.rows << " x " << A.cols << ")");
     n_ = A.rows;
-    // A symmetric CSR matrix is its own CSC; stype = 1 makes CHOLMOD read the upper triangle.
-    cholmod_sparse S;
-    std::memset(&S, 0, sizeof S);
-    S.nrow = S.ncol = A.rows;
-    S.nzmax = A.val.size();
-    S.p = const_cast<int*>(A.rowptr.data());
-    S.i = const_cast<int*>(A.col.data());
-    S.x = const_cast<double*>(A.val.data());
-    S.stype = 1;
-    S.itype = CHOLMOD_INT;
-    S.xtype = CHOLMOD_REAL;
-    S.dtype = CHOLMOD_DOUBLE;
-    S.sorted = 1;
-    S.packed = 1;
+    cholmod_sparse S = cholmodView(A, true);
     if (L_) cholmod_free_factor(&L_, &common_);
     L_ = cholmod_analyze(&S, &common_);
     TRIBOS_REQUIRE(L_ != nullptr, "CHOLMOD analysis failed (status " << common_.status << ")");
@@ -183,18 +189,7 @@ class TachoSolver : public LocalSolver {
     cholmod_common common;
     cholmod_start(&common);
     common.print = 0;
-    cholmod_sparse S;
-    std::memset(&S, 0, sizeof S);
-    S.nrow = S.ncol = A.rows;
-    S.nzmax = A.val.size();
-    S.p = const_cast<int*>(A.rowptr.data());
-    S.i = const_cast<int*>(A.col.data());
-    S.stype = 1;
-    S.itype = CHOLMOD_INT;
-    S.xtype = CHOLMOD_PATTERN;
-    S.dtype = CHOLMOD_DOUBLE;
-    S.sorted = 1;
-    S.packed = 1;
+    cholmod_sparse S = cholmodView(A, false);
     cholmod_factor* L = cholmod_analyze(&S, &common);
     TRIBOS_REQUIRE(L != nullptr, "Tacho: ordering by CHOLMOD analysis failed (status " << common.status << ")");
     std::copy(static_cast<const int*>(L->Perm), static_cast<const int*>(L->Perm) + A.rows, perm);
