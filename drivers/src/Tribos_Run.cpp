@@ -89,11 +89,9 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
                                              verbose ? &std::cout : nullptr);
     u = r.u;
     residuals = r.residuals;
-    const int last = static_cast<int>(r.numContact.size()) - 1;
     info[0] = r.converged;
     info[1] = r.iterations;
     info[2] = r.numContactNodes;
-    (void)last;
     // Active nodes split into stick and slip (the method's own counts also
     // classify nodes out of contact).
     for (const auto st : r.state) {
@@ -170,7 +168,6 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
 
   std::vector<double> u;
   Contact::ContactNodeResults contactNodes;
-  const auto t1 = std::chrono::steady_clock::now();
   double setupTime = 0, solveTime = 0;
   const bool semismooth = params.sublist("Contact").get<bool>("Enabled") &&
                           params.sublist("Solver").get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
@@ -272,7 +269,6 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
     summary.set("time_factor_s", maxOverRanks(problem->factorTime(), *comm));
     summary.set("factor_memory_mb", maxOverRanks(problem->factorMemoryMb(), *comm));
   }
-  (void)t1;
   if (options.verify) {
     Fem::MonolithicSystem reference(disc, mat, loads, comm);
     const auto ref = reference.solve(params.sublist("Solver").sublist("Monolithic"));
