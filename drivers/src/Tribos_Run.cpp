@@ -153,8 +153,19 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
   const auto spec = Input::boxSpec(params);
   const auto mat = Input::material(params);
   const auto loads = Input::loadCase(params);
-  Mesh::Discretization disc(Mesh::generateBox(spec), spec, Input::decompositionSpec(params), comm->getSize(),
-                            comm->getRank());
+  // The semismooth* method is serial: subdomains only spread the output over
+  // the ranks, so a decomposition coarser than the run is refined by METIS.
+  auto decomposition = Input::decompositionSpec(params);
+  const bool serialMethod = params.sublist("Contact").get<bool>("Enabled") &&
+                            params.sublist("Solver").get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
+  const int requested = decomposition.partitioner == "METIS"
+                            ? decomposition.subdomains
+                            : decomposition.grid[0] * decomposition.grid[1] * decomposition.grid[2];
+  if (serialMethod && requested < comm->getSize()) {
+    decomposition.partitioner = "METIS";
+    decomposition.subdomains = comm->getSize();
+  }
+  Mesh::Discretization disc(Mesh::generateBox(spec), spec, decomposition, comm->getSize(), comm->getRank());
   // Faces named by conditions must exist: check before any solve.
   for (const auto& d : loads.dirichlet) disc.mesh.face(d.face);
   for (const auto& t : loads.tractions) disc.mesh.face(t.face);
