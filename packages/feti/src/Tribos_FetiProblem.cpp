@@ -2,6 +2,7 @@
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Export.hpp>
 #include <Tpetra_Vector.hpp>
 
 #include <mpi.h>
@@ -385,6 +386,78 @@ void FetiProblem::applyK(const Vector& p, Vector& z) const {
   for (const auto& sys : systems_) {
     sys.K.multiply(pv.getRawPtr() + offset, zv.getRawPtr() + offset);
     offset += sys.numDofs();
+  }
+}
+
+void FetiProblem::setupSchur() const {
+  // Boundary dofs: the primal columns of B, marked from every rank's rows.
+  auto colMap = B_->getColMap();
+  Vector touched(colMap), mask(primalMap_);
+  {
+    auto t = touched.getDataNonConst();
+    for (LO i = 0; i < static_cast<LO>(B_->getNodeNumRows()); ++i) {
+      typename CrsMatrix::local_inds_host_view_type cols;
+      typename CrsMatrix::values_host_view_type vals;
+      B_->getLocalRowView(i, cols, vals);
+      for (size_t k = 0; k < cols.extent(0); ++k) t[cols(k)] = 1.0;
+    }
+  }
+  mask.doExport(touched, Export(colMap, primalMap_), Tpetra::ADD);
+  auto m = mask.getData();
+  size_t offset = 0;
+  for (const auto& sys : systems_) {
+    const int n = sys.numDofs();
+    std::vector<int> interior, position(n, -1);
+    for (int i = 0; i < n; ++i)
+      if (m[offset + i] == 0.0) position[i] = static_cast<int>(interior.size()), interior.push_back(i);
+    LocalCsr Kii;
+    Kii.rows = Kii.cols = static_cast<int>(interior.size());
+    for (int i : interior) {
+      for (int k = sys.K.rowptr[i]; k < sys.K.rowptr[i + 1]; ++k)
+        if (position[sys.K.col[k]] >= 0) Kii.col.push_back(position[sys.K.col[k]]), Kii.val.push_back(sys.K.val[k]);
+      Kii.rowptr.push_back(static_cast<int>(Kii.col.size()));
+    }
+    auto solver = createLocalSolver(localSolverName_);
+    if (Kii.rows > 0) {
+      try {
+        solver->factor(Kii);
+      } catch (const Error& e) {
+        throw Error("Dirichlet preconditioner: the interior block of subdomain " + std::to_string(sys.id) +
+                    " is singular (its interface does not fix it): " + e.what());
+      }
+    }
+    interior_.push_back(interior);
+    Kii_.push_back(solver);
+    offset += n;
+  }
+  schurReady_ = true;
+}
+
+void FetiProblem::applySchur(const Vector& p, Vector& z) const {
+  if (!schurReady_) setupSchur();
+  auto pv = p.getData();
+  auto zv = z.getDataNonConst();
+  size_t offset = 0;
+  std::vector<double> x, t, w, s;
+  for (size_t k = 0; k < systems_.size(); ++k) {
+    const auto& K = systems_[k].K;
+    const auto& interior = interior_[k];
+    const int n = systems_[k].numDofs(), ni = static_cast<int>(interior.size());
+    // t = K [x_b; 0]; w = K_ii^-1 t_i; z_b = t_b - (K [0; w])_b; z_i = 0.
+    x.assign(pv.getRawPtr() + offset, pv.getRawPtr() + offset + n);
+    for (int i : interior) x[i] = 0.0;
+    t.assign(n, 0.0);
+    K.multiply(x.data(), t.data());
+    std::vector<double> ti(ni), wi(ni);
+    for (int j = 0; j < ni; ++j) ti[j] = t[interior[j]];
+    if (ni > 0) Kii_[k]->solve(ti.data(), wi.data(), 1);
+    w.assign(n, 0.0);
+    for (int j = 0; j < ni; ++j) w[interior[j]] = wi[j];
+    s.assign(n, 0.0);
+    K.multiply(w.data(), s.data());
+    for (int i = 0; i < n; ++i) zv[offset + i] = t[i] - s[i];
+    for (int i : interior) zv[offset + i] = 0.0;
+    offset += n;
   }
 }
 

@@ -86,6 +86,10 @@ class FetiProblem {
   void applyKplus(const Vector& p, Vector& z) const;
   // z = K p (block diagonal).
   void applyK(const Vector& p, Vector& z) const;
+  // z = S p: per subdomain the Schur complement on the dofs B touches,
+  // S = K_bb - K_bi K_ii^-1 K_ib (zero on interior dofs), for the Dirichlet
+  // preconditioner. The interior blocks are factored on first use.
+  void applySchur(const Vector& p, Vector& z) const;
   // Coarse numbering: subdomain s owns kernel columns [kernelOffsets()[s], kernelOffsets()[s+1])
   // (6 each in TFETI; fewer in FETI-1 for subdomains touching Dirichlet dofs).
   const std::vector<int>& kernelOffsets() const { return kernelOffsets_; }
@@ -125,6 +129,12 @@ class FetiProblem {
   LocalContact contact_;
   double factorTime_ = 0;
   mutable std::vector<double> work_;
+  // Dirichlet preconditioner data, per local subdomain: interior dofs and the
+  // factorization of K_ii.
+  void setupSchur() const;
+  mutable std::vector<std::vector<int>> interior_;
+  mutable std::vector<RCP<LocalSolver>> Kii_;
+  mutable bool schurReady_ = false;
 };
 
 // The r rows of R (n x r, column-major; r = 6 in TFETI) chosen by greedy complete pivoting:

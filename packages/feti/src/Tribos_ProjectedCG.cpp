@@ -45,9 +45,10 @@ RCP<const Teuchos::ParameterList> ProjectedCG::getValidParameters() {
             rcp(new Teuchos::EnhancedNumberValidator<double>(1e-16, 1.0)));
     pl->set("Maximum Iterations", 1000, "iteration limit", rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
     pl->set("Preconditioner", "Lumped",
-            "None, Lumped (P B_D K B_D' P with B_D = (BB')^-1 B) or Lumped Unscaled (P B K B' P, for comparison "
+            "None, Lumped (P B_D K B_D' P with B_D = (BB')^-1 B), Dirichlet (P B_D S B_D' P, S the Schur "
+            "complements on the interface dofs) or Lumped Unscaled (P B K B' P, for comparison "
             "only: worse than None with the chain gluing); see docs/feti.md",
-            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("None", "Lumped", "Lumped Unscaled"))));
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("None", "Lumped", "Dirichlet", "Lumped Unscaled"))));
   }
   return pl;
 }
@@ -92,9 +93,10 @@ PCGStatus ProjectedCG::solve(const FetiDual& dual, Vector& lambda) const {
       return;
     }
     B.apply(w, pw, Teuchos::TRANS);
-    if (preconditioner_ == "Lumped") {
+    if (preconditioner_ == "Lumped" || preconditioner_ == "Dirichlet") {
       gramSolve(BtB, pw, v);
-      prob.applyK(v, Kv);
+      if (preconditioner_ == "Lumped") prob.applyK(v, Kv);
+      else prob.applySchur(v, Kv);
       B.apply(Kv, tmp);
       gramSolve(BBt, tmp, scaled);
       coarse.project(scaled, y);

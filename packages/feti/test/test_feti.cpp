@@ -27,6 +27,7 @@ struct Case {
   std::array<int, 3> grid{1, 1, 1};
   bool sameIterations = false;  // checked where round-off cannot move the count
   std::string formulation = "TFETI";
+  std::string preconditioner = "Lumped";
 };
 
 static Mesh::Discretization makeDisc(const Case& c, const Comm& comm) {
@@ -84,6 +85,7 @@ static FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm) {
   // Rank-independence cases stop where round-off cannot shift the count;
   // the comparison with the monolithic solve needs the tight tolerance.
   pcgParams.set("Tolerance", c.sameIterations ? 1e-8 : 1e-11);
+  pcgParams.set("Preconditioner", c.preconditioner);
   Feti::ProjectedCG pcg(pcgParams);
   Vector lambda(problem->dualMap());
   const auto st = pcg.solve(dual, lambda);
@@ -102,10 +104,12 @@ int main(int argc, char** argv) {
                                    {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Orthonormal", "Structured", {3, 2, 1}, true},
                                    {Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal", "METIS", {1, 1, 1}, false, "FETI-1"},
                                    {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true, "FETI-1"},
+                                   {Mesh::CellType::Tet4, {9, 4, 4}, 6, "Orthonormal", "Structured", {3, 2, 1}, true, "TFETI", "Dirichlet"},
+                                   {Mesh::CellType::Hex8, {8, 4, 4}, 6, "Orthonormal", "METIS", {1, 1, 1}, false, "TFETI", "None"},
                                    {Mesh::CellType::Tet4, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true},
                                    {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true}};
   for (const auto& c : cases) {
-    const std::string name = Mesh::cellTypeName(c.type) + " S=" + std::to_string(c.subdomains) + " " + c.gluing + " " + c.partitioner + " " + c.formulation;
+    const std::string name = Mesh::cellTypeName(c.type) + " S=" + std::to_string(c.subdomains) + " " + c.gluing + " " + c.partitioner + " " + c.formulation + " " + c.preconditioner;
     const auto feti = solveFeti(c, comm);
     auto disc = makeDisc(c, *comm);
     Fem::MonolithicSystem mono(disc, {2.1e11, 0.3}, loads(), comm);
