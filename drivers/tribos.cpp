@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   try {
     args = parse(argc, argv);
     params = Tribos::Input::read(args.input, args.overrides);
+    Tribos::checkRunnable(*params, comm->getSize());
   } catch (const std::exception& e) {
     if (root) std::cerr << "tribos: error: " << e.what() << std::endl;
     return 1;

@@ -22,6 +22,10 @@ namespace Tribos {
 
 namespace {
 
+int requestedSubdomains(const Mesh::DecompositionSpec& d) {
+  return d.partitioner == "METIS" ? d.subdomains : d.grid[0] * d.grid[1] * d.grid[2];
+}
+
 double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -143,7 +147,35 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
   return u;
 }
 
+// The decomposition of the run. The semismooth* method is serial: subdomains
+// only spread the output over the ranks, so a decomposition coarser than the
+// run is refined by METIS.
+Mesh::DecompositionSpec decompositionFor(const Teuchos::ParameterList& params, int numRanks) {
+  auto decomposition = Input::decompositionSpec(params);
+  const bool serialMethod = params.sublist("Contact").get<bool>("Enabled") &&
+                            params.sublist("Solver").get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
+  if (serialMethod && requestedSubdomains(decomposition) < numRanks) {
+    decomposition.partitioner = "METIS";
+    decomposition.subdomains = numRanks;
+  }
+  return decomposition;
+}
+
 }  // namespace
+
+void checkRunnable(const Teuchos::ParameterList& params, int numRanks) {
+  const auto decomposition = decompositionFor(params, numRanks);
+  const int S = requestedSubdomains(decomposition);
+  TRIBOS_REQUIRE(S >= numRanks, "the run has " << numRanks << " MPI ranks but Mesh asks for " << S
+                                               << " subdomains; use at most as many ranks as subdomains (Mesh/"
+                                               << (decomposition.partitioner == "METIS" ? "Subdomains" : "Subdomain Grid") << ")");
+  const auto spec = Input::boxSpec(params);
+  if (decomposition.partitioner == "Structured")
+    for (int a = 0; a < 3; ++a)
+      TRIBOS_REQUIRE(spec.cells[a] % decomposition.grid[a] == 0,
+                     "Mesh/Subdomain Grid: " << decomposition.grid[a] << " boxes along " << "xyz"[a]
+                                             << " do not divide the " << spec.cells[a] << " cells of the mesh");
+}
 
 IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -153,18 +185,7 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
   const auto spec = Input::boxSpec(params);
   const auto mat = Input::material(params);
   const auto loads = Input::loadCase(params);
-  // The semismooth* method is serial: subdomains only spread the output over
-  // the ranks, so a decomposition coarser than the run is refined by METIS.
-  auto decomposition = Input::decompositionSpec(params);
-  const bool serialMethod = params.sublist("Contact").get<bool>("Enabled") &&
-                            params.sublist("Solver").get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
-  const int requested = decomposition.partitioner == "METIS"
-                            ? decomposition.subdomains
-                            : decomposition.grid[0] * decomposition.grid[1] * decomposition.grid[2];
-  if (serialMethod && requested < comm->getSize()) {
-    decomposition.partitioner = "METIS";
-    decomposition.subdomains = comm->getSize();
-  }
+  const auto decomposition = decompositionFor(params, comm->getSize());
   Mesh::Discretization disc(Mesh::generateBox(spec), spec, decomposition, comm->getSize(), comm->getRank());
   // Faces named by conditions must exist: check before any solve.
   for (const auto& d : loads.dirichlet) disc.mesh.face(d.face);

@@ -19,6 +19,10 @@ struct RunOptions {
   std::string exportFclib;   // write the contact problem and its solution as an FCLIB global problem
 };
 
+// Checks what can be checked identically on every rank before any work
+// (e.g. enough subdomains for the ranks); throws Tribos::Error naming it.
+void checkRunnable(const Teuchos::ParameterList& params, int numRanks);
+
 // Runs the problem; returns the summary (identical on every rank).
 IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm);
 
