@@ -1,5 +1,5 @@
 // Tribos_FCLIB.hpp: reading and writing 3D frictional contact problems in the
-// FCLIB HDF5 format (https://frictionalcontactlibrary.github.io).
+// FCLIB HDF5 format.
 //
 // Layout of a file, as the public FCLIB library and the shipped samples use it:
 //   /fclib_local/{W, V?, R?}            sparse matrices (see below)
