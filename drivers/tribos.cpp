@@ -2,6 +2,7 @@
 //   mpirun -np N tribos input/FILE.xml [--output DIR] [--summary FILE.json]
 //                      [--set "Sublist/Key=value" ...] [--verify] [--export-fclib FILE.hdf5]
 #include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Core.hpp>
 
 #include <mpi.h>
@@ -72,6 +73,8 @@ int main(int argc, char** argv) {
   }
   try {
     const auto summary = Tribos::run(*params, args.options, comm);
+    // Teuchos timers of the phases (factorization, F applications, QP solvers, output).
+    if (args.options.verbose) Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
     if (root) {
       const std::string json = summary.toJson() + "\n";
       if (!args.summary.empty()) Tribos::IO::writeFileAtomically(args.summary, json);

@@ -315,6 +315,7 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
 
   const auto& out = params.sublist("Output");
   if (out.get<bool>("Write Results")) {
+    Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::output"));
     const std::string dir = options.outputDir.empty() ? out.get<std::string>("Directory") : options.outputDir;
     if (comm->getRank() == 0) makeDirectory(dir);
     comm->barrier();

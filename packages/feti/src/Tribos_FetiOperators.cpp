@@ -1,6 +1,7 @@
 #include "Tribos_FetiOperators.hpp"
 
 #include <Teuchos_LAPACK.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Import.hpp>
 #include <Tpetra_MultiVector.hpp>
@@ -27,6 +28,8 @@ DualOperator::DualOperator(RCP<const FetiProblem> problem) : problem_(problem) {
 }
 
 void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp, SC alpha, SC beta) const {
+  static const auto counter = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::F apply");
+  Teuchos::TimeMonitor timer(*counter);
   for (size_t j = 0; j < X.getNumVectors(); ++j) {
     auto x = X.getVector(j);
     auto y = Y.getVectorNonConst(j);

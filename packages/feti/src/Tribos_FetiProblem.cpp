@@ -1,6 +1,7 @@
 #include "Tribos_FetiProblem.hpp"
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Vector.hpp>
@@ -327,6 +328,7 @@ void FetiProblem::buildContact(const std::vector<DualRow>& rows, const ContactSp
 }
 
 void FetiProblem::factorSubdomains() {
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg"));
   const auto t0 = std::chrono::steady_clock::now();
   for (const auto& sys : systems_) {
     LocalCsr Kreg = sys.K;
