@@ -175,10 +175,12 @@ class CountingOperator : public Operator {
 };
 
 // Tresca-style residuals of (r, u) with g = mu r_N, as checkKKT does for FETI:
-// forces and velocities are compared through c = max|r| / max|u|.
+// forces and velocities are compared through c = max|r| / (velocity scale).
+// The velocity scale includes the free velocity q: when every contact is
+// closed and stuck, u is round-off and would not be a scale.
 void kktResiduals(const std::vector<double>& r, const std::vector<double>& u, const std::vector<double>& mu,
-                  SolveReport& rep) {
-  const double maxR = std::max(normInf(r), 1e-300), maxU = std::max(normInf(u), 1e-300);
+                  const std::vector<double>& q, SolveReport& rep) {
+  const double maxR = std::max(normInf(r), 1e-300), maxU = std::max({normInf(u), normInf(q), 1e-300});
   const double c = maxR / maxU;
   double pen = 0, comp = 0, fric = 0;
   for (size_t k = 0; k < mu.size(); ++k) {
@@ -271,7 +273,7 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   op.applyW(rep.r, rep.u);
   for (int i = 0; i < n; ++i) rep.u[i] += q[i];
   rep.err = naturalMapError(rep.r, rep.u, mu, q);
-  kktResiduals(rep.r, rep.u, mu, rep);
+  kktResiduals(rep.r, rep.u, mu, q, rep);
   if (rep.spectrumKnown && rep.numericalRank < n) {
     std::ostringstream s;
     s << "W is singular (numerical rank " << rep.numericalRank << " of " << n
@@ -324,7 +326,7 @@ SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, con
   problem.H.multiplyTranspose(rep.v, rep.u);
   for (size_t i = 0; i < rep.u.size(); ++i) rep.u[i] += problem.w[i];
   rep.err = naturalMapError(rep.r, rep.u, problem.mu, q);
-  kktResiduals(rep.r, rep.u, problem.mu, rep);
+  kktResiduals(rep.r, rep.u, problem.mu, q, rep);
   rep.massSolves = M->solves();
   return rep;
 }
