@@ -21,6 +21,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_QP_ConstraintSet.hpp"
+#include "Tribos_QP_Status.hpp"
 #include "Tribos_Types.hpp"
 
 namespace qptest {
@@ -405,6 +406,26 @@ inline Vec gradient(const Dense& A, const Vec& b, const Vec& x) {
   Vec g = matvec(A, x);
   for (size_t i = 0; i < g.size(); ++i) g[i] -= b[i];
   return g;
+}
+
+}  // namespace qptest
+
+namespace qptest {
+
+// Result of one solve in the tests: status, solution gathered to every rank,
+// and the Hessian applications counted by the test's own counting operator.
+struct Run {
+  Tribos::QP::QPStatus st;
+  Vec x;
+  long counted = 0;
+};
+
+// Solver parameters with the given relative tolerance and iteration limit.
+inline Teuchos::RCP<Teuchos::ParameterList> params(double rtol, int maxIt = 2000) {
+  auto p = Teuchos::rcp(new Teuchos::ParameterList);
+  p->set("Relative Tolerance", rtol);
+  p->set("Maximum Iterations", maxIt);
+  return p;
 }
 
 }  // namespace qptest

@@ -16,18 +16,6 @@ using namespace Tribos::QP;
 
 namespace {
 
-struct Run {
-  QPStatus st;
-  Vec x;
-  long counted = 0;
-};
-
-RCP<Teuchos::ParameterList> params(double rtol, int maxIt = 2000) {
-  auto p = Teuchos::rcp(new Teuchos::ParameterList);
-  p->set("Relative Tolerance", rtol);
-  p->set("Maximum Iterations", maxIt);
-  return p;
-}
 
 // keep: optional, per global index; entries with 0 are frozen by fixedOutside
 Run solve(QPSolver& solver, const RCP<const Comm>& comm, const Dense& A, const Vec& b, const SetSpec& s, const Vec& x0,

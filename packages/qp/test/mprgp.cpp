@@ -14,18 +14,6 @@ using namespace Tribos::QP;
 
 namespace {
 
-struct Run {
-  QPStatus st;
-  Vec x;
-  long counted = 0;
-};
-
-RCP<Teuchos::ParameterList> params(double rtol, int maxIt = 1000) {
-  auto p = Teuchos::rcp(new Teuchos::ParameterList);
-  p->set("Relative Tolerance", rtol);
-  p->set("Maximum Iterations", maxIt);
-  return p;
-}
 
 Run solve(QPSolver& solver, const RCP<const Comm>& comm, const Dense& A, const Vec& b, const SetSpec& s, const Vec& x0) {
   auto map = pairMap(A.n, comm);

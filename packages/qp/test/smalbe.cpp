@@ -87,13 +87,13 @@ RCP<Teuchos::ParameterList> smalbeParams(double rtol, const std::string& inner) 
   return p;
 }
 
-struct Run {
+struct SmalbeRun {
   QPStatus st;
   Vec x, mu;
   long counted = 0;
 };
 
-Run solve(SMALBE& solver, const RCP<const Comm>& comm, const Dense& A, const Vec& b, const SetSpec& s,
+SmalbeRun solve(SMALBE& solver, const RCP<const Comm>& comm, const Dense& A, const Vec& b, const SetSpec& s,
           const std::vector<Vec>& G, bool explicitG, const Vec& x0, const Vec* mu0 = nullptr) {
   auto map = pairMap(A.n, comm);
   CountingOperator Aop(toCrs(map, A));
@@ -105,7 +105,7 @@ Run solve(SMALBE& solver, const RCP<const Comm>& comm, const Dense& A, const Vec
   else Gc = rcp(new DenseRowsConstraint(G, map));
   solver.setEqualityConstraint(Gc);
   if (mu0) solver.setMultiplier(*toVector(Gc->rangeMap(), *mu0));
-  Run r;
+  SmalbeRun r;
   r.st = solver.solve(Aop, *bv, Omega, *x);
   r.x = gather(*x);
   r.mu = gather(solver.multiplier());
@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
       Vec xref, muref;
       check(enumerateActiveSets(A, b, s.lo, s.up, G, xref, muref), "enumeration with G found the solution");
       SMALBE solver(smalbeParams(1e-10, "MPRGP"));
-      Run r = solve(solver, comm, A, b, s, G, true, Vec(n, 0.0));
+      SmalbeRun r = solve(solver, comm, A, b, s, G, true, Vec(n, 0.0));
       const std::string name = "SMALBE bounds seed " + std::to_string(seed);
       check(r.st.converged, name + ": converged (" + r.st.reason + ")");
       check(maxDiff(r.x, xref) < 1e-7, name + ": |x - x_enum| = " + str(maxDiff(r.x, xref)));
@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
       if (seed == 1) {
         SMALBE warm(smalbeParams(1e-8, "MPRGP"));
         warm.setInnerSolver(rcp(new MPRGP()));
-        Run w = solve(warm, comm, A, b, s, G, true, r.x, &r.mu);
+        SmalbeRun w = solve(warm, comm, A, b, s, G, true, r.x, &r.mu);
         check(w.st.converged && w.st.outer_iterations == 1,
               "warm restart converges in 1 outer iteration (" + std::to_string(w.st.outer_iterations) + ")");
         check(maxDiff(w.x, xref) < 1e-7, "warm restart keeps the solution");
@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
         for (double& v : G[j]) v /= nr;
       }
       SMALBE solver(smalbeParams(1e-9, "MPGP"));
-      Run r = solve(solver, comm, A, b, s, G, false, Vec(n, 0.0));
+      SmalbeRun r = solve(solver, comm, A, b, s, G, false, Vec(n, 0.0));
       const std::string name = "SMALBE disks seed " + std::to_string(seed);
       check(r.st.converged, name + ": converged (" + r.st.reason + ")");
       const double tolAbs = 1e-9 * std::sqrt(dot(b, b));
@@ -187,7 +187,7 @@ int main(int argc, char** argv) {
       check(r.counted == r.st.n_A, name + ": n_A counted exactly");
       // the same problem by the explicit matrix gives the same solution
       SMALBE solver2(smalbeParams(1e-9, "MPGP"));
-      Run r2 = solve(solver2, comm, A, b, s, G, true, Vec(n, 0.0));
+      SmalbeRun r2 = solve(solver2, comm, A, b, s, G, true, Vec(n, 0.0));
       check(maxDiff(r.x, r2.x) < 1e-7, name + ": explicit and user G agree, " + str(maxDiff(r.x, r2.x)));
     }
 
@@ -200,7 +200,7 @@ int main(int argc, char** argv) {
       std::vector<Vec> G = {Vec(n, 1.0)};
       SMALBE solver(smalbeParams(1e-8, "MPRGP"));
       const auto t0 = std::chrono::steady_clock::now();
-      Run r = solve(solver, comm, A, b, s, G, true, Vec(n, 1.0));
+      SmalbeRun r = solve(solver, comm, A, b, s, G, true, Vec(n, 1.0));
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       check(!r.st.converged && !r.st.reason.empty(), "inconsistent set: not converged, reason: " + r.st.reason);
       check(secs < 20, "inconsistent set detected in " + str(secs) + " s");
