@@ -53,11 +53,10 @@ int main(int argc, char** argv) {
   Contact::FetiContactProblem cp(dual, fs);
   Teuchos::ParameterList p;
   p.sublist("Algorithm 1").sublist("SMALBE").set("Relative Tolerance", 1e-10);
-  auto solver = Friction::FrictionSolverFactory().create("Tresca", p);
-  Vector x(problem->dualMap());
-  const auto st = solver->solve(cp.contactDual(), x);
-  auto lambda = cp.multipliers(x);
-  auto u = dual->recoverPrimal(*lambda);
+  const auto sol = cp.solve("Tresca", p);
+  const auto& st = sol.status;
+  const auto& lambda = sol.lambda;
+  const auto& u = sol.u;
   const auto uNodes = problem->nodalDisplacement(*u);
   Contact::ContactCounts counts;
   const auto r = Contact::contactResults(*problem, *u, *lambda, st.slipBound, counts);

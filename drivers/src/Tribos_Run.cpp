@@ -255,14 +255,13 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
       friction.slipBoundTraction = contactParams.get<double>("Slip Bound Traction");
       Contact::FetiContactProblem cp(dual, friction);
       const std::string outer = params.sublist("Solver").get<std::string>("Outer Algorithm");
-      auto solver = Friction::FrictionSolverFactory().create(outer, params.sublist("Solver"));
-      if (options.verbose) solver->setOutputStream(Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout)));
-      Vector x(problem->dualMap());
-      const long long n_A0 = dual->F()->applications();
-      const auto st = solver->solve(cp.contactDual(), x);
-      const long long n_A = dual->F()->applications() - n_A0;
-      lambda.assign(*cp.multipliers(x));
-      uPrimal = dual->recoverPrimal(lambda);
+      const auto sol = cp.solve(outer, params.sublist("Solver"),
+                                options.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
+                                                : RCP<Teuchos::FancyOStream>());
+      const auto& st = sol.status;
+      const long long n_A = sol.n_A;
+      lambda.assign(*sol.lambda);
+      uPrimal = sol.u;
       solveTime = seconds(t2);
       summary.set("outer_algorithm", outer);
       summary.set("friction_law", friction.law);

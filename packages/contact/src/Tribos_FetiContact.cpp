@@ -127,6 +127,21 @@ RCP<Vector> FetiContactProblem::multipliers(const Vector& x) const {
   return lambda;
 }
 
+FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
+                                              const Teuchos::ParameterList& solverParams,
+                                              RCP<Teuchos::FancyOStream> out) const {
+  auto solver = Friction::FrictionSolverFactory().create(outerAlgorithm, solverParams);
+  if (!out.is_null()) solver->setOutputStream(out);
+  FetiContactSolution sol;
+  sol.x = rcp(new Vector(dual_->problem().dualMap()));
+  const long long n_A0 = dual_->F()->applications();
+  sol.status = solver->solve(cd_, *sol.x);
+  sol.n_A = dual_->F()->applications() - n_A0;
+  sol.lambda = multipliers(*sol.x);
+  sol.u = dual_->recoverPrimal(*sol.lambda);
+  return sol;
+}
+
 KKTResiduals checkKKT(const Feti::FetiProblem& p, const Vector& u, const Vector& lambda, const std::vector<double>& g) {
   const Comm& comm = *p.comm();
   KKTResiduals res;

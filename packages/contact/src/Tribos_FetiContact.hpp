@@ -10,7 +10,11 @@
 #include <string>
 #include <vector>
 
+#include <Teuchos_FancyOStream.hpp>
+#include <Teuchos_ParameterList.hpp>
+
 #include "Tribos_ContactDual.hpp"
+#include "Tribos_FrictionSolver.hpp"
 #include "Tribos_FetiDual.hpp"
 
 namespace Tribos {
@@ -22,6 +26,15 @@ struct FrictionSpec {
   double slipBoundTraction = 0.0;    // Tresca: traction bound, times nodal area gives g_k
 };
 
+// A solved FETI contact problem: multipliers, primal displacement, the outer
+// algorithm's status and the applications of F the solve took.
+struct FetiContactSolution {
+  RCP<Vector> x;       // the unknown of the ContactDual (lambda = lambda~ + x)
+  RCP<Vector> lambda, u;
+  Friction::FrictionStatus status;
+  long long n_A = 0;
+};
+
 class FetiContactProblem {
  public:
   FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction);
@@ -29,6 +42,10 @@ class FetiContactProblem {
   const Feti::FetiDual& fetiDual() const { return *dual_; }
   // lambda = lambda~ + x
   RCP<Vector> multipliers(const Vector& x) const;
+  // Solves by the outer algorithm named (FrictionSolverFactory) from x = 0,
+  // with the sublists "Algorithm 1", "MSA", "Algorithm 2" of solverParams.
+  FetiContactSolution solve(const std::string& outerAlgorithm, const Teuchos::ParameterList& solverParams,
+                            RCP<Teuchos::FancyOStream> out = Teuchos::null) const;
   // The factor s of the scaled dual problem (s PFP, s P(h - F lambda~)), s = 1/||PFP||.
   SC scale() const { return scale_; }
 

@@ -81,12 +81,11 @@ static Result solve(const Setup& s, const RCP<const Comm>& comm) {
   fs.coefficient = s.F;
   fs.slipBoundTraction = s.slipTraction;
   Contact::FetiContactProblem cp(dual, fs);
-  auto solver = Friction::FrictionSolverFactory().create(s.algorithm, tightSolverParams());
-  Vector x(problem->dualMap());
+  auto sol = cp.solve(s.algorithm, tightSolverParams());
   Result r;
-  r.status = solver->solve(cp.contactDual(), x);
-  auto lambda = cp.multipliers(x);
-  auto u = dual->recoverPrimal(*lambda);
+  r.status = sol.status;
+  const auto& lambda = sol.lambda;
+  const auto& u = sol.u;
   r.u = problem->nodalDisplacement(*u);
   r.kkt = Contact::checkKKT(*problem, *u, *lambda, r.status.slipBound);
   const auto nodes = Contact::contactResults(*problem, *u, *lambda, r.status.slipBound, r.counts);
@@ -95,7 +94,7 @@ static Result solve(const Setup& s, const RCP<const Comm>& comm) {
   const std::vector<double> mine(r.normalForce);
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), r.normalForce.data());
   if (s.law == "Coulomb") {
-    const auto g = cp.contactDual().coulombSlipBound(x);
+    const auto g = cp.contactDual().coulombSlipBound(*sol.x);
     r.fixedPoint = Friction::globalDistance(g, r.status.slipBound, *comm) /
                    std::max(Friction::globalNorm(g, *comm), 1e-300);
   }

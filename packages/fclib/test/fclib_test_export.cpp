@@ -59,12 +59,11 @@ int main(int argc, char** argv) {
   Teuchos::ParameterList tight;
   tight.sublist("Algorithm 2").set("Relative Tolerance", 1e-10);
   tight.sublist("Algorithm 2").set("Slip Bound Tolerance", 1e-10);
-  auto solver = Friction::FrictionSolverFactory().create("Algorithm2", tight);
-  Vector x(problem->dualMap());
-  const auto st = solver->solve(cp.contactDual(), x);
+  const auto sol = cp.solve("Algorithm2", tight);
+  const auto& st = sol.status;
   FCLIB_CHECK(st.converged, "FETI Algorithm 2: " << st.reason);
-  auto lambda = cp.multipliers(x);
-  auto u = dual->recoverPrimal(*lambda);
+  const auto& lambda = sol.lambda;
+  const auto& u = sol.u;
   const std::vector<double> uFeti = problem->nodalDisplacement(*u);
 
   const std::string path = fclib_test::scratchPath("export", "brick.hdf5");
