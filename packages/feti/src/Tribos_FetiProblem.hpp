@@ -96,7 +96,6 @@ class FetiProblem {
   static int kernelDim(const Fem::SubdomainSystem& sys) {
     return sys.numDofs() > 0 ? static_cast<int>(sys.R.size() / sys.numDofs()) : 0;
   }
-  bool isFeti1() const { return feti1_; }
   // y = R' p (replicated coarse vector); z = R a (primal).
   void applyRt(const Vector& p, std::vector<double>& y) const;
   void applyR(const std::vector<double>& a, Vector& z) const;

@@ -10,12 +10,6 @@
 namespace Tribos {
 namespace Friction {
 
-long long ContactDual::numGlobalContacts() const {
-  long long local = numLocalContacts(), global = 0;
-  Teuchos::reduceAll(*map()->getComm(), Teuchos::REDUCE_SUM, local, Teuchos::outArg(global));
-  return global;
-}
-
 void ContactDual::check() const {
   TRIBOS_REQUIRE(!A.is_null() && !b.is_null(), "ContactDual: Hessian A and vector b are required");
   const size_t nc = normalRows.size();

@@ -33,7 +33,6 @@ struct ContactDual {
 
   RCP<const Map> map() const { return b->getMap(); }
   int numLocalContacts() const { return static_cast<int>(normalRows.size()); }
-  long long numGlobalContacts() const;
 
   // Omega(g): the product set with slip bounds g (local, one per contact).
   QP::ConstraintSet constraintSet(const std::vector<SC>& g) const;

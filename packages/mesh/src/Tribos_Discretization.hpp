@@ -41,7 +41,6 @@ class Discretization {
   // Rank-contiguous node numbering: the nodes of rank 0 first, ascending,
   // then those of rank 1, ... Used for distributed maps and output files.
   const std::vector<long long>& nodeIndex() const { return nodeIndex_; }
-  long long firstOwnedIndex() const { return nodeIndex_.empty() || ownedNodes_.empty() ? 0 : nodeIndex_[ownedNodes_[0]]; }
   // Cells of the subdomains of this rank, in subdomain order.
   std::vector<int> localCells() const;
 
