@@ -160,105 +160,140 @@ std::unique_ptr<PatternSolver> createPatternSolver(const std::string& name, cons
   return std::make_unique<GenericPatternSolver>(name, pattern);
 }
 
-ContactReduction::ContactReduction(const ContactProblem& p, const std::string& localSolver)
-    : numNodes_(p.numNodes()), m_(static_cast<int>(p.contact.size())), contact_(p.contact), solverName_(localSolver) {
-  Teuchos::Time timer("reduction");
-  timer.start();
-  const int n = 3 * numNodes_;
+RotatedSystem::RotatedSystem(const ContactProblem& p) : numNodes(p.numNodes()), m(static_cast<int>(p.contact.size())), contact(p.contact) {
+  const int n = 3 * numNodes;
   TRIBOS_REQUIRE(p.K.rows == n && p.K.cols == n && static_cast<int>(p.f.size()) == n,
                  "semismooth*: K is " << p.K.rows << " x " << p.K.cols << ", f has " << p.f.size() << " entries");
-  TRIBOS_REQUIRE(m_ > 0, "semismooth*: no contact nodes");
+  TRIBOS_REQUIRE(m > 0, "semismooth*: no contact nodes");
 
   // Frames and the reduced numbering x = (x_1, ..., x_m), x_i = (tau1, tau2, nu).
-  std::vector<const std::array<double, 9>*> R(numNodes_, nullptr);
-  frame_.resize(m_);
+  std::vector<const std::array<double, 9>*> R(numNodes, nullptr);
+  frame.resize(m);
   std::vector<int> reducedOfDof(n, -1);
-  for (int i = 0; i < m_; ++i) {
-    const int node = contact_[i].node;
-    TRIBOS_REQUIRE(node >= 0 && node < numNodes_, "semismooth*: contact node " << node << " out of range");
+  for (int i = 0; i < m; ++i) {
+    const int node = contact[i].node;
+    TRIBOS_REQUIRE(node >= 0 && node < numNodes, "semismooth*: contact node " << node << " out of range");
     TRIBOS_REQUIRE(reducedOfDof[3 * node] < 0, "semismooth*: contact node " << node << " listed twice");
-    TRIBOS_REQUIRE(contact_[i].g >= 0, "semismooth*: negative slip bound at node " << node);
-    frame_[i] = tangentFrame(contact_[i].normal);
+    TRIBOS_REQUIRE(contact[i].g >= 0, "semismooth*: negative slip bound at node " << node);
+    frame[i] = tangentFrame(contact[i].normal);
     for (int k = 0; k < 3; ++k) {
       TRIBOS_REQUIRE(!p.dirichlet.count(3LL * node + k),
                      "semismooth*: contact node " << node << " has a prescribed dof; exclude it from contact");
       reducedOfDof[3 * node + k] = 3 * i + k;
     }
   }
-  for (int i = 0; i < m_; ++i) R[contact_[i].node] = &frame_[i];
+  for (int i = 0; i < m; ++i) R[contact[i].node] = &frame[i];
   const LocalCsr Kt = rotate(p.K, R);
   std::vector<double> ft = p.f;
-  for (int i = 0; i < m_; ++i) {
-    const double* fi = &p.f[3 * contact_[i].node];
+  for (int i = 0; i < m; ++i) {
+    const double* fi = &p.f[3 * contact[i].node];
     for (int k = 0; k < 3; ++k)
-      ft[3 * contact_[i].node + k] = frame_[i][k] * fi[0] + frame_[i][3 + k] * fi[1] + frame_[i][6 + k] * fi[2];
+      ft[3 * contact[i].node + k] = frame[i][k] * fi[0] + frame[i][3 + k] * fi[1] + frame[i][6 + k] * fi[2];
   }
 
   // Free dofs in natural order (keeps CSR columns sorted).
-  uPrescribed_.assign(n, 0.0);
-  freeOfDof_.assign(n, -1);
+  uPrescribed.assign(n, 0.0);
+  freeOfDof.assign(n, -1);
   for (int dof = 0; dof < n; ++dof) {
     auto it = p.dirichlet.find(dof);
     if (it != p.dirichlet.end()) {
-      uPrescribed_[dof] = it->second;
+      uPrescribed[dof] = it->second;
       continue;
     }
-    freeOfDof_[dof] = static_cast<int>(dofOfFree_.size());
-    dofOfFree_.push_back(dof);
+    freeOfDof[dof] = static_cast<int>(dofOfFree.size());
+    dofOfFree.push_back(dof);
   }
-  const int nf = static_cast<int>(dofOfFree_.size());
-  reducedOfFree_.assign(nf, -1);
-  freeOfReduced_.assign(3 * m_, -1);
+  const int nf = static_cast<int>(dofOfFree.size());
+  reducedOfFree.assign(nf, -1);
+  freeOfReduced.assign(3 * m, -1);
   for (int j = 0; j < nf; ++j) {
-    reducedOfFree_[j] = reducedOfDof[dofOfFree_[j]];
-    if (reducedOfFree_[j] >= 0) freeOfReduced_[reducedOfFree_[j]] = j;
+    reducedOfFree[j] = reducedOfDof[dofOfFree[j]];
+    if (reducedOfFree[j] >= 0) freeOfReduced[reducedOfFree[j]] = j;
   }
 
   // K~ on the free dofs; prescribed values move to the right-hand side.
-  Kfree_.rows = Kfree_.cols = nf;
-  Kfree_.rowptr.assign(1, 0);
-  fFree_.assign(nf, 0.0);
+  Kfree.rows = Kfree.cols = nf;
+  Kfree.rowptr.assign(1, 0);
+  fFree.assign(nf, 0.0);
   for (int j = 0; j < nf; ++j) {
-    const int dof = dofOfFree_[j];
-    fFree_[j] = ft[dof];
+    const int dof = dofOfFree[j];
+    fFree[j] = ft[dof];
     for (int pos = Kt.rowptr[dof]; pos < Kt.rowptr[dof + 1]; ++pos) {
-      const int c = freeOfDof_[Kt.col[pos]];
+      const int c = freeOfDof[Kt.col[pos]];
       if (c >= 0) {
-        Kfree_.col.push_back(c);
-        Kfree_.val.push_back(Kt.val[pos]);
+        Kfree.col.push_back(c);
+        Kfree.val.push_back(Kt.val[pos]);
       } else {
-        fFree_[j] -= Kt.val[pos] * uPrescribed_[Kt.col[pos]];
+        fFree[j] -= Kt.val[pos] * uPrescribed[Kt.col[pos]];
       }
     }
-    Kfree_.rowptr.push_back(static_cast<int>(Kfree_.col.size()));
+    Kfree.rowptr.push_back(static_cast<int>(Kfree.col.size()));
   }
-  tangentialEntries_.resize(m_);
-  for (int i = 0; i < m_; ++i)
+  tangentialEntries.resize(m);
+  for (int i = 0; i < m; ++i)
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b) {
-        const int row = freeOfReduced_[3 * i + a], col = freeOfReduced_[3 * i + b];
-        auto first = Kfree_.col.begin() + Kfree_.rowptr[row], last = Kfree_.col.begin() + Kfree_.rowptr[row + 1];
-        tangentialEntries_[i][2 * a + b] = static_cast<int>(std::lower_bound(first, last, col) - Kfree_.col.begin());
+        const int row = freeOfReduced[3 * i + a], col = freeOfReduced[3 * i + b];
+        auto first = Kfree.col.begin() + Kfree.rowptr[row], last = Kfree.col.begin() + Kfree.rowptr[row + 1];
+        tangentialEntries[i][2 * a + b] = static_cast<int>(std::lower_bound(first, last, col) - Kfree.col.begin());
       }
+}
 
+std::vector<double> RotatedSystem::nodalMaxDiagonalKcc() const {
+  std::vector<double> dmax(m, 0.0);
+  for (int j = 0; j < 3 * m; ++j) {
+    const int row = freeOfReduced[j];
+    for (int pos = Kfree.rowptr[row]; pos < Kfree.rowptr[row + 1]; ++pos)
+      if (Kfree.col[pos] == row) dmax[j / 3] = std::max(dmax[j / 3], Kfree.val[pos]);
+  }
+  return dmax;
+}
+
+std::vector<double> RotatedSystem::diagonalKcc() const {
+  std::vector<double> diag(3 * m, 0.0);
+  for (int j = 0; j < 3 * m; ++j) {
+    const int row = freeOfReduced[j];
+    for (int pos = Kfree.rowptr[row]; pos < Kfree.rowptr[row + 1]; ++pos)
+      if (Kfree.col[pos] == row) diag[j] = Kfree.val[pos];
+  }
+  return diag;
+}
+
+std::vector<double> RotatedSystem::globalDisplacement(const std::vector<double>& vFree) const {
+  std::vector<double> u = uPrescribed;
+  for (size_t j = 0; j < dofOfFree.size(); ++j) u[dofOfFree[j]] = vFree[j];
+  for (int i = 0; i < m; ++i) {  // u_i = R_i x_i
+    const int node = contact[i].node;
+    const double xi[3] = {vFree[freeOfReduced[3 * i]], vFree[freeOfReduced[3 * i + 1]], vFree[freeOfReduced[3 * i + 2]]};
+    for (int a = 0; a < 3; ++a)
+      u[3 * node + a] = frame[i][3 * a] * xi[0] + frame[i][3 * a + 1] * xi[1] + frame[i][3 * a + 2] * xi[2];
+  }
+  return u;
+}
+
+ContactReduction::ContactReduction(const ContactProblem& p, const std::string& localSolver)
+    : sys_(p), solverName_(localSolver) {
+  Teuchos::Time timer("reduction");
+  timer.start();
+  const int nf = sys_.Kfree.rows;
   // K_rr, padded with the identity on the contact dofs so that it shares the
   // pattern (and the symbolic analysis) with the Newton matrices.
-  std::vector<double> vals = Kfree_.val;
+  std::vector<double> vals = sys_.Kfree.val;
   for (int j = 0; j < nf; ++j)
-    for (int pos = Kfree_.rowptr[j]; pos < Kfree_.rowptr[j + 1]; ++pos)
-      if (reducedOfFree_[j] >= 0 || reducedOfFree_[Kfree_.col[pos]] >= 0) vals[pos] = (Kfree_.col[pos] == j) ? 1.0 : 0.0;
-  Krr_ = createPatternSolver(solverName_, Kfree_);
+    for (int pos = sys_.Kfree.rowptr[j]; pos < sys_.Kfree.rowptr[j + 1]; ++pos)
+      if (sys_.reducedOfFree[j] >= 0 || sys_.reducedOfFree[sys_.Kfree.col[pos]] >= 0) vals[pos] = (sys_.Kfree.col[pos] == j) ? 1.0 : 0.0;
+  Krr_ = createPatternSolver(solverName_, sys_.Kfree);
   Krr_->factor(vals);
 
   // l = f_c - K_cr K_rr^-1 f_r.
-  std::vector<double> rhs = fFree_;
+  std::vector<double> rhs = sys_.fFree;
   for (int j = 0; j < nf; ++j)
-    if (reducedOfFree_[j] >= 0) rhs[j] = 0;
+    if (sys_.reducedOfFree[j] >= 0) rhs[j] = 0;
   krrSolve(rhs, zf_);
   std::vector<double> t;
   multiplyFree(zf_, t);
-  l_.assign(3 * m_, 0.0);
-  for (int j = 0; j < 3 * m_; ++j) l_[j] = fFree_[freeOfReduced_[j]] - t[freeOfReduced_[j]];
+  l_.assign(3 * sys_.m, 0.0);
+  for (int j = 0; j < 3 * sys_.m; ++j) l_[j] = sys_.fFree[sys_.freeOfReduced[j]] - t[sys_.freeOfReduced[j]];
   timer.stop();
   reductionSeconds_ = timer.totalElapsedTime();
 }
@@ -271,26 +306,26 @@ void ContactReduction::krrSolve(const std::vector<double>& rhsFree, std::vector<
 }
 
 void ContactReduction::multiplyFree(const std::vector<double>& v, std::vector<double>& y) const {
-  y.resize(Kfree_.rows);
-  Kfree_.multiply(v.data(), y.data());
+  y.resize(sys_.Kfree.rows);
+  sys_.Kfree.multiply(v.data(), y.data());
 }
 
 void ContactReduction::applyS(const std::vector<double>& x, std::vector<double>& Sx) const {
-  const int nf = Kfree_.rows;
+  const int nf = sys_.Kfree.rows;
   std::vector<double> v(nf, 0.0), t, z;
-  for (int j = 0; j < 3 * m_; ++j) v[freeOfReduced_[j]] = x[j];
+  for (int j = 0; j < 3 * sys_.m; ++j) v[sys_.freeOfReduced[j]] = x[j];
   multiplyFree(v, t);  // t_r = K_rc x
-  for (int j = 0; j < 3 * m_; ++j) t[freeOfReduced_[j]] = 0;
+  for (int j = 0; j < 3 * sys_.m; ++j) t[sys_.freeOfReduced[j]] = 0;
   krrSolve(t, z);  // z_r = K_rr^-1 K_rc x, z_c = 0
   for (int j = 0; j < nf; ++j)
-    if (reducedOfFree_[j] < 0) v[j] = -z[j];
+    if (sys_.reducedOfFree[j] < 0) v[j] = -z[j];
   multiplyFree(v, t);  // t_c = K_cc x - K_cr z_r
-  Sx.resize(3 * m_);
-  for (int j = 0; j < 3 * m_; ++j) Sx[j] = t[freeOfReduced_[j]];
+  Sx.resize(3 * sys_.m);
+  for (int j = 0; j < 3 * sys_.m; ++j) Sx[j] = t[sys_.freeOfReduced[j]];
 }
 
 std::vector<double> ContactReduction::denseS() const {
-  const int nc = 3 * m_;
+  const int nc = 3 * sys_.m;
   std::vector<double> S(static_cast<size_t>(nc) * nc), e(nc, 0.0), col;
   for (int j = 0; j < nc; ++j) {
     e[j] = 1;
@@ -301,74 +336,48 @@ std::vector<double> ContactReduction::denseS() const {
   return S;
 }
 
-std::vector<double> ContactReduction::nodalMaxDiagonalKcc() const {
-  std::vector<double> dmax(m_, 0.0);
-  for (int j = 0; j < 3 * m_; ++j) {
-    const int row = freeOfReduced_[j];
-    for (int pos = Kfree_.rowptr[row]; pos < Kfree_.rowptr[row + 1]; ++pos)
-      if (Kfree_.col[pos] == row) dmax[j / 3] = std::max(dmax[j / 3], Kfree_.val[pos]);
-  }
-  return dmax;
-}
-
-std::vector<double> ContactReduction::diagonalKcc() const {
-  std::vector<double> diag(3 * m_, 0.0);
-  for (int j = 0; j < 3 * m_; ++j) {
-    const int row = freeOfReduced_[j];
-    for (int pos = Kfree_.rowptr[row]; pos < Kfree_.rowptr[row + 1]; ++pos)
-      if (Kfree_.col[pos] == row) diag[j] = Kfree_.val[pos];
-  }
-  return diag;
-}
-
 void ContactReduction::newtonSolve(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
                                    const std::vector<double>& rhs, std::vector<double>& dx, std::vector<double>& Sdx) {
   Teuchos::Time timer("newton factor");
   timer.start();
-  const int nf = Kfree_.rows;
+  const int nf = sys_.Kfree.rows;
   // Fixed contact components are decoupled (unit row and column), so the
   // pattern stays that of K~_free.
-  std::vector<double> vals = Kfree_.val;
-  auto fixed = [&](int j) { return reducedOfFree_[j] >= 0 && !freeComp[reducedOfFree_[j]]; };
+  std::vector<double> vals = sys_.Kfree.val;
+  auto fixed = [&](int j) { return sys_.reducedOfFree[j] >= 0 && !freeComp[sys_.reducedOfFree[j]]; };
   for (int j = 0; j < nf; ++j)
-    for (int pos = Kfree_.rowptr[j]; pos < Kfree_.rowptr[j + 1]; ++pos)
-      if (fixed(j) || fixed(Kfree_.col[pos])) vals[pos] = (Kfree_.col[pos] == j) ? 1.0 : 0.0;
-  for (int i = 0; i < m_; ++i)
+    for (int pos = sys_.Kfree.rowptr[j]; pos < sys_.Kfree.rowptr[j + 1]; ++pos)
+      if (fixed(j) || fixed(sys_.Kfree.col[pos])) vals[pos] = (sys_.Kfree.col[pos] == j) ? 1.0 : 0.0;
+  for (int i = 0; i < sys_.m; ++i)
     if (freeComp[3 * i] && freeComp[3 * i + 1])
-      for (int q = 0; q < 4; ++q) vals[tangentialEntries_[i][q]] += G[i][q];
-  if (!newton_) newton_ = createPatternSolver(solverName_, Kfree_);
+      for (int q = 0; q < 4; ++q) vals[sys_.tangentialEntries[i][q]] += G[i][q];
+  if (!newton_) newton_ = createPatternSolver(solverName_, sys_.Kfree);
   newton_->factor(vals);
   timer.stop();
   newtonFactorSeconds_ += timer.totalElapsedTime();
 
   std::vector<double> b(nf, 0.0), v(nf), t;
-  for (int j = 0; j < 3 * m_; ++j)
-    if (freeComp[j]) b[freeOfReduced_[j]] = rhs[j];
+  for (int j = 0; j < 3 * sys_.m; ++j)
+    if (freeComp[j]) b[sys_.freeOfReduced[j]] = rhs[j];
   newton_->solve(b.data(), v.data(), 1);
-  dx.assign(3 * m_, 0.0);
-  for (int j = 0; j < 3 * m_; ++j) dx[j] = freeComp[j] ? v[freeOfReduced_[j]] : 0.0;
+  dx.assign(3 * sys_.m, 0.0);
+  for (int j = 0; j < 3 * sys_.m; ++j) dx[j] = freeComp[j] ? v[sys_.freeOfReduced[j]] : 0.0;
   // The r-rows give v_r = -K_rr^-1 K_rF dx_F, hence (K~ v)_c = S dx.
   multiplyFree(v, t);
-  Sdx.resize(3 * m_);
-  for (int j = 0; j < 3 * m_; ++j) Sdx[j] = t[freeOfReduced_[j]];
+  Sdx.resize(3 * sys_.m);
+  for (int j = 0; j < 3 * sys_.m; ++j) Sdx[j] = t[sys_.freeOfReduced[j]];
 }
 
 std::vector<double> ContactReduction::displacement(const std::vector<double>& x) const {
-  const int nf = Kfree_.rows;
+  const int nf = sys_.Kfree.rows;
   std::vector<double> v(nf, 0.0), t, ur;
-  for (int j = 0; j < 3 * m_; ++j) v[freeOfReduced_[j]] = x[j];
+  for (int j = 0; j < 3 * sys_.m; ++j) v[sys_.freeOfReduced[j]] = x[j];
   multiplyFree(v, t);
-  for (int j = 0; j < nf; ++j) t[j] = reducedOfFree_[j] >= 0 ? 0.0 : fFree_[j] - t[j];
+  for (int j = 0; j < nf; ++j) t[j] = sys_.reducedOfFree[j] >= 0 ? 0.0 : sys_.fFree[j] - t[j];
   krrSolve(t, ur);
-  std::vector<double> u = uPrescribed_;
-  for (int j = 0; j < nf; ++j) u[dofOfFree_[j]] = reducedOfFree_[j] >= 0 ? v[j] : ur[j];
-  for (int i = 0; i < m_; ++i) {  // u_i = R_i x_i
-    const int node = contact_[i].node;
-    const double* xi = &x[3 * i];
-    for (int a = 0; a < 3; ++a)
-      u[3 * node + a] = frame_[i][3 * a] * xi[0] + frame_[i][3 * a + 1] * xi[1] + frame_[i][3 * a + 2] * xi[2];
-  }
-  return u;
+  for (int j = 0; j < nf; ++j)
+    if (sys_.reducedOfFree[j] < 0) v[j] = ur[j];
+  return sys_.globalDisplacement(v);
 }
 
 }  // namespace Semismooth

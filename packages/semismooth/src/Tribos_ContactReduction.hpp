@@ -36,6 +36,9 @@ struct ContactProblem {
   std::vector<double> f;
   std::map<long long, double> dirichlet;  // dof -> prescribed value
   std::vector<ContactNode> contact;
+  // Node coordinates (optional): the rigid-body modes that the "CG+MueLu"
+  // Newton solver gives MueLu as near null space.
+  std::vector<std::array<double, 3>> coords;
   int numNodes() const { return K.rows / 3; }
 };
 
@@ -51,19 +54,50 @@ class PatternSolver {
 // re-factor from scratch.
 std::unique_ptr<PatternSolver> createPatternSolver(const std::string& name, const LocalCsr& pattern);
 
+// The problem in contact frames on the unprescribed ("free") dofs: K and f
+// rotated node by node (x_i = R_i' u_i at contact nodes, identity
+// elsewhere, so 3x3 node blocks stay blocks), prescribed values moved to the
+// right-hand side, and the numberings between global dofs, free dofs and the
+// reduced vector x = (x_1, ..., x_m), x_i = (tau1, tau2, nu). No solves.
+struct RotatedSystem {
+  explicit RotatedSystem(const ContactProblem& problem);
+
+  int numNodes = 0, m = 0;
+  std::vector<ContactNode> contact;
+  std::vector<std::array<double, 9>> frame;  // row-major R_i: R[a][k] = component a of frame vector k
+  std::vector<int> freeOfDof;      // global dof -> free index or -1 (prescribed)
+  std::vector<int> dofOfFree;      // free index -> global dof
+  std::vector<int> reducedOfFree;  // free index -> index in x (3i+k) or -1 (an r dof)
+  std::vector<int> freeOfReduced;  // 3i+k -> free index
+  LocalCsr Kfree;                  // rotated K on the free dofs, natural order
+  std::vector<double> fFree;       // rotated f minus the prescribed-value lifting
+  std::vector<double> uPrescribed; // global dof vector with prescribed values (rotated frame = global there)
+  std::vector<std::array<int, 4>> tangentialEntries;  // positions in Kfree of the tau block of node i
+
+  // Largest diagonal entry of K_cc per contact node; K_cc >= S, so 1/this
+  // bounds 1/diag(S) from below.
+  std::vector<double> nodalMaxDiagonalKcc() const;
+  // diag(K_cc), 3 per contact node.
+  std::vector<double> diagonalKcc() const;
+  // Global displacement (3 per node, global coordinates) from values on the
+  // free dofs in the rotated frame.
+  std::vector<double> globalDisplacement(const std::vector<double>& vFree) const;
+};
+
 class ContactReduction {
  public:
-  // Rotates K, applies the prescribed values, factors K_rr.
+  // Rotates K (RotatedSystem), factors K_rr.
   ContactReduction(const ContactProblem& problem, const std::string& localSolver);
   ~ContactReduction();
 
-  int numContactNodes() const { return m_; }
-  int numReduced() const { return 3 * m_; }
+  int numContactNodes() const { return sys_.m; }
+  int numReduced() const { return 3 * sys_.m; }
   const std::vector<double>& l() const { return l_; }
-  const ContactNode& contactNode(int i) const { return contact_[i]; }
+  const ContactNode& contactNode(int i) const { return sys_.contact[i]; }
+  const RotatedSystem& system() const { return sys_; }
   // Columns t1, t2, n of the frame of contact node i (row-major 3x3: R[a][k]
   // is component a of frame vector k); x_i = R' u_i.
-  const std::array<double, 9>& frame(int i) const { return frame_[i]; }
+  const std::array<double, 9>& frame(int i) const { return sys_.frame[i]; }
 
   // Sx = S x (one K_rr solve).
   void applyS(const std::vector<double>& x, std::vector<double>& Sx) const;
@@ -71,9 +105,9 @@ class ContactReduction {
   std::vector<double> denseS() const;
   // Largest diagonal entry of K_cc per contact node; K_cc >= S, so 1/this
   // bounds 1/diag(S) from below.
-  std::vector<double> nodalMaxDiagonalKcc() const;
+  std::vector<double> nodalMaxDiagonalKcc() const { return sys_.nodalMaxDiagonalKcc(); }
   // diag(K_cc), 3 per contact node.
-  std::vector<double> diagonalKcc() const;
+  std::vector<double> diagonalKcc() const { return sys_.diagonalKcc(); }
 
   // Newton step in the full primal space. freeComp[3i+k]: component k of node
   // i is free (else dx = 0); G[i]: 2x2 row-major curvature added on the
@@ -94,18 +128,8 @@ class ContactReduction {
   // y = Kfree v restricted to c, v given on the free dofs.
   void multiplyFree(const std::vector<double>& v, std::vector<double>& y) const;
 
-  int numNodes_ = 0, m_ = 0;
-  std::vector<ContactNode> contact_;
-  std::vector<std::array<double, 9>> frame_;
-  std::vector<int> freeOfDof_;     // global dof -> free index or -1 (prescribed)
-  std::vector<int> dofOfFree_;     // free index -> global dof
-  std::vector<int> reducedOfFree_; // free index -> index in x (3i+k) or -1 (an r dof)
-  std::vector<int> freeOfReduced_; // 3i+k -> free index
-  LocalCsr Kfree_;                 // rotated K on the free dofs, natural order
-  std::vector<double> fFree_;      // rotated f minus the prescribed-value lifting
-  std::vector<double> uPrescribed_;// global dof vector with prescribed values (rotated frame = global there)
+  RotatedSystem sys_;
   std::vector<double> l_, zf_;     // zf = K_rr^-1 f_r (padded with zeros on c)
-  std::vector<std::array<int, 4>> tangentialEntries_;  // positions in Kfree_ of the tau block of node i
   std::unique_ptr<PatternSolver> Krr_, newton_;
   std::string solverName_;
   double reductionSeconds_ = 0, newtonFactorSeconds_ = 0;

@@ -27,6 +27,7 @@ ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& 
   p.K = std::move(sys.K);
   p.f = std::move(sys.f);
   p.dirichlet = Fem::constrainedDofs(mesh, loads.dirichlet);
+  p.coords = mesh.coords;
 
   // Outward area-weighted nodal normals (facets are counter-clockwise seen
   // from outside) and nodal areas.

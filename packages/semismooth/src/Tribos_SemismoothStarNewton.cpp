@@ -73,20 +73,46 @@ RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
   pl->set("Newton Solver", "Sparse Direct",
           "Sparse Direct: factor the Newton matrix in the full primal space each step (the method of the paper); "
           "Reduced CG: conjugate gradients on (S_FF + G_FF) dx_F = b_F, S applied by K_rr solves, Jacobi-preconditioned "
-          "with diag(K_cc + G) (no factorization per step)",
-          rcp(new Teuchos::StringValidator(tuple<std::string>("Sparse Direct", "Reduced CG"))));
+          "with diag(K_cc + G) (no factorization per step); "
+          "CG+MueLu: no factorization at all: a full-space iterate u with (K u - f)_r = 0 gives S x - l = (K u - f)_c, "
+          "Newton steps are full-space solves by Belos CG preconditioned with MueLu (inexact Newton), K_rr solves "
+          "(equilibrium corrections) likewise; needs the node coordinates",
+          rcp(new Teuchos::StringValidator(tuple<std::string>("Sparse Direct", "Reduced CG", "CG+MueLu"))));
   pl->set("CG Tolerance", 1e-12, "Reduced CG: relative residual", rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1.0)));
-  pl->set("CG Maximum Iterations", 2000, "Reduced CG: iteration limit",
+  pl->set("CG Maximum Iterations", 2000, "Reduced CG and CG+MueLu: iteration limit of one CG solve",
           rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
+  pl->set("MueLu Smoother", "Chebyshev", "CG+MueLu: smoother on all levels but the coarsest (factored)",
+          rcp(new Teuchos::StringValidator(tuple<std::string>("Chebyshev", "Symmetric Gauss-Seidel"))));
+  pl->set("MueLu Reuse", "RP",
+          "CG+MueLu: MueLu \"reuse: type\" for the Newton matrices of successive steps: RP keeps the prolongators "
+          "(built once on K) and recomputes the coarse operators and smoothers, tP keeps the tentative prolongators, "
+          "none rebuilds the hierarchy each step",
+          rcp(new Teuchos::StringValidator(tuple<std::string>("RP", "tP", "none"))));
+  pl->set("Equilibrium Tolerance", 1e-3,
+          "CG+MueLu: relative CG tolerance of the K_rr solves that restore interior equilibrium at x^ (and of the "
+          "initial solve for l); the error of S x^ - l is of this order relative to the correction S (x^ - x). A "
+          "residual below Tolerance is confirmed with an absolute tolerance 0.01 Tolerance ||l|| before stopping",
+          rcp(new Teuchos::EnhancedNumberValidator<double>(1e-14, 0.5)));
+  pl->set("Forcing Term Maximum", 0.1,
+          "CG+MueLu: the Newton solve stops at ||residual|| <= eta ||rhs||, eta = min(this, ||S x^ - l + y^||/||l||) "
+          "(inexact Newton, superlinear), but not below 0.1 Tolerance ||l||",
+          rcp(new Teuchos::EnhancedNumberValidator<double>(1e-14, 0.9)));
   return pl;
 }
 
 SemismoothStarNewton::SemismoothStarNewton(const ContactProblem& problem, const Teuchos::ParameterList& params)
     : params_(params), contact_(problem.contact), numNodes_(problem.numNodes()) {
   params_.validateParametersAndSetDefaults(*getValidParameters());
-  reduction_ = std::make_unique<ContactReduction>(problem, params_.get<std::string>("Local Solver"));
-  const int m = reduction_->numContactNodes();
-  const std::vector<double> dmax = reduction_->nodalMaxDiagonalKcc();
+  if (params_.get<std::string>("Newton Solver") == "CG+MueLu") {
+    TRIBOS_REQUIRE(!params_.get<bool>("Dense Schur"),
+                   "semismooth*: \"Dense Schur\" = true needs S and cannot be combined with \"Newton Solver\" = CG+MueLu");
+    fullSpace_ = std::make_unique<FullSpaceNewton>(problem, params_);
+  } else {
+    reduction_ = std::make_unique<ContactReduction>(problem, params_.get<std::string>("Local Solver"));
+  }
+  const RotatedSystem& sys = fullSpace_ ? fullSpace_->system() : reduction_->system();
+  const int m = sys.m;
+  const std::vector<double> dmax = sys.nodalMaxDiagonalKcc();
   const double factor = params_.get<double>("Step Size Factor");
   a_.assign(m, 0.0);
   const double global = *std::max_element(dmax.begin(), dmax.end());
@@ -106,6 +132,11 @@ SemismoothStarNewton::SemismoothStarNewton(const ContactProblem& problem, const 
 
 SemismoothStarNewton::~SemismoothStarNewton() = default;
 
+const ContactReduction& SemismoothStarNewton::reduction() const {
+  TRIBOS_REQUIRE(reduction_, "semismooth*: \"Newton Solver\" = CG+MueLu does not reduce the problem (no S, no K_rr factor)");
+  return *reduction_;
+}
+
 void SemismoothStarNewton::applyS(const std::vector<double>& x, std::vector<double>& Sx) const {
   if (denseS_.empty()) return reduction_->applyS(x, Sx);
   const int n = static_cast<int>(x.size());
@@ -120,9 +151,8 @@ void SemismoothStarNewton::applyS(const std::vector<double>& x, std::vector<doub
 // A node is in contact when y^_nu > 0 (weak contact, w_nu = d_i, counts as
 // no contact) and sticks when x^_tau = 0.
 SemismoothStarNewton::Approximation SemismoothStarNewton::approximationStep(const std::vector<double>& x,
-                                                                            const std::vector<double>& Sx) const {
-  const std::vector<double>& l = reduction_->l();
-  const int m = reduction_->numContactNodes();
+                                                                            const std::vector<double>& Sxl) const {
+  const int m = static_cast<int>(contact_.size());
   Approximation ap;
   ap.x.resize(3 * m);
   ap.y.resize(3 * m);
@@ -130,7 +160,7 @@ SemismoothStarNewton::Approximation SemismoothStarNewton::approximationStep(cons
   for (int i = 0; i < m; ++i) {
     const double a = a_[i], g = contact_[i].g, d = contact_[i].d;
     double w[3];
-    for (int k = 0; k < 3; ++k) w[k] = x[3 * i + k] - a * (Sx[3 * i + k] - l[3 * i + k]);
+    for (int k = 0; k < 3; ++k) w[k] = x[3 * i + k] - a * Sxl[3 * i + k];
     const bool contact = w[2] > d;
     ap.x[3 * i + 2] = contact ? d : w[2];
     const double wt = std::hypot(w[0], w[1]);
@@ -152,11 +182,11 @@ SemismoothStarNewton::Approximation SemismoothStarNewton::approximationStep(cons
 //   no contact: dy_nu = 0;   contact: dx_nu = 0;
 //   stick: dx_tau = 0;       slide: dy_tau = (g/||x^_tau||)(I - t t') dx_tau, t = x^_tau/||x^_tau||.
 // Eliminating dy leaves (S_FF + G_FF) dx_F = -residual_F on the free components F.
-void SemismoothStarNewton::newtonStep(const Approximation& ap, const std::vector<double>& residual,
-                                      std::vector<double>& dx, std::vector<double>& Sdx) {
-  const int m = reduction_->numContactNodes(), nc = 3 * m;
-  std::vector<char> freeComp(nc, 0);
-  std::vector<std::array<double, 4>> G(m, {0, 0, 0, 0});
+void SemismoothStarNewton::linearization(const Approximation& ap, std::vector<char>& freeComp,
+                                         std::vector<std::array<double, 4>>& G) const {
+  const int m = static_cast<int>(contact_.size());
+  freeComp.assign(3 * m, 0);
+  G.assign(m, {0, 0, 0, 0});
   for (int i = 0; i < m; ++i) {
     freeComp[3 * i + 2] = !inContact(ap.state[i]);
     if (sticks(ap.state[i])) continue;
@@ -166,6 +196,14 @@ void SemismoothStarNewton::newtonStep(const Approximation& ap, const std::vector
     for (int p = 0; p < 2; ++p)
       for (int q = 0; q < 2; ++q) G[i][2 * p + q] = c * ((p == q) - t[p] * t[q]);
   }
+}
+
+void SemismoothStarNewton::newtonStep(const Approximation& ap, const std::vector<double>& residual,
+                                      std::vector<double>& dx, std::vector<double>& Sdx) {
+  const int nc = 3 * reduction_->numContactNodes();
+  std::vector<char> freeComp;
+  std::vector<std::array<double, 4>> G;
+  linearization(ap, freeComp, G);
   std::vector<double> rhs(nc);
   for (int j = 0; j < nc; ++j) rhs[j] = -residual[j];
   if (denseS_.empty() && params_.get<std::string>("Newton Solver") == "Reduced CG")
@@ -246,38 +284,35 @@ void SemismoothStarNewton::reducedCG(const std::vector<char>& freeComp, const st
                                                                                        << " in " << maxIt << " steps");
 }
 
-SemismoothResult SemismoothStarNewton::solve(std::ostream* log) {
-  Teuchos::Time timer("semismooth*");
-  timer.start();
-  const double factorBefore = reduction_->newtonFactorSeconds();
-  const int cgBefore = cgIterations_;
-  const int m = reduction_->numContactNodes(), nc = 3 * m;
+void SemismoothStarNewton::record(SemismoothResult& res, const Approximation& ap, double rel, int k,
+                                  std::ostream* log) const {
+  res.residuals.push_back(rel);
+  res.numContact.push_back(ap.contact);
+  res.numStick.push_back(ap.stick);
+  res.numSlip.push_back(ap.slip);
+  if (log)
+    *log << "  " << std::setw(4) << k << "   " << std::scientific << std::setprecision(6) << std::setw(22) << rel
+         << std::defaultfloat << std::setw(9) << ap.contact << std::setw(8) << ap.stick << std::setw(8) << ap.slip
+         << std::endl;  // flushed: large levels take minutes per step
+}
+
+// S applied by K_rr solves (or densely); S x for the next approximation step
+// is S x^ + S dx from the Newton step. The residuals are exact up to the
+// direct solver's round-off.
+void SemismoothStarNewton::solveReduced(SemismoothResult& res, Approximation& ap, std::ostream* log) {
+  const int nc = 3 * reduction_->numContactNodes();
   const std::vector<double>& l = reduction_->l();
   const double lnorm = norm2(l), scale = lnorm > 0 ? lnorm : 1.0;
   const double tol = params_.get<double>("Tolerance");
   const int maxIt = params_.get<int>("Maximum Iterations");
-
-  SemismoothResult res;
-  res.numNodes = numNodes_;
-  res.numContactNodes = m;
-  std::vector<double> x(nc, 0.0), Sx(nc, 0.0), Sxh, r(nc), dx, Sdx;
-  Approximation ap;
-  if (log)
-    *log << "semismooth* Newton: " << m << " contact nodes, " << numNodes_ << " nodes, ||l|| = " << lnorm << "\n"
-         << "  iter   ||S x^ - l + y^||/||l||  contact   stick    slip\n";
+  std::vector<double> x(nc, 0.0), Sx(nc, 0.0), Sxl(nc), Sxh, r(nc), dx, Sdx;
   for (int k = 0;; ++k) {
-    ap = approximationStep(x, Sx);
+    for (int j = 0; j < nc; ++j) Sxl[j] = Sx[j] - l[j];
+    ap = approximationStep(x, Sxl);
     applyS(ap.x, Sxh);
     for (int j = 0; j < nc; ++j) r[j] = Sxh[j] - l[j] + ap.y[j];
     const double rel = norm2(r) / scale;
-    res.residuals.push_back(rel);
-    res.numContact.push_back(ap.contact);
-    res.numStick.push_back(ap.stick);
-    res.numSlip.push_back(ap.slip);
-    if (log)
-      *log << "  " << std::setw(4) << k << "   " << std::scientific << std::setprecision(6) << std::setw(22) << rel
-           << std::defaultfloat << std::setw(9) << ap.contact << std::setw(8) << ap.stick << std::setw(8) << ap.slip
-           << std::endl;  // flushed: large levels take minutes per step
+    record(res, ap, rel, k, log);
     if (rel <= tol) {
       res.converged = true;
       break;
@@ -290,27 +325,94 @@ SemismoothResult SemismoothStarNewton::solve(std::ostream* log) {
     }
     res.iterations = k + 1;
   }
+}
+
+// "CG+MueLu": S x - l = (K u - f)_c from the full-space iterate. The
+// reported residual ||S x^ - l + y^|| is computed from u after the
+// equilibrium correction at x^, so its error is that of the correction solve
+// ("Equilibrium Tolerance" relative to the correction); the last one, below
+// Tolerance, is confirmed after a correction to an absolute tolerance of
+// 0.01 Tolerance ||l|| (the map (K u - f)_r -> error of S x^ - l is
+// K_cr K_rr^-1, of norm about 1).
+void SemismoothStarNewton::solveFullSpace(SemismoothResult& res, Approximation& ap, std::ostream* log) {
+  const int nc = 3 * fullSpace_->system().m;
+  const double lnorm = norm2(fullSpace_->l()), scale = lnorm > 0 ? lnorm : 1.0;
+  const double tol = params_.get<double>("Tolerance"), etaMax = params_.get<double>("Forcing Term Maximum");
+  const int maxIt = params_.get<int>("Maximum Iterations");
+  std::vector<double> x(nc, 0.0), Sxl = fullSpace_->l(), r(nc);
+  for (double& v : Sxl) v = -v;  // S 0 - l
+  std::vector<char> freeComp;
+  std::vector<std::array<double, 4>> G;
+  for (int k = 0;; ++k) {
+    ap = approximationStep(x, Sxl);
+    auto residualAt = [&](double absTol) {
+      const std::vector<double> Sxlh = fullSpace_->equilibrate(ap.x, absTol);
+      for (int j = 0; j < nc; ++j) r[j] = Sxlh[j] + ap.y[j];
+      return norm2(r) / scale;
+    };
+    double rel = residualAt(-1.0);
+    if (rel <= tol) rel = residualAt(0.01 * tol * scale);
+    record(res, ap, rel, k, log);
+    if (rel <= tol) {
+      res.converged = true;
+      break;
+    }
+    if (k == maxIt) break;
+    linearization(ap, freeComp, G);
+    double rhsNorm = 0;  // the Newton right-hand side is -r on F (the interior part is at the correction's tolerance)
+    for (int j = 0; j < nc; ++j) rhsNorm += freeComp[j] ? r[j] * r[j] : 0.0;
+    const double eta = std::min(etaMax, rel);
+    fullSpace_->newtonStep(freeComp, G, ap.y, std::max(eta * std::sqrt(rhsNorm), 0.1 * tol * scale), x, Sxl);
+    res.iterations = k + 1;
+  }
+}
+
+SemismoothResult SemismoothStarNewton::solve(std::ostream* log) {
+  Teuchos::Time timer("semismooth*");
+  timer.start();
+  const double factorBefore = reduction_ ? reduction_->newtonFactorSeconds() : 0.0;
+  const int cgBefore = fullSpace_ ? fullSpace_->cgIterations() : cgIterations_;
+  const RotatedSystem& sys = fullSpace_ ? fullSpace_->system() : reduction_->system();
+  const int m = sys.m;
+  const double lnorm = norm2(fullSpace_ ? fullSpace_->l() : reduction_->l());
+
+  SemismoothResult res;
+  res.numNodes = numNodes_;
+  res.numContactNodes = m;
+  Approximation ap;
+  if (log)
+    *log << "semismooth* Newton: " << m << " contact nodes, " << numNodes_ << " nodes, ||l|| = " << lnorm << "\n"
+         << "  iter   ||S x^ - l + y^||/||l||  contact   stick    slip\n";
+  if (fullSpace_) solveFullSpace(res, ap, log);
+  else solveReduced(res, ap, log);
   if (log)
     *log << (res.converged ? "  converged" : "  NOT converged") << " after " << res.iterations << " Newton steps\n";
 
   res.x = ap.x;
   res.y = ap.y;
   res.state = ap.state;
-  res.u = reduction_->displacement(ap.x);
+  // CG+MueLu: u is the equilibrated iterate at x^ (no extra solve).
+  res.u = fullSpace_ ? fullSpace_->displacement() : reduction_->displacement(ap.x);
   res.contactNodes.resize(m);
   res.lambdaN.resize(m);
   res.lambdaT.resize(m);
   for (int i = 0; i < m; ++i) {
     res.contactNodes[i] = contact_[i].node;
     res.lambdaN[i] = ap.y[3 * i + 2];
-    const auto& R = reduction_->frame(i);
+    const auto& R = sys.frame[i];
     for (int c = 0; c < 3; ++c) res.lambdaT[i][c] = R[3 * c] * ap.y[3 * i] + R[3 * c + 1] * ap.y[3 * i + 1];
   }
   timer.stop();
   res.solverSeconds = timer.totalElapsedTime();
-  res.reductionSeconds = reduction_->reductionSeconds() + denseSeconds_;
-  res.newtonFactorSeconds = reduction_->newtonFactorSeconds() - factorBefore;
-  res.cgIterations = cgIterations_ - cgBefore;
+  if (fullSpace_) {
+    res.reductionSeconds = fullSpace_->initialSeconds();
+    res.preconditionerSeconds = fullSpace_->setupSeconds();
+    res.cgIterations = fullSpace_->cgIterations() - cgBefore;
+  } else {
+    res.reductionSeconds = reduction_->reductionSeconds() + denseSeconds_;
+    res.newtonFactorSeconds = reduction_->newtonFactorSeconds() - factorBefore;
+    res.cgIterations = cgIterations_ - cgBefore;
+  }
   return res;
 }
 

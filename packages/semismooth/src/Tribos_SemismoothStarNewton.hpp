@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "Tribos_ContactReduction.hpp"
+#include "Tribos_FullSpaceNewton.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_Mesh.hpp"
 
@@ -43,24 +44,33 @@ struct SemismoothResult {
   std::vector<NodeState> state;
   double assemblySeconds = 0, reductionSeconds = 0, solverSeconds = 0;
   double newtonFactorSeconds = 0;     // part of solverSeconds
-  int cgIterations = 0;               // "Newton Solver" = "Reduced CG": total CG steps (= K_rr solves)
+  // "Reduced CG": total CG steps (= K_rr solves); "CG+MueLu": total CG steps
+  // of all full-space solves (initial, equilibrium corrections, Newton).
+  int cgIterations = 0;
+  // "CG+MueLu": all MueLu setups (the first ones are part of reductionSeconds,
+  // the re-setups per Newton step part of solverSeconds).
+  double preconditionerSeconds = 0;
 };
 
 class SemismoothStarNewton {
  public:
-  // Reduces the problem (factors K_rr; forms S densely if "Dense Schur").
+  // Reduces the problem (factors K_rr; forms S densely if "Dense Schur"), or
+  // with "Newton Solver" = "CG+MueLu" sets up the full-space iterative solver
+  // (no factorization).
   SemismoothStarNewton(const ContactProblem& problem, const Teuchos::ParameterList& params);
   ~SemismoothStarNewton();
 
   // "Tolerance", "Maximum Iterations", "Dense Schur", "Local Solver",
   // "Step Scaling", "Step Size Factor", "Newton Solver", "CG Tolerance",
-  // "CG Maximum Iterations".
+  // "CG Maximum Iterations", "MueLu Smoother", "MueLu Reuse",
+  // "Equilibrium Tolerance", "Forcing Term Maximum".
   static RCP<const Teuchos::ParameterList> getValidParameters();
 
   // Runs the iteration from x = 0; log (optional) gets one line per iteration.
   SemismoothResult solve(std::ostream* log = nullptr);
 
-  const ContactReduction& reduction() const { return *reduction_; }
+  // Not available with "CG+MueLu" (nothing is reduced).
+  const ContactReduction& reduction() const;
   // The step lengths a_i of the approximation step.
   const std::vector<double>& stepSizes() const { return a_; }
 
@@ -70,7 +80,13 @@ class SemismoothStarNewton {
     std::vector<NodeState> state;
     int contact = 0, stick = 0, slip = 0;
   };
-  Approximation approximationStep(const std::vector<double>& x, const std::vector<double>& Sx) const;
+  // Sxl = S x - l.
+  Approximation approximationStep(const std::vector<double>& x, const std::vector<double>& Sxl) const;
+  // The Newton linearization at ap: free components and sliding curvatures.
+  void linearization(const Approximation& ap, std::vector<char>& freeComp, std::vector<std::array<double, 4>>& G) const;
+  void solveReduced(SemismoothResult& res, Approximation& ap, std::ostream* log);
+  void solveFullSpace(SemismoothResult& res, Approximation& ap, std::ostream* log);
+  void record(SemismoothResult& res, const Approximation& ap, double rel, int k, std::ostream* log) const;
   void applyS(const std::vector<double>& x, std::vector<double>& Sx) const;
   void reducedCG(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
                  const std::vector<double>& rhs, std::vector<double>& dx, std::vector<double>& Sdx);
@@ -78,7 +94,8 @@ class SemismoothStarNewton {
                   std::vector<double>& Sdx);
 
   Teuchos::ParameterList params_;
-  std::unique_ptr<ContactReduction> reduction_;
+  std::unique_ptr<ContactReduction> reduction_;  // all solvers but "CG+MueLu"
+  std::unique_ptr<FullSpaceNewton> fullSpace_;   // "CG+MueLu"
   std::vector<ContactNode> contact_;
   std::vector<double> a_;       // per contact node
   std::vector<double> denseS_;  // only with "Dense Schur"

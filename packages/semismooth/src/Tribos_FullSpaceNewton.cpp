@@ -1,0 +1,226 @@
+#include "Tribos_FullSpaceNewton.hpp"
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_Time.hpp>
+#include <Tpetra_CrsGraph.hpp>
+#include <Tpetra_Map.hpp>
+#include <Tpetra_MultiVector.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <cmath>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_MueLuCG.hpp"
+
+namespace Tribos {
+namespace Semismooth {
+
+namespace {
+
+double norm2(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s);
+}
+
+Teuchos::ParameterList mueluParameters(const Teuchos::ParameterList& params, const std::string& reuse) {
+  Teuchos::ParameterList p;
+  p.set("verbosity", "none");
+  p.set("number of equations", 3);  // the rotation is per node: 3x3 node blocks stay blocks
+  p.set("transpose: use implicit", true);
+  p.set("coarse: max size", 2000);
+  // One process: the coarse level is factored (Amesos2 KLU2 is reliable on a
+  // serial communicator).
+  p.set("coarse: type", "KLU2");
+  if (params.get<std::string>("MueLu Smoother") == "Chebyshev") {
+    p.set("smoother: type", "CHEBYSHEV");
+    p.sublist("smoother: params").set("chebyshev: degree", 2);
+  } else {
+    p.set("smoother: type", "RELAXATION");
+    p.sublist("smoother: params").set("relaxation: type", "Symmetric Gauss-Seidel");
+  }
+  p.set("reuse: type", reuse);
+  return p;
+}
+
+}  // namespace
+
+FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::ParameterList& params)
+    : sys_(problem),
+      maxIt_(params.get<int>("CG Maximum Iterations")),
+      equilibriumTolerance_(params.get<double>("Equilibrium Tolerance")) {
+  Teuchos::Time timer("full space setup");
+  timer.start();
+  const int N = sys_.numNodes, n = 3 * N, nf = sys_.Kfree.rows;
+  TRIBOS_REQUIRE(static_cast<int>(problem.coords.size()) == N,
+                 "semismooth*: \"Newton Solver\" = \"CG+MueLu\" needs the node coordinates (ContactProblem::coords, "
+                 << problem.coords.size() << " for " << N << " nodes)");
+
+  // The full graph: every node keeps its 3 dofs (MueLu's node blocks);
+  // prescribed dofs are unit rows without couplings.
+  // One process, also when called on one rank of a parallel run. MueLu of
+  // this build crashes (Hierarchy::describe) on a Teuchos::SerialComm, so
+  // the communicator is MPI_COMM_SELF.
+  auto comm = rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF));
+  map_ = rcp(new Map(static_cast<Tpetra::global_size_t>(n), 0, comm));
+  std::vector<size_t> rowLength(n, 1);
+  for (int j = 0; j < nf; ++j) rowLength[sys_.dofOfFree[j]] = sys_.Kfree.rowptr[j + 1] - sys_.Kfree.rowptr[j];
+  auto graph = rcp(new CrsGraph(map_, map_, Teuchos::ArrayView<const size_t>(rowLength)));
+  std::vector<size_t> rowStart(n + 1, 0);
+  for (int g = 0; g < n; ++g) rowStart[g + 1] = rowStart[g] + rowLength[g];
+  numEntries_ = rowStart[n];
+  fullPos_.resize(sys_.Kfree.col.size());
+  diagPos_.assign(nf, -1);
+  baseValues_.assign(numEntries_, 0.0);
+  std::vector<LO> cols;
+  for (int g = 0; g < n; ++g) {
+    const int j = sys_.freeOfDof[g];
+    cols.clear();
+    if (j < 0) {
+      cols.push_back(g);
+      baseValues_[rowStart[g]] = 1.0;
+    } else {
+      for (int pos = sys_.Kfree.rowptr[j]; pos < sys_.Kfree.rowptr[j + 1]; ++pos) {
+        const int c = sys_.dofOfFree[sys_.Kfree.col[pos]];
+        fullPos_[pos] = static_cast<int>(rowStart[g] + cols.size());
+        if (c == g) diagPos_[j] = fullPos_[pos];
+        baseValues_[fullPos_[pos]] = sys_.Kfree.val[pos];
+        cols.push_back(c);
+      }
+    }
+    graph->insertLocalIndices(g, Teuchos::ArrayView<const LO>(cols));
+  }
+  graph->fillComplete();
+  // setValues() writes values in the graph's row order: the columns must have
+  // kept the (sorted) order in which they were inserted.
+  for (int g = 0; g < n; g += std::max(1, n / 97)) {
+    Teuchos::ArrayView<const LO> view;
+    graph->getLocalRowView(g, view);
+    TRIBOS_REQUIRE(view.size() > 0 && static_cast<size_t>(view.size()) == rowLength[g],
+                   "semismooth*: unexpected graph row " << g);
+    for (int k = 1; k < view.size(); ++k)
+      TRIBOS_REQUIRE(view[k] > view[k - 1], "semismooth*: graph columns are not sorted in row " << g);
+  }
+
+  // Rigid-body modes, in the contact frames at contact nodes, zero at
+  // prescribed dofs (their rows are decoupled).
+  auto nullspace = rcp(new MultiVector(map_, 6));
+  std::vector<const std::array<double, 9>*> R(N, nullptr);
+  for (int i = 0; i < sys_.m; ++i) R[sys_.contact[i].node] = &sys_.frame[i];
+  for (int node = 0; node < N; ++node) {
+    const auto& x = problem.coords[node];
+    const double modes[6][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {x[1], -x[0], 0}, {0, -x[2], x[1]}, {x[2], 0, -x[0]}};
+    for (int k = 0; k < 6; ++k)
+      for (int b = 0; b < 3; ++b) {
+        double v = modes[k][b];
+        if (R[node]) v = (*R[node])[b] * modes[k][0] + (*R[node])[3 + b] * modes[k][1] + (*R[node])[6 + b] * modes[k][2];
+        if (sys_.freeOfDof[3 * node + b] < 0) v = 0;
+        nullspace->replaceLocalValue(3 * node + b, k, v);
+      }
+  }
+
+  const std::string reuse = params.get<std::string>("MueLu Reuse");
+  // K_rr: all contact dofs as unit rows; its hierarchy is built once.
+  Krr_ = std::make_unique<MueLuCG>(graph, nullspace, mueluParameters(params, "none"));
+  Krr_->setValues(graphValues(std::vector<char>(3 * sys_.m, 1)));
+  // The Newton matrices: the first hierarchy is built on K with all contact
+  // dofs free, so that the reused prolongators do not depend on the sets of
+  // the first step.
+  newton_ = std::make_unique<MueLuCG>(graph, nullspace, mueluParameters(params, reuse));
+  newton_->setValues(graphValues(std::vector<char>(3 * sys_.m, 0)));
+
+  // x = 0, u_r = K_rr^-1 f_r: l = -(K u - f)_c.
+  u_.assign(nf, 0.0);
+  l_ = equilibrate(std::vector<double>(3 * sys_.m, 0.0), -1.0);
+  for (double& v : l_) v = -v;
+  timer.stop();
+  initialSeconds_ = timer.totalElapsedTime();
+}
+
+FullSpaceNewton::~FullSpaceNewton() = default;
+
+double FullSpaceNewton::setupSeconds() const { return Krr_->setupSeconds() + newton_->setupSeconds(); }
+
+std::vector<double> FullSpaceNewton::residual() const {
+  std::vector<double> q(u_.size());
+  sys_.Kfree.multiply(u_.data(), q.data());
+  for (size_t j = 0; j < q.size(); ++j) q[j] -= sys_.fFree[j];
+  return q;
+}
+
+std::vector<double> FullSpaceNewton::contactPart(const std::vector<double>& vFree) const {
+  std::vector<double> c(3 * sys_.m);
+  for (int j = 0; j < 3 * sys_.m; ++j) c[j] = vFree[sys_.freeOfReduced[j]];
+  return c;
+}
+
+std::vector<double> FullSpaceNewton::graphValues(const std::vector<char>& fixed) const {
+  std::vector<double> vals = baseValues_;
+  const LocalCsr& K = sys_.Kfree;
+  auto isFixed = [&](int j) { return sys_.reducedOfFree[j] >= 0 && fixed[sys_.reducedOfFree[j]]; };
+  for (int j = 0; j < K.rows; ++j)
+    for (int pos = K.rowptr[j]; pos < K.rowptr[j + 1]; ++pos)
+      if (isFixed(j) || isFixed(K.col[pos])) vals[fullPos_[pos]] = (K.col[pos] == j) ? 1.0 : 0.0;
+  return vals;
+}
+
+int FullSpaceNewton::solve(const MueLuCG& solver, const std::vector<double>& bFree, std::vector<double>& xFree,
+                           double absTol) {
+  Vector b(map_), x(map_);
+  {
+    auto bv = b.getDataNonConst();
+    for (size_t j = 0; j < bFree.size(); ++j) bv[sys_.dofOfFree[j]] = bFree[j];
+  }
+  const int its = solver.solve(b, x, absTol, maxIt_);
+  cgIterations_ += its;
+  auto xv = x.getData();
+  xFree.resize(bFree.size());
+  for (size_t j = 0; j < bFree.size(); ++j) xFree[j] = xv[sys_.dofOfFree[j]];
+  return its;
+}
+
+std::vector<double> FullSpaceNewton::equilibrate(const std::vector<double>& x, double absTol) {
+  for (int j = 0; j < 3 * sys_.m; ++j) u_[sys_.freeOfReduced[j]] = x[j];
+  std::vector<double> b = residual(), du;
+  for (size_t j = 0; j < b.size(); ++j) b[j] = sys_.reducedOfFree[j] >= 0 ? 0.0 : -b[j];
+  if (absTol < 0) absTol = equilibriumTolerance_ * norm2(b);
+  solve(*Krr_, b, du, absTol);
+  for (size_t j = 0; j < u_.size(); ++j)
+    if (sys_.reducedOfFree[j] < 0) u_[j] += du[j];
+  return contactPart(residual());
+}
+
+void FullSpaceNewton::newtonStep(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
+                                 const std::vector<double>& y, double absTol, std::vector<double>& x,
+                                 std::vector<double>& Sxl) {
+  std::vector<char> fixed(freeComp.size());
+  for (size_t j = 0; j < fixed.size(); ++j) fixed[j] = !freeComp[j];
+  std::vector<double> vals = graphValues(fixed);
+  for (int i = 0; i < sys_.m; ++i)
+    if (freeComp[3 * i] && freeComp[3 * i + 1])
+      for (int q = 0; q < 4; ++q) {
+        const int pos = sys_.tangentialEntries[i][q];
+        vals[fullPos_[pos]] += G[i][q];
+      }
+  newton_->setValues(vals);
+
+  // Right-hand side -(K u - f + [0; y]); zero on the fixed components, whose
+  // rows are unit rows (du = 0 there).
+  std::vector<double> b = residual(), du;
+  for (size_t j = 0; j < b.size(); ++j) {
+    const int c = sys_.reducedOfFree[j];
+    b[j] = c < 0 ? -b[j] : (freeComp[c] ? -(b[j] + y[c]) : 0.0);
+  }
+  solve(*newton_, b, du, absTol);
+  // The preconditioner couples the decoupled rows with the others, so CG may
+  // leave round-off there; du = 0 on them exactly keeps x^ fixed there.
+  for (size_t j = 0; j < u_.size(); ++j) {
+    const int c = sys_.reducedOfFree[j];
+    if (c < 0 || freeComp[c]) u_[j] += du[j];
+  }
+  x = contactPart(u_);
+  Sxl = contactPart(residual());
+}
+
+}  // namespace Semismooth
+}  // namespace Tribos

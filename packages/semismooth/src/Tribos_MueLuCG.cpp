@@ -1,0 +1,83 @@
+#include "Tribos_MueLuCG.hpp"
+
+#include <BelosLinearProblem.hpp>
+#include <BelosSolverFactory.hpp>
+#include <BelosTpetraAdapter.hpp>
+#include <MueLu_CreateTpetraPreconditioner.hpp>
+#include <Teuchos_Time.hpp>
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Semismooth {
+
+MueLuCG::MueLuCG(const RCP<const CrsGraph>& graph, const RCP<MultiVector>& nullspace,
+                 const Teuchos::ParameterList& mueluParams)
+    : A_(rcp(new CrsMatrix(graph))), nullspace_(nullspace), mueluParams_(mueluParams) {
+  TRIBOS_REQUIRE(graph->isFillComplete(), "MueLuCG: the graph must be filled");
+  TRIBOS_REQUIRE(graph->getColMap()->isSameAs(*graph->getRowMap()),
+                 "MueLuCG: the column map must equal the row map (one process)");
+  A_->fillComplete();
+}
+
+MueLuCG::~MueLuCG() = default;
+
+void MueLuCG::setValues(const std::vector<double>& values) {
+  Teuchos::Time timer("MueLu setup");
+  timer.start();
+  const CrsGraph& graph = *A_->getCrsGraph();
+  TRIBOS_REQUIRE(values.size() == graph.getNodeNumEntries(),
+                 "MueLuCG: " << values.size() << " values for a graph of " << graph.getNodeNumEntries() << " entries");
+  A_->resumeFill();
+  size_t offset = 0;
+  for (LO row = 0; row < static_cast<LO>(graph.getNodeNumRows()); ++row) {
+    Teuchos::ArrayView<const LO> cols;
+    graph.getLocalRowView(row, cols);
+    A_->replaceLocalValues(row, cols, Teuchos::ArrayView<const SC>(values.data() + offset, cols.size()));
+    offset += cols.size();
+  }
+  A_->fillComplete();
+  if (M_.is_null()) {
+    Teuchos::ParameterList params = mueluParams_;
+    params.sublist("user data").set("Nullspace", nullspace_);
+    M_ = MueLu::CreateTpetraPreconditioner<SC, LO, GO, Node>(Teuchos::rcp_implicit_cast<Operator>(A_), params);
+  } else if (mueluParams_.get<std::string>("reuse: type", "none") == "none") {
+    // A fresh hierarchy (the only way to honour "reuse: type" = "none").
+    Teuchos::ParameterList params = mueluParams_;
+    params.sublist("user data").set("Nullspace", nullspace_);
+    M_ = MueLu::CreateTpetraPreconditioner<SC, LO, GO, Node>(Teuchos::rcp_implicit_cast<Operator>(A_), params);
+  } else {
+    MueLu::ReuseTpetraPreconditioner<SC, LO, GO, Node>(A_, *M_);
+  }
+  timer.stop();
+  setupSeconds_ += timer.totalElapsedTime();
+}
+
+int MueLuCG::solve(const Vector& b, Vector& x, double absTol, int maxIt) const {
+  TRIBOS_REQUIRE(!M_.is_null(), "MueLuCG: solve() before setValues()");
+  x.putScalar(0.0);
+  if (b.norm2() <= absTol) return 0;
+  using Problem = Belos::LinearProblem<SC, MultiVector, Operator>;
+  auto problem = rcp(new Problem(A_, Teuchos::rcpFromRef(static_cast<MultiVector&>(x)),
+                                 Teuchos::rcpFromRef(static_cast<const MultiVector&>(b))));
+  problem->setLeftPrec(M_);
+  TRIBOS_REQUIRE(problem->setProblem(), "MueLuCG: Belos could not set up the problem");
+  auto belosParams = Teuchos::parameterList();
+  // An absolute tolerance on the unpreconditioned residual: the caller ties
+  // it to quantities (||l||, the current residual) that b does not know.
+  belosParams->set("Implicit Residual Scaling", "None");
+  belosParams->set("Convergence Tolerance", absTol);
+  belosParams->set("Maximum Iterations", maxIt);
+  Belos::SolverFactory<SC, MultiVector, Operator> factory;
+  auto solver = factory.create("CG", belosParams);
+  solver->setProblem(problem);
+  const Belos::ReturnType ret = solver->solve();
+  TRIBOS_REQUIRE(ret == Belos::Converged, "MueLuCG: CG did not reach " << absTol << " in " << maxIt
+                                                                        << " steps (CG Maximum Iterations)");
+  return solver->getNumIters();
+}
+
+}  // namespace Semismooth
+}  // namespace Tribos

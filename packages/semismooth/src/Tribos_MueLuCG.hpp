@@ -1,0 +1,45 @@
+// Tribos_MueLuCG.hpp: conjugate gradients (Belos) preconditioned by smoothed
+// aggregation (MueLu) for a sequence of SPD matrices on one fixed graph. The
+// first setValues() builds the hierarchy; later ones reuse it as the MueLu
+// option "reuse: type" says ("RP": keep the prolongators, recompute the
+// Galerkin products and the smoothers; "none": rebuild from scratch).
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <vector>
+
+#include "Tribos_Types.hpp"
+
+namespace MueLu {
+template <class Scalar, class LocalOrdinal, class GlobalOrdinal, class Node>
+class TpetraOperator;
+}
+
+namespace Tribos {
+namespace Semismooth {
+
+class MueLuCG {
+ public:
+  // graph: filled, with the column map equal to the row map (one process).
+  // nullspace: near null space of the matrices (rigid-body modes).
+  MueLuCG(const RCP<const CrsGraph>& graph, const RCP<MultiVector>& nullspace, const Teuchos::ParameterList& mueluParams);
+  ~MueLuCG();
+
+  // New matrix values, in the order of the graph's local rows and columns.
+  void setValues(const std::vector<double>& values);
+  // x = A^-1 b by preconditioned CG from x = 0 until ||b - A x|| <= absTol;
+  // returns the number of CG steps. Throws if maxIt steps do not suffice.
+  int solve(const Vector& b, Vector& x, double absTol, int maxIt) const;
+  double setupSeconds() const { return setupSeconds_; }
+
+ private:
+  RCP<CrsMatrix> A_;
+  RCP<MueLu::TpetraOperator<SC, LO, GO, Node>> M_;
+  RCP<MultiVector> nullspace_;
+  Teuchos::ParameterList mueluParams_;
+  double setupSeconds_ = 0;
+};
+
+}  // namespace Semismooth
+}  // namespace Tribos
