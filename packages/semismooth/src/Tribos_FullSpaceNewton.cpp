@@ -39,7 +39,8 @@ Teuchos::ParameterList mueluParameters(const Teuchos::ParameterList& params, con
     p.set("smoother: type", "RELAXATION");
     p.sublist("smoother: params").set("relaxation: type", "Symmetric Gauss-Seidel");
   }
-  p.set("reuse: type", reuse);
+  p.set("reuse: type", reuse == "full" ? "none" : reuse);
+  p.set("multigrid algorithm", params.get<std::string>("MueLu Algorithm"));
   return p;
 }
 
@@ -48,7 +49,8 @@ Teuchos::ParameterList mueluParameters(const Teuchos::ParameterList& params, con
 FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::ParameterList& params)
     : sys_(problem),
       maxIt_(params.get<int>("CG Maximum Iterations")),
-      equilibriumTolerance_(params.get<double>("Equilibrium Tolerance")) {
+      equilibriumTolerance_(params.get<double>("Equilibrium Tolerance")),
+      resetupFraction_(params.get<double>("MueLu Re-setup Fraction")) {
   Teuchos::Time timer("full space setup");
   timer.start();
   const int N = sys_.numNodes, n = 3 * N, nf = sys_.Kfree.rows;
@@ -126,7 +128,7 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
   // The Newton matrices: the first hierarchy is built on K with all contact
   // dofs free, so that the reused prolongators do not depend on the sets of
   // the first step.
-  newton_ = std::make_unique<MueLuCG>(graph, nullspace, mueluParameters(params, reuse));
+  newton_ = std::make_unique<MueLuCG>(graph, nullspace, mueluParameters(params, reuse), reuse == "full");
   newton_->setValues(graphValues(std::vector<char>(3 * sys_.m, 0)));
 
   // x = 0, u_r = K_rr^-1 f_r: l = -(K u - f)_c.
@@ -160,7 +162,7 @@ std::vector<double> FullSpaceNewton::graphValues(const std::vector<char>& fixed)
   auto isFixed = [&](int j) { return sys_.reducedOfFree[j] >= 0 && fixed[sys_.reducedOfFree[j]]; };
   for (int j = 0; j < K.rows; ++j)
     for (int pos = K.rowptr[j]; pos < K.rowptr[j + 1]; ++pos)
-      if (isFixed(j) || isFixed(K.col[pos])) vals[fullPos_[pos]] = (K.col[pos] == j) ? 1.0 : 0.0;
+      if (isFixed(j) || isFixed(K.col[pos])) vals[fullPos_[pos]] = (K.col[pos] == j) ? K.val[pos] : 0.0;
   return vals;
 }
 
@@ -171,7 +173,11 @@ int FullSpaceNewton::solve(const MueLuCG& solver, const std::vector<double>& bFr
     auto bv = b.getDataNonConst();
     for (size_t j = 0; j < bFree.size(); ++j) bv[sys_.dofOfFree[j]] = bFree[j];
   }
+  Teuchos::Time timer("CG");
+  timer.start();
   const int its = solver.solve(b, x, absTol, maxIt_);
+  timer.stop();
+  cgSeconds_ += timer.totalElapsedTime();
   cgIterations_ += its;
   auto xv = x.getData();
   xFree.resize(bFree.size());
@@ -202,7 +208,15 @@ void FullSpaceNewton::newtonStep(const std::vector<char>& freeComp, const std::v
         const int pos = sys_.tangentialEntries[i][q];
         vals[fullPos_[pos]] += G[i][q];
       }
-  newton_->setValues(vals);
+  // The hierarchy is set up again only when the sets change by more than a
+  // few components: otherwise the matrices differ by a low-rank change on the
+  // surface (and in the curvatures G), which costs CG a few steps, less than
+  // a re-setup (the last Newton steps).
+  int changed = 0;
+  for (size_t j = 0; j < freeComp.size(); ++j) changed += lastFreeComp_.empty() || freeComp[j] != lastFreeComp_[j];
+  const bool resetup = changed > resetupFraction_ * static_cast<double>(freeComp.size());
+  newton_->setValues(vals, resetup);
+  if (resetup) lastFreeComp_ = freeComp;
 
   // Right-hand side -(K u - f + [0; y]); zero on the fixed components, whose
   // rows are unit rows (du = 0 there).

@@ -55,12 +55,14 @@ class FullSpaceNewton {
   int cgIterations() const { return cgIterations_; }
   double setupSeconds() const;  // all MueLu setups so far
   double initialSeconds() const { return initialSeconds_; }
+  double cgSeconds() const { return cgSeconds_; }  // all CG solves so far
 
  private:
   // K u - f on the free dofs.
   std::vector<double> residual() const;
   // Values of K on the full graph with the contact components that fixed[]
-  // marks as unit rows and columns.
+  // marks decoupled: their rows and columns keep only the diagonal of K, so
+  // that the scaling the smoothers see does not change.
   std::vector<double> graphValues(const std::vector<char>& fixed) const;
   // A solve on the full graph with b and x given on the free dofs.
   int solve(const MueLuCG& solver, const std::vector<double>& bFree, std::vector<double>& xFree, double absTol);
@@ -74,10 +76,11 @@ class FullSpaceNewton {
   RCP<const Map> map_;
   std::unique_ptr<MueLuCG> Krr_, newton_;
   std::vector<double> u_, l_;    // u on the free dofs (rotated frame)
+  std::vector<char> lastFreeComp_;  // free components of the Newton matrix of the last MueLu setup
   int maxIt_ = 0;
-  double equilibriumTolerance_ = 0;
+  double equilibriumTolerance_ = 0, resetupFraction_ = 0;
   int cgIterations_ = 0;
-  double initialSeconds_ = 0;
+  double initialSeconds_ = 0, cgSeconds_ = 0;
 };
 
 }  // namespace Semismooth

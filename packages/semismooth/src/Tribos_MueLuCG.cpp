@@ -14,8 +14,9 @@ namespace Tribos {
 namespace Semismooth {
 
 MueLuCG::MueLuCG(const RCP<const CrsGraph>& graph, const RCP<MultiVector>& nullspace,
-                 const Teuchos::ParameterList& mueluParams)
-    : A_(rcp(new CrsMatrix(graph))), nullspace_(nullspace), mueluParams_(mueluParams) {
+                 const Teuchos::ParameterList& mueluParams, bool keepPreconditioner)
+    : A_(rcp(new CrsMatrix(graph))), nullspace_(nullspace), mueluParams_(mueluParams),
+      keepPreconditioner_(keepPreconditioner) {
   TRIBOS_REQUIRE(graph->isFillComplete(), "MueLuCG: the graph must be filled");
   TRIBOS_REQUIRE(graph->getColMap()->isSameAs(*graph->getRowMap()),
                  "MueLuCG: the column map must equal the row map (one process)");
@@ -24,7 +25,7 @@ MueLuCG::MueLuCG(const RCP<const CrsGraph>& graph, const RCP<MultiVector>& nulls
 
 MueLuCG::~MueLuCG() = default;
 
-void MueLuCG::setValues(const std::vector<double>& values) {
+void MueLuCG::setValues(const std::vector<double>& values, bool updatePreconditioner) {
   Teuchos::Time timer("MueLu setup");
   timer.start();
   const CrsGraph& graph = *A_->getCrsGraph();
@@ -43,6 +44,9 @@ void MueLuCG::setValues(const std::vector<double>& values) {
     Teuchos::ParameterList params = mueluParams_;
     params.sublist("user data").set("Nullspace", nullspace_);
     M_ = MueLu::CreateTpetraPreconditioner<SC, LO, GO, Node>(Teuchos::rcp_implicit_cast<Operator>(A_), params);
+  } else if (keepPreconditioner_ || !updatePreconditioner) {
+    // The hierarchy of the first matrix, unchanged; its finest level applies
+    // the new values of A_ (the same object).
   } else if (mueluParams_.get<std::string>("reuse: type", "none") == "none") {
     // A fresh hierarchy (the only way to honour "reuse: type" = "none").
     Teuchos::ParameterList params = mueluParams_;
@@ -70,10 +74,18 @@ int MueLuCG::solve(const Vector& b, Vector& x, double absTol, int maxIt) const {
   belosParams->set("Implicit Residual Scaling", "None");
   belosParams->set("Convergence Tolerance", absTol);
   belosParams->set("Maximum Iterations", maxIt);
+  // p'Ap <= 0 only happens from round-off once the residual stagnates at
+  // machine precision; Belos then stops instead of throwing.
+  belosParams->set("Assert Positive Definiteness", false);
   Belos::SolverFactory<SC, MultiVector, Operator> factory;
   auto solver = factory.create("CG", belosParams);
   solver->setProblem(problem);
-  const Belos::ReturnType ret = solver->solve();
+  Belos::ReturnType ret = Belos::Unconverged;
+  try {
+    ret = solver->solve();
+  } catch (const std::exception& e) {
+    TRIBOS_REQUIRE(false, "MueLuCG: Belos CG failed: " << e.what());
+  }
   TRIBOS_REQUIRE(ret == Belos::Converged, "MueLuCG: CG did not reach " << absTol << " in " << maxIt
                                                                         << " steps (CG Maximum Iterations)");
   return solver->getNumIters();

@@ -2,7 +2,8 @@
 // aggregation (MueLu) for a sequence of SPD matrices on one fixed graph. The
 // first setValues() builds the hierarchy; later ones reuse it as the MueLu
 // option "reuse: type" says ("RP": keep the prolongators, recompute the
-// Galerkin products and the smoothers; "none": rebuild from scratch).
+// Galerkin products and the smoothers; "none": rebuild from scratch), or,
+// with keepPreconditioner, keeps the first hierarchy as it is.
 #pragma once
 
 #include <Teuchos_ParameterList.hpp>
@@ -23,11 +24,14 @@ class MueLuCG {
  public:
   // graph: filled, with the column map equal to the row map (one process).
   // nullspace: near null space of the matrices (rigid-body modes).
-  MueLuCG(const RCP<const CrsGraph>& graph, const RCP<MultiVector>& nullspace, const Teuchos::ParameterList& mueluParams);
+  MueLuCG(const RCP<const CrsGraph>& graph, const RCP<MultiVector>& nullspace, const Teuchos::ParameterList& mueluParams,
+          bool keepPreconditioner = false);
   ~MueLuCG();
 
   // New matrix values, in the order of the graph's local rows and columns.
-  void setValues(const std::vector<double>& values);
+  // updatePreconditioner = false keeps the hierarchy as it is (for a small
+  // change of the values).
+  void setValues(const std::vector<double>& values, bool updatePreconditioner = true);
   // x = A^-1 b by preconditioned CG from x = 0 until ||b - A x|| <= absTol;
   // returns the number of CG steps. Throws if maxIt steps do not suffice.
   int solve(const Vector& b, Vector& x, double absTol, int maxIt) const;
@@ -38,6 +42,7 @@ class MueLuCG {
   RCP<MueLu::TpetraOperator<SC, LO, GO, Node>> M_;
   RCP<MultiVector> nullspace_;
   Teuchos::ParameterList mueluParams_;
+  bool keepPreconditioner_ = false;
   double setupSeconds_ = 0;
 };
 

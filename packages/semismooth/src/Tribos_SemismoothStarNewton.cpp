@@ -83,17 +83,25 @@ RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
           rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
   pl->set("MueLu Smoother", "Chebyshev", "CG+MueLu: smoother on all levels but the coarsest (factored)",
           rcp(new Teuchos::StringValidator(tuple<std::string>("Chebyshev", "Symmetric Gauss-Seidel"))));
+  pl->set("MueLu Algorithm", "sa",
+          "CG+MueLu: MueLu \"multigrid algorithm\": sa (smoothed aggregation) or unsmoothed (plain aggregation: "
+          "sparser coarse operators, cheaper re-setup per Newton step, more CG steps)",
+          rcp(new Teuchos::StringValidator(tuple<std::string>("sa", "unsmoothed"))));
   pl->set("MueLu Reuse", "RP",
           "CG+MueLu: MueLu \"reuse: type\" for the Newton matrices of successive steps: RP keeps the prolongators "
           "(built once on K) and recomputes the coarse operators and smoothers, tP keeps the tentative prolongators, "
           "none rebuilds the hierarchy each step",
-          rcp(new Teuchos::StringValidator(tuple<std::string>("RP", "tP", "none"))));
+          rcp(new Teuchos::StringValidator(tuple<std::string>("RP", "tP", "none", "full"))));
+  pl->set("MueLu Re-setup Fraction", 0.0,
+          "CG+MueLu: the Newton hierarchy is set up again (MueLu Reuse) only if more than this fraction of the contact "
+          "components changed between free and fixed since its last setup; 0: every step",
+          rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1.0)));
   pl->set("Equilibrium Tolerance", 1e-3,
           "CG+MueLu: relative CG tolerance of the K_rr solves that restore interior equilibrium at x^ (and of the "
           "initial solve for l); the error of S x^ - l is of this order relative to the correction S (x^ - x). A "
           "residual below Tolerance is confirmed with an absolute tolerance 0.01 Tolerance ||l|| before stopping",
           rcp(new Teuchos::EnhancedNumberValidator<double>(1e-14, 0.5)));
-  pl->set("Forcing Term Maximum", 0.1,
+  pl->set("Forcing Term Maximum", 0.01,
           "CG+MueLu: the Newton solve stops at ||residual|| <= eta ||rhs||, eta = min(this, ||S x^ - l + y^||/||l||) "
           "(inexact Newton, superlinear), but not below 0.1 Tolerance ||l||",
           rcp(new Teuchos::EnhancedNumberValidator<double>(1e-14, 0.9)));
@@ -350,8 +358,10 @@ void SemismoothStarNewton::solveFullSpace(SemismoothResult& res, Approximation& 
       for (int j = 0; j < nc; ++j) r[j] = Sxlh[j] + ap.y[j];
       return norm2(r) / scale;
     };
+    const int cg0 = fullSpace_->cgIterations();
     double rel = residualAt(-1.0);
     if (rel <= tol) rel = residualAt(0.01 * tol * scale);
+    const int cgEquilibrium = fullSpace_->cgIterations() - cg0;
     record(res, ap, rel, k, log);
     if (rel <= tol) {
       res.converged = true;
@@ -362,7 +372,12 @@ void SemismoothStarNewton::solveFullSpace(SemismoothResult& res, Approximation& 
     double rhsNorm = 0;  // the Newton right-hand side is -r on F (the interior part is at the correction's tolerance)
     for (int j = 0; j < nc; ++j) rhsNorm += freeComp[j] ? r[j] * r[j] : 0.0;
     const double eta = std::min(etaMax, rel);
+    const double setup0 = fullSpace_->setupSeconds(), cgTime0 = fullSpace_->cgSeconds();
     fullSpace_->newtonStep(freeComp, G, ap.y, std::max(eta * std::sqrt(rhsNorm), 0.1 * tol * scale), x, Sxl);
+    if (log)
+      *log << "         CG steps: equilibrium " << cgEquilibrium << ", Newton "
+           << fullSpace_->cgIterations() - cg0 - cgEquilibrium << " (MueLu re-setup " << std::setprecision(3)
+           << fullSpace_->setupSeconds() - setup0 << " s, Newton CG " << fullSpace_->cgSeconds() - cgTime0 << " s)\n";
     res.iterations = k + 1;
   }
 }
