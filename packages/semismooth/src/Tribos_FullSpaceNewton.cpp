@@ -23,7 +23,8 @@ double norm2(const std::vector<double>& v) {
   return std::sqrt(s);
 }
 
-Teuchos::ParameterList mueluParameters(const Teuchos::ParameterList& params, const std::string& reuse) {
+Teuchos::ParameterList mueluParameters(const Teuchos::ParameterList& params, const std::string& reuse,
+                                       const std::string& algorithm) {
   Teuchos::ParameterList p;
   p.set("verbosity", "none");
   p.set("number of equations", 3);  // the rotation is per node: 3x3 node blocks stay blocks
@@ -40,7 +41,7 @@ Teuchos::ParameterList mueluParameters(const Teuchos::ParameterList& params, con
     p.sublist("smoother: params").set("relaxation: type", "Symmetric Gauss-Seidel");
   }
   p.set("reuse: type", reuse == "full" ? "none" : reuse);
-  p.set("multigrid algorithm", params.get<std::string>("MueLu Algorithm"));
+  p.set("multigrid algorithm", algorithm);
   return p;
 }
 
@@ -49,8 +50,7 @@ Teuchos::ParameterList mueluParameters(const Teuchos::ParameterList& params, con
 FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::ParameterList& params)
     : sys_(problem),
       maxIt_(params.get<int>("CG Maximum Iterations")),
-      equilibriumTolerance_(params.get<double>("Equilibrium Tolerance")),
-      resetupFraction_(params.get<double>("MueLu Re-setup Fraction")) {
+      equilibriumTolerance_(params.get<double>("Equilibrium Tolerance")) {
   Teuchos::Time timer("full space setup");
   timer.start();
   const int N = sys_.numNodes, n = 3 * N, nf = sys_.Kfree.rows;
@@ -123,12 +123,16 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
 
   const std::string reuse = params.get<std::string>("MueLu Reuse");
   // K_rr: all contact dofs as unit rows; its hierarchy is built once.
-  Krr_ = std::make_unique<MueLuCG>(graph, nullspace, mueluParameters(params, "none"));
+  // Smoothed aggregation: the setup is paid once, the better convergence in
+  // every equilibrium correction.
+  Krr_ = std::make_unique<MueLuCG>(graph, nullspace, mueluParameters(params, "none", "sa"));
   Krr_->setValues(graphValues(std::vector<char>(3 * sys_.m, 1)));
   // The Newton matrices: the first hierarchy is built on K with all contact
   // dofs free, so that the reused prolongators do not depend on the sets of
   // the first step.
-  newton_ = std::make_unique<MueLuCG>(graph, nullspace, mueluParameters(params, reuse), reuse == "full");
+  newton_ = std::make_unique<MueLuCG>(graph, nullspace,
+                                      mueluParameters(params, reuse, params.get<std::string>("MueLu Algorithm")),
+                                      reuse == "full");
   newton_->setValues(graphValues(std::vector<char>(3 * sys_.m, 0)));
 
   // x = 0, u_r = K_rr^-1 f_r: l = -(K u - f)_c.
@@ -208,15 +212,9 @@ void FullSpaceNewton::newtonStep(const std::vector<char>& freeComp, const std::v
         const int pos = sys_.tangentialEntries[i][q];
         vals[fullPos_[pos]] += G[i][q];
       }
-  // The hierarchy is set up again only when the sets change by more than a
-  // few components: otherwise the matrices differ by a low-rank change on the
-  // surface (and in the curvatures G), which costs CG a few steps, less than
-  // a re-setup (the last Newton steps).
-  int changed = 0;
-  for (size_t j = 0; j < freeComp.size(); ++j) changed += lastFreeComp_.empty() || freeComp[j] != lastFreeComp_[j];
-  const bool resetup = changed > resetupFraction_ * static_cast<double>(freeComp.size());
-  newton_->setValues(vals, resetup);
-  if (resetup) lastFreeComp_ = freeComp;
+  // Set up again every step (MueLu Reuse): keeping the last hierarchy, even
+  // when only the curvatures G changed, costs more CG steps than a re-setup.
+  newton_->setValues(vals);
 
   // Right-hand side -(K u - f + [0; y]); zero on the fixed components, whose
   // rows are unit rows (du = 0 there).

@@ -76,9 +76,8 @@ class FullSpaceNewton {
   RCP<const Map> map_;
   std::unique_ptr<MueLuCG> Krr_, newton_;
   std::vector<double> u_, l_;    // u on the free dofs (rotated frame)
-  std::vector<char> lastFreeComp_;  // free components of the Newton matrix of the last MueLu setup
   int maxIt_ = 0;
-  double equilibriumTolerance_ = 0, resetupFraction_ = 0;
+  double equilibriumTolerance_ = 0;
   int cgIterations_ = 0;
   double initialSeconds_ = 0, cgSeconds_ = 0;
 };
