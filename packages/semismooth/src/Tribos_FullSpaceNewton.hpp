@@ -41,8 +41,9 @@ class FullSpaceNewton {
   std::vector<double> equilibrate(const std::vector<double>& x, double absTol);
 
   // Newton step at u (contact part x^): solves N du = -(K u - f + [0; y^])
-  // with N = K, fixed contact components as unit rows and columns (du = 0
-  // there) and G added on the tangential pair of sliding nodes, to
+  // with N = K, fixed contact components decoupled (only the diagonal of K
+  // left in their rows and columns, du = 0 there) and G added on the
+  // tangential pair of sliding nodes, to
   // ||residual|| <= absTol. Eliminating du_r gives (S_FF + G_FF) dx_F =
   // -(S x^ - l + y^)_F. Then u <- u + du; returns x (the new contact part)
   // and S x - l = (K u - f)_c.
