@@ -17,6 +17,7 @@
 #include <cstring>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,8 +65,14 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // With CG+MueLu the CG solves are spread over the ranks of mpirun; rank 0
+  // prints. The other Newton solvers are serial: run them on one rank.
+  auto comm = Tpetra::getDefaultComm();
+  std::ostringstream sink;
+  std::ostream& out = comm->getRank() == 0 ? std::cout : sink;
   try {
-    std::cout << "input: " << input << "\n"
+    out << "ranks: " << comm->getSize() << "\n";
+    out << "input: " << input << "\n"
               << "level    nodes  assembly(s)  reduction(s)  contact nodes  solver(s)  iters"
                  "   contact  stick  slip  Newton-factor(s)  CG steps  setup(s)  total(s)\n";
     for (int L = Lmin; L <= Lmax; ++L) {
@@ -75,10 +82,10 @@ int main(int argc, char** argv) {
       const auto start = std::chrono::steady_clock::now();
       const Semismooth::SemismoothResult r =
           Semismooth::solveFromMesh(pr.mesh, pr.material, pr.loads, pr.contactFace, pr.gap, pr.slipBoundTraction,
-                                    pr.solverParams, log ? &std::cout : nullptr);
+                                    pr.solverParams, log ? &out : nullptr, comm);
       // Wall time of assembly, reduction/setup and solve together.
       const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::cout << std::setw(5) << L << std::setw(9) << r.numNodes << std::fixed << std::setprecision(3)
+      out << std::setw(5) << L << std::setw(9) << r.numNodes << std::fixed << std::setprecision(3)
                 << std::setw(13) << r.assemblySeconds << std::setw(14) << r.reductionSeconds << std::setw(15)
                 << r.numContactNodes << std::setw(11) << r.solverSeconds << std::setw(7) << r.iterations
                 << (r.converged ? " " : "*") << std::setw(9) << r.numContact.back() << std::setw(7)

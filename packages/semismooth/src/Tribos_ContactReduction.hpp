@@ -39,6 +39,10 @@ struct ContactProblem {
   // Node coordinates (optional): the rigid-body modes that the "CG+MueLu"
   // Newton solver gives MueLu as near null space.
   std::vector<std::array<double, 3>> coords;
+  // Ranks over which the "CG+MueLu" Newton solver distributes its CG solves
+  // (optional; every rank of it must solve the same problem). Null: one
+  // process.
+  RCP<const Comm> comm;
   int numNodes() const { return K.rows / 3; }
 };
 

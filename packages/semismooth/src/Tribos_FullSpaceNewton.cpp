@@ -24,15 +24,23 @@ double norm2(const std::vector<double>& v) {
 }
 
 Teuchos::ParameterList mueluParameters(const Teuchos::ParameterList& params, const std::string& reuse,
-                                       const std::string& algorithm) {
+                                       const std::string& algorithm, int numRanks) {
   Teuchos::ParameterList p;
   p.set("verbosity", "none");
   p.set("number of equations", 3);  // the rotation is per node: 3x3 node blocks stay blocks
   p.set("transpose: use implicit", true);
   p.set("coarse: max size", 2000);
-  // One process: the coarse level is factored (Amesos2 KLU2 is reliable on a
-  // serial communicator).
-  p.set("coarse: type", "KLU2");
+  if (numRanks == 1) {
+    // One process: the coarse level is factored (Amesos2 KLU2 is reliable on
+    // a one-rank communicator).
+    p.set("coarse: type", "KLU2");
+  } else {
+    // Amesos2 KLU2 of this Trilinos build returns wrong solutions on more
+    // than one rank: the coarse level is smoothed instead.
+    p.set("coarse: type", "RELAXATION");
+    p.sublist("coarse: params").set("relaxation: type", "Symmetric Gauss-Seidel");
+    p.sublist("coarse: params").set("relaxation: sweeps", 4);
+  }
   if (params.get<std::string>("MueLu Smoother") == "Chebyshev") {
     p.set("smoother: type", "CHEBYSHEV");
     p.sublist("smoother: params").set("chebyshev: degree", 2);
@@ -59,50 +67,45 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
                  << problem.coords.size() << " for " << N << " nodes)");
 
   // The full graph: every node keeps its 3 dofs (MueLu's node blocks);
-  // prescribed dofs are unit rows without couplings.
-  // One process, also when called on one rank of a parallel run. MueLu of
-  // this build crashes (Hierarchy::describe) on a Teuchos::SerialComm, so
-  // the communicator is MPI_COMM_SELF.
-  auto comm = rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF));
-  map_ = rcp(new Map(static_cast<Tpetra::global_size_t>(n), 0, comm));
-  std::vector<size_t> rowLength(n, 1);
-  for (int j = 0; j < nf; ++j) rowLength[sys_.dofOfFree[j]] = sys_.Kfree.rowptr[j + 1] - sys_.Kfree.rowptr[j];
-  auto graph = rcp(new CrsGraph(map_, map_, Teuchos::ArrayView<const size_t>(rowLength)));
-  std::vector<size_t> rowStart(n + 1, 0);
-  for (int g = 0; g < n; ++g) rowStart[g + 1] = rowStart[g] + rowLength[g];
-  numEntries_ = rowStart[n];
-  fullPos_.resize(sys_.Kfree.col.size());
-  diagPos_.assign(nf, -1);
-  baseValues_.assign(numEntries_, 0.0);
-  std::vector<LO> cols;
-  for (int g = 0; g < n; ++g) {
+  // prescribed dofs are unit rows without couplings. The rows (contiguous
+  // blocks of nodes) are distributed over the ranks of problem.comm only for
+  // the CG solves and MueLu; everything else is replicated. Without a
+  // communicator: MPI_COMM_SELF (MueLu of this build crashes in
+  // Hierarchy::describe on a Teuchos::SerialComm).
+  RCP<const Comm> comm = problem.comm;
+  if (comm.is_null()) comm = rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF));
+  const int P = comm->getSize(), rank = comm->getRank();
+  firstDof_ = 3 * static_cast<int>(static_cast<long long>(N) * rank / P);
+  endDof_ = 3 * static_cast<int>(static_cast<long long>(N) * (rank + 1) / P);
+  map_ = rcp(new Map(static_cast<Tpetra::global_size_t>(n), static_cast<size_t>(endDof_ - firstDof_), 0, comm));
+  replicated_ = rcp(new Map(static_cast<Tpetra::global_size_t>(n), 0, comm, Tpetra::LocallyReplicated));
+  gather_ = rcp(new Import(map_, replicated_));
+  std::vector<size_t> rowLength(endDof_ - firstDof_, 1);
+  for (int j = 0; j < nf; ++j) {
+    const int g = sys_.dofOfFree[j];
+    if (g >= firstDof_ && g < endDof_) rowLength[g - firstDof_] = sys_.Kfree.rowptr[j + 1] - sys_.Kfree.rowptr[j];
+  }
+  auto graph = rcp(new CrsGraph(map_, Teuchos::ArrayView<const size_t>(rowLength)));
+  fullPos_.assign(sys_.Kfree.col.size(), -1);
+  baseValues_.clear();
+  std::vector<GO> cols;
+  for (int g = firstDof_; g < endDof_; ++g) {
     const int j = sys_.freeOfDof[g];
     cols.clear();
     if (j < 0) {
       cols.push_back(g);
-      baseValues_[rowStart[g]] = 1.0;
+      baseValues_.push_back(1.0);
     } else {
+      // Kfree's columns are sorted, and so are their full dofs.
       for (int pos = sys_.Kfree.rowptr[j]; pos < sys_.Kfree.rowptr[j + 1]; ++pos) {
-        const int c = sys_.dofOfFree[sys_.Kfree.col[pos]];
-        fullPos_[pos] = static_cast<int>(rowStart[g] + cols.size());
-        if (c == g) diagPos_[j] = fullPos_[pos];
-        baseValues_[fullPos_[pos]] = sys_.Kfree.val[pos];
-        cols.push_back(c);
+        fullPos_[pos] = static_cast<int>(baseValues_.size());
+        baseValues_.push_back(sys_.Kfree.val[pos]);
+        cols.push_back(sys_.dofOfFree[sys_.Kfree.col[pos]]);
       }
     }
-    graph->insertLocalIndices(g, Teuchos::ArrayView<const LO>(cols));
+    graph->insertGlobalIndices(g, Teuchos::ArrayView<const GO>(cols));
   }
   graph->fillComplete();
-  // setValues() writes values in the graph's row order: the columns must have
-  // kept the (sorted) order in which they were inserted.
-  for (int g = 0; g < n; g += std::max(1, n / 97)) {
-    Teuchos::ArrayView<const LO> view;
-    graph->getLocalRowView(g, view);
-    TRIBOS_REQUIRE(view.size() > 0 && static_cast<size_t>(view.size()) == rowLength[g],
-                   "semismooth*: unexpected graph row " << g);
-    for (int k = 1; k < view.size(); ++k)
-      TRIBOS_REQUIRE(view[k] > view[k - 1], "semismooth*: graph columns are not sorted in row " << g);
-  }
 
   // Rigid-body modes, in the contact frames at contact nodes, zero at
   // prescribed dofs (their rows are decoupled).
@@ -117,7 +120,7 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
         double v = modes[k][b];
         if (R[node]) v = (*R[node])[b] * modes[k][0] + (*R[node])[3 + b] * modes[k][1] + (*R[node])[6 + b] * modes[k][2];
         if (sys_.freeOfDof[3 * node + b] < 0) v = 0;
-        nullspace->replaceLocalValue(3 * node + b, k, v);
+        if (3 * node + b >= firstDof_ && 3 * node + b < endDof_) nullspace->replaceGlobalValue(3 * node + b, k, v);
       }
   }
 
@@ -125,13 +128,13 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
   // K_rr: all contact dofs as unit rows; its hierarchy is built once.
   // Smoothed aggregation: the setup is paid once, the better convergence in
   // every equilibrium correction.
-  Krr_ = std::make_unique<MueLuCG>(graph, nullspace, mueluParameters(params, "none", "sa"));
+  Krr_ = std::make_unique<MueLuCG>(graph, nullspace, mueluParameters(params, "none", "sa", P));
   Krr_->setValues(graphValues(std::vector<char>(3 * sys_.m, 1)));
   // The Newton matrices: the first hierarchy is built on K with all contact
   // dofs free, so that the reused prolongators do not depend on the sets of
   // the first step.
   newton_ = std::make_unique<MueLuCG>(graph, nullspace,
-                                      mueluParameters(params, reuse, params.get<std::string>("MueLu Algorithm")),
+                                      mueluParameters(params, reuse, params.get<std::string>("MueLu Algorithm"), P),
                                       reuse == "full");
   newton_->setValues(graphValues(std::vector<char>(3 * sys_.m, 0)));
 
@@ -166,16 +169,20 @@ std::vector<double> FullSpaceNewton::graphValues(const std::vector<char>& fixed)
   auto isFixed = [&](int j) { return sys_.reducedOfFree[j] >= 0 && fixed[sys_.reducedOfFree[j]]; };
   for (int j = 0; j < K.rows; ++j)
     for (int pos = K.rowptr[j]; pos < K.rowptr[j + 1]; ++pos)
-      if (isFixed(j) || isFixed(K.col[pos])) vals[fullPos_[pos]] = (K.col[pos] == j) ? K.val[pos] : 0.0;
+      if (fullPos_[pos] >= 0 && (isFixed(j) || isFixed(K.col[pos])))
+        vals[fullPos_[pos]] = (K.col[pos] == j) ? K.val[pos] : 0.0;
   return vals;
 }
 
 int FullSpaceNewton::solve(const MueLuCG& solver, const std::vector<double>& bFree, std::vector<double>& xFree,
                            double absTol) {
-  Vector b(map_), x(map_);
+  Vector b(map_), x(map_), xAll(replicated_);
   {
     auto bv = b.getDataNonConst();
-    for (size_t j = 0; j < bFree.size(); ++j) bv[sys_.dofOfFree[j]] = bFree[j];
+    for (size_t j = 0; j < bFree.size(); ++j) {
+      const int g = sys_.dofOfFree[j];
+      if (g >= firstDof_ && g < endDof_) bv[g - firstDof_] = bFree[j];
+    }
   }
   Teuchos::Time timer("CG");
   timer.start();
@@ -183,7 +190,8 @@ int FullSpaceNewton::solve(const MueLuCG& solver, const std::vector<double>& bFr
   timer.stop();
   cgSeconds_ += timer.totalElapsedTime();
   cgIterations_ += its;
-  auto xv = x.getData();
+  xAll.doImport(x, *gather_, Tpetra::INSERT);  // every rank continues with all of x
+  auto xv = xAll.getData();
   xFree.resize(bFree.size());
   for (size_t j = 0; j < bFree.size(); ++j) xFree[j] = xv[sys_.dofOfFree[j]];
   return its;
@@ -209,8 +217,8 @@ void FullSpaceNewton::newtonStep(const std::vector<char>& freeComp, const std::v
   for (int i = 0; i < sys_.m; ++i)
     if (freeComp[3 * i] && freeComp[3 * i + 1])
       for (int q = 0; q < 4; ++q) {
-        const int pos = sys_.tangentialEntries[i][q];
-        vals[fullPos_[pos]] += G[i][q];
+        const int pos = fullPos_[sys_.tangentialEntries[i][q]];
+        if (pos >= 0) vals[pos] += G[i][q];
       }
   // Set up again every step (MueLu Reuse): keeping the last hierarchy, even
   // when only the curvatures G changed, costs more CG steps than a re-setup.

@@ -70,11 +70,11 @@ class FullSpaceNewton {
   std::vector<double> contactPart(const std::vector<double>& vFree) const;
 
   RotatedSystem sys_;
-  std::vector<int> fullPos_;     // position in the full graph's value array of each Kfree entry
-  std::vector<int> diagPos_;     // position of the diagonal entry of each free dof
-  size_t numEntries_ = 0;
-  std::vector<double> baseValues_;  // K on the full graph, prescribed dofs as unit rows
-  RCP<const Map> map_;
+  std::vector<int> fullPos_;     // position in the owned rows' value array of each Kfree entry (-1: not owned)
+  std::vector<double> baseValues_;  // K on the owned rows of the full graph, prescribed dofs as unit rows
+  int firstDof_ = 0, endDof_ = 0;   // owned full dofs [firstDof_, endDof_)
+  RCP<const Map> map_, replicated_;
+  RCP<const Import> gather_;
   std::unique_ptr<MueLuCG> Krr_, newton_;
   std::vector<double> u_, l_;    // u on the free dofs (rotated frame)
   int maxIt_ = 0;

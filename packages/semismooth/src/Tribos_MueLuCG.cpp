@@ -5,6 +5,8 @@
 #include <BelosTpetraAdapter.hpp>
 #include <MueLu_CreateTpetraPreconditioner.hpp>
 #include <Teuchos_Time.hpp>
+
+#include <algorithm>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Vector.hpp>
 
@@ -18,9 +20,20 @@ MueLuCG::MueLuCG(const RCP<const CrsGraph>& graph, const RCP<MultiVector>& nulls
     : A_(rcp(new CrsMatrix(graph))), nullspace_(nullspace), mueluParams_(mueluParams),
       keepPreconditioner_(keepPreconditioner) {
   TRIBOS_REQUIRE(graph->isFillComplete(), "MueLuCG: the graph must be filled");
-  TRIBOS_REQUIRE(graph->getColMap()->isSameAs(*graph->getRowMap()),
-                 "MueLuCG: the column map must equal the row map (one process)");
   A_->fillComplete();
+  // Global columns of each owned row in increasing order, and where each
+  // sits in the row's local view (the order setValues() fills).
+  const auto& colMap = *graph->getColMap();
+  rowStart_.assign(1, 0);
+  for (LO row = 0; row < static_cast<LO>(graph->getNodeNumRows()); ++row) {
+    Teuchos::ArrayView<const LO> cols;
+    graph->getLocalRowView(row, cols);
+    std::vector<std::pair<GO, LO>> order;
+    for (LO k = 0; k < cols.size(); ++k) order.emplace_back(colMap.getGlobalElement(cols[k]), k);
+    std::sort(order.begin(), order.end());
+    for (const auto& o : order) viewPos_.push_back(o.second);
+    rowStart_.push_back(viewPos_.size());
+  }
 }
 
 MueLuCG::~MueLuCG() = default;
@@ -32,12 +45,13 @@ void MueLuCG::setValues(const std::vector<double>& values, bool updatePreconditi
   TRIBOS_REQUIRE(values.size() == graph.getNodeNumEntries(),
                  "MueLuCG: " << values.size() << " values for a graph of " << graph.getNodeNumEntries() << " entries");
   A_->resumeFill();
-  size_t offset = 0;
+  std::vector<SC> rowValues;
   for (LO row = 0; row < static_cast<LO>(graph.getNodeNumRows()); ++row) {
     Teuchos::ArrayView<const LO> cols;
     graph.getLocalRowView(row, cols);
-    A_->replaceLocalValues(row, cols, Teuchos::ArrayView<const SC>(values.data() + offset, cols.size()));
-    offset += cols.size();
+    rowValues.resize(cols.size());
+    for (size_t k = rowStart_[row]; k < rowStart_[row + 1]; ++k) rowValues[viewPos_[k]] = values[k];
+    A_->replaceLocalValues(row, cols, Teuchos::ArrayView<const SC>(rowValues));
   }
   A_->fillComplete();
   if (M_.is_null()) {

@@ -22,13 +22,14 @@ namespace Semismooth {
 
 class MueLuCG {
  public:
-  // graph: filled, with the column map equal to the row map (one process).
+  // graph: filled, rows distributed over the graph's communicator.
   // nullspace: near null space of the matrices (rigid-body modes).
   MueLuCG(const RCP<const CrsGraph>& graph, const RCP<MultiVector>& nullspace, const Teuchos::ParameterList& mueluParams,
           bool keepPreconditioner = false);
   ~MueLuCG();
 
-  // New matrix values, in the order of the graph's local rows and columns.
+  // New matrix values of the owned rows: row by row in the graph's local row
+  // order, within a row in increasing global column order.
   // updatePreconditioner = false keeps the hierarchy as it is (for a small
   // change of the values).
   void setValues(const std::vector<double>& values, bool updatePreconditioner = true);
@@ -39,6 +40,8 @@ class MueLuCG {
 
  private:
   RCP<CrsMatrix> A_;
+  std::vector<size_t> rowStart_;  // per owned row: its range in setValues()' array
+  std::vector<LO> viewPos_;       // position of each value in the row's local view
   RCP<MueLu::TpetraOperator<SC, LO, GO, Node>> M_;
   RCP<MultiVector> nullspace_;
   Teuchos::ParameterList mueluParams_;

@@ -71,10 +71,12 @@ ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& 
 
 SemismoothResult solveFromMesh(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
                                const std::string& contactFace, double gap, double slipBoundTraction,
-                               const Teuchos::ParameterList& params, std::ostream* log) {
+                               const Teuchos::ParameterList& params, std::ostream* log,
+                               const RCP<const Comm>& comm) {
   Teuchos::Time timer("assembly");
   timer.start();
-  const ContactProblem problem = buildContactProblem(mesh, material, loads, contactFace, gap, slipBoundTraction);
+  ContactProblem problem = buildContactProblem(mesh, material, loads, contactFace, gap, slipBoundTraction);
+  problem.comm = comm;
   timer.stop();
   SemismoothStarNewton solver(problem, params);
   SemismoothResult result = solver.solve(log);

@@ -109,9 +109,13 @@ class SemismoothStarNewton {
 // plane at distance gap (outward facet normals; nodes with a prescribed dof
 // are not contact nodes), nodal slip bounds g_i = slipBoundTraction x nodal
 // area, and solves. Timings of all three phases are in the result.
+// comm (optional): the ranks over which "CG+MueLu" distributes its solves;
+// every rank of comm must call with the same arguments. The other Newton
+// solvers are serial and ignore it.
 SemismoothResult solveFromMesh(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
                                const std::string& contactFace, double gap, double slipBoundTraction,
-                               const Teuchos::ParameterList& params, std::ostream* log);
+                               const Teuchos::ParameterList& params, std::ostream* log,
+                               const RCP<const Comm>& comm = Teuchos::null);
 
 // The contact problem solveFromMesh() solves (for tests and other drivers).
 ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
