@@ -76,9 +76,9 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
   return ps;
 }
 
-// Tresca friction by the semismooth* Newton method. The method is serial: rank
-// 0 solves, the displacement and the contact results are broadcast / kept on
-// rank 0 for output.
+// Tresca friction by the semismooth* Newton method. Rank 0 solves (with
+// "CG+MueLu" all ranks take part in the CG solves); the displacement and the
+// contact results are broadcast / kept on rank 0 for output.
 std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Discretization& disc,
                                     const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
                                     IO::Summary& summary, Contact::ContactNodeResults& nodes) {
@@ -86,11 +86,18 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
   std::vector<double> u(3 * static_cast<size_t>(disc.mesh.numNodes()), 0.0);
   double info[9] = {0};
   std::vector<double> residuals;
+  // "CG+MueLu" spreads its CG solves over all ranks (each rank holds the
+  // whole problem); the factorizing Newton solvers run on rank 0 alone.
+  const auto& ssParams = params.sublist("Solver").sublist("SemismoothStarNewton");
+  const bool distributed = ssParams.isParameter("Newton Solver") &&
+                           ssParams.get<std::string>("Newton Solver") == "CG+MueLu";
+  Semismooth::SemismoothResult r;
+  if (comm.getRank() == 0 || distributed)
+    r = Semismooth::solveFromMesh(disc.mesh, mat, loads, contact.get<std::string>("Face"), contact.get<double>("Gap"),
+                                  contact.get<double>("Slip Bound Traction"), ssParams,
+                                  verbose && comm.getRank() == 0 ? &std::cout : nullptr,
+                                  distributed ? Teuchos::rcpFromRef(comm) : RCP<const Comm>());
   if (comm.getRank() == 0) {
-    const auto r = Semismooth::solveFromMesh(disc.mesh, mat, loads, contact.get<std::string>("Face"),
-                                             contact.get<double>("Gap"), contact.get<double>("Slip Bound Traction"),
-                                             params.sublist("Solver").sublist("SemismoothStarNewton"),
-                                             verbose ? &std::cout : nullptr);
     u = r.u;
     residuals = r.residuals;
     info[0] = r.converged;
