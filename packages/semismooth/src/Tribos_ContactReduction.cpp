@@ -14,6 +14,12 @@
 namespace Tribos {
 namespace Semismooth {
 
+double norm2(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s);
+}
+
 namespace {
 
 // CHOLMOD on a fixed pattern: the fill-reducing ordering and the symbolic

@@ -20,6 +20,9 @@
 namespace Tribos {
 namespace Semismooth {
 
+// Euclidean norm of a replicated vector (contact values, free dofs).
+double norm2(const std::vector<double>& v);
+
 // One contact node i: non-penetration u_i . normal <= d, Tresca slip bound g.
 struct ContactNode {
   int node = -1;

@@ -17,12 +17,6 @@ namespace Semismooth {
 
 namespace {
 
-double norm2(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s);
-}
-
 Teuchos::ParameterList mueluParameters(const Teuchos::ParameterList& params, const std::string& reuse,
                                        const std::string& algorithm, int numRanks) {
   Teuchos::ParameterList p;

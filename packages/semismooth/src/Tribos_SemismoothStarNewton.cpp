@@ -16,12 +16,6 @@ namespace Semismooth {
 
 namespace {
 
-double norm2(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s);
-}
-
 // In-place Cholesky A = L L' of a dense column-major SPD matrix, then solve.
 void denseCholeskySolve(std::vector<double>& A, int n, std::vector<double>& b) {
   auto at = [&](int i, int j) -> double& { return A[static_cast<size_t>(j) * n + i]; };

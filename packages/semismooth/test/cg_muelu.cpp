@@ -26,12 +26,6 @@ double relDiff(const std::vector<double>& a, const std::vector<double>& b) {
   return d / s;
 }
 
-double norm2(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -68,7 +62,7 @@ int main(int argc, char** argv) {
     exact.applyS(c.x, Sx);
     std::vector<double> r(Sx.size());
     for (size_t j = 0; j < r.size(); ++j) r[j] = Sx[j] - exact.l()[j] + c.y[j];
-    const double trueRel = norm2(r) / norm2(exact.l());
+    const double trueRel = Semismooth::norm2(r) / Semismooth::norm2(exact.l());
     std::cout << "L=" << L << ": true residual " << trueRel << ", reported " << c.residuals.back() << "\n";
     SS_CHECK(trueRel <= tol, "L=" << L << ": true residual " << trueRel << " above Tolerance " << tol);
     SS_CHECK(std::abs(trueRel - c.residuals.back()) <= 0.01 * tol,
