@@ -232,9 +232,8 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
   } else {
     const auto& fetiParams = params.sublist("Solver").sublist("FETI");
     Teuchos::ParameterList problemParams;
-    problemParams.set("Local Solver", fetiParams.get<std::string>("Local Solver"));
-    problemParams.set("Gluing", fetiParams.get<std::string>("Gluing"));
-    problemParams.set("Formulation", fetiParams.get<std::string>("Formulation"));
+    for (const auto& name : {"Local Solver", "Gluing", "Formulation", "Dual Operator"})
+      problemParams.set(name, fetiParams.get<std::string>(name));
     const auto& contactParams = params.sublist("Contact");
     Feti::ContactSpec contact;
     contact.enabled = contactParams.get<bool>("Enabled");

@@ -20,6 +20,19 @@ struct LocalCsr {
       y[i] = s;
     }
   }
+  // The principal submatrix on `keep` (ascending indices), columns renumbered.
+  LocalCsr principalSubmatrix(const std::vector<int>& keep) const {
+    std::vector<int> position(cols, -1);
+    for (size_t j = 0; j < keep.size(); ++j) position[keep[j]] = static_cast<int>(j);
+    LocalCsr S;
+    S.rows = S.cols = static_cast<int>(keep.size());
+    for (int i : keep) {
+      for (int k = rowptr[i]; k < rowptr[i + 1]; ++k)
+        if (position[col[k]] >= 0) S.col.push_back(position[col[k]]), S.val.push_back(val[k]);
+      S.rowptr.push_back(static_cast<int>(S.col.size()));
+    }
+    return S;
+  }
   double maxAbsDiagonal() const {
     double m = 0;
     for (int i = 0; i < rows; ++i)

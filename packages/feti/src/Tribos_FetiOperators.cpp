@@ -34,7 +34,7 @@ void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp,
     auto x = X.getVector(j);
     auto y = Y.getVectorNonConst(j);
     problem_->B()->apply(*x, *p_, Teuchos::TRANS);  // B' x
-    problem_->applyKplus(*p_, *z_);                 // K+ B' x
+    problem_->applyDualKplus(*p_, *z_);             // K+ B' x
     problem_->B()->apply(*z_, *y, Teuchos::NO_TRANS, alpha, beta);
     ++n_A_;
   }

@@ -13,8 +13,10 @@
 #include <cmath>
 #include <map>
 
+#include <Teuchos_BLAS.hpp>
 #include <Teuchos_LAPACK.hpp>
 
+#include "Tribos_DenseBlas.hpp"
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -145,6 +147,14 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
             "equality rows of B: Orthonormal (Helmert rows over the copies of a node, Dirichlet rows on every copy: "
             "B_E B_E' = I), Non-redundant (chain u_i - u_i+1, Dirichlet on the first copy) or Full (all pairs)",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Orthonormal", "Non-redundant", "Full"))));
+    pl->set("Dual Operator", "Auto",
+            "how F = B K+ B' is applied: Explicit (per subdomain one dense symmetric product with (K+)_bb, the "
+            "block of K+ on the dofs B touches, formed once from the trailing block of a factor that orders "
+            "those dofs last: about three factorizations' worth of setup, then each application of F costs a "
+            "fraction of two triangular solves), Implicit (per subdomain a forward and a backward sparse "
+            "triangular solve) or Auto (Explicit with contact, whose solvers apply F hundreds of times; "
+            "Implicit without, where projected CG applies it tens of times)",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Auto", "Explicit", "Implicit"))));
   }
   return pl;
 }
@@ -155,6 +165,8 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& 
   Teuchos::ParameterList p(params);
   p.validateParametersAndSetDefaults(*getValidParameters(), 0);
   localSolverName_ = p.get<std::string>("Local Solver");
+  const std::string dualOperator = p.get<std::string>("Dual Operator");
+  explicitF_ = dualOperator == "Explicit" || (dualOperator == "Auto" && contact.enabled);
   const int S = disc.numSubdomains();
   primalOffsets_.assign(S + 1, 0);
   for (int s = 0; s < S; ++s) primalOffsets_[s + 1] = primalOffsets_[s] + 3 * static_cast<GO>(disc.subdomains[s].nodes.size());
@@ -330,16 +342,22 @@ void FetiProblem::buildContact(const std::vector<DualRow>& rows, const ContactSp
 void FetiProblem::factorSubdomains() {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg"));
   const auto t0 = std::chrono::steady_clock::now();
-  for (const auto& sys : systems_) {
+  if (explicitF_) boundary_ = boundaryDofs();
+  for (size_t k = 0; k < systems_.size(); ++k) {
+    const auto& sys = systems_[k];
     LocalCsr Kreg = sys.K;
     const int n = sys.numDofs();
     const double rho = Kreg.maxAbsDiagonal();
     for (int i : fixingDofs(sys.R, n))
-      for (int k = Kreg.rowptr[i]; k < Kreg.rowptr[i + 1]; ++k)
-        if (Kreg.col[k] == i) Kreg.val[k] += rho;
+      for (int a = Kreg.rowptr[i]; a < Kreg.rowptr[i + 1]; ++a)
+        if (Kreg.col[a] == i) Kreg.val[a] += rho;
     auto solver = createLocalSolver(localSolverName_);
-    solver->factor(Kreg);
+    if (explicitF_)
+      solver->factor(Kreg, boundary_[k]);
+    else
+      solver->factor(Kreg);
     Kreg_.push_back(solver);
+    if (explicitF_) setupExplicitKplus(static_cast<int>(k), boundary_[k]);
   }
   factorTime_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -347,7 +365,69 @@ void FetiProblem::factorSubdomains() {
 double FetiProblem::factorMemoryMb() const {
   double mb = 0;
   for (const auto& s : Kreg_) mb += s->factorMemoryMb();
+  for (const auto& Z : KplusBB_) mb += Z.size() * 8.0 / 1048576.0;
   return mb;
+}
+
+std::vector<std::vector<int>> FetiProblem::boundaryDofs() const {
+  // Mark the primal columns of B from every rank's rows, then gather them on
+  // the rank that owns the subdomain.
+  auto colMap = B_->getColMap();
+  Vector touched(colMap), mask(primalMap_);
+  {
+    auto t = touched.getDataNonConst();
+    for (LO i = 0; i < static_cast<LO>(B_->getNodeNumRows()); ++i) {
+      typename CrsMatrix::local_inds_host_view_type cols;
+      typename CrsMatrix::values_host_view_type vals;
+      B_->getLocalRowView(i, cols, vals);
+      for (size_t k = 0; k < cols.extent(0); ++k) t[cols(k)] = 1.0;
+    }
+  }
+  mask.doExport(touched, Export(colMap, primalMap_), Tpetra::ADD);
+  auto m = mask.getData();
+  std::vector<std::vector<int>> b;
+  size_t offset = 0;
+  for (const auto& sys : systems_) {
+    b.emplace_back();
+    for (int i = 0; i < sys.numDofs(); ++i)
+      if (m[offset + i] != 0.0) b.back().push_back(i);
+    offset += sys.numDofs();
+  }
+  return b;
+}
+
+// (K+)_bb for K+ = (I - RR') Z (I - RR'), Z = K_reg^-1:
+//   (K+)_bb = Z_bb - R_b W_b' - W_b R_b' + R_b (R'W) R_b',  W = Z R,
+// with Z_bb from the local solver and W from r solves.
+void FetiProblem::setupExplicitKplus(int k, const std::vector<int>& b) {
+  const auto& sys = systems_[k];
+  const int n = sys.numDofs(), nb = static_cast<int>(b.size()), r = kernelDim(sys);
+  std::vector<double> Z = Kreg_[k]->inverseBlock(b);
+  std::vector<double> W(static_cast<size_t>(n) * r);
+  if (r > 0) Kreg_[k]->solve(sys.R.data(), W.data(), r);
+  std::vector<double> RtW(static_cast<size_t>(r) * r, 0.0), Rb(static_cast<size_t>(nb) * r), Wb(Rb.size());
+  for (int a = 0; a < r; ++a)
+    for (int c = 0; c < r; ++c)
+      for (int i = 0; i < n; ++i) RtW[a * r + c] += sys.R[static_cast<size_t>(a) * n + i] * W[static_cast<size_t>(c) * n + i];
+  for (int a = 0; a < r; ++a)
+    for (int i = 0; i < nb; ++i) {
+      Rb[static_cast<size_t>(a) * nb + i] = sys.R[static_cast<size_t>(a) * n + b[i]];
+      Wb[static_cast<size_t>(a) * nb + i] = W[static_cast<size_t>(a) * n + b[i]];
+    }
+  // V = R_b (R'W)/2 - W_b, so that (K+)_bb = Z_bb + R_b V' + V R_b'.
+  std::vector<double> V(Wb.size());
+  for (int a = 0; a < r; ++a)
+    for (int i = 0; i < nb; ++i) {
+      double s = -Wb[static_cast<size_t>(a) * nb + i];
+      for (int c = 0; c < r; ++c) s += 0.5 * Rb[static_cast<size_t>(c) * nb + i] * RtW[c * r + a];
+      V[static_cast<size_t>(a) * nb + i] = s;
+    }
+  Teuchos::BLAS<int, double> blas;
+  if (r > 0) {
+    blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, nb, nb, r, 1.0, Rb.data(), nb, V.data(), nb, 1.0, Z.data(), nb);
+    blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, nb, nb, r, 1.0, V.data(), nb, Rb.data(), nb, 1.0, Z.data(), nb);
+  }
+  KplusBB_.push_back(std::move(Z));
 }
 
 namespace {
@@ -381,6 +461,24 @@ void FetiProblem::applyKplus(const Vector& p, Vector& z) const {
   }
 }
 
+void FetiProblem::applyDualKplus(const Vector& p, Vector& z) const {
+  if (!explicitF_) return applyKplus(p, z);
+  auto pv = p.getData();
+  auto zv = z.getDataNonConst();
+  size_t offset = 0;
+  for (size_t k = 0; k < systems_.size(); ++k) {
+    const auto& b = boundary_[k];
+    const int nb = static_cast<int>(b.size());
+    workB_.resize(2 * static_cast<size_t>(nb));
+    double* pb = workB_.data();
+    double* zb = pb + nb;
+    for (int i = 0; i < nb; ++i) pb[i] = pv[offset + b[i]];
+    Blas::symv(nb, 1.0, KplusBB_[k].data(), pb, 0.0, zb);
+    for (int i = 0; i < nb; ++i) zv[offset + b[i]] = zb[i];
+    offset += systems_[k].numDofs();
+  }
+}
+
 void FetiProblem::applyK(const Vector& p, Vector& z) const {
   auto pv = p.getData();
   auto zv = z.getDataNonConst();
@@ -392,33 +490,17 @@ void FetiProblem::applyK(const Vector& p, Vector& z) const {
 }
 
 void FetiProblem::setupSchur() const {
-  // Boundary dofs: the primal columns of B, marked from every rank's rows.
-  auto colMap = B_->getColMap();
-  Vector touched(colMap), mask(primalMap_);
-  {
-    auto t = touched.getDataNonConst();
-    for (LO i = 0; i < static_cast<LO>(B_->getNodeNumRows()); ++i) {
-      typename CrsMatrix::local_inds_host_view_type cols;
-      typename CrsMatrix::values_host_view_type vals;
-      B_->getLocalRowView(i, cols, vals);
-      for (size_t k = 0; k < cols.extent(0); ++k) t[cols(k)] = 1.0;
+  const auto boundary = boundaryDofs();
+  for (size_t k = 0; k < systems_.size(); ++k) {
+    const auto& sys = systems_[k];
+    std::vector<int> interior;
+    for (int i = 0, j = 0; i < sys.numDofs(); ++i) {
+      if (j < static_cast<int>(boundary[k].size()) && boundary[k][j] == i)
+        ++j;
+      else
+        interior.push_back(i);
     }
-  }
-  mask.doExport(touched, Export(colMap, primalMap_), Tpetra::ADD);
-  auto m = mask.getData();
-  size_t offset = 0;
-  for (const auto& sys : systems_) {
-    const int n = sys.numDofs();
-    std::vector<int> interior, position(n, -1);
-    for (int i = 0; i < n; ++i)
-      if (m[offset + i] == 0.0) position[i] = static_cast<int>(interior.size()), interior.push_back(i);
-    LocalCsr Kii;
-    Kii.rows = Kii.cols = static_cast<int>(interior.size());
-    for (int i : interior) {
-      for (int k = sys.K.rowptr[i]; k < sys.K.rowptr[i + 1]; ++k)
-        if (position[sys.K.col[k]] >= 0) Kii.col.push_back(position[sys.K.col[k]]), Kii.val.push_back(sys.K.val[k]);
-      Kii.rowptr.push_back(static_cast<int>(Kii.col.size()));
-    }
+    const LocalCsr Kii = sys.K.principalSubmatrix(interior);
     auto solver = createLocalSolver(localSolverName_);
     if (Kii.rows > 0) {
       try {
@@ -430,7 +512,6 @@ void FetiProblem::setupSchur() const {
     }
     interior_.push_back(interior);
     Kii_.push_back(solver);
-    offset += n;
   }
   schurReady_ = true;
 }

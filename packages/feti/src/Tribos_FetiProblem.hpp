@@ -61,7 +61,7 @@ struct LocalContact {
 class FetiProblem {
  public:
   // Parameters: "Formulation" (TFETI | FETI-1), "Local Solver" (CHOLMOD | KLU2 | Tacho),
-  // "Gluing" (Orthonormal | Non-redundant | Full).
+  // "Gluing" (Orthonormal | Non-redundant | Full), "Dual Operator" (Auto | Explicit | Implicit).
   FetiProblem(const Mesh::Discretization& disc, const Fem::Material& mat, const Fem::LoadCase& loads,
               const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm);
   static RCP<const Teuchos::ParameterList> getValidParameters();
@@ -84,6 +84,10 @@ class FetiProblem {
 
   // z = K+ p on this rank's subdomains (generalized inverse by fixing nodes).
   void applyKplus(const Vector& p, Vector& z) const;
+  // z = K+ p as F = B K+ B' needs it: p = B'x lives on the dofs B touches and
+  // only those entries of z are computed (the others are left as they are).
+  // With an explicit dual operator it uses the dense blocks (K+)_bb.
+  void applyDualKplus(const Vector& p, Vector& z) const;
   // z = K p (block diagonal).
   void applyK(const Vector& p, Vector& z) const;
   // z = S p: per subdomain the Schur complement on the dofs B touches,
@@ -106,12 +110,16 @@ class FetiProblem {
   double factorTime() const { return factorTime_; }
   double factorMemoryMb() const;
   const std::string& localSolverName() const { return localSolverName_; }
+  bool explicitDualOperator() const { return explicitF_; }
 
  private:
   std::vector<DualRow> buildRows(const Fem::LoadCase& loads, const ContactSpec& contact, const std::string& gluing);
   void buildB(const std::vector<DualRow>& rows);
   void buildContact(const std::vector<DualRow>& rows, const ContactSpec& contact);
   void factorSubdomains();
+  // Per local subdomain, the dofs that some row of B touches (ascending).
+  std::vector<std::vector<int>> boundaryDofs() const;
+  void setupExplicitKplus(int k, const std::vector<int>& b);
 
   const Mesh::Discretization& disc_;
   RCP<const Comm> comm_;
@@ -128,6 +136,12 @@ class FetiProblem {
   LocalContact contact_;
   double factorTime_ = 0;
   mutable std::vector<double> work_;
+  // Dual Operator = Explicit: per local subdomain the B dofs b and the dense
+  // symmetric block (K+)_bb (column-major).
+  bool explicitF_ = false;
+  std::vector<std::vector<int>> boundary_;
+  std::vector<std::vector<double>> KplusBB_;
+  mutable std::vector<double> workB_;
   // Dirichlet preconditioner data, per local subdomain: interior dofs and the
   // factorization of K_ii.
   void setupSchur() const;

@@ -11,9 +11,27 @@
 #include <algorithm>
 #include <cstring>
 
+#include "Tribos_DenseBlas.hpp"
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
+
+std::vector<double> LocalSolver::inverseBlock(const std::vector<int>& dofs) const {
+  const int n = size(), nb = static_cast<int>(dofs.size());
+  std::vector<double> Z(static_cast<size_t>(nb) * nb);
+  const int chunk = 64;  // unit right-hand sides per solve
+  std::vector<double> E, X;
+  for (int j0 = 0; j0 < nb; j0 += chunk) {
+    const int m = std::min(chunk, nb - j0);
+    E.assign(static_cast<size_t>(n) * m, 0.0);
+    X.resize(E.size());
+    for (int j = 0; j < m; ++j) E[static_cast<size_t>(j) * n + dofs[j0 + j]] = 1.0;
+    solve(E.data(), X.data(), m);
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < nb; ++i) Z[static_cast<size_t>(j0 + j) * nb + i] = X[static_cast<size_t>(j) * n + dofs[i]];
+  }
+  return Z;
+}
 
 namespace {
 
@@ -51,13 +69,54 @@ class CholmodSolver : public LocalSolver {
   void factor(const LocalCsr& A) override {
     TRIBOS_REQUIRE(A.rows == A.cols, "CHOLMOD: matrix is not square (" << A.rows << " x " << A.cols << ")");
     n_ = A.rows;
+    last_.clear();
     cholmod_sparse S = cholmodView(A, true);
     if (L_) cholmod_free_factor(&L_, &common_);
     L_ = cholmod_analyze(&S, &common_);
     TRIBOS_REQUIRE(L_ != nullptr, "CHOLMOD analysis failed (status " << common_.status << ")");
-    cholmod_factorize(&S, L_, &common_);
-    TRIBOS_REQUIRE(common_.status == CHOLMOD_OK && L_->minor == L_->n,
-                   "CHOLMOD: matrix of size " << n_ << " is not positive definite (pivot " << L_->minor << ")");
+    numericFactor(S);
+  }
+  // The rows of `last` are ordered after all others by constrained minimum
+  // degree (CAMD; on subdomain matrices it fills less than METIS on the other
+  // rows followed by `last`). The trailing block of L is then the Cholesky
+  // factor of the Schur complement S_ll = A_ll - A_lo A_oo^-1 A_ol, and
+  // (A^-1)_ll = S_ll^-1, so inverseBlock(last) costs one dense inversion.
+  void factor(const LocalCsr& A, const std::vector<int>& last) override {
+    TRIBOS_REQUIRE(A.rows == A.cols, "CHOLMOD: matrix is not square (" << A.rows << " x " << A.cols << ")");
+    n_ = A.rows;
+    std::vector<int> set(n_, 0), perm(n_);
+    for (int i : last) {
+      TRIBOS_REQUIRE(i >= 0 && i < n_ && !set[i], "CHOLMOD: row " << i << " listed twice or out of range");
+      set[i] = 1;
+    }
+    cholmod_sparse S = cholmodView(A, true);
+    TRIBOS_REQUIRE(cholmod_camd(&S, nullptr, 0, set.data(), perm.data(), &common_),
+                   "CHOLMOD: constrained ordering failed (status " << common_.status << ")");
+    std::copy(last.begin(), last.end(), perm.end() - last.size());  // `last` in the caller's order
+    if (L_) cholmod_free_factor(&L_, &common_);
+    // The given ordering exactly: a postorder of the elimination tree could
+    // move rows of `last` forward.
+    const int nmethods = common_.nmethods, ordering = common_.method[0].ordering, postorder = common_.postorder;
+    common_.nmethods = 1;
+    common_.method[0].ordering = CHOLMOD_GIVEN;
+    common_.postorder = 0;
+    L_ = cholmod_analyze_p(&S, perm.data(), nullptr, 0, &common_);
+    common_.nmethods = nmethods;
+    common_.method[0].ordering = ordering;
+    common_.postorder = postorder;
+    TRIBOS_REQUIRE(L_ != nullptr, "CHOLMOD analysis failed (status " << common_.status << ")");
+    TRIBOS_REQUIRE(std::equal(perm.begin(), perm.end(), static_cast<const int*>(L_->Perm)),
+                   "CHOLMOD did not keep the given ordering");
+    numericFactor(S);
+    last_ = last;
+  }
+  std::vector<double> inverseBlock(const std::vector<int>& dofs) const override {
+    if (dofs != last_ || dofs.empty()) return LocalSolver::inverseBlock(dofs);
+    std::vector<double> Z = trailingFactor();
+    const int nb = static_cast<int>(dofs.size());
+    const int info = Blas::choleskyInverse(nb, Z.data());
+    TRIBOS_REQUIRE(info == 0, "CHOLMOD: inverse of the trailing Cholesky block failed (LAPACK info " << info << ")");
+    return Z;
   }
   void solve(const double* b, double* x, int nrhs) const override {
     cholmod_dense B;
@@ -76,6 +135,49 @@ class CholmodSolver : public LocalSolver {
     std::copy(static_cast<double*>(X_->x), static_cast<double*>(X_->x) + static_cast<size_t>(n_) * nrhs, x);
   }
   std::string name() const override { return "CHOLMOD"; }
+
+ private:
+  void numericFactor(cholmod_sparse& S) {
+    cholmod_factorize(&S, L_, &common_);
+    TRIBOS_REQUIRE(common_.status == CHOLMOD_OK && L_->minor == L_->n,
+                   "CHOLMOD: matrix of size " << n_ << " is not positive definite (pivot " << L_->minor << ")");
+  }
+  // The last |last_| rows and columns of L, dense column-major (lower triangle).
+  std::vector<double> trailingFactor() const {
+    const int nb = static_cast<int>(last_.size()), first = n_ - nb;
+    std::vector<double> Z(static_cast<size_t>(nb) * nb, 0.0);
+    if (L_->is_super) {
+      // Supernode s holds columns super[s]..super[s+1]-1 as a dense
+      // nsrow x nscol block at x + px[s], its row indices at s + pi[s].
+      const int* super = static_cast<const int*>(L_->super);
+      const int* pi = static_cast<const int*>(L_->pi);
+      const int* px = static_cast<const int*>(L_->px);
+      const int* rows = static_cast<const int*>(L_->s);
+      const double* x = static_cast<const double*>(L_->x);
+      for (size_t s = 0; s < L_->nsuper; ++s) {
+        if (super[s + 1] <= first) continue;
+        const int nsrow = pi[s + 1] - pi[s];
+        for (int j = std::max(super[s], first); j < super[s + 1]; ++j)
+          for (int r = j - super[s]; r < nsrow; ++r)
+            Z[static_cast<size_t>(j - first) * nb + (rows[pi[s] + r] - first)] =
+                x[px[s] + static_cast<size_t>(j - super[s]) * nsrow + r];
+      }
+      return Z;
+    }
+    // Simplicial (small matrices): an LL' copy, since the factor may be LDL'.
+    cholmod_factor* L = cholmod_copy_factor(L_, &common_);
+    cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, L, &common_);
+    TRIBOS_REQUIRE(common_.status == CHOLMOD_OK, "CHOLMOD: factor conversion failed (status " << common_.status << ")");
+    const int* Lp = static_cast<const int*>(L->p);
+    const int* Li = static_cast<const int*>(L->i);
+    const double* Lx = static_cast<const double*>(L->x);
+    for (int j = first; j < n_; ++j)
+      for (int k = Lp[j]; k < Lp[j + 1]; ++k) Z[static_cast<size_t>(j - first) * nb + (Li[k] - first)] = Lx[k];
+    cholmod_free_factor(&L, &common_);
+    return Z;
+  }
+
+ public:
   int size() const override { return n_; }
   double factorMemoryMb() const override {
     if (!L_) return 0;
@@ -87,6 +189,7 @@ class CholmodSolver : public LocalSolver {
  private:
   mutable cholmod_common common_;
   cholmod_factor* L_ = nullptr;
+  std::vector<int> last_;  // rows ordered last by factor(A, last)
   mutable cholmod_dense *X_ = nullptr, *Y_ = nullptr, *E_ = nullptr;  // reused by solve
   int n_ = 0;
 };

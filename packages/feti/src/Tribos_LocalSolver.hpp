@@ -18,8 +18,18 @@ class LocalSolver {
   virtual ~LocalSolver() = default;
   // A: symmetric positive definite, both triangles stored, sorted columns.
   virtual void factor(const LocalCsr& A) = 0;
+  // The same, with the rows `last` ordered after all others, so that
+  // inverseBlock(last) can be read off the trailing block of the factor (the
+  // CHOLMOD backend; the others ignore the hint).
+  virtual void factor(const LocalCsr& A, const std::vector<int>& last) {
+    (void)last;
+    factor(A);
+  }
   // x = A^-1 b for nrhs right-hand sides stored column after column (length n each).
   virtual void solve(const double* b, double* x, int nrhs = 1) const = 0;
+  // (A^-1) restricted to the rows and columns `dofs`: dense, symmetric,
+  // column-major |dofs| x |dofs|. By default |dofs| solves with unit vectors.
+  virtual std::vector<double> inverseBlock(const std::vector<int>& dofs) const;
   virtual std::string name() const = 0;
   virtual int size() const = 0;
   // Memory held by the factor, MB (0 when the backend does not report it).
