@@ -427,7 +427,7 @@ void FetiProblem::setupExplicitKplus(int k, const std::vector<int>& b) {
     blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, nb, nb, r, 1.0, Rb.data(), nb, V.data(), nb, 1.0, Z.data(), nb);
     blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, nb, nb, r, 1.0, V.data(), nb, Rb.data(), nb, 1.0, Z.data(), nb);
   }
-  KplusBB_.push_back(std::move(Z));
+  KplusBB_.push_back(Blas::packLower(nb, Z));
 }
 
 namespace {
@@ -473,7 +473,7 @@ void FetiProblem::applyDualKplus(const Vector& p, Vector& z) const {
     double* pb = workB_.data();
     double* zb = pb + nb;
     for (int i = 0; i < nb; ++i) pb[i] = pv[offset + b[i]];
-    Blas::symv(nb, 1.0, KplusBB_[k].data(), pb, 0.0, zb);
+    Blas::spmv(nb, 1.0, KplusBB_[k].data(), pb, 0.0, zb);
     for (int i = 0; i < nb; ++i) zv[offset + b[i]] = zb[i];
     offset += systems_[k].numDofs();
   }
