@@ -232,6 +232,11 @@ RCP<const ParameterList> Algorithm2::validParameters() {
             "inner solves stop no lower than this times the outer tolerance (below 1, so that a sweep can bring the "
             "joint projected gradient under the outer tolerance)",
             range<double>(1e-6, 1.0));
+    pl->set("Inner Relative Tolerance", 0.3,
+            "inner solves stop no lower than this times the joint projected gradient of the previous outer iteration: "
+            "the block Gauss-Seidel sweeps cannot bring the joint residual down faster than the coupling of the blocks "
+            "allows, so tighter block solves are wasted work; 0 leaves only M ||G lambda||, eta and the floor",
+            range<double>(0.0, 1.0));
     pl->set("rho", 0.0, "penalty; 0 means ||A||", range<double>(0.0, 1e300));
     pl->set("M", 0.0, "inner precision control; 0 means 0.3 ||A||", range<double>(0.0, 1e300));
     pl->set("eta", 0.1, "inner precision cap, as a multiple of ||b||", range<double>(1e-300, 1e300));
@@ -304,6 +309,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   const SC tol = params_.get<double>("Relative Tolerance") * normB;
   const SC slipTol = params_.get<double>("Slip Bound Tolerance");
   const SC innerFloor = params_.get<double>("Inner Tolerance Floor");
+  const SC innerRelative = params_.get<double>("Inner Relative Tolerance");
   const int sweeps = params_.get<int>("Sweeps");
 
   const auto normalMask = dual.normalBlockMask(), tangentMask = dual.tangentBlockMask();
@@ -326,7 +332,10 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
     H.setRho(rho);
     // The first blocks start from G x = 0, where M ||G x|| would ask for an
     // exact solve of a problem whose slip bound is still a guess: use eta.
-    const SC innerTol = std::max(innerFloor * tol, l == 1 ? eta : std::min(M * normGx, eta));
+    // Later, SMALBE's M ||G x|| (M shrinks whenever L grows too little) is
+    // relaxed to a fraction of the previous joint projected gradient.
+    const SC innerTol = std::max(
+        innerFloor * tol, l == 1 ? eta : std::min(std::max(M * normGx, innerRelative * st.norm_gP), eta));
     for (auto* s : {&mprgp, &mpgp}) {
       (*s)->setHessianNorm(normA + rho * normGtG);
       (*s)->setTolerance(innerTol);
