@@ -152,8 +152,9 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
             "block of K+ on the dofs B touches, formed once from the trailing block of a factor that orders "
             "those dofs last: about three factorizations' worth of setup, then each application of F costs a "
             "fraction of two triangular solves), Implicit (per subdomain a forward and a backward sparse "
-            "triangular solve) or Auto (Explicit with contact, whose solvers apply F hundreds of times; "
-            "Implicit without, where projected CG applies it tens of times)",
+            "triangular solve) or Auto (with contact, whose solvers apply F hundreds of times, Explicit for "
+            "every subdomain whose block has at most 4000 rows; Implicit without contact, where projected CG "
+            "applies F tens of times)",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Auto", "Explicit", "Implicit"))));
   }
   return pl;
@@ -165,8 +166,8 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& 
   Teuchos::ParameterList p(params);
   p.validateParametersAndSetDefaults(*getValidParameters(), 0);
   localSolverName_ = p.get<std::string>("Local Solver");
-  const std::string dualOperator = p.get<std::string>("Dual Operator");
-  explicitF_ = dualOperator == "Explicit" || (dualOperator == "Auto" && contact.enabled);
+  dualOperator_ = p.get<std::string>("Dual Operator");
+  if (dualOperator_ == "Auto") dualOperator_ = contact.enabled ? "Auto with contact" : "Implicit";
   const int S = disc.numSubdomains();
   primalOffsets_.assign(S + 1, 0);
   for (int s = 0; s < S; ++s) primalOffsets_[s + 1] = primalOffsets_[s] + 3 * static_cast<GO>(disc.subdomains[s].nodes.size());
@@ -342,7 +343,8 @@ void FetiProblem::buildContact(const std::vector<DualRow>& rows, const ContactSp
 void FetiProblem::factorSubdomains() {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg"));
   const auto t0 = std::chrono::steady_clock::now();
-  if (explicitF_) boundary_ = boundaryDofs();
+  if (dualOperator_ != "Implicit") boundary_ = boundaryDofs();
+  KplusBB_.assign(systems_.size(), {});
   for (size_t k = 0; k < systems_.size(); ++k) {
     const auto& sys = systems_[k];
     LocalCsr Kreg = sys.K;
@@ -351,13 +353,17 @@ void FetiProblem::factorSubdomains() {
     for (int i : fixingDofs(sys.R, n))
       for (int a = Kreg.rowptr[i]; a < Kreg.rowptr[i + 1]; ++a)
         if (Kreg.col[a] == i) Kreg.val[a] += rho;
+    // Auto: a dense block of more than kAutoExplicitRows rows would cost
+    // more to form (|b|^3 flops) and hold than the applications it saves.
+    const bool dense = dualOperator_ == "Explicit" ||
+                       (dualOperator_ == "Auto with contact" && boundary_[k].size() <= kAutoExplicitRows);
     auto solver = createLocalSolver(localSolverName_);
-    if (explicitF_)
+    if (dense)
       solver->factor(Kreg, boundary_[k]);
     else
       solver->factor(Kreg);
     Kreg_.push_back(solver);
-    if (explicitF_) setupExplicitKplus(static_cast<int>(k), boundary_[k]);
+    if (dense) setupExplicitKplus(static_cast<int>(k), boundary_[k]);
   }
   factorTime_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -427,7 +433,7 @@ void FetiProblem::setupExplicitKplus(int k, const std::vector<int>& b) {
     blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, nb, nb, r, 1.0, Rb.data(), nb, V.data(), nb, 1.0, Z.data(), nb);
     blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, nb, nb, r, 1.0, V.data(), nb, Rb.data(), nb, 1.0, Z.data(), nb);
   }
-  KplusBB_.push_back(Blas::packLower(nb, Z));
+  KplusBB_[k] = Blas::packLower(nb, Z);
 }
 
 namespace {
@@ -452,21 +458,35 @@ void FetiProblem::applyKplus(const Vector& p, Vector& z) const {
   auto zv = z.getDataNonConst();
   size_t offset = 0;
   for (size_t k = 0; k < systems_.size(); ++k) {
-    const int n = systems_[k].numDofs();
-    work_.assign(pv.getRawPtr() + offset, pv.getRawPtr() + offset + n);
-    removeKernel(systems_[k].R, n, work_.data());
-    Kreg_[k]->solve(work_.data(), zv.getRawPtr() + offset, 1);
-    removeKernel(systems_[k].R, n, zv.getRawPtr() + offset);
-    offset += n;
+    applyKplus(k, pv.getRawPtr() + offset, zv.getRawPtr() + offset);
+    offset += systems_[k].numDofs();
   }
 }
 
+void FetiProblem::applyKplus(size_t k, const double* p, double* z) const {
+  const int n = systems_[k].numDofs();
+  work_.assign(p, p + n);
+  removeKernel(systems_[k].R, n, work_.data());
+  Kreg_[k]->solve(work_.data(), z, 1);
+  removeKernel(systems_[k].R, n, z);
+}
+
+bool FetiProblem::explicitDualOperator() const {
+  bool any = false;
+  for (const auto& Z : KplusBB_) any = any || !Z.empty();
+  return any;
+}
+
 void FetiProblem::applyDualKplus(const Vector& p, Vector& z) const {
-  if (!explicitF_) return applyKplus(p, z);
   auto pv = p.getData();
   auto zv = z.getDataNonConst();
   size_t offset = 0;
   for (size_t k = 0; k < systems_.size(); ++k) {
+    if (KplusBB_.empty() || KplusBB_[k].empty()) {
+      applyKplus(k, pv.getRawPtr() + offset, zv.getRawPtr() + offset);
+      offset += systems_[k].numDofs();
+      continue;
+    }
     const auto& b = boundary_[k];
     const int nb = static_cast<int>(b.size());
     workB_.resize(2 * static_cast<size_t>(nb));

@@ -110,7 +110,10 @@ class FetiProblem {
   double factorTime() const { return factorTime_; }
   double factorMemoryMb() const;
   const std::string& localSolverName() const { return localSolverName_; }
-  bool explicitDualOperator() const { return explicitF_; }
+  // True when some local subdomain applies F from its dense block (K+)_bb.
+  bool explicitDualOperator() const;
+  // "Auto" forms dense blocks only up to this many rows.
+  static constexpr size_t kAutoExplicitRows = 4000;
 
  private:
   std::vector<DualRow> buildRows(const Fem::LoadCase& loads, const ContactSpec& contact, const std::string& gluing);
@@ -120,6 +123,7 @@ class FetiProblem {
   // Per local subdomain, the dofs that some row of B touches (ascending).
   std::vector<std::vector<int>> boundaryDofs() const;
   void setupExplicitKplus(int k, const std::vector<int>& b);
+  void applyKplus(size_t k, const double* p, double* z) const;  // one local subdomain
 
   const Mesh::Discretization& disc_;
   RCP<const Comm> comm_;
@@ -136,9 +140,9 @@ class FetiProblem {
   LocalContact contact_;
   double factorTime_ = 0;
   mutable std::vector<double> work_;
-  // Dual Operator = Explicit: per local subdomain the B dofs b and the dense
-  // symmetric block (K+)_bb (column-major).
-  bool explicitF_ = false;
+  // "Explicit", "Implicit" or "Auto with contact"; per local subdomain the B
+  // dofs b and the packed lower triangle of (K+)_bb (empty: applied implicitly).
+  std::string dualOperator_;
   std::vector<std::vector<int>> boundary_;
   std::vector<std::vector<double>> KplusBB_;
   mutable std::vector<double> workB_;
