@@ -1,13 +1,11 @@
 // Tribos_DenseBlas.hpp: the few dense BLAS/LAPACK kernels Teuchos does not wrap
-// (symmetric matrix-vector product, inverse from a Cholesky factor). Column-major,
+// (packed symmetric matrix-vector product, inverse from a Cholesky factor). Column-major,
 // lower triangle.
 #pragma once
 
 #include <vector>
 
 extern "C" {
-void dsymv_(const char* uplo, const int* n, const double* alpha, const double* a, const int* lda, const double* x,
-            const int* incx, const double* beta, double* y, const int* incy);
 void dspmv_(const char* uplo, const int* n, const double* alpha, const double* ap, const double* x, const int* incx,
             const double* beta, double* y, const int* incy);
 void dpotri_(const char* uplo, const int* n, double* a, const int* lda, int* info);
@@ -15,13 +13,6 @@ void dpotri_(const char* uplo, const int* n, double* a, const int* lda, int* inf
 
 namespace Tribos {
 namespace Blas {
-
-// y = alpha A x + beta y, A symmetric n x n, only its lower triangle is read.
-inline void symv(int n, double alpha, const double* A, const double* x, double beta, double* y) {
-  const char uplo = 'L';
-  const int one = 1;
-  dsymv_(&uplo, &n, &alpha, A, &n, x, &one, &beta, y, &one);
-}
 
 // y = alpha A x + beta y, A symmetric n x n stored as its packed lower triangle
 // (column after column, n(n+1)/2 values: half the memory traffic of symv).

@@ -22,6 +22,13 @@ inline double relDiff(const std::vector<double>& a, const std::vector<double>& b
   return std::sqrt(d / std::max(n, 1e-300));
 }
 
+// max_i |a_i - b_i| / max_i |b_i|.
+inline double maxRelDiff(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0, n = 0;
+  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i])), n = std::max(n, std::abs(b[i]));
+  return d / std::max(n, 1e-300);
+}
+
 }  // namespace Test
 }  // namespace Tribos
 

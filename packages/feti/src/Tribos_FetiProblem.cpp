@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include <Teuchos_BLAS.hpp>
@@ -166,8 +167,11 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& 
   Teuchos::ParameterList p(params);
   p.validateParametersAndSetDefaults(*getValidParameters(), 0);
   localSolverName_ = p.get<std::string>("Local Solver");
-  dualOperator_ = p.get<std::string>("Dual Operator");
-  if (dualOperator_ == "Auto") dualOperator_ = contact.enabled ? "Auto with contact" : "Implicit";
+  const std::string dualOperator = p.get<std::string>("Dual Operator");
+  if (dualOperator == "Explicit")
+    denseRowLimit_ = std::numeric_limits<long>::max();
+  else if (dualOperator == "Auto" && contact.enabled)
+    denseRowLimit_ = static_cast<long>(kAutoExplicitRows);
   const int S = disc.numSubdomains();
   primalOffsets_.assign(S + 1, 0);
   for (int s = 0; s < S; ++s) primalOffsets_[s + 1] = primalOffsets_[s] + 3 * static_cast<GO>(disc.subdomains[s].nodes.size());
@@ -343,7 +347,7 @@ void FetiProblem::buildContact(const std::vector<DualRow>& rows, const ContactSp
 void FetiProblem::factorSubdomains() {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg"));
   const auto t0 = std::chrono::steady_clock::now();
-  if (dualOperator_ != "Implicit") boundary_ = boundaryDofs();
+  if (denseRowLimit_ >= 0) boundary_ = boundaryDofs();
   KplusBB_.assign(systems_.size(), {});
   for (size_t k = 0; k < systems_.size(); ++k) {
     const auto& sys = systems_[k];
@@ -355,8 +359,7 @@ void FetiProblem::factorSubdomains() {
         if (Kreg.col[a] == i) Kreg.val[a] += rho;
     // Auto: a dense block of more than kAutoExplicitRows rows would cost
     // more to form (|b|^3 flops) and hold than the applications it saves.
-    const bool dense = dualOperator_ == "Explicit" ||
-                       (dualOperator_ == "Auto with contact" && boundary_[k].size() <= kAutoExplicitRows);
+    const bool dense = denseRowLimit_ >= 0 && static_cast<long>(boundary_[k].size()) <= denseRowLimit_;
     auto solver = createLocalSolver(localSolverName_);
     if (dense)
       solver->factor(Kreg, boundary_[k]);
@@ -482,7 +485,7 @@ void FetiProblem::applyDualKplus(const Vector& p, Vector& z) const {
   auto zv = z.getDataNonConst();
   size_t offset = 0;
   for (size_t k = 0; k < systems_.size(); ++k) {
-    if (KplusBB_.empty() || KplusBB_[k].empty()) {
+    if (KplusBB_[k].empty()) {
       applyKplus(k, pv.getRawPtr() + offset, zv.getRawPtr() + offset);
       offset += systems_[k].numDofs();
       continue;

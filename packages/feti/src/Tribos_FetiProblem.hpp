@@ -140,9 +140,10 @@ class FetiProblem {
   LocalContact contact_;
   double factorTime_ = 0;
   mutable std::vector<double> work_;
-  // "Explicit", "Implicit" or "Auto with contact"; per local subdomain the B
-  // dofs b and the packed lower triangle of (K+)_bb (empty: applied implicitly).
-  std::string dualOperator_;
+  // Subdomains with at most this many B dofs get a dense block (K+)_bb
+  // (-1: none, Implicit); per local subdomain the B dofs b and the packed
+  // lower triangle of (K+)_bb (empty: applied implicitly).
+  long denseRowLimit_ = -1;
   std::vector<std::vector<int>> boundary_;
   std::vector<std::vector<double>> KplusBB_;
   mutable std::vector<double> workB_;

@@ -92,6 +92,8 @@ class CholmodSolver : public LocalSolver {
     cholmod_sparse S = cholmodView(A, true);
     TRIBOS_REQUIRE(cholmod_camd(&S, nullptr, 0, set.data(), perm.data(), &common_),
                    "CHOLMOD: constrained ordering failed (status " << common_.status << ")");
+    for (auto it = perm.end() - last.size(); it != perm.end(); ++it)
+      TRIBOS_REQUIRE(set[*it], "CHOLMOD: the constrained ordering did not put the given rows last");
     std::copy(last.begin(), last.end(), perm.end() - last.size());  // `last` in the caller's order
     if (L_) cholmod_free_factor(&L_, &common_);
     // The given ordering exactly: a postorder of the elimination tree could

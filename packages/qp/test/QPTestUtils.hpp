@@ -21,6 +21,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_QP_ConstraintSet.hpp"
+#include "Tribos_QP_Solver.hpp"
 #include "Tribos_QP_Status.hpp"
 #include "Tribos_Types.hpp"
 
@@ -32,6 +33,7 @@ const double inf = std::numeric_limits<double>::infinity();
 
 // ---------------------------------------------------------------- checks
 struct Checker {
+  explicit Checker(const Comm& comm) : rank(comm.getRank()) {}
   int failures = 0;
   int rank = 0;
   void operator()(bool ok, const std::string& what) {
@@ -419,6 +421,44 @@ struct Run {
   Vec x;
   long counted = 0;
 };
+
+// Solves min 1/2 x'Ax - b'x on Omega(s) from x0, distributed by pairMap; with
+// `keep` (global flags), the entries outside it are frozen at x0.
+inline Run solve(QP::QPSolver& solver, const RCP<const Comm>& comm, const Dense& A, const Vec& b, const SetSpec& s,
+                 const Vec& x0, const std::vector<char>& keep = {}) {
+  auto map = pairMap(A.n, comm);
+  CountingOperator Aop(toCrs(map, A));
+  auto bv = toVector(map, b);
+  auto x = toVector(map, x0);
+  QP::ConstraintSet Omega = makeSet(map, s);
+  if (!keep.empty()) {
+    std::vector<char> keepLocal(map->getNodeNumElements());
+    for (size_t l = 0; l < keepLocal.size(); ++l) keepLocal[l] = keep[map->getGlobalElement(static_cast<LO>(l))];
+    Omega = Omega.fixedOutside(keepLocal);
+  }
+  Run r;
+  r.st = solver.solve(Aop, *bv, Omega, *x);
+  r.x = gather(*x);
+  r.counted = Aop.count;
+  return r;
+}
+
+// n_A = power iterations + initial gradient + one per CG / proportioning
+// step + two per expansion step (A p, then A x after the projection).
+template <class Check>
+void checkCounts(Check& check, const Run& r, int power, const std::string& name) {
+  check(r.counted == r.st.n_A, name + ": n_A = " + std::to_string(r.st.n_A) + " but A applied " + std::to_string(r.counted));
+  const long expected = power + 1 + r.st.cg_steps + r.st.proportioning_steps + 2L * r.st.expansion_steps;
+  check(r.st.n_A == expected, name + ": n_A = " + std::to_string(r.st.n_A) + ", step accounting gives " + std::to_string(expected));
+  check(r.st.iterations == r.st.cg_steps + r.st.expansion_steps + r.st.proportioning_steps, name + ": step counts add up");
+}
+
+// max_i |a_i - b_i|
+inline double maxDiff(const Vec& a, const Vec& b) {
+  double m = 0;
+  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
+  return m;
+}
 
 // Solver parameters with the given relative tolerance and iteration limit.
 inline Teuchos::RCP<Teuchos::ParameterList> params(double rtol, int maxIt = 2000) {

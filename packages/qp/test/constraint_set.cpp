@@ -40,8 +40,7 @@ double maxDiff(const Vector& x, const Vec& ref) {
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
-  Checker check;
-  check.rank = comm->getRank();
+  Checker check(*comm);
   auto map = rcp(new Map(static_cast<Tpetra::global_size_t>(6 * comm->getSize()), 6, 0, comm));
   try {
     ConstraintSet Omega = block(map);

@@ -13,8 +13,7 @@ using namespace Tribos::QP;
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
-  Checker check;
-  check.rank = comm->getRank();
+  Checker check(*comm);
   try {
     QPSolverFactory factory;
     const auto names = factory.supportedSolverNames();

@@ -16,39 +16,6 @@ using namespace Tribos::QP;
 
 namespace {
 
-
-// keep: optional, per global index; entries with 0 are frozen by fixedOutside
-Run solve(QPSolver& solver, const RCP<const Comm>& comm, const Dense& A, const Vec& b, const SetSpec& s, const Vec& x0,
-          const std::vector<char>& keep = {}) {
-  auto map = pairMap(A.n, comm);
-  CountingOperator Aop(toCrs(map, A));
-  auto bv = toVector(map, b);
-  auto x = toVector(map, x0);
-  ConstraintSet Omega = makeSet(map, s);
-  if (!keep.empty()) {
-    std::vector<char> keepLocal(map->getNodeNumElements());
-    for (size_t l = 0; l < keepLocal.size(); ++l) keepLocal[l] = keep[map->getGlobalElement(static_cast<LO>(l))];
-    Omega = Omega.fixedOutside(keepLocal);
-  }
-  Run r;
-  r.st = solver.solve(Aop, *bv, Omega, *x);
-  r.x = gather(*x);
-  r.counted = Aop.count;
-  return r;
-}
-
-void checkCounts(Checker& check, const Run& r, int power, const std::string& name) {
-  check(r.counted == r.st.n_A, name + ": n_A = " + std::to_string(r.st.n_A) + " but A applied " + std::to_string(r.counted));
-  const long expected = power + 1 + r.st.cg_steps + r.st.proportioning_steps + 2L * r.st.expansion_steps;
-  check(r.st.n_A == expected, name + ": n_A = " + std::to_string(r.st.n_A) + ", step accounting gives " + std::to_string(expected));
-}
-
-double maxDiff(const Vec& a, const Vec& b) {
-  double m = 0;
-  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
-  return m;
-}
-
 int countActiveCircles(const SetSpec& s, const Vec& x) {
   int k = 0;
   for (int i = 0; i < s.n(); i += 2)
@@ -61,8 +28,7 @@ int countActiveCircles(const SetSpec& s, const Vec& x) {
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
-  Checker check;
-  check.rank = comm->getRank();
+  Checker check(*comm);
   try {
     // 1. disks only: 6 circles, random radii, some active, some not
     for (uint32_t seed = 1; seed <= 3; ++seed) {

@@ -12,38 +12,10 @@
 using namespace qptest;
 using namespace Tribos::QP;
 
-namespace {
-
-
-Run solve(QPSolver& solver, const RCP<const Comm>& comm, const Dense& A, const Vec& b, const SetSpec& s, const Vec& x0) {
-  auto map = pairMap(A.n, comm);
-  CountingOperator Aop(toCrs(map, A));
-  auto bv = toVector(map, b);
-  auto x = toVector(map, x0);
-  ConstraintSet Omega = makeSet(map, s);
-  Run r;
-  r.st = solver.solve(Aop, *bv, Omega, *x);
-  r.x = gather(*x);
-  r.counted = Aop.count;
-  return r;
-}
-
-// n_A = power iterations + initial gradient + one per CG / proportioning
-// step + two per expansion step (A p, then A x after the projection).
-void checkCounts(Checker& check, const Run& r, int power, const std::string& name) {
-  check(r.counted == r.st.n_A, name + ": n_A = " + std::to_string(r.st.n_A) + " but A applied " + std::to_string(r.counted));
-  const long expected = power + 1 + r.st.cg_steps + r.st.proportioning_steps + 2L * r.st.expansion_steps;
-  check(r.st.n_A == expected, name + ": n_A = " + std::to_string(r.st.n_A) + ", step accounting gives " + std::to_string(expected));
-  check(r.st.iterations == r.st.cg_steps + r.st.expansion_steps + r.st.proportioning_steps, name + ": step counts add up");
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
-  Checker check;
-  check.rank = comm->getRank();
+  Checker check(*comm);
   try {
     // 1. lower bounds, n = 8, several seeds: exact solution by enumeration
     for (uint32_t seed = 1; seed <= 4; ++seed) {

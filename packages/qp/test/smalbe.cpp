@@ -113,19 +113,13 @@ SmalbeRun solve(SMALBE& solver, const RCP<const Comm>& comm, const Dense& A, con
   return r;
 }
 
-double maxDiff(const Vec& a, const Vec& b) {
-  double m = 0;
-  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
-  return m;
-}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
-  Checker check;
-  check.rank = comm->getRank();
+  Checker check(*comm);
   try {
     // 1. bounds + 2 equality rows (explicit G): exact (x, mu) by enumeration
     for (uint32_t seed = 1; seed <= 3; ++seed) {

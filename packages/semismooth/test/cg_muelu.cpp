@@ -10,23 +10,12 @@
 //  - The reported last residual agrees with the true one to 1%.
 //  - reduction() and "Dense Schur" are refused with CG+MueLu.
 #include "SemismoothTestUtils.hpp"
+#include "Tribos_TestSupport.hpp"
 
 #include <Teuchos_ParameterList.hpp>
 
 #include "Tribos_Error.hpp"
 
-namespace {
-
-double relDiff(const std::vector<double>& a, const std::vector<double>& b) {
-  double d = 0, s = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    d = std::max(d, std::abs(a[i] - b[i]));
-    s = std::max(s, std::abs(b[i]));
-  }
-  return d / s;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);
@@ -71,11 +60,11 @@ int main(int argc, char** argv) {
     if (L == 3 || L == 4) {
       const Semismooth::SemismoothResult d = Semismooth::solveFromMesh(
           pr.mesh, pr.material, pr.loads, pr.contactFace, pr.gap, pr.slipBoundTraction, pr.solverParams, nullptr);
-      std::cout << "L=" << L << ": vs Sparse Direct: x " << relDiff(c.x, d.x) << ", y " << relDiff(c.y, d.y) << ", u "
-                << relDiff(c.u, d.u) << "\n";
-      SS_CHECK(relDiff(c.x, d.x) <= 1e-6, "L=" << L << ": x differs by " << relDiff(c.x, d.x));
-      SS_CHECK(relDiff(c.y, d.y) <= 1e-6, "L=" << L << ": y differs by " << relDiff(c.y, d.y));
-      SS_CHECK(relDiff(c.u, d.u) <= 1e-6, "L=" << L << ": u differs by " << relDiff(c.u, d.u));
+      std::cout << "L=" << L << ": vs Sparse Direct: x " << Test::maxRelDiff(c.x, d.x) << ", y " << Test::maxRelDiff(c.y, d.y) << ", u "
+                << Test::maxRelDiff(c.u, d.u) << "\n";
+      SS_CHECK(Test::maxRelDiff(c.x, d.x) <= 1e-6, "L=" << L << ": x differs by " << Test::maxRelDiff(c.x, d.x));
+      SS_CHECK(Test::maxRelDiff(c.y, d.y) <= 1e-6, "L=" << L << ": y differs by " << Test::maxRelDiff(c.y, d.y));
+      SS_CHECK(Test::maxRelDiff(c.u, d.u) <= 1e-6, "L=" << L << ": u differs by " << Test::maxRelDiff(c.u, d.u));
     }
     if (L == 2) {
       bool refused = false;

@@ -5,21 +5,10 @@
 // steps by CG agree to 1e-8; the contact frames are objective (the same prism
 // rotated in space gives the rotated solution); parameters are validated.
 #include "SemismoothTestUtils.hpp"
+#include "Tribos_TestSupport.hpp"
 
 #include <Teuchos_ParameterList.hpp>
 
-namespace {
-
-double relDiff(const std::vector<double>& a, const std::vector<double>& b) {
-  double d = 0, s = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    d = std::max(d, std::abs(a[i] - b[i]));
-    s = std::max(s, std::abs(b[i]));
-  }
-  return d / s;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);
@@ -39,10 +28,10 @@ int main(int argc, char** argv) {
     SS_CHECK(s.numContact[k] == d.numContact[k] && s.numStick[k] == d.numStick[k], "active sets differ at " << k);
     if (s.residuals[k] > 1e-6) SS_CHECK(std::abs(s.residuals[k] - d.residuals[k]) <= 1e-10, "residual " << k);
   }
-  std::cout << "u: " << relDiff(s.u, d.u) << ", x: " << relDiff(s.x, d.x) << ", y: " << relDiff(s.y, d.y) << "\n";
-  SS_CHECK(relDiff(s.u, d.u) <= 1e-10, "u differs by " << relDiff(s.u, d.u));
-  SS_CHECK(relDiff(s.x, d.x) <= 1e-10, "x differs by " << relDiff(s.x, d.x));
-  SS_CHECK(relDiff(s.y, d.y) <= 1e-10, "y differs by " << relDiff(s.y, d.y));
+  std::cout << "u: " << Test::maxRelDiff(s.u, d.u) << ", x: " << Test::maxRelDiff(s.x, d.x) << ", y: " << Test::maxRelDiff(s.y, d.y) << "\n";
+  SS_CHECK(Test::maxRelDiff(s.u, d.u) <= 1e-10, "u differs by " << Test::maxRelDiff(s.u, d.u));
+  SS_CHECK(Test::maxRelDiff(s.x, d.x) <= 1e-10, "x differs by " << Test::maxRelDiff(s.x, d.x));
+  SS_CHECK(Test::maxRelDiff(s.y, d.y) <= 1e-10, "y differs by " << Test::maxRelDiff(s.y, d.y));
 
   // Newton steps by CG on the contact boundary: the same iterates up to the
   // CG tolerance (1e-12).
@@ -50,9 +39,9 @@ int main(int argc, char** argv) {
     Teuchos::ParameterList cgParams = sparseParams;
     cgParams.set("Newton Solver", "Reduced CG");
     const Semismooth::SemismoothResult c = solve(cgParams);
-    std::cout << "Reduced CG: u differs by " << relDiff(c.u, s.u) << ", " << c.cgIterations << " CG steps\n";
-    SS_CHECK(c.converged && c.iterations == s.iterations && relDiff(c.u, s.u) <= 1e-8,
-             "Reduced CG: u differs by " << relDiff(c.u, s.u));
+    std::cout << "Reduced CG: u differs by " << Test::maxRelDiff(c.u, s.u) << ", " << c.cgIterations << " CG steps\n";
+    SS_CHECK(c.converged && c.iterations == s.iterations && Test::maxRelDiff(c.u, s.u) <= 1e-8,
+             "Reduced CG: u differs by " << Test::maxRelDiff(c.u, s.u));
   }
 
   // Another sparse direct backend (refactoring from scratch each time).
@@ -60,8 +49,8 @@ int main(int argc, char** argv) {
     Teuchos::ParameterList kluParams = sparseParams;
     kluParams.set("Local Solver", "KLU2");
     const Semismooth::SemismoothResult k = solve(kluParams);
-    SS_CHECK(k.converged && k.iterations == s.iterations && relDiff(k.u, s.u) <= 1e-10,
-             "KLU2: u differs by " << relDiff(k.u, s.u));
+    SS_CHECK(k.converged && k.iterations == s.iterations && Test::maxRelDiff(k.u, s.u) <= 1e-10,
+             "KLU2: u differs by " << Test::maxRelDiff(k.u, s.u));
   }
 
   // The dense S is symmetric positive definite and agrees with applyS.
@@ -109,8 +98,8 @@ int main(int argc, char** argv) {
       const auto w = rot({s.u[3 * node], s.u[3 * node + 1], s.u[3 * node + 2]});
       for (int a = 0; a < 3; ++a) Qu[3 * node + a] = w[a];
     }
-    std::cout << "rotated prism: u differs from Q u by " << relDiff(q.u, Qu) << "\n";
-    SS_CHECK(q.converged && relDiff(q.u, Qu) <= 1e-8, "rotated prism: u differs from Q u by " << relDiff(q.u, Qu));
+    std::cout << "rotated prism: u differs from Q u by " << Test::maxRelDiff(q.u, Qu) << "\n";
+    SS_CHECK(q.converged && Test::maxRelDiff(q.u, Qu) <= 1e-8, "rotated prism: u differs from Q u by " << Test::maxRelDiff(q.u, Qu));
   }
 
   // Misspelled names and bad values are rejected with the parameter's name.
