@@ -237,9 +237,22 @@ RCP<const ParameterList> Algorithm2::validParameters() {
             "the block Gauss-Seidel sweeps cannot bring the joint residual down faster than the coupling of the blocks "
             "allows, so tighter block solves are wasted work; 0 leaves only M ||G lambda||, eta and the floor",
             range<double>(0.0, 1.0));
-    pl->set("rho", 0.0, "penalty; 0 means ||A||", range<double>(0.0, 1e300));
+    pl->set("rho", 0.0, "initial penalty; 0 means ||A||", range<double>(0.0, 1e300));
+    pl->set("Residual Balancing", 2.0,
+            "rho <- rho Factor * rho when ||G lambda|| > this times ||g^P|| (the penalty is too weak for the equality "
+            "constraint), rho <- rho / rho Factor when ||g^P|| > this times ||G lambda|| (the penalty couples the "
+            "Gauss-Seidel blocks more than feasibility needs); 0 keeps rho fixed, otherwise at least 1",
+            range<double>(0.0, 1e6));
+    pl->set("rho Factor", 2.0, "factor of a residual-balancing change of rho", range<double>(1.0 + 1e-12, 1e6));
+    pl->set("Minimum rho", 0.25, "lower limit of residual balancing, as a multiple of the initial rho",
+            range<double>(1e-12, 1.0));
+    pl->set("Maximum rho", 8.0, "upper limit of residual balancing, as a multiple of the initial rho",
+            range<double>(1.0, 1e12));
     pl->set("M", 0.0, "inner precision control; 0 means 0.3 ||A||", range<double>(0.0, 1e300));
-    pl->set("eta", 0.1, "inner precision cap, as a multiple of ||b||", range<double>(1e-300, 1e300));
+    pl->set("eta", 1e-3,
+            "inner precision cap, as a multiple of ||b||; it is the precision of the first outer iteration, whose "
+            "iterate sets the first slip bound and the scale of ||G lambda||",
+            range<double>(1e-300, 1e300));
     pl->set("beta", 2.0, "M <- M / beta when the augmented Lagrangian does not grow enough", range<double>(1.0 + 1e-12, 1e6));
     QP::QPSolverFactory factory;
     pl->sublist("MPRGP").setParameters(*factory.create("MPRGP", Teuchos::null)->getValidParameters());
@@ -252,6 +265,10 @@ RCP<const ParameterList> Algorithm2::getValidParameters() const { return validPa
 
 Algorithm2::Algorithm2(const ParameterList& params) : params_(params) {
   params_.validateParametersAndSetDefaults(*validParameters());
+  const double ratio = params_.get<double>("Residual Balancing");
+  if (ratio > 0 && ratio < 1)
+    throw Error("Solver/Algorithm 2/Residual Balancing = " + std::to_string(ratio) +
+                ": must be 0 (rho fixed) or at least 1 (otherwise both residuals could ask for opposite changes)");
 }
 
 namespace {
@@ -288,6 +305,22 @@ class NormalOperator : public Operator {
   RCP<const Map> xmap_;
   mutable Vector Gx_;
 };
+
+// Residual balancing of the penalty (the rule used for ADMM penalties): rho
+// too small leaves G lambda behind the projected gradient, since the
+// multiplier update gains only a factor of about 1 + rho sigma per outer
+// iteration (sigma: curvature of the dual function); rho too large couples
+// the normal and tangential blocks through rho G'G, so that the Gauss-Seidel
+// sweeps leave g^P behind. Move rho by a factor towards the lagging residual.
+struct RhoBalancing {
+  SC ratio, factor, lowest, highest;
+  SC update(SC rho, SC normGx, SC normGP) const {
+    if (ratio == 0) return rho;
+    if (normGx > ratio * normGP && rho * factor <= highest) return rho * factor;
+    if (normGP > ratio * normGx && rho / factor >= lowest) return rho / factor;
+    return rho;
+  }
+};
 }  // namespace
 
 FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
@@ -302,6 +335,10 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   const SC normA = estimateHessianNorm(*dual.A, st.n_A);
   const SC normB = dual.b->norm2();
   SC rho = params_.get<double>("rho") > 0 ? params_.get<double>("rho") : normA;
+  // Limits with a little slack, so that rho0 * factor^k hits them exactly.
+  const RhoBalancing balancing{params_.get<double>("Residual Balancing"), params_.get<double>("rho Factor"),
+                               params_.get<double>("Minimum rho") * rho * (1 - 1e-12),
+                               params_.get<double>("Maximum rho") * rho * (1 + 1e-12)};
   // M = 0.3 ||A||: chosen on the seed brick (docs/friction.md).
   SC M = params_.get<double>("M") > 0 ? params_.get<double>("M") : 0.3 * normA;
   const SC eta = params_.get<double>("eta") * (normB > 0 ? normB : 1.0);
@@ -384,6 +421,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
     }
     if (l > 1 && L < Lprev + 0.5 * rho * normGx * normGx) M /= beta;
     Lprev = L;
+    rho = balancing.update(rho, normGx, st.norm_gP);
   }
   st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of Algorithm 2 reached";
   return st;
