@@ -28,6 +28,7 @@ struct Setup {
   std::string algorithm = "Algorithm2";
   double topLoad = -4e7;  // z traction on zmax
   double gap = 0.0;
+  double residualBalancing = -1;  // Algorithm 2's rho update; < 0: the default
 };
 
 struct Result {
@@ -81,7 +82,9 @@ static Result solve(const Setup& s, const RCP<const Comm>& comm) {
   fs.coefficient = s.F;
   fs.slipBoundTraction = s.slipTraction;
   Contact::FetiContactProblem cp(dual, fs);
-  auto sol = cp.solve(s.algorithm, tightSolverParams());
+  auto params = tightSolverParams();
+  if (s.residualBalancing >= 0) params.sublist("Algorithm 2").set("Residual Balancing", s.residualBalancing);
+  auto sol = cp.solve(s.algorithm, params);
   Result r;
   r.status = sol.status;
   const auto& lambda = sol.lambda;
@@ -245,6 +248,15 @@ int main(int argc, char** argv) {
   if (root) std::cout << "Algorithm2 vs MSA: " << dAlg << std::endl;
   CHECK(dAlg < 1e-4, "Algorithm 2 and MSA displacements differ by " << dAlg);
   CHECK(a2.counts.stick > 0 && a2.counts.slip > 0, "F = 0.3 has both stick and slip nodes");
+  // The penalty rho changes the path, not the solution: Algorithm 2 with rho
+  // fixed (no residual balancing) reaches the same displacements.
+  Setup fixedRho = coulombA2;
+  fixedRho.residualBalancing = 0;
+  const auto a2fixed = solve(fixedRho, comm);
+  kktOk("Coulomb Algorithm2, rho fixed", a2fixed, 1e-5);
+  const double dRho = relDiff(a2.u, a2fixed.u);
+  if (root) std::cout << "Algorithm2 balanced vs fixed rho: " << dRho << std::endl;
+  CHECK(dRho < 1e-6, "Algorithm 2 with and without residual balancing differ by " << dRho);
 
   // Limits.
   const auto r0 = solve(frictionless, comm);
