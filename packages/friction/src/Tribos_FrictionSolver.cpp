@@ -421,7 +421,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
     }
     if (l > 1 && L < Lprev + 0.5 * rho * normGx * normGx) M /= beta;
     Lprev = L;
-    rho = balancing.update(rho, normGx, st.norm_gP);
+    if (!dual.G.is_null()) rho = balancing.update(rho, normGx, st.norm_gP);  // rho acts only through G
   }
   st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of Algorithm 2 reached";
   return st;
