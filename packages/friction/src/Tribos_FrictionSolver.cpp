@@ -39,6 +39,13 @@ RCP<QP::QPSolver> makeQPSolver(const std::string& type, const ParameterList& par
 
 SC estimateHessianNorm(const Operator& A, long& n_A) { return QP::estimateNorm(A, 20, n_A); }
 
+// The sublists "MPRGP" and "MPGP" of the block solvers, with their defaults.
+void addInnerSolverLists(ParameterList& pl) {
+  QP::QPSolverFactory factory;
+  for (const char* name : {"MPRGP", "MPGP"})
+    pl.sublist(name).setParameters(*factory.create(name, Teuchos::null)->getValidParameters());
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- Algorithm 1
@@ -61,8 +68,7 @@ RCP<const ParameterList> Algorithm1::validParameters() {
     // the inner solves inexact enough; problems are scaled to ||A|| = 1.
     s.set("M", 0.1);
     s.set("Maximum Outer Iterations", 1000);
-    pl->sublist("MPRGP").setParameters(*factory.create("MPRGP", Teuchos::null)->getValidParameters());
-    pl->sublist("MPGP").setParameters(*factory.create("MPGP", Teuchos::null)->getValidParameters());
+    addInnerSolverLists(*pl);
   }
   return pl;
 }
@@ -254,9 +260,7 @@ RCP<const ParameterList> Algorithm2::validParameters() {
             "iterate sets the first slip bound and the scale of ||G lambda||",
             range<double>(1e-300, 1e300));
     pl->set("beta", 2.0, "M <- M / beta when the augmented Lagrangian does not grow enough", range<double>(1.0 + 1e-12, 1e6));
-    QP::QPSolverFactory factory;
-    pl->sublist("MPRGP").setParameters(*factory.create("MPRGP", Teuchos::null)->getValidParameters());
-    pl->sublist("MPGP").setParameters(*factory.create("MPGP", Teuchos::null)->getValidParameters());
+    addInnerSolverLists(*pl);
   }
   return pl;
 }
