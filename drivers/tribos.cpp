@@ -72,13 +72,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
-    const auto summary = Tribos::run(*params, args.options, comm);
+    const auto result = Tribos::run(*params, args.options, comm);
+    const auto& summary = result.summary;
     // Teuchos timers of the phases (factorization, F applications, QP solvers, output).
     if (args.options.verbose) Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
     if (root) {
       const std::string json = summary.toJson() + "\n";
       if (!args.summary.empty()) Tribos::IO::writeFileAtomically(args.summary, json);
       std::cout << json;
+    }
+    if (!result.converged) {
+      if (root) std::cerr << "tribos: not converged: see stop_reason in the summary; the result is written" << std::endl;
+      return 2;
     }
   } catch (const std::exception& e) {
     std::cerr << "tribos: error" << (comm->getSize() > 1 ? " on rank " + std::to_string(comm->getRank()) : "") << ": "

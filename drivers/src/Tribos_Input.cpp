@@ -117,6 +117,10 @@ RCP<const ParameterList> validParameters() {
              "contact problems: Tresca (Algorithm 1 with the given slip bound; also frictionless), "
              "MSA+Algorithm1 or Algorithm2 (Coulomb), SemismoothStarNewton (Tresca)",
              choice(tuple<std::string>("Tresca", "MSA+Algorithm1", "Algorithm2", "SemismoothStarNewton")));
+  solver.set("Result Check Factor", 100.0,
+             "converged means every KKT residual of the written result (docs/friction.md) is at most this factor "
+             "times the solver's requested tolerance",
+             range<double>(1.0, 1e300));
   Friction::FrictionSolverFactory::addValidParameters(solver);
   solver.sublist("SemismoothStarNewton").setParameters(*Semismooth::SemismoothStarNewton::getValidParameters());
   solver.sublist("Monolithic").setParameters(*Fem::MonolithicSystem::getValidParameters());

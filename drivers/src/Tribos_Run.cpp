@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <chrono>
+#include <sstream>
 
 #include "Tribos_Assembly.hpp"
 #include "Tribos_Error.hpp"
@@ -81,7 +82,7 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
 // contact results are broadcast / kept on rank 0 for output.
 std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Discretization& disc,
                                     const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
-                                    IO::Summary& summary, Contact::ContactNodeResults& nodes) {
+                                    IO::Summary& summary, Contact::ContactNodeResults& nodes, bool& converged) {
   const auto& contact = params.sublist("Contact");
   std::vector<double> u(3 * static_cast<size_t>(disc.mesh.numNodes()), 0.0);
   double info[9] = {0};
@@ -138,6 +139,7 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
   if (nres > 0) Teuchos::broadcast(comm, 0, nres, residuals.data());
   summary.set("friction_law", "Tresca");
   summary.set("converged", info[0] != 0.0);
+  converged = info[0] != 0.0;
   summary.set("newton_iterations", static_cast<long long>(info[1]));
   summary.set("outer_iterations", static_cast<long long>(info[1]));
   summary.set("residuals", residuals);
@@ -168,6 +170,51 @@ Mesh::DecompositionSpec decompositionFor(const Teuchos::ParameterList& params, i
   return decomposition;
 }
 
+// The tolerance the user asked of the solver that ran: the outer contact
+// algorithm's relative tolerance (the loosest of its stopping tests), the
+// projected CG's, the semismooth* method's or the monolithic CG's.
+double requestedTolerance(const Teuchos::ParameterList& params) {
+  const auto& solver = params.sublist("Solver");
+  if (!params.sublist("Contact").get<bool>("Enabled"))
+    return solver.get<std::string>("Type") == "Monolithic"
+               ? solver.sublist("Monolithic").get<double>("Tolerance")
+               : solver.sublist("FETI").sublist("Projected CG").get<double>("Tolerance");
+  const std::string outer = solver.get<std::string>("Outer Algorithm");
+  if (outer == "SemismoothStarNewton") return solver.sublist("SemismoothStarNewton").get<double>("Tolerance");
+  if (outer == "Algorithm2") return solver.sublist("Algorithm 2").get<double>("Relative Tolerance");
+  const double smalbe = solver.sublist("Algorithm 1").sublist("SMALBE").get<double>("Relative Tolerance");
+  return outer == "MSA+Algorithm1" ? std::max(smalbe, solver.sublist("MSA").get<double>("Tolerance")) : smalbe;
+}
+
+// `converged` is a promise about the written result: the solver stopped on
+// its own test AND every KKT residual of the result (Fem::resultKKT) is
+// within Result Check Factor times the requested tolerance.
+void setResultCheck(const Teuchos::ParameterList& params, bool solverConverged, const std::string& solverReason,
+                    const Fem::ResultKKT& kkt, IO::Summary& summary, bool& converged) {
+  const double tol = requestedTolerance(params);
+  const double limit = params.sublist("Solver").get<double>("Result Check Factor") * tol;
+  std::string worstName;
+  const double worst = kkt.worst(&worstName);
+  IO::Summary k;
+  k.set("equilibrium", kkt.equilibrium).set("dirichlet", kkt.dirichlet).set("nonpenetration", kkt.nonpenetration);
+  k.set("complementarity", kkt.complementarity).set("friction_law", kkt.frictionLaw);
+  k.set("displacement_scale", kkt.displacementScale).set("force_scale", kkt.forceScale);
+  k.set("tolerance", tol).set("limit", limit);
+  summary.set("kkt", k);
+  converged = solverConverged && worst <= limit;
+  std::string reason = solverReason;
+  if (!solverConverged && reason.empty()) reason = "the solver did not converge";
+  if (solverConverged && !(worst <= limit)) {
+    std::ostringstream os;
+    os << "the " << worstName << " residual of the result, " << worst << ", exceeds " << limit
+       << " (Solver/Result Check Factor times the requested tolerance " << tol << ")";
+    reason = os.str();
+  }
+  summary.set("solver_converged", solverConverged);
+  summary.set("converged", converged);
+  summary.set("stop_reason", converged ? std::string(solverReason.empty() ? "converged" : solverReason) : reason);
+}
+
 }  // namespace
 
 void checkRunnable(const Teuchos::ParameterList& params, int numRanks) {
@@ -184,7 +231,7 @@ void checkRunnable(const Teuchos::ParameterList& params, int numRanks) {
                                              << " do not divide the " << spec.cells[a] << " cells of the mesh");
 }
 
-IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) {
+RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) {
   const auto t0 = std::chrono::steady_clock::now();
   IO::Summary summary;
   summary.set("problem", params.get<std::string>("Problem Name"));
@@ -208,14 +255,21 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
   std::vector<double> u;
   Contact::ContactNodeResults contactNodes;
   double setupTime = 0, solveTime = 0;
+  // The solver's own verdict, and the KKT residuals of the written result
+  // that decide `converged` (setResultCheck).
+  bool solverConverged = false, haveKKT = true, converged = false;
+  std::string solverReason;
+  Fem::ResultKKT kkt;
   const bool semismooth = params.sublist("Contact").get<bool>("Enabled") &&
                           params.sublist("Solver").get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
   if (semismooth) {
     summary.set("algorithm", "SemismoothStarNewton");
     setupTime = seconds(t0);
     const auto t2 = std::chrono::steady_clock::now();
-    u = solveSemismooth(params, disc, mat, loads, *comm, options.verbose, summary, contactNodes);
+    u = solveSemismooth(params, disc, mat, loads, *comm, options.verbose, summary, contactNodes, solverConverged);
     solveTime = seconds(t2);
+    haveKKT = false;
+    converged = solverConverged;
   } else if (type == "Monolithic") {
     Fem::MonolithicSystem system(disc, mat, loads, comm);
     setupTime = seconds(t0);
@@ -229,6 +283,8 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
     summary.set("n_A", static_cast<long long>(res.iterations));
     summary.set("relative_residual", res.relativeResidual);
     summary.set("converged", res.converged);
+    haveKKT = false;
+    converged = res.converged;
   } else {
     const auto& fetiParams = params.sublist("Solver").sublist("FETI");
     Teuchos::ParameterList problemParams;
@@ -245,6 +301,7 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
     const auto t2 = std::chrono::steady_clock::now();
     Vector lambda(problem->dualMap());
     RCP<Vector> uPrimal;
+    Contact::FrictionSpec friction;
     if (!contact.enabled) {
       Feti::ProjectedCG pcg(fetiParams.sublist("Projected CG"));
       const auto st = pcg.solve(*dual, lambda);
@@ -252,10 +309,12 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
       summary.set("outer_iterations", st.iterations);
       summary.set("n_A", st.n_A);
       summary.set("relative_residual", st.relativeResidual);
-      summary.set("converged", st.converged);
+      solverConverged = st.converged;
+      if (!st.converged) solverReason = "projected CG: maximum iterations";
       solveTime = seconds(t2);
+      u = problem->nodalDisplacement(*uPrimal);
+      kkt = Contact::resultKKT(*problem, u, {}, friction);
     } else {
-      Contact::FrictionSpec friction;
       friction.law = contactParams.get<std::string>("Friction Law");
       friction.coefficient = contactParams.get<double>("Friction Coefficient");
       friction.slipBoundTraction = contactParams.get<double>("Slip Bound Traction");
@@ -277,15 +336,14 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
       summary.set("n_A", static_cast<long long>(n_A));
       summary.set("n_A_qpp", static_cast<long long>(st.n_A_qpp));
       summary.set("n_A_qpq", static_cast<long long>(st.n_A_qpq));
-      summary.set("converged", st.converged);
-      summary.set("stop_reason", st.reason);
+      solverConverged = st.converged;
+      solverReason = st.reason;
       summary.set("slip_bound_change", st.slip_bound_change);
       summary.set("history", st.history);
-      const auto kkt = Contact::checkKKT(*problem, *uPrimal, lambda, st.slipBound);
-      IO::Summary k;
-      k.set("equilibrium", kkt.equilibrium).set("equality", kkt.equality).set("nonpenetration", kkt.nonpenetration);
-      k.set("complementarity", kkt.complementarity).set("friction_law", kkt.frictionLaw);
-      summary.set("kkt", k);
+      u = problem->nodalDisplacement(*uPrimal);
+      Contact::ContactCounts counts;
+      contactNodes = Contact::contactResults(*problem, u, lambda, st.slipBound, counts);
+      kkt = Contact::resultKKT(*problem, u, contactNodes, friction);
       if (!options.exportFclib.empty()) {
         // FCLIB global problem: assembled K, contact rows in the local frame, gaps, F (docs/fclib.md).
         FCLIB::Info info{params.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + outer, ""};
@@ -293,19 +351,17 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
                           lambda, info);
         summary.set("fclib_export", options.exportFclib);
       }
-      Contact::ContactCounts counts;
-      contactNodes = Contact::contactResults(*problem, *uPrimal, lambda, st.slipBound, counts);
       IO::Summary c;
       c.set("nodes", counts.nodes).set("active", counts.active).set("stick", counts.stick).set("slip", counts.slip);
       summary.set("contact", c);
     }
-    u = problem->nodalDisplacement(*uPrimal);
     summary.set("primal_dofs", static_cast<long long>(problem->primalMap()->getGlobalNumElements()));
     summary.set("dual_dofs", static_cast<long long>(problem->dualMap()->getGlobalNumElements()));
     summary.set("local_solver", problem->localSolverName());
     summary.set("time_factor_s", maxOverRanks(problem->factorTime(), *comm));
     summary.set("factor_memory_mb", maxOverRanks(problem->factorMemoryMb(), *comm));
   }
+  if (haveKKT) setResultCheck(params, solverConverged, solverReason, kkt, summary, converged);
   if (options.verify && params.sublist("Contact").get<bool>("Enabled")) {
     summary.set("verify_note", "--verify compares with the monolithic linear solve; it does not apply to contact problems");
   } else if (options.verify) {
@@ -334,7 +390,7 @@ IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options,
   for (double v : u) maxU = std::max(maxU, std::abs(v));
   summary.set("max_abs_displacement", maxU);
   summary.set("peak_rss_mb", maxOverRanks(IO::peakRssMb(), *comm));
-  return summary;
+  return {summary, converged};
 }
 
 }  // namespace Tribos

@@ -23,7 +23,12 @@ struct RunOptions {
 // (e.g. enough subdomains for the ranks); throws Tribos::Error naming it.
 void checkRunnable(const Teuchos::ParameterList& params, int numRanks);
 
-// Runs the problem; returns the summary (identical on every rank).
-IO::Summary run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm);
+struct RunResult {
+  IO::Summary summary;     // identical on every rank
+  bool converged = false;  // the summary's "converged": the written result passed its KKT check
+};
+
+// Runs the problem, writes the result (also when it did not converge).
+RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm);
 
 }  // namespace Tribos

@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include <Teuchos_LAPACK.hpp>
+
 #include "Tribos_Error.hpp"
 #include "Tribos_QP_Utils.hpp"
 
@@ -67,16 +69,6 @@ double maxOver(double v, const Comm& comm) {
   return out;
 }
 
-// Projection of a 2-vector onto the disk of radius r.
-void projectDisk(double& a, double& b, double r) {
-  const double n = std::sqrt(a * a + b * b);
-  if (n > r) {
-    const double s = n > 0 ? r / n : 0.0;
-    a *= s;
-    b *= s;
-  }
-}
-
 }  // namespace
 
 FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction) : dual_(dual) {
@@ -106,19 +98,115 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Fri
   cd_.normalRows = lc.normalRows;
   cd_.tangentRows = lc.tangentRows;
   const size_t nc = lc.normalRows.size();
+  // lambda = lambda~ + x: the constraints on lambda become x_N >= -lambda~_N
+  // and ||x_T - c|| <= g with the centre c = -lambda~_T. lambda~ vanishes on
+  // the contact rows when the equality rows hold every rigid motion.
   auto lt = dual->lambdaTilde().getData();
   cd_.normalLower.resize(nc);
   cd_.normalOffset.resize(nc);
+  bool shifted = false;
+  std::vector<SC> center(2 * nc, 0.0);
   for (size_t k = 0; k < nc; ++k) {
-    // lambda~ vanishes on contact rows; kept general: x_N >= -lambda~_N.
     cd_.normalOffset[k] = lt[lc.normalRows[k]];
     cd_.normalLower[k] = -lt[lc.normalRows[k]];
+    for (int j = 0; j < 2; ++j) {
+      const LO t = lc.tangentRows[2 * k + j];
+      if (t >= 0) center[2 * k + j] = -lt[t];
+      shifted = shifted || center[2 * k + j] != 0.0;
+    }
   }
+  if (shifted) cd_.tangentCenter = center;
   cd_.slipBound.assign(nc, 0.0);
   cd_.frictionCoefficient.assign(nc, 0.0);
   if (friction.law == "Tresca")
     for (size_t k = 0; k < nc; ++k) cd_.slipBound[k] = friction.slipBoundTraction * lc.nodalArea[k];
   if (friction.law == "Coulomb") cd_.frictionCoefficient.assign(nc, friction.coefficient);
+  if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact(friction);
+}
+
+std::vector<char> FetiContactProblem::rowMask(bool normal, bool tangent) const {
+  const auto& p = dual_->problem();
+  std::vector<char> mask(p.isEqualityRow());
+  for (size_t k = 0; k < cd_.normalRows.size(); ++k) {
+    if (normal) mask[cd_.normalRows[k]] = 1;
+    for (int j = 0; j < 2; ++j)
+      if (tangent && cd_.tangentRows[2 * k + j] >= 0) mask[cd_.tangentRows[2 * k + j]] = 1;
+  }
+  return mask;
+}
+
+// A body held (partly) by its contact: before any iteration, refuse the
+// problems that have no solution or no unique one.
+//  1. A rigid motion that neither the equality rows nor a contact row that
+//     can carry a force touches (a frictionless contact carries no
+//     tangential force) leaves u undetermined.
+//  2. Equilibrium along a rigid motion alpha that only the contact holds:
+//     e'alpha = lambda'G'alpha, with v = G'alpha = B R alpha the motion of
+//     the contact rows. If v_N,k + F_k ||v_T,k|| <= 0 at every contact (the
+//     motion lifts every node off the plane by more than friction can
+//     resist), the right side is <= 0, so a load with e'alpha > 0 (pushing
+//     the body along alpha) cannot be balanced. alpha is taken as the part
+//     of the load's rigid work that the equality rows do not hold.
+void FetiContactProblem::checkHeldByContact(const FrictionSpec& friction) const {
+  const auto& coarse = dual_->coarse();
+  const bool tangentHolds = (friction.law == "Coulomb" && friction.coefficient > 0) ||
+                            (friction.law == "Tresca" && friction.slipBoundTraction > 0);
+  const auto hold = rowMask(true, tangentHolds);
+  const auto motions = coarse.freeMotions(&hold);
+  if (!motions.empty()) {
+    std::string list;
+    for (const auto& m : motions) list += (list.empty() ? "" : ", ") + m;
+    throw Error("the body is free to move rigidly (" + list + "): neither a Dirichlet condition nor the contact holds "
+                "this motion" + std::string(tangentHolds ? "" : " (a frictionless contact carries no tangential force)") +
+                ", so the displacement is not determined; add a Dirichlet condition that holds it");
+  }
+  // alpha: the load's rigid work e projected on the motions the equality rows
+  // leave free, i.e. e minus its part in the range of G_E G_E'.
+  const auto& p = dual_->problem();
+  const int n = coarse.size();
+  auto A = coarse.gramian(&p.isEqualityRow());
+  Teuchos::LAPACK<int, double> lapack;
+  std::vector<double> w(n), work(1);
+  int info = 0;
+  lapack.SYEV('V', 'L', n, A.data(), n, w.data(), work.data(), -1, &info);
+  work.resize(static_cast<size_t>(std::max(1.0, work[0])));
+  lapack.SYEV('V', 'L', n, A.data(), n, w.data(), work.data(), static_cast<int>(work.size()), &info);
+  TRIBOS_REQUIRE(info == 0, "contact: the eigen-decomposition of G_E G_E' failed");
+  const auto& e = dual_->e();
+  std::vector<double> alpha(n, 0.0);
+  double eNorm = 0;
+  for (double v : e) eNorm += v * v;
+  for (int i = 0; i < n; ++i) {
+    if (w[i] > 1e-10 * std::max(w[n - 1], 1e-300)) continue;
+    const double* vi = &A[static_cast<size_t>(i) * n];
+    double c = 0;
+    for (int j = 0; j < n; ++j) c += vi[j] * e[j];
+    for (int j = 0; j < n; ++j) alpha[j] += c * vi[j];
+  }
+  double work_e = 0;
+  for (int j = 0; j < n; ++j) work_e += alpha[j] * e[j];
+  if (work_e <= 1e-10 * eNorm) return;  // the load has no rigid part that only the contact must hold
+  Vector v(p.dualMap());
+  coarse.applyGt(alpha, v);
+  auto vv = v.getData();
+  const double vScale = std::max(v.normInf(), 1e-300);
+  double resist = -1e300, frictionWork = 0;
+  for (size_t k = 0; k < cd_.normalRows.size(); ++k) {
+    double vt = 0;
+    for (int j = 0; j < 2; ++j)
+      if (cd_.tangentRows[2 * k + j] >= 0) vt += vv[cd_.tangentRows[2 * k + j]] * vv[cd_.tangentRows[2 * k + j]];
+    vt = std::sqrt(vt);
+    const double F = friction.law == "Coulomb" ? friction.coefficient : 0.0;
+    resist = std::max(resist, vv[cd_.normalRows[k]] + F * vt);
+    if (friction.law == "Tresca") frictionWork += cd_.slipBound[k] * vt;
+  }
+  double resistAll = resist, frictionAll = frictionWork;
+  Teuchos::reduceAll(*p.comm(), Teuchos::REDUCE_MAX, resist, Teuchos::outArg(resistAll));
+  Teuchos::reduceAll(*p.comm(), Teuchos::REDUCE_SUM, frictionWork, Teuchos::outArg(frictionAll));
+  if (resistAll <= 1e-10 * vScale && work_e > frictionAll * (1 + 1e-10))
+    throw Error("the load moves the body rigidly (" + coarse.describeMotion(alpha) +
+                ") away from the contact, and no Dirichlet condition holds it: there is no equilibrium; "
+                "add a Dirichlet condition or change the load");
 }
 
 RCP<Vector> FetiContactProblem::multipliers(const Vector& x) const {
@@ -138,61 +226,63 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
   sol.status = solver->solve(cd_, *sol.x);
   sol.n_A = dual_->F()->applications() - n_A0;
   sol.lambda = multipliers(*sol.x);
-  sol.u = dual_->recoverPrimal(*sol.lambda);
+  if (dual_->coarse().equalityRowsHoldKernel()) {
+    sol.u = dual_->recoverPrimal(*sol.lambda);
+    return sol;
+  }
+  // The rigid motion is fixed by the rows where B u = c holds at the
+  // solution: equality rows, contacts with a normal force, and the
+  // tangential rows of sticking contacts (well inside their disk).
+  const auto active = activeRows(*sol.lambda, sol.status.slipBound);
+  try {
+    sol.u = dual_->recoverPrimal(*sol.lambda, &active);
+  } catch (const Error& e) {
+    // No equilibrium position: report it as a failed solve, with the rigid
+    // part fitted to all rows (GG' is regular) so there is a u to look at.
+    const std::vector<char> all(active.size(), 1);
+    sol.u = dual_->recoverPrimal(*sol.lambda, &all);
+    sol.status.converged = false;
+    sol.status.reason = std::string(e.what()) + " (the contact does not hold the body at the solution)";
+  }
   return sol;
 }
 
-KKTResiduals checkKKT(const Feti::FetiProblem& p, const Vector& u, const Vector& lambda, const std::vector<double>& g) {
-  const Comm& comm = *p.comm();
-  KKTResiduals res;
-  Vector Ku(p.primalMap()), Btl(p.primalMap());
-  p.applyK(u, Ku);
-  p.B()->apply(lambda, Btl, Teuchos::TRANS);
-  Ku.update(-1.0, p.f(), 1.0, Btl, 1.0);
-  res.equilibrium = Ku.norm2() / std::max(p.f().norm2(), 1e-300);
-  Vector Bu(p.dualMap());
-  p.B()->apply(u, Bu);
-  Bu.update(-1.0, p.c(), 1.0);  // B u - c
-  auto r = Bu.getData();
+std::vector<char> FetiContactProblem::activeRows(const Vector& lambda, const std::vector<double>& g) const {
+  auto mask = dual_->problem().isEqualityRow();
   auto l = lambda.getData();
-  const double maxU = std::max(u.normInf(), 1e-300);
-  double eq = 0;
-  for (size_t i = 0; i < r.size(); ++i)
-    if (p.isEqualityRow()[i]) eq += r[i] * r[i];
-  double eqGlobal = 0;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, eq, Teuchos::outArg(eqGlobal));
-  res.equality = std::sqrt(eqGlobal) / std::max(u.norm2(), 1e-300);
-  const auto& lc = p.contact();
-  // Force scale: the largest multiplier (contact or reaction), so the
-  // measures stay meaningful when no contact is active.
-  const double maxLN = std::max(lambda.normInf(), 1e-300);
-  const double c = maxLN / maxU;
-  double pen = 0, comp = 0, fric = 0;
-  for (size_t k = 0; k < lc.normalRows.size(); ++k) {
-    const double gapResidual = r[lc.normalRows[k]];  // N u - d
-    const double lN = l[lc.normalRows[k]];
-    pen = std::max(pen, std::max(gapResidual, 0.0));
-    comp = std::max(comp, std::abs(std::min(lN, -c * gapResidual)));
+  double maxN = 0;
+  for (LO i : cd_.normalRows) maxN = std::max(maxN, l[i]);
+  maxN = maxOver(maxN, *dual_->problem().comm());
+  for (size_t k = 0; k < cd_.normalRows.size(); ++k) {
+    const double lN = l[cd_.normalRows[k]];
+    if (!(lN > 1e-6 * maxN)) continue;
+    mask[cd_.normalRows[k]] = 1;
+    double lT = 0;
+    for (int j = 0; j < 2; ++j)
+      if (cd_.tangentRows[2 * k + j] >= 0) lT += l[cd_.tangentRows[2 * k + j]] * l[cd_.tangentRows[2 * k + j]];
     const double gk = g.empty() ? 0.0 : g[k];
-    const LO t1 = lc.tangentRows[2 * k], t2 = lc.tangentRows[2 * k + 1];
-    double a = l[t1] + c * r[t1], b = l[t2] + c * r[t2];
-    projectDisk(a, b, gk);
-    fric = std::max(fric, std::hypot(l[t1] - a, l[t2] - b));
+    if (std::sqrt(lT) < (1 - 1e-3) * gk)
+      for (int j = 0; j < 2; ++j)
+        if (cd_.tangentRows[2 * k + j] >= 0) mask[cd_.tangentRows[2 * k + j]] = 1;
   }
-  res.nonpenetration = maxOver(pen, comm) / maxU;
-  res.complementarity = maxOver(comp, comm) / maxLN;
-  res.frictionLaw = maxOver(fric, comm) / maxLN;
-  return res;
+  return mask;
 }
 
-ContactNodeResults contactResults(const Feti::FetiProblem& p, const Vector& u, const Vector& lambda,
+std::vector<Fem::ContactNodeForce> ContactNodeResults::forces() const {
+  std::vector<Fem::ContactNodeForce> out(nodes.size());
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    out[k].node = nodes[k];
+    out[k].normalForce = normalForce[k];
+    for (int d = 0; d < 3; ++d) out[k].tangentialForce[d] = tangentialForce[3 * k + d];
+    out[k].slipBound = slipBound[k];
+  }
+  return out;
+}
+
+ContactNodeResults contactResults(const Feti::FetiProblem& p, const std::vector<double>& uNodal, const Vector& lambda,
                                   const std::vector<double>& g, ContactCounts& counts) {
   const Comm& comm = *p.comm();
   const auto& lc = p.contact();
-  Vector Bu(p.dualMap());
-  p.B()->apply(u, Bu);
-  Bu.update(-1.0, p.c(), 1.0);
-  auto r = Bu.getData();
   auto l = lambda.getData();
   double maxLN = 0;
   for (LO i : lc.normalRows) maxLN = std::max(maxLN, l[i]);
@@ -202,22 +292,27 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Vector& u, c
   for (size_t k = 0; k < lc.normalRows.size(); ++k) {
     const double lN = l[lc.normalRows[k]];
     const LO t1 = lc.tangentRows[2 * k], t2 = lc.tangentRows[2 * k + 1];
-    const double lt = std::hypot(l[t1], l[t2]);
+    const double l1 = t1 >= 0 ? l[t1] : 0.0, l2 = t2 >= 0 ? l[t2] : 0.0;
     const double gk = g.empty() ? 0.0 : g[k];
     // Active: a normal force above round-off of the largest one. Slip: the
     // tangential force on the friction bound.
     int status = 0;
-    if (lN > 1e-8 * maxLN) status = (gk <= 0 || lt >= (1 - 1e-6) * gk) ? 2 : 1;
+    if (lN > 1e-8 * maxLN) status = (gk <= 0 || std::hypot(l1, l2) >= (1 - 1e-6) * gk) ? 2 : 1;
     if (status > 0) ++local[1];
     if (status == 1) ++local[2];
     if (status == 2) ++local[3];
-    out.nodes.push_back(lc.nodes[k]);
+    const int node = lc.nodes[k];
+    const double* u = &uNodal[3 * static_cast<size_t>(node)];
+    const double un = u[0] * lc.normal[0] + u[1] * lc.normal[1] + u[2] * lc.normal[2];
+    out.nodes.push_back(node);
     out.normalForce.push_back(lN);
-    out.gap.push_back(-r[lc.normalRows[k]]);
-    // Forces on the body: -B'lambda, tangential part -(l1 t1 + l2 t2); slip T u.
+    out.gap.push_back(lc.gap - un);
+    out.slipBound.push_back(gk);
+    // Force on the body: -B'lambda, tangential part -(l1 t1 + l2 t2); slip:
+    // the tangential displacement (the plane is fixed).
     for (int d = 0; d < 3; ++d) {
-      out.tangentialForce.push_back(-(l[t1] * lc.t1[d] + l[t2] * lc.t2[d]));
-      out.slip.push_back(r[t1] * lc.t1[d] + r[t2] * lc.t2[d]);
+      out.tangentialForce.push_back(-(l1 * lc.t1[d] + l2 * lc.t2[d]));
+      out.slip.push_back(u[d] - un * lc.normal[d]);
     }
     out.status.push_back(status);
   }
@@ -225,6 +320,18 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Vector& u, c
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 4, local, global);
   counts = {global[0], global[1], global[2], global[3]};
   return out;
+}
+
+Fem::ResultKKT resultKKT(const Feti::FetiProblem& p, const std::vector<double>& uNodal, const ContactNodeResults& contact,
+                         const FrictionSpec& friction) {
+  Fem::RigidPlane plane;
+  plane.normal = p.contact().normal;
+  plane.gap = p.contact().gap;
+  Fem::FrictionLaw law;
+  law.kind = Fem::FrictionLaw::parse(friction.law);
+  law.coefficient = friction.coefficient;
+  return Fem::resultKKT(uNodal, p.assembledProduct(uNodal), p.assembledLoad(), p.dirichlet(), plane, law,
+                        contact.forces(), *p.comm());
 }
 
 }  // namespace Contact

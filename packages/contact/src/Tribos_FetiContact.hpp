@@ -16,6 +16,7 @@
 #include "Tribos_ContactDual.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_FetiDual.hpp"
+#include "Tribos_ResultKKT.hpp"
 
 namespace Tribos {
 namespace Contact {
@@ -50,37 +51,42 @@ class FetiContactProblem {
   SC scale() const { return scale_; }
 
  private:
+  // Local dual rows: equality rows plus the normal and/or tangential rows.
+  std::vector<char> rowMask(bool normal, bool tangent) const;
+  // Equality rows plus the contact rows where B u = c holds at lambda.
+  std::vector<char> activeRows(const Vector& lambda, const std::vector<double>& g) const;
+  // Refuses a body that its contact cannot hold (throws naming the motion).
+  void checkHeldByContact(const FrictionSpec& friction) const;
+
   SC scale_ = 1.0;
   RCP<const Feti::FetiDual> dual_;
   Friction::ContactDual cd_;
-};
-
-// Relative residuals of a primal-dual solution (u, lambda) computed from the
-// primal quantities, independently of any solver's stopping test.
-struct KKTResiduals {
-  double equilibrium = 0;      // ||K u - f + B'lambda|| / ||f||
-  double equality = 0;         // ||B_E u - c_E|| / ||u||  (gluing and Dirichlet rows)
-  double nonpenetration = 0;   // max (N u - d)^+ / max |u|
-  double complementarity = 0;  // max |min(lambda_N, c (d - N u))| / max |lambda|,  c = max |lambda| / max |u|
-  double frictionLaw = 0;      // max ||lambda_T - P_B(g)(lambda_T + c T u)|| / max |lambda|
 };
 
 struct ContactCounts {
   long long nodes = 0, active = 0, stick = 0, slip = 0;
 };
 
-// Node-wise results of the local contact nodes (rank-local).
+// Node-wise results of the local contact nodes (rank-local), as written.
 struct ContactNodeResults {
   std::vector<int> nodes;
-  std::vector<double> normalForce, tangentialForce /*3 per node*/, slip /*3 per node*/, gap;
-  std::vector<int> status;  // 0 no contact, 1 stick, 2 slip
+  std::vector<double> normalForce, tangentialForce /*3 per node, on the body*/, slip /*3 per node*/, gap;
+  std::vector<double> slipBound;  // g of the solution (Tresca, Coulomb F lambda_N), 0 when frictionless
+  std::vector<int> status;        // 0 no contact, 1 stick, 2 slip
+  // The forces as the result check takes them.
+  std::vector<Fem::ContactNodeForce> forces() const;
 };
 
-// g: the slip bound of the solution (local, one per contact node), empty for frictionless.
-KKTResiduals checkKKT(const Feti::FetiProblem& problem, const Vector& u, const Vector& lambda,
-                      const std::vector<double>& g);
-ContactNodeResults contactResults(const Feti::FetiProblem& problem, const Vector& u, const Vector& lambda,
-                                  const std::vector<double>& g, ContactCounts& counts);
+// The local contact nodes of the result: forces from lambda, slip and gap
+// from the written (nodal, single-valued) displacement. g: the slip bound of
+// the solution (local, one per contact node), empty for frictionless.
+ContactNodeResults contactResults(const Feti::FetiProblem& problem, const std::vector<double>& uNodal,
+                                  const Vector& lambda, const std::vector<double>& g, ContactCounts& counts);
+
+// The KKT residuals (Fem::resultKKT) of the written result: the nodal
+// displacement and the contact forces (none for a problem without contact).
+Fem::ResultKKT resultKKT(const Feti::FetiProblem& problem, const std::vector<double>& uNodal,
+                         const ContactNodeResults& contact, const FrictionSpec& friction);
 
 }  // namespace Contact
 }  // namespace Tribos

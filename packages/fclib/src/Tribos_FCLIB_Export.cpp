@@ -32,8 +32,9 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::Material& mat, c
       double* e = &mine[5 * static_cast<size_t>(lc.nodes[k])];
       e[0] = 1.0;
       e[1] = l[lc.normalRows[k]];
-      e[2] = l[lc.tangentRows[2 * k]];
-      e[3] = l[lc.tangentRows[2 * k + 1]];
+      // A tangential direction fixed by a Dirichlet condition carries no friction force.
+      e[2] = lc.tangentRows[2 * k] >= 0 ? l[lc.tangentRows[2 * k]] : 0.0;
+      e[3] = lc.tangentRows[2 * k + 1] >= 0 ? l[lc.tangentRows[2 * k + 1]] : 0.0;
       e[4] = c[lc.normalRows[k]];  // the gap d of N u <= d
     }
   }

@@ -20,16 +20,16 @@ FetiDual::FetiDual(RCP<const FetiProblem> problem) : problem_(problem) {
   coarse_->particularSolution(e_, *lambdaTilde_);
 }
 
-RCP<Vector> FetiDual::recoverPrimal(const Vector& lambda) const {
+RCP<Vector> FetiDual::recoverPrimal(const Vector& lambda, const std::vector<char>* activeRows) const {
   const FetiProblem& p = *problem_;
-  // alpha from r = F lambda - h on the equality rows (one extra F application,
-  // not counted in the solver's n_A).
+  // alpha from r = F lambda - h on the rows where B u = c holds (one extra F
+  // application, not counted in the solver's n_A).
   Vector r(p.dualMap());
   const long long count = F_->applications();
   F_->apply(lambda, r);
   F_->setCount(count);
   r.update(-1.0, *h_, 1.0);
-  const auto alpha = coarse_->amplitudes(r);
+  const auto alpha = coarse_->amplitudes(r, activeRows);
   Vector rhs(p.primalMap());
   p.B()->apply(lambda, rhs, Teuchos::TRANS);
   rhs.update(1.0, p.f(), -1.0);

@@ -23,9 +23,10 @@ class FetiDual {
   const std::vector<double>& e() const { return e_; }
   const Vector& lambdaTilde() const { return *lambdaTilde_; }
 
-  // Primal displacement from the multipliers (amplitudes alpha from the
-  // equality rows, where B u = c holds exactly).
-  RCP<Vector> recoverPrimal(const Vector& lambda) const;
+  // Primal displacement from the multipliers: u = K+(f - B'lambda) + R alpha,
+  // alpha from the rows S where B u = c holds: the equality rows (default),
+  // or the rows a caller knows to be active (a body held by its contact).
+  RCP<Vector> recoverPrimal(const Vector& lambda, const std::vector<char>* activeRows = nullptr) const;
 
  private:
   RCP<const FetiProblem> problem_;

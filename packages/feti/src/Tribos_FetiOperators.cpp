@@ -10,6 +10,8 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <array>
+#include <sstream>
 
 #include "Tribos_Error.hpp"
 
@@ -49,6 +51,23 @@ void DenseCholesky::factor(std::vector<double> A, int n, const char* what) {
   lapack.POTRF('L', n, L_.data(), n, &info);
   TRIBOS_REQUIRE(info == 0, what << " is singular (Cholesky pivot " << info << " of " << n
                                  << "): the constraints do not fix every rigid-body mode of the subdomains");
+}
+
+bool DenseCholesky::tryFactor(std::vector<double> A, int n) {
+  n_ = n;
+  L_ = std::move(A);
+  if (n == 0) return true;
+  Teuchos::LAPACK<int, double> lapack;
+  int info = 0;
+  lapack.POTRF('L', n, L_.data(), n, &info);
+  // A pivot far below the largest diagonal entry is a singular Gram matrix
+  // in floating point (Cholesky succeeds on round-off).
+  double dmax = 0, dmin = 1e300;
+  for (int i = 0; i < n && info == 0; ++i) {
+    const double d = L_[static_cast<size_t>(i) * n + i];
+    dmax = std::max(dmax, d * d), dmin = std::min(dmin, d * d);
+  }
+  return info == 0 && dmin > 1e-12 * dmax;
 }
 
 void DenseCholesky::solve(std::vector<double>& x) const {
@@ -118,8 +137,16 @@ CoarseSpace::CoarseSpace(RCP<const FetiProblem> problem) : problem_(problem) {
     }
     rowptr_.push_back(static_cast<int>(col_.size()));
   }
+  const auto motions = freeMotions(nullptr);
+  if (!motions.empty()) {
+    std::string list;
+    for (const auto& m : motions) list += (list.empty() ? "" : ", ") + m;
+    throw Error("the body is free to move rigidly (" + list +
+                "): no Dirichlet condition or contact holds this motion, so the displacement is not determined; "
+                "add a Dirichlet condition that holds it");
+  }
   GGt_.factor(gramian(nullptr), n_, "GG'");
-  GEGEt_.factor(gramian(&problem->isEqualityRow()), n_, "G_E G_E'");
+  equalityHoldsKernel_ = GEGEt_.tryFactor(gramian(&problem->isEqualityRow()), n_);
 }
 
 std::vector<double> CoarseSpace::gramian(const std::vector<char>* rows) const {
@@ -175,15 +202,132 @@ void CoarseSpace::applyOrthonormalTranspose(const std::vector<double>& y, Vector
 
 void CoarseSpace::particularSolution(const std::vector<double>& e, Vector& lambdaTilde) const {
   std::vector<double> y(e);
-  GEGEt_.solve(y);
-  applyGt(y, lambdaTilde, &problem_->isEqualityRow());
+  if (equalityHoldsKernel_) {
+    GEGEt_.solve(y);
+    applyGt(y, lambdaTilde, &problem_->isEqualityRow());
+  } else {
+    GGt_.solve(y);
+    applyGt(y, lambdaTilde);
+  }
 }
 
-std::vector<double> CoarseSpace::amplitudes(const Vector& r) const {
+std::vector<double> CoarseSpace::amplitudes(const Vector& r, const std::vector<char>* rows) const {
   std::vector<double> y;
-  applyG(r, y, &problem_->isEqualityRow());
-  GEGEt_.solve(y);
+  if (!rows) {
+    TRIBOS_REQUIRE(equalityHoldsKernel_, "rigid-body amplitudes: the Dirichlet and gluing rows do not fix every "
+                                         "rigid motion; the rows where the contact holds are needed");
+    applyG(r, y, &problem_->isEqualityRow());
+    GEGEt_.solve(y);
+    return y;
+  }
+  DenseCholesky GSGSt;
+  TRIBOS_REQUIRE(GSGSt.tryFactor(gramian(rows), n_),
+                 "rigid-body amplitudes: the constraints active at the solution do not fix every rigid motion");
+  applyG(r, y, rows);
+  GSGSt.solve(y);
   return y;
+}
+
+namespace {
+
+const char* kMotionNames[6] = {"translation x", "translation y", "translation z",
+                               "rotation about x", "rotation about y", "rotation about z"};
+
+double dotv(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0;
+  for (size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  return s;
+}
+
+}  // namespace
+
+std::vector<double> CoarseSpace::globalMotion(int j) const {
+  const auto& mesh = problem_->discretization().mesh;
+  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (const auto& x : mesh.coords)
+    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], x[c]), hi[c] = std::max(hi[c], x[c]);
+  std::vector<double> alpha(static_cast<size_t>(n_), 0.0);
+  for (int k = 0; k < problem_->numLocalSubdomains(); ++k) {
+    const auto& sys = problem_->subdomain(k);
+    const int n = sys.numDofs(), r = FetiProblem::kernelDim(sys);
+    // u_j at the subdomain's dofs; its amplitudes R_s'u_j (R_s orthonormal).
+    std::vector<double> u(static_cast<size_t>(n), 0.0);
+    for (size_t a = 0; a < sys.nodes.size(); ++a) {
+      std::array<double, 3> x;
+      for (int c = 0; c < 3; ++c) x[c] = mesh.coords[sys.nodes[a]][c] - 0.5 * (lo[c] + hi[c]);
+      double* ua = &u[3 * a];
+      if (j < 3) ua[j] = 1.0;
+      if (j == 3) ua[1] = -x[2], ua[2] = x[1];  // e_x cross x
+      if (j == 4) ua[0] = x[2], ua[2] = -x[0];
+      if (j == 5) ua[0] = -x[1], ua[1] = x[0];
+    }
+    for (int b = 0; b < r; ++b) {
+      double s = 0;
+      for (int i = 0; i < n; ++i) s += sys.R[static_cast<size_t>(b) * n + i] * u[i];
+      alpha[problem_->kernelOffsets()[sys.id] + b] = s;
+    }
+  }
+  MPI_Allreduce(MPI_IN_PLACE, alpha.data(), n_, MPI_DOUBLE, MPI_SUM, rawComm(*problem_->comm()));
+  return alpha;
+}
+
+std::string CoarseSpace::describeMotion(const std::vector<double>& alpha) const {
+  // Least-squares fit of alpha by the six global motions (6 x 6 normal equations).
+  std::vector<std::vector<double>> m(6);
+  for (int j = 0; j < 6; ++j) m[j] = globalMotion(j);
+  std::vector<double> M(36), rhs(6);
+  for (int a = 0; a < 6; ++a) {
+    rhs[a] = dotv(m[a], alpha);
+    for (int b = 0; b < 6; ++b) M[a * 6 + b] = dotv(m[a], m[b]);
+  }
+  Teuchos::LAPACK<int, double> lapack;
+  std::vector<int> ipiv(6);
+  int info = 0;
+  lapack.GESV(6, 1, M.data(), 6, ipiv.data(), rhs.data(), 6, &info);
+  if (info != 0) return "a rigid motion of a subdomain";
+  double norm = 0;
+  for (int j = 0; j < 6; ++j) norm += rhs[j] * rhs[j] * dotv(m[j], m[j]);
+  std::ostringstream os;
+  bool first = true;
+  for (int j = 0; j < 6; ++j) {
+    const double part = rhs[j] * rhs[j] * dotv(m[j], m[j]);
+    if (part < 1e-6 * norm) continue;
+    os << (first ? "" : " + ") << kMotionNames[j];
+    first = false;
+  }
+  return first ? "a rigid motion of a subdomain" : os.str();
+}
+
+std::vector<std::string> CoarseSpace::freeMotions(const std::vector<char>* rows) const {
+  auto A = gramian(rows);
+  DenseCholesky test;
+  if (test.tryFactor(A, n_)) return {};
+  // Null space of G_S G_S' by its eigen-decomposition (only on this error path).
+  Teuchos::LAPACK<int, double> lapack;
+  std::vector<double> w(n_);
+  int info = 0, lwork = -1;
+  double query = 0;
+  lapack.SYEV('V', 'L', n_, A.data(), n_, w.data(), &query, lwork, &info);
+  lwork = static_cast<int>(query);
+  std::vector<double> work(static_cast<size_t>(std::max(lwork, 1)));
+  lapack.SYEV('V', 'L', n_, A.data(), n_, w.data(), work.data(), lwork, &info);
+  TRIBOS_REQUIRE(info == 0, "free rigid motions: the eigen-decomposition of G_S G_S' failed");
+  std::vector<std::vector<double>> nullVectors;
+  for (int i = 0; i < n_; ++i)
+    if (w[i] <= 1e-10 * std::max(w[n_ - 1], 1e-300))
+      nullVectors.emplace_back(A.begin() + static_cast<size_t>(i) * n_, A.begin() + static_cast<size_t>(i + 1) * n_);
+  // Name the global motions that lie in the null space; a null space that
+  // holds none of them is described by its vectors' fitted motions.
+  std::vector<std::string> names;
+  for (int j = 0; j < 6; ++j) {
+    const auto m = globalMotion(j);
+    double inNull = 0;
+    for (const auto& v : nullVectors) inNull += dotv(v, m) * dotv(v, m);
+    if (inNull > (1 - 1e-6) * dotv(m, m)) names.push_back(kMotionNames[j]);
+  }
+  if (names.empty())
+    for (const auto& v : nullVectors) names.push_back(describeMotion(v));
+  return names;
 }
 
 }  // namespace Feti

@@ -7,6 +7,7 @@
 // factored (Cholesky) on every rank.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "Tribos_FetiProblem.hpp"
@@ -37,6 +38,8 @@ class DualOperator : public Operator {
 class DenseCholesky {
  public:
   void factor(std::vector<double> A, int n, const char* what);
+  // As factor, but returns false instead of throwing when A is singular.
+  bool tryFactor(std::vector<double> A, int n);
   void solve(std::vector<double>& x) const;        // x <- A^-1 x
   void solveLower(std::vector<double>& x) const;   // x <- L^-1 x
   void solveUpperT(std::vector<double>& x) const;  // x <- L^-T x
@@ -60,15 +63,33 @@ class CoarseSpace {
   // The orthonormalized constraint G^ = L^-1 G with GG' = LL', so G^'G^ = Q = I - P.
   void applyOrthonormal(const Vector& x, std::vector<double>& y) const;
   void applyOrthonormalTranspose(const std::vector<double>& y, Vector& x) const;
-  // lambda~ = G_E'(G_E G_E')^-1 e: supported on equality rows only, so bound
-  // and friction constraints stay unshifted.
+  // lambda~ with G lambda~ = e: G_E'(G_E G_E')^-1 e, supported on equality
+  // rows only so that bound and friction constraints stay unshifted, when the
+  // equality rows hold every rigid motion; otherwise (a body held by its
+  // contact) the general G'(GG')^-1 e, and the constraints are shifted.
   void particularSolution(const std::vector<double>& e, Vector& lambdaTilde) const;
-  // alpha = (G_E G_E')^-1 G_E r: rigid-body amplitudes from the residual
-  // r = F lambda - h, exact on rows where B u = c holds (the equality rows).
-  std::vector<double> amplitudes(const Vector& r) const;
+  // Whether the equality rows alone hold every rigid motion (G_E G_E' regular).
+  bool equalityRowsHoldKernel() const { return equalityHoldsKernel_; }
+  // alpha = (G_S G_S')^-1 G_S r: rigid-body amplitudes from the residual
+  // r = F lambda - h, exact on rows S where B u = c holds (by default the
+  // equality rows). Throws when the rows S do not fix every rigid motion.
+  std::vector<double> amplitudes(const Vector& r, const std::vector<char>* rows = nullptr) const;
+  // G_S G_S' (replicated, n x n column-major) for the local rows S (all when null).
+  std::vector<double> gramian(const std::vector<char>* rows) const;
+  // The rigid motions that no row S touches (G_S G_S' singular), named for a
+  // person: "translation z", "rotation about x (axis through the centroid)",
+  // or a fitted motion; empty when the rows S hold every rigid motion.
+  // Collective.
+  std::vector<std::string> freeMotions(const std::vector<char>* rows) const;
+  // The coarse vector (kernel amplitudes of every subdomain) of the global
+  // rigid motion j of the body: translations x, y, z (j = 0..2) and
+  // rotations about the axes x, y, z through the centroid (j = 3..5).
+  std::vector<double> globalMotion(int j) const;
+  // Name of the global motion whose coarse vector is closest to alpha.
+  std::string describeMotion(const std::vector<double>& alpha) const;
 
  private:
-  std::vector<double> gramian(const std::vector<char>* rows) const;
+  bool equalityHoldsKernel_ = true;
   RCP<const FetiProblem> problem_;
   int n_ = 0;
   std::vector<int> rowptr_, col_;  // G' rows on this rank's dual rows

@@ -48,6 +48,21 @@ void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::ar
   t2 = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
 }
 
+// Whether the unit direction dir of a contact row at a node lies in the span
+// of the node's Dirichlet-fixed components (then the row would repeat the
+// Dirichlet rows). A direction partly fixed has no meaning as a contact or
+// friction direction: refused, naming the node.
+bool fixedDirection(const std::array<double, 3>& dir, const std::array<bool, 3>& fixed, int node) {
+  double inFixed = 0;
+  for (int c = 0; c < 3; ++c)
+    if (fixed[c]) inFixed += dir[c] * dir[c];
+  TRIBOS_REQUIRE(inFixed < 1e-12 || inFixed > 1 - 1e-12,
+                 "contact node " << node << ": its Dirichlet components fix part of the contact direction ("
+                                 << dir[0] << ", " << dir[1] << ", " << dir[2]
+                                 << "); a contact node may fix its normal or tangential components, not an oblique mix");
+  return inFixed > 0.5;
+}
+
 }  // namespace
 
 std::vector<int> fixingDofs(const std::vector<double>& R, int n) {
@@ -176,7 +191,8 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& 
   primalOffsets_.assign(S + 1, 0);
   for (int s = 0; s < S; ++s) primalOffsets_[s + 1] = primalOffsets_[s] + 3 * static_cast<GO>(disc.subdomains[s].nodes.size());
   feti1_ = p.get<std::string>("Formulation") == "FETI-1";
-  const auto bc = Fem::constrainedDofs(disc.mesh, loads.dirichlet);
+  dirichlet_ = Fem::constrainedDofs(disc.mesh, loads.dirichlet);
+  const auto& bc = dirichlet_;
   for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s) {
     systems_.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, loads));
     if (feti1_) eliminateDirichlet(systems_.back(), bc);
@@ -210,8 +226,6 @@ std::vector<DualRow> FetiProblem::buildRows(const Fem::LoadCase& loads, const Co
   for (const auto& sd : disc_.subdomains)
     for (int n : sd.nodes) copies[n].push_back(sd.id);
   const auto bc = Fem::constrainedDofs(mesh, loads.dirichlet);
-  std::vector<char> constrained(mesh.numNodes(), 0);
-  for (const auto& d : bc) constrained[d.first / 3] = 1;
   std::vector<DualRow> rows;
   const bool orthonormal = gluing == "Orthonormal", full = gluing == "Full";
   for (int n = 0; n < mesh.numNodes(); ++n) {
@@ -258,22 +272,30 @@ std::vector<DualRow> FetiProblem::buildRows(const Fem::LoadCase& loads, const Co
     const auto n = faceNormal(contact.face);
     std::array<double, 3> t1, t2;
     tangents(n, t1, t2);
-    // Nodes with a Dirichlet condition are not contact nodes.
+    // A Dirichlet condition on the normal component takes the node out of
+    // the contact set; one on a tangential component removes only that
+    // friction direction (a symmetry plane through the contact face).
     for (int node : mesh.faceNodes(contact.face)) {
-      if (constrained[node]) continue;
+      std::array<bool, 3> fixed{};
+      for (int c = 0; c < 3; ++c) fixed[c] = bc.count(3LL * node + c) > 0;
+      if (fixedDirection(n, fixed, node)) continue;
       DualRow r{DualRow::Normal};
       r.node = node;
       r.copies = {{copies[node].front(), 1.0}};
       r.dir = n;
       r.c = contact.gap;
       rows.push_back(r);
-      r.kind = DualRow::Tangent1;
-      r.dir = t1;
       r.c = 0;
-      rows.push_back(r);
-      r.kind = DualRow::Tangent2;
-      r.dir = t2;
-      rows.push_back(r);
+      if (!fixedDirection(t1, fixed, node)) {
+        r.kind = DualRow::Tangent1;
+        r.dir = t1;
+        rows.push_back(r);
+      }
+      if (!fixedDirection(t2, fixed, node)) {
+        r.kind = DualRow::Tangent2;
+        r.dir = t2;
+        rows.push_back(r);
+      }
     }
   }
   for (auto& r : rows) r.owner = disc_.layout.owner(r.copies.front().first);
@@ -321,6 +343,7 @@ void FetiProblem::buildContact(const std::vector<DualRow>& rows, const ContactSp
   if (!contact.enabled) return;
   const int me = comm_->getRank();
   contact_.normal = faceNormal(contact.face);
+  contact_.gap = contact.gap;
   tangents(contact_.normal, contact_.t1, contact_.t2);
   // Area of the contact face attached to every node (for traction slip bounds).
   std::vector<double> area(disc_.mesh.numNodes(), 0.0);
@@ -330,15 +353,20 @@ void FetiProblem::buildContact(const std::vector<DualRow>& rows, const ContactSp
     const auto w = Fem::facetNodalAreas(X);
     for (size_t a = 0; a < facet.nodes.size(); ++a) area[facet.nodes[a]] += w[a];
   }
+  // Rows of one node are on one rank: the normal row, then its tangential
+  // rows (t1, t2; a direction fixed by a Dirichlet condition has none: -1).
+  std::map<int, size_t> contactIndex;  // mesh node -> local contact number
   LO lid = 0;
   for (const auto& r : rows) {
     if (r.owner != me) continue;
     if (r.kind == DualRow::Normal) {
+      contactIndex[r.node] = contact_.nodes.size();
       contact_.normalRows.push_back(lid);
       contact_.nodes.push_back(r.node);
       contact_.nodalArea.push_back(area[r.node]);
+      contact_.tangentRows.insert(contact_.tangentRows.end(), {-1, -1});
     } else if (r.kind == DualRow::Tangent1 || r.kind == DualRow::Tangent2) {
-      contact_.tangentRows.push_back(lid);
+      contact_.tangentRows[2 * contactIndex.at(r.node) + (r.kind == DualRow::Tangent2)] = lid;
     }
     ++lid;
   }
@@ -598,19 +626,47 @@ void FetiProblem::applyR(const std::vector<double>& a, Vector& z) const {
 }
 
 std::vector<double> FetiProblem::nodalDisplacement(const Vector& u) const {
-  std::vector<double> full(3 * static_cast<size_t>(disc_.mesh.numNodes()), 0.0);
+  const size_t N = static_cast<size_t>(disc_.mesh.numNodes());
+  std::vector<double> full(3 * N, 0.0), count(N, 0.0);
   auto uv = u.getData();
   size_t offset = 0;
   for (const auto& sys : systems_) {
     for (size_t a = 0; a < sys.nodes.size(); ++a) {
       const int node = sys.nodes[a];
-      if (disc_.nodeFirstSubdomain()[node] != sys.id) continue;
-      for (int c = 0; c < 3; ++c) full[3 * static_cast<size_t>(node) + c] = uv[offset + 3 * a + c];
+      count[node] += 1.0;
+      for (int c = 0; c < 3; ++c) full[3 * static_cast<size_t>(node) + c] += uv[offset + 3 * a + c];
     }
     offset += sys.numDofs();
   }
   MPI_Allreduce(MPI_IN_PLACE, full.data(), static_cast<int>(full.size()), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
+  MPI_Allreduce(MPI_IN_PLACE, count.data(), static_cast<int>(count.size()), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
+  for (size_t n = 0; n < N; ++n)
+    for (int c = 0; c < 3; ++c) full[3 * n + c] /= std::max(count[n], 1.0);
   return full;
+}
+
+std::vector<double> FetiProblem::assembledProduct(const std::vector<double>& uNodal) const {
+  std::vector<double> Ku(uNodal.size(), 0.0), us, Kus;
+  for (const auto& sys : systems_) {
+    us.assign(sys.numDofs(), 0.0);
+    Kus.assign(sys.numDofs(), 0.0);
+    for (size_t a = 0; a < sys.nodes.size(); ++a)
+      for (int c = 0; c < 3; ++c) us[3 * a + c] = uNodal[3 * static_cast<size_t>(sys.nodes[a]) + c];
+    sys.K.multiply(us.data(), Kus.data());
+    for (size_t a = 0; a < sys.nodes.size(); ++a)
+      for (int c = 0; c < 3; ++c) Ku[3 * static_cast<size_t>(sys.nodes[a]) + c] += Kus[3 * a + c];
+  }
+  MPI_Allreduce(MPI_IN_PLACE, Ku.data(), static_cast<int>(Ku.size()), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
+  return Ku;
+}
+
+std::vector<double> FetiProblem::assembledLoad() const {
+  std::vector<double> f(3 * static_cast<size_t>(disc_.mesh.numNodes()), 0.0);
+  for (const auto& sys : systems_)
+    for (size_t a = 0; a < sys.nodes.size(); ++a)
+      for (int c = 0; c < 3; ++c) f[3 * static_cast<size_t>(sys.nodes[a]) + c] += sys.f[3 * a + c];
+  MPI_Allreduce(MPI_IN_PLACE, f.data(), static_cast<int>(f.size()), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
+  return f;
 }
 
 }  // namespace Feti

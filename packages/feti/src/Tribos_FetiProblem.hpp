@@ -17,6 +17,7 @@
 #include <Teuchos_SerialDenseMatrix.hpp>
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -52,10 +53,11 @@ struct DualRow {
 // The contact structure of this rank's dual dofs (local indices).
 struct LocalContact {
   std::vector<LO> normalRows;       // lambda_I rows, one per local contact node
-  std::vector<LO> tangentRows;      // 2 per contact node: t1, t2
+  std::vector<LO> tangentRows;      // 2 per contact node: t1, t2 (-1: direction fixed by a Dirichlet condition)
   std::vector<int> nodes;           // mesh node of each local contact node
   std::vector<double> nodalArea;    // contact-face area attached to the node
   std::array<double, 3> normal{0, 0, 0}, t1{0, 0, 0}, t2{0, 0, 0};
+  double gap = 0.0;                 // u . normal <= gap
 };
 
 class FetiProblem {
@@ -103,9 +105,16 @@ class FetiProblem {
   // y = R' p (replicated coarse vector); z = R a (primal).
   void applyRt(const Vector& p, std::vector<double>& y) const;
   void applyR(const std::vector<double>& a, Vector& z) const;
-  // Replicated global nodal displacement (3 numNodes) from the first copy of
-  // each node.
+  // Replicated global nodal displacement (3 numNodes): the mean of the
+  // subdomain copies of each node (they agree to the gluing tolerance).
   std::vector<double> nodalDisplacement(const Vector& u) const;
+  // K u of the assembled body for a nodal displacement (replicated, 3
+  // numNodes), from the subdomain matrices. Collective.
+  std::vector<double> assembledProduct(const std::vector<double>& uNodal) const;
+  // The assembled load f (replicated, 3 numNodes). Collective.
+  std::vector<double> assembledLoad() const;
+  // Global dof (3 node + c) -> prescribed value of the Dirichlet conditions.
+  const std::map<long long, double>& dirichlet() const { return dirichlet_; }
 
   double factorTime() const { return factorTime_; }
   double factorMemoryMb() const;
@@ -138,6 +147,7 @@ class FetiProblem {
   RCP<Vector> f_, c_;
   std::vector<char> isEquality_;
   LocalContact contact_;
+  std::map<long long, double> dirichlet_;
   double factorTime_ = 0;
   mutable std::vector<double> work_;
   // Subdomains with at most this many B dofs get a dense block (K+)_bb

@@ -22,19 +22,38 @@ void ContactDual::check() const {
                  "ContactDual: frictionCoefficient needs one entry per contact");
   const LO n = static_cast<LO>(map()->getNodeNumElements());
   for (LO i : normalRows) TRIBOS_REQUIRE(i >= 0 && i < n, "ContactDual: normal row " << i << " out of range");
-  for (LO i : tangentRows) TRIBOS_REQUIRE(i >= 0 && i < n, "ContactDual: tangential row " << i << " out of range");
+  for (LO i : tangentRows) TRIBOS_REQUIRE(i >= -1 && i < n, "ContactDual: tangential row " << i << " out of range");
+  TRIBOS_REQUIRE(tangentCenter.empty() || tangentCenter.size() == 2 * nc,
+                 "ContactDual: tangentCenter needs two entries per contact");
+  for (SC c : tangentCenter) TRIBOS_REQUIRE(std::isfinite(c), "ContactDual: tangentCenter " << c << " is not finite");
 }
 
 QP::ConstraintSet ContactDual::constraintSet(const std::vector<SC>& g) const {
   QP::ConstraintSet Omega(map());
+  std::vector<SC> r;  // radii of the circles, in the order they are set
   for (int k = 0; k < numLocalContacts(); ++k) {
     Omega.setLower(normalRows[k], normalLower[k]);
-    Omega.setCircle(tangentRows[2 * k], tangentRows[2 * k + 1], k);
+    const SC gk = g.empty() ? 0.0 : std::max(g[k], 0.0);
+    const LO t1 = tangentRows[2 * k], t2 = tangentRows[2 * k + 1];
+    const SC c1 = tangentCenter.empty() ? 0.0 : tangentCenter[2 * k];
+    const SC c2 = tangentCenter.empty() ? 0.0 : tangentCenter[2 * k + 1];
+    if (t1 >= 0 && t2 >= 0) {
+      Omega.setCircle(t1, t2, static_cast<int>(r.size()), c1, c2);
+      r.push_back(gk);
+    } else if (t1 >= 0) {  // the disk of one remaining direction: an interval
+      Omega.setBox(t1, c1 - gk, c1 + gk);
+    } else if (t2 >= 0) {
+      Omega.setBox(t2, c2 - gk, c2 + gk);
+    }
   }
-  std::vector<SC> r(g.size());
-  for (size_t k = 0; k < g.size(); ++k) r[k] = std::max(g[k], 0.0);
   Omega.setRadii(r);
   return Omega;
+}
+
+SC ContactDual::tangentialForce(const Vector& x, int k, int j) const {
+  const LO i = tangentRows[2 * k + j];
+  if (i < 0) return 0.0;
+  return x.getData()[i] - (tangentCenter.empty() ? 0.0 : tangentCenter[2 * k + j]);
 }
 
 std::vector<SC> ContactDual::normalForce(const Vector& x) const {
@@ -53,7 +72,8 @@ std::vector<SC> ContactDual::coulombSlipBound(const Vector& x) const {
 
 std::vector<char> ContactDual::tangentBlockMask() const {
   std::vector<char> mask(map()->getNodeNumElements(), 0);
-  for (LO i : tangentRows) mask[i] = 1;
+  for (LO i : tangentRows)
+    if (i >= 0) mask[i] = 1;
   return mask;
 }
 

@@ -1,11 +1,16 @@
 // Tribos_ContactDual.hpp: the dual contact problem the friction algorithms
 // solve, with no knowledge of where it comes from (FETI, FCLIB, ...):
 //
-//   min 1/2 x'Ax - b'x   s.t.  x_N,k >= l_k                (normal, one per contact k)
-//                              ||(x_T1,k, x_T2,k)|| <= g_k  (tangential pair)
-//                              G x = 0                      (optional)
+//   min 1/2 x'Ax - b'x   s.t.  x_N,k >= l_k                      (normal, one per contact k)
+//                              ||(x_T1,k, x_T2,k) - c_k|| <= g_k  (tangential pair)
+//                              G x = 0                            (optional)
 //
-// The normal contact force of contact k is x_N,k + normalOffset_k. Tresca
+// The normal contact force of contact k is x_N,k + normalOffset_k; the
+// tangential force is x_T,k - c_k (the centre c_k = -lambda~_T,k is zero
+// unless a particular solution of G lambda = e shifted the problem). A
+// contact whose tangential direction is fixed by a Dirichlet condition has
+// -1 for that row: one remaining direction gives the interval
+// |x_T - c| <= g_k, none gives no friction constraint. Tresca
 // problems give g; Coulomb problems give the friction coefficients F_k and
 // g_k = F_k (normal force). The algorithms' defaults (rho, M) assume the
 // problem is scaled so that ||A|| is about 1; FetiContactProblem does that.
@@ -25,7 +30,8 @@ struct ContactDual {
   RCP<const Vector> b;
   RCP<const QP::EqualityConstraint> G;  // null: no equality constraint
   std::vector<LO> normalRows;           // local index of x_N,k
-  std::vector<LO> tangentRows;          // local indices of x_T1,k, x_T2,k (2 per contact)
+  std::vector<LO> tangentRows;          // local indices of x_T1,k, x_T2,k (2 per contact; -1: direction fixed)
+  std::vector<SC> tangentCenter;        // c_k (2 per contact), empty: all zero
   std::vector<SC> normalLower;          // l_k (usually 0), local
   std::vector<SC> normalOffset;         // local
   std::vector<SC> slipBound;            // Tresca g_k, local
@@ -44,6 +50,8 @@ struct ContactDual {
   // index that is not tangential) and of the tangential block (lambda_t).
   std::vector<char> normalBlockMask() const;
   std::vector<char> tangentBlockMask() const;
+  // Tangential force of contact k, component j (0 for a fixed direction).
+  SC tangentialForce(const Vector& x, int k, int j) const;
   // Checks sizes and that every index is in range; throws naming the entry.
   void check() const;
 };

@@ -53,7 +53,7 @@ void ConstraintSet::setFixed(LO i) {
   kind_[i] = Kind::Fixed;
 }
 
-void ConstraintSet::setCircle(LO i1, LO i2, int k) {
+void ConstraintSet::setCircle(LO i1, LO i2, int k, SC c1, SC c2) {
   checkIndex(i1, "setCircle");
   checkIndex(i2, "setCircle");
   TRIBOS_REQUIRE(i1 != i2, "ConstraintSet::setCircle: i1 = i2 = " << i1);
@@ -63,8 +63,12 @@ void ConstraintSet::setCircle(LO i1, LO i2, int k) {
     r_.resize(k + 1, 0.0);
   }
   TRIBOS_REQUIRE(circles_[k].i1 < 0, "ConstraintSet::setCircle: circle k = " << k << " set twice");
+  TRIBOS_REQUIRE(std::isfinite(c1) && std::isfinite(c2),
+                 "ConstraintSet::setCircle: centre (" << c1 << ", " << c2 << ") of circle k = " << k << " is not finite");
   circles_[k].i1 = i1;
   circles_[k].i2 = i2;
+  circles_[k].c1 = c1;
+  circles_[k].c2 = c2;
   kind_[i1] = kind_[i2] = Kind::Circle;
 }
 
@@ -118,11 +122,12 @@ SC ConstraintSet::projectScalar(size_t i, SC v) const {
 }
 
 void ConstraintSet::projectCircle(size_t k, SC& v1, SC& v2) const {
-  const SC nv = std::hypot(v1, v2);
-  if (nv > r_[k]) {  // P(v) = v min(1, r_k/||v||)
+  const SC c1 = circles_[k].c1, c2 = circles_[k].c2;
+  const SC nv = std::hypot(v1 - c1, v2 - c2);
+  if (nv > r_[k]) {  // P(v) = c + (v - c) min(1, r_k/||v - c||)
     const SC s = r_[k] / nv;
-    v1 *= s;
-    v2 *= s;
+    v1 = c1 + (v1 - c1) * s;
+    v2 = c2 + (v2 - c2) * s;
   }
 }
 
@@ -160,8 +165,8 @@ SC ConstraintSet::maxFeasibleStep(const Vector& x, const Vector& p) const {
     const SC pp = p1 * p1 + p2 * p2;
     if (pp == 0) continue;
     if (c.fixed || r_[k] == 0) { a = 0; continue; }
-    // largest a with ||x - a p||^2 = pp a^2 - 2 xp a + (xx - r^2) <= 0
-    const SC x1 = xv[c.i1], x2 = xv[c.i2];
+    // largest a with ||x - c - a p||^2 = pp a^2 - 2 xp a + (xx - r^2) <= 0 (x relative to the centre)
+    const SC x1 = xv[c.i1] - c.c1, x2 = xv[c.i2] - c.c2;
     const SC xp = x1 * p1 + x2 * p2;
     const SC cc = x1 * x1 + x2 * x2 - r_[k] * r_[k];
     const SC disc = std::max(SC(0), xp * xp - pp * cc);
@@ -187,7 +192,7 @@ bool ConstraintSet::isFeasible(const Vector& x, SC tol) const {
   }
   for (size_t k = 0; k < circles_.size(); ++k) {
     const Circle& c = circles_[k];
-    if (!c.fixed && std::hypot(xv[c.i1], xv[c.i2]) > r_[k] + tol) ok = 0;
+    if (!c.fixed && std::hypot(xv[c.i1] - c.c1, xv[c.i2] - c.c2) > r_[k] + tol) ok = 0;
   }
   int all = 0;
   Teuchos::reduceAll(*map_->getComm(), Teuchos::REDUCE_MIN, ok, Teuchos::outArg(all));
@@ -211,7 +216,7 @@ void ConstraintSet::freeGradient(const Vector& x, const Vector& g, Vector& phi) 
   }
   for (size_t k = 0; k < circles_.size(); ++k) {
     const Circle& c = circles_[k];
-    const bool free = !c.fixed && r_[k] > 0 && !circleActive(xv[c.i1], xv[c.i2], r_[k]);
+    const bool free = !c.fixed && r_[k] > 0 && !circleActive(xv[c.i1] - c.c1, xv[c.i2] - c.c2, r_[k]);
     fv[c.i1] = free ? gv[c.i1] : 0;
     fv[c.i2] = free ? gv[c.i2] : 0;
   }
@@ -234,7 +239,7 @@ void ConstraintSet::choppedGradient(const Vector& x, const Vector& g, Vector& be
   for (size_t k = 0; k < circles_.size(); ++k) {
     const Circle& c = circles_[k];
     SC b1 = 0, b2 = 0;
-    const SC x1 = xv[c.i1], x2 = xv[c.i2];
+    const SC x1 = xv[c.i1] - c.c1, x2 = xv[c.i2] - c.c2;
     if (!c.fixed && r_[k] > 0 && circleActive(x1, x2, r_[k])) {
       // beta_k = g_k - min(n'g_k, 0) n: release inward moves, keep the tangential part
       const SC nx = std::hypot(x1, x2);

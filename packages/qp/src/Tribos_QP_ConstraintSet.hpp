@@ -1,7 +1,9 @@
 // Tribos_QP_ConstraintSet.hpp: the feasible set Omega of a dual QP, a product
 // of simple sets over the local indices of a Tpetra map:
 //   free, lower bound l <= x_i, box l <= x_i <= u, fixed (frozen at the current
-//   value), and disks ||(x_i1, x_i2)|| <= r_k (isotropic friction).
+//   value), and disks ||(x_i1, x_i2) - c_k|| <= r_k (isotropic friction; the
+//   centre c_k is 0 unless the dual problem was shifted by a particular
+//   solution of its equality constraint).
 // Every block lives on one rank, so projection and the projected gradients
 // are local; only step lengths, feasibility and norms need a reduction.
 #pragma once
@@ -21,7 +23,7 @@ class ConstraintSet {
   void setLower(LO i, SC l);
   void setBox(LO i, SC l, SC u);
   void setFixed(LO i);
-  void setCircle(LO i1, LO i2, int k);
+  void setCircle(LO i1, LO i2, int k, SC c1 = 0, SC c2 = 0);  // centre (c1, c2)
   void setRadii(const std::vector<SC>& r);
 
   // Copy in which every index with keep[i] == 0 is Fixed.
@@ -53,6 +55,7 @@ class ConstraintSet {
   enum class Kind : char { Free, Lower, Box, Fixed, Circle };
   struct Circle {
     LO i1 = -1, i2 = -1;
+    SC c1 = 0, c2 = 0;   // centre
     bool fixed = false;  // both components frozen
   };
 

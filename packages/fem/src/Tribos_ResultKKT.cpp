@@ -1,0 +1,143 @@
+#include "Tribos_ResultKKT.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Fem {
+
+namespace {
+
+double maxOver(double v, const Comm& comm) {
+  double out = v;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, v, Teuchos::outArg(out));
+  return out;
+}
+
+double dot(const std::array<double, 3>& a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+double norm2(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s);
+}
+
+double normInf(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s = std::max(s, std::abs(x));
+  return s;
+}
+
+// Projection of a onto the ball of radius r (any dimension; here 3-vectors
+// in the tangent plane).
+std::array<double, 3> projectBall(std::array<double, 3> a, double r) {
+  const double n = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  if (n > r) {
+    const double s = n > 0 ? r / n : 0.0;
+    for (double& v : a) v *= s;
+  }
+  return a;
+}
+
+}  // namespace
+
+FrictionLaw::Kind FrictionLaw::parse(const std::string& name) {
+  if (name == "Frictionless") return Frictionless;
+  if (name == "Tresca") return Tresca;
+  if (name == "Coulomb") return Coulomb;
+  throw Error("unknown friction law \"" + name + "\"; valid: Frictionless, Tresca, Coulomb");
+}
+
+const char* FrictionLaw::name(Kind k) {
+  return k == Frictionless ? "Frictionless" : (k == Tresca ? "Tresca" : "Coulomb");
+}
+
+double ResultKKT::worst(std::string* which) const {
+  const std::pair<const char*, double> all[] = {{"equilibrium", equilibrium},
+                                                {"dirichlet", dirichlet},
+                                                {"nonpenetration", nonpenetration},
+                                                {"complementarity", complementarity},
+                                                {"friction_law", frictionLaw}};
+  auto best = all[0];
+  for (const auto& p : all)
+    if (!(p.second <= best.second)) best = p;  // NaN counts as the worst
+  if (which) *which = best.first;
+  return best.second;
+}
+
+std::vector<double> contactForceVector(int numNodes, const RigidPlane& plane,
+                                       const std::vector<ContactNodeForce>& contact, const Comm& comm) {
+  std::vector<double> phi(3 * static_cast<size_t>(numNodes), 0.0), out(phi.size(), 0.0);
+  for (const auto& c : contact)
+    for (int d = 0; d < 3; ++d) phi[3 * static_cast<size_t>(c.node) + d] += -c.normalForce * plane.normal[d] + c.tangentialForce[d];
+  if (!phi.empty())
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(phi.size()), phi.data(), out.data());
+  return out;
+}
+
+ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku, const std::vector<double>& f,
+                    const std::map<long long, double>& dirichlet, const RigidPlane& plane, const FrictionLaw& law,
+                    const std::vector<ContactNodeForce>& contact, const Comm& comm) {
+  TRIBOS_REQUIRE(u.size() == Ku.size() && u.size() == f.size() && u.size() % 3 == 0,
+                 "resultKKT: u, Ku and f must be nodal vectors of one size (got " << u.size() << ", " << Ku.size()
+                                                                                  << ", " << f.size() << ")");
+  const int numNodes = static_cast<int>(u.size() / 3);
+  const auto phi = contactForceVector(numNodes, plane, contact, comm);
+  ResultKKT res;
+  const double U = std::max(normInf(u), 1e-300);
+  const double P = std::max({normInf(f), normInf(Ku), normInf(phi), 1e-300});
+  res.displacementScale = normInf(u);
+  res.forceScale = std::max({normInf(f), normInf(Ku), normInf(phi)});
+
+  // Equilibrium at the dofs without a Dirichlet condition (u, Ku, f and phi
+  // are replicated: every rank computes the same figure).
+  double r2 = 0;
+  for (size_t i = 0; i < u.size(); ++i) {
+    if (dirichlet.count(static_cast<long long>(i))) continue;
+    const double r = Ku[i] - f[i] - phi[i];
+    r2 += r * r;
+  }
+  res.equilibrium = std::sqrt(r2) / std::max({norm2(f), norm2(Ku), norm2(phi), 1e-300});
+  double dir = 0, ubarMax = 0;
+  for (const auto& [dof, value] : dirichlet) {
+    dir = std::max(dir, std::abs(u[dof] - value));
+    ubarMax = std::max(ubarMax, std::abs(value));
+  }
+  res.dirichlet = dir / std::max(U, ubarMax);
+
+  // Contact node by node (rank-local nodes, then the maximum over ranks).
+  double pen = 0, comp = 0, fric = 0;
+  for (const auto& c : contact) {
+    const double* un = &u[3 * static_cast<size_t>(c.node)];
+    const double gapLeft = plane.gap - dot(plane.normal, un);  // d - u.n
+    pen = std::max(pen, std::max(-gapLeft, 0.0));
+    comp = std::max(comp, std::abs(std::min(c.normalForce / P, gapLeft / U)));
+    double g = 0;
+    if (law.kind == FrictionLaw::Tresca) g = c.slipBound;
+    if (law.kind == FrictionLaw::Coulomb) g = law.coefficient * std::max(c.normalForce, 0.0);
+    // Slip and friction force in the tangent plane, without the components a
+    // Dirichlet condition fixes.
+    std::array<double, 3> s{}, phiT{}, trial{};
+    const double unn = dot(plane.normal, un);
+    for (int d = 0; d < 3; ++d) {
+      const bool fixed = dirichlet.count(3LL * c.node + d) > 0;
+      s[d] = fixed ? 0.0 : un[d] - unn * plane.normal[d];
+      phiT[d] = fixed ? 0.0 : c.tangentialForce[d];
+      trial[d] = phiT[d] - (P / U) * s[d];
+    }
+    const auto proj = projectBall(trial, g);
+    fric = std::max(fric, std::sqrt((phiT[0] - proj[0]) * (phiT[0] - proj[0]) + (phiT[1] - proj[1]) * (phiT[1] - proj[1]) +
+                                    (phiT[2] - proj[2]) * (phiT[2] - proj[2])) / P);
+  }
+  res.nonpenetration = maxOver(pen, comm) / U;
+  res.complementarity = maxOver(comp, comm);
+  res.frictionLaw = maxOver(fric, comm);
+  return res;
+}
+
+}  // namespace Fem
+}  // namespace Tribos
