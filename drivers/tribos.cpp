@@ -85,6 +85,10 @@ int main(int argc, char** argv) {
       if (root) std::cerr << "tribos: not converged: see stop_reason in the summary; the result is written" << std::endl;
       return 2;
     }
+  } catch (const Tribos::CollectiveError& e) {
+    // Every rank took the same decision: report once, no abort.
+    if (root) std::cerr << "tribos: error: " << e.what() << std::endl;
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "tribos: error" << (comm->getSize() > 1 ? " on rank " + std::to_string(comm->getRank()) : "") << ": "
               << e.what() << std::endl;

@@ -17,6 +17,7 @@
 #include "Tribos_Input.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_ResultWriter.hpp"
+#include "Tribos_RigidMotions.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
 
 namespace Tribos {
@@ -77,15 +78,23 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
   return ps;
 }
 
-// Tresca friction by the semismooth* Newton method. Rank 0 solves (with
-// "CG+MueLu" all ranks take part in the CG solves); the displacement and the
-// contact results are broadcast / kept on rank 0 for output.
+// Tresca friction (or frictionless contact) by the semismooth* Newton
+// method. Rank 0 solves (with "CG+MueLu" all ranks take part in the CG
+// solves); the contact results stay on rank 0, the displacement is
+// broadcast, and the KKT residuals of the result are computed as for FETI.
 std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Discretization& disc,
                                     const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
-                                    IO::Summary& summary, Contact::ContactNodeResults& nodes, bool& converged) {
+                                    IO::Summary& summary, Contact::ContactNodeResults& nodes, bool& converged,
+                                    Fem::ResultKKT& kkt) {
   const auto& contact = params.sublist("Contact");
+  const std::string law = contact.get<std::string>("Friction Law");
+  // Frictionless: slip bound 0 whatever Slip Bound Traction says.
+  const double slipTraction = law == "Frictionless" ? 0.0 : contact.get<double>("Slip Bound Traction");
+  // Every rank refuses a body the Dirichlet conditions do not hold, before
+  // rank 0 starts (the method eliminates them and factors K_rr).
+  Semismooth::requireRigidMotionsHeld(disc.mesh.coords, Fem::constrainedDofs(disc.mesh, loads.dirichlet));
   std::vector<double> u(3 * static_cast<size_t>(disc.mesh.numNodes()), 0.0);
-  double info[9] = {0};
+  double info[5] = {0};
   std::vector<double> residuals;
   // "CG+MueLu" spreads its CG solves over all ranks (each rank holds the
   // whole problem); the factorizing Newton solvers run on rank 0 alone.
@@ -95,50 +104,55 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
   Semismooth::SemismoothResult r;
   if (comm.getRank() == 0 || distributed)
     r = Semismooth::solveFromMesh(disc.mesh, mat, loads, contact.get<std::string>("Face"), contact.get<double>("Gap"),
-                                  contact.get<double>("Slip Bound Traction"), ssParams,
-                                  verbose && comm.getRank() == 0 ? &std::cout : nullptr,
+                                  slipTraction, ssParams, verbose && comm.getRank() == 0 ? &std::cout : nullptr,
                                   distributed ? Teuchos::rcpFromRef(comm) : RCP<const Comm>());
+  std::vector<Fem::ContactNodeForce> forces;
+  Fem::RigidPlane plane;
+  std::vector<double> Ku, f;
   if (comm.getRank() == 0) {
     u = r.u;
+    Ku = r.Ku;
+    f = r.f;
     residuals = r.residuals;
     info[0] = r.converged;
     info[1] = r.iterations;
-    info[2] = r.numContactNodes;
-    // Active nodes split into stick and slip (the method's own counts also
-    // classify nodes out of contact).
-    for (const auto st : r.state) {
-      info[3] += st == Semismooth::NodeState::ContactStick || st == Semismooth::NodeState::ContactSlip;
-      info[4] += st == Semismooth::NodeState::ContactStick;
-      info[5] += st == Semismooth::NodeState::ContactSlip;
-    }
-    const std::string face = contact.get<std::string>("Face");
-    const int axis = face[0] - 'x';
-    const double sign = face.substr(1) == "min" ? -1.0 : 1.0;  // outward normal = sign e_axis
-    info[6] = r.assemblySeconds;
-    info[7] = r.reductionSeconds;
-    info[8] = r.solverSeconds;
-    for (size_t i = 0; i < r.contactNodes.size(); ++i) {
-      const int node = r.contactNodes[i];
-      nodes.nodes.push_back(node);
-      nodes.normalForce.push_back(r.lambdaN[i]);
+    info[2] = r.assemblySeconds;
+    info[3] = r.reductionSeconds;
+    info[4] = r.solverSeconds;
+    forces = Semismooth::contactForces(r);
+    plane = Semismooth::contactPlane(r);
+    const auto slip = Semismooth::contactSlip(r);
+    const auto status = Semismooth::contactStatus(r);
+    for (size_t i = 0; i < forces.size(); ++i) {
+      nodes.nodes.push_back(forces[i].node);
+      nodes.normalForce.push_back(forces[i].normalForce);
+      nodes.slipBound.push_back(forces[i].slipBound);
+      nodes.status.push_back(status[i]);
+      nodes.gap.push_back(r.gap[i]);
       for (int d = 0; d < 3; ++d) {
-        nodes.tangentialForce.push_back(-r.lambdaT[i][d]);
-        nodes.slip.push_back(0.0);
+        nodes.tangentialForce.push_back(forces[i].tangentialForce[d]);
+        nodes.slip.push_back(slip[i][d]);
       }
-      const bool inContact = r.state[i] == Semismooth::NodeState::ContactStick || r.state[i] == Semismooth::NodeState::ContactSlip;
-      const bool slips = r.state[i] == Semismooth::NodeState::ContactSlip || r.state[i] == Semismooth::NodeState::NoContactSlip;
-      nodes.status.push_back(inContact ? (slips ? 2 : 1) : 0);
-      nodes.gap.push_back(contact.get<double>("Gap") - sign * u[3 * static_cast<size_t>(node) + axis]);
     }
   }
-  Teuchos::broadcast(comm, 0, static_cast<int>(u.size()), u.data());
-  Teuchos::broadcast(comm, 0, 9, info);
+  for (auto* v : {&u, &Ku, &f}) {
+    v->resize(u.size());
+    Teuchos::broadcast(comm, 0, static_cast<int>(v->size()), v->data());
+  }
+  Teuchos::broadcast(comm, 0, 5, info);
+  Teuchos::broadcast(comm, 0, 3, plane.normal.data());
+  Teuchos::broadcast(comm, 0, &plane.gap);
   int nres = static_cast<int>(residuals.size());
   Teuchos::broadcast(comm, 0, &nres);
   residuals.resize(nres);
   if (nres > 0) Teuchos::broadcast(comm, 0, nres, residuals.data());
-  summary.set("friction_law", "Tresca");
-  summary.set("converged", info[0] != 0.0);
+  Fem::FrictionLaw friction;
+  friction.kind = Fem::FrictionLaw::parse(law);  // Tresca or Frictionless (the input refuses Coulomb here)
+  kkt = Fem::resultKKT(u, Ku, f, Fem::constrainedDofs(disc.mesh, loads.dirichlet), plane, friction, forces, comm);
+  long long counts[4] = {static_cast<long long>(nodes.nodes.size()), 0, 0, 0};
+  for (int st : nodes.status) counts[1] += st > 0, counts[2] += st == 1, counts[3] += st == 2;
+  Teuchos::broadcast(comm, 0, 4, counts);
+  summary.set("friction_law", Fem::FrictionLaw::name(friction.kind));
   converged = info[0] != 0.0;
   summary.set("newton_iterations", static_cast<long long>(info[1]));
   summary.set("outer_iterations", static_cast<long long>(info[1]));
@@ -147,12 +161,11 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
   summary.set("dual_dofs", 0);
   summary.set("n_A", 0);
   IO::Summary c;
-  c.set("nodes", static_cast<long long>(info[2])).set("active", static_cast<long long>(info[3]));
-  c.set("stick", static_cast<long long>(info[4])).set("slip", static_cast<long long>(info[5]));
+  c.set("nodes", counts[0]).set("active", counts[1]).set("stick", counts[2]).set("slip", counts[3]);
   summary.set("contact", c);
-  summary.set("time_assembly_s", info[6]);
-  summary.set("time_reduction_s", info[7]);
-  summary.set("time_newton_s", info[8]);
+  summary.set("time_assembly_s", info[2]);
+  summary.set("time_reduction_s", info[3]);
+  summary.set("time_newton_s", info[4]);
   return u;
 }
 
@@ -266,10 +279,9 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     summary.set("algorithm", "SemismoothStarNewton");
     setupTime = seconds(t0);
     const auto t2 = std::chrono::steady_clock::now();
-    u = solveSemismooth(params, disc, mat, loads, *comm, options.verbose, summary, contactNodes, solverConverged);
+    u = solveSemismooth(params, disc, mat, loads, *comm, options.verbose, summary, contactNodes, solverConverged, kkt);
     solveTime = seconds(t2);
-    haveKKT = false;
-    converged = solverConverged;
+    if (!solverConverged) solverReason = "semismooth*: maximum Newton iterations";
   } else if (type == "Monolithic") {
     Fem::MonolithicSystem system(disc, mat, loads, comm);
     setupTime = seconds(t0);

@@ -93,6 +93,16 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Fri
   auto b = rcp(new Vector(p.dualMap()));
   dual->coarse().project(r, *b);
   b->scale(scale_);
+  // Tolerances refer to b without the gaps d of the contact rows (h = B K+ f - c):
+  // the size of the load-driven problem, whether or not contact is active.
+  {
+    auto rv = r.getDataNonConst();
+    auto cv = p.c().getData();
+    for (LO i : lc.normalRows) rv[i] += cv[i];
+    Vector bRef(p.dualMap());
+    dual->coarse().project(r, bRef);
+    cd_.referenceNorm = scale_ * bRef.norm2();
+  }
   cd_.b = b;
   cd_.G = rcp(new OrthonormalCoarseConstraint(dual->coarsePtr(), p.comm()));
   cd_.normalRows = lc.normalRows;
@@ -156,7 +166,7 @@ void FetiContactProblem::checkHeldByContact(const FrictionSpec& friction) const 
   if (!motions.empty()) {
     std::string list;
     for (const auto& m : motions) list += (list.empty() ? "" : ", ") + m;
-    throw Error("the body is free to move rigidly (" + list + "): neither a Dirichlet condition nor the contact holds "
+    throw CollectiveError("the body is free to move rigidly (" + list + "): neither a Dirichlet condition nor the contact holds "
                 "this motion" + std::string(tangentHolds ? "" : " (a frictionless contact carries no tangential force)") +
                 ", so the displacement is not determined; add a Dirichlet condition that holds it");
   }
@@ -204,7 +214,7 @@ void FetiContactProblem::checkHeldByContact(const FrictionSpec& friction) const 
   Teuchos::reduceAll(*p.comm(), Teuchos::REDUCE_MAX, resist, Teuchos::outArg(resistAll));
   Teuchos::reduceAll(*p.comm(), Teuchos::REDUCE_SUM, frictionWork, Teuchos::outArg(frictionAll));
   if (resistAll <= 1e-10 * vScale && work_e > frictionAll * (1 + 1e-10))
-    throw Error("the load moves the body rigidly (" + coarse.describeMotion(alpha) +
+    throw CollectiveError("the load moves the body rigidly (" + coarse.describeMotion(alpha) +
                 ") away from the contact, and no Dirichlet condition holds it: there is no equilibrium; "
                 "add a Dirichlet condition or change the load");
 }

@@ -14,6 +14,14 @@ class Error : public std::runtime_error {
   explicit Error(const std::string& what) : std::runtime_error(what) {}
 };
 
+// An error that every rank detects identically (a decision taken on
+// replicated or reduced data), so a driver can report it once and exit on
+// every rank without aborting the others.
+class CollectiveError : public Error {
+ public:
+  explicit CollectiveError(const std::string& what) : Error(what) {}
+};
+
 }  // namespace Tribos
 
 // TRIBOS_REQUIRE(cond, "message " << value): throws Tribos::Error when cond fails.

@@ -141,7 +141,7 @@ CoarseSpace::CoarseSpace(RCP<const FetiProblem> problem) : problem_(problem) {
   if (!motions.empty()) {
     std::string list;
     for (const auto& m : motions) list += (list.empty() ? "" : ", ") + m;
-    throw Error("the body is free to move rigidly (" + list +
+    throw CollectiveError("the body is free to move rigidly (" + list +
                 "): no Dirichlet condition or contact holds this motion, so the displacement is not determined; "
                 "add a Dirichlet condition that holds it");
   }

@@ -36,8 +36,13 @@ struct ContactDual {
   std::vector<SC> normalOffset;         // local
   std::vector<SC> slipBound;            // Tresca g_k, local
   std::vector<SC> frictionCoefficient;  // Coulomb F_k, local
+  // The norm that relative tolerances refer to; 0: ||b||. A contact problem
+  // sets the size of b without the initial gaps, which a solution with no
+  // active contact never feels: a large gap must not loosen the solve.
+  SC referenceNorm = 0;
 
   RCP<const Map> map() const { return b->getMap(); }
+  SC normB() const { return referenceNorm > 0 ? referenceNorm : b->norm2(); }
   int numLocalContacts() const { return static_cast<int>(normalRows.size()); }
 
   // Omega(g): the product set with slip bounds g (local, one per contact).

@@ -100,7 +100,7 @@ FrictionStatus Algorithm1::solve(const ContactDual& dual, const std::vector<SC>&
   long powerN_A = 0;
   if (normA_ <= 0) normA_ = estimateHessianNorm(*dual.A, powerN_A);
   const auto& sp = params_.sublist("SMALBE");
-  const SC tol = std::max(sp.get<double>("Relative Tolerance") * dual.b->norm2(), sp.get<double>("Absolute Tolerance"));
+  const SC tol = std::max(sp.get<double>("Relative Tolerance") * dual.normB(), sp.get<double>("Absolute Tolerance"));
   QP::QPStatus qs;
   if (dual.G.is_null()) {
     // No equality constraint: the inner solver alone, repeated (block
@@ -337,7 +337,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   auto mpgp = makeQPSolver("MPGP", params_, "MPGP");
   if (!out_.is_null()) mprgp->setOutputStream(out_), mpgp->setOutputStream(out_);
   const SC normA = estimateHessianNorm(*dual.A, st.n_A);
-  const SC normB = dual.b->norm2();
+  const SC normB = dual.normB();
   SC rho = params_.get<double>("rho") > 0 ? params_.get<double>("rho") : normA;
   // Limits with a little slack, so that rho0 * factor^k hits them exactly.
   const RhoBalancing balancing{params_.get<double>("Residual Balancing"), params_.get<double>("rho Factor"),
@@ -406,7 +406,9 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
     normGx = Gx.norm2();
     const SC L = 0.5 * (x.dot(grad) - x.dot(bIn));
     mu.update(rho, Gx, 1.0);
-    const SC gNorm = globalNorm(gNew, comm);
+    // Relative to the larger of the two bounds, so that a bound that
+    // vanishes (contact lost) gives a change of at most 2, not 1/round-off.
+    const SC gNorm = std::max(globalNorm(gNew, comm), globalNorm(g, comm));
     st.slip_bound_change = globalDistance(gNew, g, comm) / (gNorm > 0 ? gNorm : 1.0);
     st.history.push_back(st.slip_bound_change);
     st.outer_iterations = l;

@@ -10,6 +10,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_LocalSolver.hpp"
+#include "Tribos_RigidMotions.hpp"
 
 namespace Tribos {
 namespace Semismooth {
@@ -121,6 +122,30 @@ std::array<double, 9> tangentFrame(const std::array<double, 3>& normal) {
   return R;
 }
 
+// The frame of a contact node whose prescribed global components (fixed)
+// are tangent directions: t1 = the first fixed axis, t2 = n x t1 (the
+// second fixed axis, if any, up to its sign), n with its (round-off sized)
+// components along the fixed axes removed, so that each fixed axis is
+// exactly a frame vector and its prescribed value stays exact in the frame.
+std::array<double, 9> prescribedTangentFrame(const std::array<double, 3>& normal, const std::array<bool, 3>& fixed) {
+  std::array<double, 3> n = normal;
+  for (int c = 0; c < 3; ++c)
+    if (fixed[c]) n[c] = 0;
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (double& v : n) v /= len;
+  const int c1 = fixed[0] ? 0 : (fixed[1] ? 1 : 2);
+  std::array<double, 3> t1{0, 0, 0};
+  t1[c1] = 1;
+  const std::array<double, 3> t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+  std::array<double, 9> R{};
+  for (int a = 0; a < 3; ++a) {
+    R[3 * a + 0] = t1[a];
+    R[3 * a + 1] = t2[a];
+    R[3 * a + 2] = n[a];
+  }
+  return R;
+}
+
 // K~ = Q' K Q with Q = diag(R_I) (identity on nodes without a frame). K must
 // have the node-block structure of an elasticity matrix: the three rows of a
 // node share their columns, which come in complete node triples.
@@ -161,6 +186,27 @@ LocalCsr rotate(const LocalCsr& K, const std::vector<const std::array<double, 9>
 
 }  // namespace
 
+PrescribedDirections classifyPrescribed(const std::array<double, 3>& normal, const std::array<bool, 3>& fixed) {
+  const double len = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  TRIBOS_REQUIRE(len > 0, "contact node with a zero normal");
+  // Area-weighted normals of planar faces are exact up to round-off.
+  const double tol = 1e-8;
+  bool any = false, allTangent = true;
+  double outside = 0;  // |n|^2 off the prescribed axes
+  for (int c = 0; c < 3; ++c) {
+    const double nc = normal[c] / len;
+    if (fixed[c]) {
+      any = true;
+      allTangent = allTangent && std::abs(nc) <= tol;
+    } else {
+      outside += nc * nc;
+    }
+  }
+  if (!any) return PrescribedDirections::None;
+  if (outside <= tol * tol) return PrescribedDirections::Normal;
+  return allTangent ? PrescribedDirections::Tangential : PrescribedDirections::Oblique;
+}
+
 std::unique_ptr<PatternSolver> createPatternSolver(const std::string& name, const LocalCsr& pattern) {
   if (name == "CHOLMOD") return std::make_unique<CholmodPatternSolver>(pattern);
   return std::make_unique<GenericPatternSolver>(name, pattern);
@@ -171,22 +217,63 @@ RotatedSystem::RotatedSystem(const ContactProblem& p) : numNodes(p.numNodes()), 
   TRIBOS_REQUIRE(p.K.rows == n && p.K.cols == n && static_cast<int>(p.f.size()) == n,
                  "semismooth*: K is " << p.K.rows << " x " << p.K.cols << ", f has " << p.f.size() << " entries");
   TRIBOS_REQUIRE(m > 0, "semismooth*: no contact nodes");
+  TRIBOS_REQUIRE(static_cast<int>(p.coords.size()) == numNodes,
+                 "semismooth*: ContactProblem::coords must hold the node coordinates (" << p.coords.size() << " for "
+                                                                                         << numNodes << " nodes)");
+  // Before any factorization: K on the unprescribed dofs must be definite.
+  requireRigidMotionsHeld(p.coords, p.dirichlet);
+
+  // Prescribed values by dof; at contact nodes they move into the frame below.
+  uPrescribed.assign(n, 0.0);
+  std::vector<char> isPrescribed(n, 0);
+  for (const auto& [dof, value] : p.dirichlet) {
+    TRIBOS_REQUIRE(dof >= 0 && dof < n, "semismooth*: Dirichlet dof " << dof << " out of range");
+    isPrescribed[dof] = 1;
+    uPrescribed[dof] = value;
+  }
 
   // Frames and the reduced numbering x = (x_1, ..., x_m), x_i = (tau1, tau2, nu).
   std::vector<const std::array<double, 9>*> R(numNodes, nullptr);
   frame.resize(m);
+  prescribed.assign(3 * m, 0);
+  xPrescribed.assign(3 * m, 0.0);
   std::vector<int> reducedOfDof(n, -1);
   for (int i = 0; i < m; ++i) {
     const int node = contact[i].node;
     TRIBOS_REQUIRE(node >= 0 && node < numNodes, "semismooth*: contact node " << node << " out of range");
     TRIBOS_REQUIRE(reducedOfDof[3 * node] < 0, "semismooth*: contact node " << node << " listed twice");
     TRIBOS_REQUIRE(contact[i].g >= 0, "semismooth*: negative slip bound at node " << node);
-    frame[i] = tangentFrame(contact[i].normal);
-    for (int k = 0; k < 3; ++k) {
-      TRIBOS_REQUIRE(!p.dirichlet.count(3LL * node + k),
-                     "semismooth*: contact node " << node << " has a prescribed dof; exclude it from contact");
-      reducedOfDof[3 * node + k] = 3 * i + k;
+    const std::array<bool, 3> fixed{isPrescribed[3 * node] != 0, isPrescribed[3 * node + 1] != 0,
+                                    isPrescribed[3 * node + 2] != 0};
+    const PrescribedDirections kind = classifyPrescribed(contact[i].normal, fixed);
+    TRIBOS_REQUIRE(kind != PrescribedDirections::Normal,
+                   "semismooth*: contact node " << node << " has its normal displacement prescribed; exclude it from contact");
+    TRIBOS_REQUIRE(kind != PrescribedDirections::Oblique,
+                   "semismooth*: contact node " << node << " has a Dirichlet condition on a component that is neither its "
+                                                "normal nor a tangent direction (oblique); the contact frame cannot "
+                                                "represent it");
+    if (kind == PrescribedDirections::None) {
+      frame[i] = tangentFrame(contact[i].normal);
+    } else {
+      // Each fixed axis is a tangent frame vector (+-e_c exactly): its value
+      // in the frame is that frame vector's sign times the prescribed value.
+      frame[i] = prescribedTangentFrame(contact[i].normal, fixed);
+      double u[3];
+      for (int c = 0; c < 3; ++c) u[c] = uPrescribed[3 * node + c];
+      for (int k = 0; k < 3; ++k) {
+        isPrescribed[3 * node + k] = 0;
+        uPrescribed[3 * node + k] = 0;
+      }
+      for (int c = 0; c < 3; ++c)
+        if (fixed[c]) {
+          const int k = std::abs(frame[i][3 * c]) > 0.5 ? 0 : 1;
+          isPrescribed[3 * node + k] = 1;
+          uPrescribed[3 * node + k] = frame[i][3 * c + k] * u[c];
+          prescribed[3 * i + k] = 1;
+          xPrescribed[3 * i + k] = uPrescribed[3 * node + k];
+        }
     }
+    for (int k = 0; k < 3; ++k) reducedOfDof[3 * node + k] = 3 * i + k;
   }
   for (int i = 0; i < m; ++i) R[contact[i].node] = &frame[i];
   const LocalCsr Kt = rotate(p.K, R);
@@ -198,14 +285,9 @@ RotatedSystem::RotatedSystem(const ContactProblem& p) : numNodes(p.numNodes()), 
   }
 
   // Free dofs in natural order (keeps CSR columns sorted).
-  uPrescribed.assign(n, 0.0);
   freeOfDof.assign(n, -1);
   for (int dof = 0; dof < n; ++dof) {
-    auto it = p.dirichlet.find(dof);
-    if (it != p.dirichlet.end()) {
-      uPrescribed[dof] = it->second;
-      continue;
-    }
+    if (isPrescribed[dof]) continue;
     freeOfDof[dof] = static_cast<int>(dofOfFree.size());
     dofOfFree.push_back(dof);
   }
@@ -235,20 +317,23 @@ RotatedSystem::RotatedSystem(const ContactProblem& p) : numNodes(p.numNodes()), 
     }
     Kfree.rowptr.push_back(static_cast<int>(Kfree.col.size()));
   }
-  tangentialEntries.resize(m);
-  for (int i = 0; i < m; ++i)
+  tangentialEntries.assign(m, {-1, -1, -1, -1});
+  for (int i = 0; i < m; ++i) {
+    if (prescribed[3 * i] || prescribed[3 * i + 1]) continue;
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b) {
         const int row = freeOfReduced[3 * i + a], col = freeOfReduced[3 * i + b];
         auto first = Kfree.col.begin() + Kfree.rowptr[row], last = Kfree.col.begin() + Kfree.rowptr[row + 1];
         tangentialEntries[i][2 * a + b] = static_cast<int>(std::lower_bound(first, last, col) - Kfree.col.begin());
       }
+  }
 }
 
 std::vector<double> RotatedSystem::nodalMaxDiagonalKcc() const {
   std::vector<double> dmax(m, 0.0);
   for (int j = 0; j < 3 * m; ++j) {
     const int row = freeOfReduced[j];
+    if (row < 0) continue;
     for (int pos = Kfree.rowptr[row]; pos < Kfree.rowptr[row + 1]; ++pos)
       if (Kfree.col[pos] == row) dmax[j / 3] = std::max(dmax[j / 3], Kfree.val[pos]);
   }
@@ -259,6 +344,7 @@ std::vector<double> RotatedSystem::diagonalKcc() const {
   std::vector<double> diag(3 * m, 0.0);
   for (int j = 0; j < 3 * m; ++j) {
     const int row = freeOfReduced[j];
+    if (row < 0) continue;
     for (int pos = Kfree.rowptr[row]; pos < Kfree.rowptr[row + 1]; ++pos)
       if (Kfree.col[pos] == row) diag[j] = Kfree.val[pos];
   }
@@ -270,7 +356,8 @@ std::vector<double> RotatedSystem::globalDisplacement(const std::vector<double>&
   for (size_t j = 0; j < dofOfFree.size(); ++j) u[dofOfFree[j]] = vFree[j];
   for (int i = 0; i < m; ++i) {  // u_i = R_i x_i
     const int node = contact[i].node;
-    const double xi[3] = {vFree[freeOfReduced[3 * i]], vFree[freeOfReduced[3 * i + 1]], vFree[freeOfReduced[3 * i + 2]]};
+    double xi[3];
+    for (int k = 0; k < 3; ++k) xi[k] = prescribed[3 * i + k] ? xPrescribed[3 * i + k] : vFree[freeOfReduced[3 * i + k]];
     for (int a = 0; a < 3; ++a)
       u[3 * node + a] = frame[i][3 * a] * xi[0] + frame[i][3 * a + 1] * xi[1] + frame[i][3 * a + 2] * xi[2];
   }
@@ -299,7 +386,8 @@ ContactReduction::ContactReduction(const ContactProblem& p, const std::string& l
   std::vector<double> t;
   multiplyFree(zf_, t);
   l_.assign(3 * sys_.m, 0.0);
-  for (int j = 0; j < 3 * sys_.m; ++j) l_[j] = sys_.fFree[sys_.freeOfReduced[j]] - t[sys_.freeOfReduced[j]];
+  for (int j = 0; j < 3 * sys_.m; ++j)
+    if (!sys_.prescribed[j]) l_[j] = sys_.fFree[sys_.freeOfReduced[j]] - t[sys_.freeOfReduced[j]];
   timer.stop();
   reductionSeconds_ = timer.totalElapsedTime();
 }
@@ -319,15 +407,18 @@ void ContactReduction::multiplyFree(const std::vector<double>& v, std::vector<do
 void ContactReduction::applyS(const std::vector<double>& x, std::vector<double>& Sx) const {
   const int nf = sys_.Kfree.rows;
   std::vector<double> v(nf, 0.0), t, z;
-  for (int j = 0; j < 3 * sys_.m; ++j) v[sys_.freeOfReduced[j]] = x[j];
+  for (int j = 0; j < 3 * sys_.m; ++j)
+    if (!sys_.prescribed[j]) v[sys_.freeOfReduced[j]] = x[j];
   multiplyFree(v, t);  // t_r = K_rc x
-  for (int j = 0; j < 3 * sys_.m; ++j) t[sys_.freeOfReduced[j]] = 0;
+  for (int j = 0; j < 3 * sys_.m; ++j)
+    if (!sys_.prescribed[j]) t[sys_.freeOfReduced[j]] = 0;
   krrSolve(t, z);  // z_r = K_rr^-1 K_rc x, z_c = 0
   for (int j = 0; j < nf; ++j)
     if (sys_.reducedOfFree[j] < 0) v[j] = -z[j];
   multiplyFree(v, t);  // t_c = K_cc x - K_cr z_r
-  Sx.resize(3 * sys_.m);
-  for (int j = 0; j < 3 * sys_.m; ++j) Sx[j] = t[sys_.freeOfReduced[j]];
+  Sx.assign(3 * sys_.m, 0.0);
+  for (int j = 0; j < 3 * sys_.m; ++j)
+    if (!sys_.prescribed[j]) Sx[j] = t[sys_.freeOfReduced[j]];
 }
 
 std::vector<double> ContactReduction::denseS() const {
@@ -344,6 +435,8 @@ std::vector<double> ContactReduction::denseS() const {
 
 void ContactReduction::newtonSolve(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
                                    const std::vector<double>& rhs, std::vector<double>& dx, std::vector<double>& Sdx) {
+  for (int j = 0; j < 3 * sys_.m; ++j)
+    TRIBOS_REQUIRE(!(freeComp[j] && sys_.prescribed[j]), "semismooth*: a prescribed direction cannot be free in a Newton step");
   Teuchos::Time timer("newton factor");
   timer.start();
   const int nf = sys_.Kfree.rows;
@@ -370,14 +463,16 @@ void ContactReduction::newtonSolve(const std::vector<char>& freeComp, const std:
   for (int j = 0; j < 3 * sys_.m; ++j) dx[j] = freeComp[j] ? v[sys_.freeOfReduced[j]] : 0.0;
   // The r-rows give v_r = -K_rr^-1 K_rF dx_F, hence (K~ v)_c = S dx.
   multiplyFree(v, t);
-  Sdx.resize(3 * sys_.m);
-  for (int j = 0; j < 3 * sys_.m; ++j) Sdx[j] = t[sys_.freeOfReduced[j]];
+  Sdx.assign(3 * sys_.m, 0.0);
+  for (int j = 0; j < 3 * sys_.m; ++j)
+    if (!sys_.prescribed[j]) Sdx[j] = t[sys_.freeOfReduced[j]];
 }
 
 std::vector<double> ContactReduction::displacement(const std::vector<double>& x) const {
   const int nf = sys_.Kfree.rows;
   std::vector<double> v(nf, 0.0), t, ur;
-  for (int j = 0; j < 3 * sys_.m; ++j) v[sys_.freeOfReduced[j]] = x[j];
+  for (int j = 0; j < 3 * sys_.m; ++j)
+    if (!sys_.prescribed[j]) v[sys_.freeOfReduced[j]] = x[j];
   multiplyFree(v, t);
   for (int j = 0; j < nf; ++j) t[j] = sys_.reducedOfFree[j] >= 0 ? 0.0 : sys_.fFree[j] - t[j];
   krrSolve(t, ur);

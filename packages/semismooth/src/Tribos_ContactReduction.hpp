@@ -27,20 +27,25 @@ double norm2(const std::vector<double>& v);
 struct ContactNode {
   int node = -1;
   std::array<double, 3> normal{0, 0, -1};  // outward unit normal of the body
-  double g = 0.0;                          // slip bound (a force: traction bound x nodal area)
+  double g = 0.0;                          // slip bound (a force: traction bound x nodal area); 0: frictionless
   double d = 0.0;                          // gap
 };
 
 // The discrete problem: K (3 dof per node, dof = 3 node + c, both triangles,
-// sorted columns, unconstrained), f, prescribed dofs, contact nodes. Contact
-// nodes must not carry prescribed dofs.
+// sorted columns, unconstrained), f, prescribed dofs, contact nodes. A
+// contact node may carry prescribed dofs only in tangent directions (e.g. a
+// symmetry plane through the contact face): such a direction is a Dirichlet
+// dof of the node's frame and has no friction; the node keeps its contact
+// and its friction in the remaining tangential direction.
 struct ContactProblem {
   LocalCsr K;
   std::vector<double> f;
   std::map<long long, double> dirichlet;  // dof -> prescribed value
   std::vector<ContactNode> contact;
-  // Node coordinates (optional): the rigid-body modes that the "CG+MueLu"
-  // Newton solver gives MueLu as near null space.
+  // Node coordinates: the check that the Dirichlet conditions hold every
+  // rigid motion (K restricted to the other dofs is then positive definite),
+  // and the rigid-body modes that the "CG+MueLu" Newton solver gives MueLu as
+  // near null space.
   std::vector<std::array<double, 3>> coords;
   // Ranks over which the "CG+MueLu" Newton solver distributes its CG solves
   // (optional; every rank of it must solve the same problem). Null: one
@@ -48,6 +53,18 @@ struct ContactProblem {
   RCP<const Comm> comm;
   int numNodes() const { return K.rows / 3; }
 };
+
+// How the prescribed global components of a contact node (fixed[c]: u_c is
+// prescribed) meet its normal n:
+//   None        no prescribed component;
+//   Tangential  every prescribed axis e_c is tangent (n_c = 0): the node keeps
+//               its contact, the prescribed directions lose their friction;
+//   Normal      n lies in the span of the prescribed axes, so u.n is
+//               prescribed: the node is a Dirichlet node, not a contact node;
+//   Oblique     anything else (a prescribed axis that is neither normal nor
+//               tangent): the contact frame cannot represent it.
+enum class PrescribedDirections { None, Tangential, Normal, Oblique };
+PrescribedDirections classifyPrescribed(const std::array<double, 3>& normal, const std::array<bool, 3>& fixed);
 
 // Sparse symmetric positive definite solver on one fixed pattern: factor()
 // may be called repeatedly with new values (analysis once for CHOLMOD).
@@ -64,22 +81,34 @@ std::unique_ptr<PatternSolver> createPatternSolver(const std::string& name, cons
 // The problem in contact frames on the unprescribed ("free") dofs: K and f
 // rotated node by node (x_i = R_i' u_i at contact nodes, identity
 // elsewhere, so 3x3 node blocks stay blocks), prescribed values moved to the
-// right-hand side, and the numberings between global dofs, free dofs and the
-// reduced vector x = (x_1, ..., x_m), x_i = (tau1, tau2, nu). No solves.
+// right-hand side, and the numberings between dofs, free dofs and the
+// reduced vector x = (x_1, ..., x_m), x_i = (tau1, tau2, nu). Dofs are
+// numbered 3 node + k as the global ones; at a contact node k is the frame
+// direction. A tangential direction fixed by a Dirichlet condition is a
+// prescribed dof of the frame (its frame vector is the fixed axis): it keeps
+// its place 3i+k in x with the prescribed value, but it is not a free dof
+// (freeOfReduced = -1), so S, l and the Newton systems never see it. No
+// solves. Refuses (Tribos::Error) a Dirichlet problem that leaves a rigid
+// motion free (K_rr would be singular) and contact nodes whose prescribed
+// components are not tangent directions.
 struct RotatedSystem {
   explicit RotatedSystem(const ContactProblem& problem);
 
   int numNodes = 0, m = 0;
   std::vector<ContactNode> contact;
   std::vector<std::array<double, 9>> frame;  // row-major R_i: R[a][k] = component a of frame vector k
-  std::vector<int> freeOfDof;      // global dof -> free index or -1 (prescribed)
-  std::vector<int> dofOfFree;      // free index -> global dof
+  std::vector<int> freeOfDof;      // dof -> free index or -1 (prescribed)
+  std::vector<int> dofOfFree;      // free index -> dof
   std::vector<int> reducedOfFree;  // free index -> index in x (3i+k) or -1 (an r dof)
-  std::vector<int> freeOfReduced;  // 3i+k -> free index
+  std::vector<int> freeOfReduced;  // 3i+k -> free index, -1 for a prescribed tangential direction
+  std::vector<char> prescribed;    // 3i+k: a tangential direction fixed by a Dirichlet condition
+  std::vector<double> xPrescribed; // 3i+k: its prescribed value (0 for the others)
   LocalCsr Kfree;                  // rotated K on the free dofs, natural order
   std::vector<double> fFree;       // rotated f minus the prescribed-value lifting
-  std::vector<double> uPrescribed; // global dof vector with prescribed values (rotated frame = global there)
-  std::vector<std::array<int, 4>> tangentialEntries;  // positions in Kfree of the tau block of node i
+  std::vector<double> uPrescribed; // dof vector with the prescribed values (in the frame at contact nodes)
+  // Positions in Kfree of the tau block of node i (-1 when a tangential
+  // direction is prescribed: the sliding curvature needs both directions).
+  std::vector<std::array<int, 4>> tangentialEntries;
 
   // Largest diagonal entry of K_cc per contact node; K_cc >= S, so 1/this
   // bounds 1/diag(S) from below.
@@ -106,7 +135,8 @@ class ContactReduction {
   // is component a of frame vector k); x_i = R' u_i.
   const std::array<double, 9>& frame(int i) const { return sys_.frame[i]; }
 
-  // Sx = S x (one K_rr solve).
+  // Sx = S x (one K_rr solve). S acts on the free components: prescribed
+  // directions of x are ignored (their values are in l) and zero in Sx.
   void applyS(const std::vector<double>& x, std::vector<double>& Sx) const;
   // S as a dense column-major (3m)^2 array (3m solves): small meshes only.
   std::vector<double> denseS() const;
@@ -117,8 +147,9 @@ class ContactReduction {
   std::vector<double> diagonalKcc() const { return sys_.diagonalKcc(); }
 
   // Newton step in the full primal space. freeComp[3i+k]: component k of node
-  // i is free (else dx = 0); G[i]: 2x2 row-major curvature added on the
-  // tangential pair of node i. Solves (S_FF + G_FF) dx_F = rhs_F and returns
+  // i is free (else dx = 0; always so at prescribed directions); G[i]: 2x2
+  // row-major curvature added on the tangential pair of node i when both are
+  // free. Solves (S_FF + G_FF) dx_F = rhs_F and returns
   // dx and S dx (the latter from one product, no extra solve).
   void newtonSolve(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
                    const std::vector<double>& rhs, std::vector<double>& dx, std::vector<double>& Sdx);

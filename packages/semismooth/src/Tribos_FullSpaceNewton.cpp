@@ -134,6 +134,7 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
 
   // x = 0, u_r = K_rr^-1 f_r: l = -(K u - f)_c.
   u_.assign(nf, 0.0);
+  zeroAtPrescribed_.assign(3 * sys_.m, 0.0);
   l_ = equilibrate(std::vector<double>(3 * sys_.m, 0.0), -1.0);
   for (double& v : l_) v = -v;
   timer.stop();
@@ -151,9 +152,9 @@ std::vector<double> FullSpaceNewton::residual() const {
   return q;
 }
 
-std::vector<double> FullSpaceNewton::contactPart(const std::vector<double>& vFree) const {
+std::vector<double> FullSpaceNewton::contactPart(const std::vector<double>& vFree, const std::vector<double>& atPrescribed) const {
   std::vector<double> c(3 * sys_.m);
-  for (int j = 0; j < 3 * sys_.m; ++j) c[j] = vFree[sys_.freeOfReduced[j]];
+  for (int j = 0; j < 3 * sys_.m; ++j) c[j] = sys_.prescribed[j] ? atPrescribed[j] : vFree[sys_.freeOfReduced[j]];
   return c;
 }
 
@@ -192,21 +193,25 @@ int FullSpaceNewton::solve(const MueLuCG& solver, const std::vector<double>& bFr
 }
 
 std::vector<double> FullSpaceNewton::equilibrate(const std::vector<double>& x, double absTol) {
-  for (int j = 0; j < 3 * sys_.m; ++j) u_[sys_.freeOfReduced[j]] = x[j];
+  for (int j = 0; j < 3 * sys_.m; ++j)
+    if (!sys_.prescribed[j]) u_[sys_.freeOfReduced[j]] = x[j];
   std::vector<double> b = residual(), du;
   for (size_t j = 0; j < b.size(); ++j) b[j] = sys_.reducedOfFree[j] >= 0 ? 0.0 : -b[j];
   if (absTol < 0) absTol = equilibriumTolerance_ * norm2(b);
   solve(*Krr_, b, du, absTol);
   for (size_t j = 0; j < u_.size(); ++j)
     if (sys_.reducedOfFree[j] < 0) u_[j] += du[j];
-  return contactPart(residual());
+  return contactPart(residual(), zeroAtPrescribed_);
 }
 
 void FullSpaceNewton::newtonStep(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
                                  const std::vector<double>& y, double absTol, std::vector<double>& x,
                                  std::vector<double>& Sxl) {
   std::vector<char> fixed(freeComp.size());
-  for (size_t j = 0; j < fixed.size(); ++j) fixed[j] = !freeComp[j];
+  for (size_t j = 0; j < fixed.size(); ++j) {
+    TRIBOS_REQUIRE(!(freeComp[j] && sys_.prescribed[j]), "semismooth*: a prescribed direction cannot be free in a Newton step");
+    fixed[j] = !freeComp[j];
+  }
   std::vector<double> vals = graphValues(fixed);
   for (int i = 0; i < sys_.m; ++i)
     if (freeComp[3 * i] && freeComp[3 * i + 1])
@@ -232,8 +237,8 @@ void FullSpaceNewton::newtonStep(const std::vector<char>& freeComp, const std::v
     const int c = sys_.reducedOfFree[j];
     if (c < 0 || freeComp[c]) u_[j] += du[j];
   }
-  x = contactPart(u_);
-  Sxl = contactPart(residual());
+  x = contactPart(u_, sys_.xPrescribed);
+  Sxl = contactPart(residual(), zeroAtPrescribed_);
 }
 
 }  // namespace Semismooth

@@ -67,7 +67,9 @@ class FullSpaceNewton {
   std::vector<double> graphValues(const std::vector<char>& fixed) const;
   // A solve on the full graph with b and x given on the free dofs.
   int solve(const MueLuCG& solver, const std::vector<double>& bFree, std::vector<double>& xFree, double absTol);
-  std::vector<double> contactPart(const std::vector<double>& vFree) const;
+  // The contact part (3 per contact node) of a vector on the free dofs, with
+  // atPrescribed at the prescribed tangential directions (not free dofs).
+  std::vector<double> contactPart(const std::vector<double>& vFree, const std::vector<double>& atPrescribed) const;
 
   RotatedSystem sys_;
   std::vector<int> fullPos_;     // position in the owned rows' value array of each Kfree entry (-1: not owned)
@@ -77,6 +79,7 @@ class FullSpaceNewton {
   RCP<const Import> gather_;
   std::unique_ptr<MueLuCG> Krr_, newton_;
   std::vector<double> u_, l_;    // u on the free dofs (rotated frame)
+  std::vector<double> zeroAtPrescribed_;  // 3m zeros: residual entries at prescribed directions
   int maxIt_ = 0;
   double equilibriumTolerance_ = 0;
   int cgIterations_ = 0;

@@ -55,9 +55,29 @@ ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& 
       area[facet.nodes[a]] += w[a];
     }
   }
+  // A node whose normal displacement is prescribed is a Dirichlet node (e.g.
+  // on a clamped face). Tangential components prescribed by a symmetry plane
+  // do not take the node out of contact, they only remove that friction
+  // direction (see RotatedSystem).
   for (int node : mesh.faceNodes(contactFace)) {
-    if (p.dirichlet.count(3LL * node) || p.dirichlet.count(3LL * node + 1) || p.dirichlet.count(3LL * node + 2))
-      continue;
+    const std::array<bool, 3> fixed{p.dirichlet.count(3LL * node) > 0, p.dirichlet.count(3LL * node + 1) > 0,
+                                    p.dirichlet.count(3LL * node + 2) > 0};
+    const PrescribedDirections kind = classifyPrescribed(normal[node], fixed);
+    if (kind == PrescribedDirections::Normal) continue;
+    if (kind == PrescribedDirections::Oblique) {
+      const auto& X = mesh.coords[node];
+      const auto& n = normal[node];
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      std::string oblique;
+      for (int c = 0; c < 3; ++c)
+        if (fixed[c] && std::abs(n[c]) > 1e-8 * len) oblique += std::string(oblique.empty() ? "" : ", ") + "xyz"[c];
+      TRIBOS_REQUIRE(false, "semismooth*: contact node " << node << " at (" << X[0] << ", " << X[1] << ", " << X[2]
+                                                         << ") of face \"" << contactFace << "\" has a Dirichlet condition on "
+                                                         << oblique << ", which is neither its normal (" << n[0] / len
+                                                         << ", " << n[1] / len << ", " << n[2] / len
+                                                         << ") nor a tangent direction; the contact frame cannot "
+                                                            "represent it");
+    }
     ContactNode cn;
     cn.node = node;
     cn.normal = normal[node];
@@ -65,7 +85,8 @@ ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& 
     cn.d = gap;
     p.contact.push_back(cn);
   }
-  TRIBOS_REQUIRE(!p.contact.empty(), "semismooth*: face \"" << contactFace << "\" has no unconstrained nodes");
+  TRIBOS_REQUIRE(!p.contact.empty(),
+                 "semismooth*: face \"" << contactFace << "\" has no node whose normal displacement is free");
   return p;
 }
 
@@ -80,6 +101,7 @@ SemismoothResult solveFromMesh(const Mesh::Mesh& mesh, const Fem::Material& mate
   timer.stop();
   SemismoothStarNewton solver(problem, params);
   SemismoothResult result = solver.solve(log);
+  addAssembledVectors(problem, result);
   result.assemblySeconds = timer.totalElapsedTime();
   return result;
 }

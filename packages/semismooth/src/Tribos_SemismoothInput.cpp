@@ -71,11 +71,13 @@ MeshContactProblem readMeshContactProblem(const std::string& xmlFile, int level)
 
   Teuchos::ParameterList& contact = pl->sublist("Contact");
   TRIBOS_REQUIRE(contact.get<bool>("Enabled", false), xmlFile << ": Contact/Enabled is not true");
-  TRIBOS_REQUIRE(contact.get<std::string>("Friction Law", "Tresca") == "Tresca",
-                 xmlFile << ": the semismooth* solver needs Contact/\"Friction Law\" = \"Tresca\"");
+  // Frictionless contact is Tresca friction with a zero slip bound.
+  const std::string law = contact.get<std::string>("Friction Law", "Tresca");
+  TRIBOS_REQUIRE(law == "Tresca" || law == "Frictionless",
+                 xmlFile << ": the semismooth* solver needs Contact/\"Friction Law\" = \"Tresca\" or \"Frictionless\"");
   pr.contactFace = contact.get<std::string>("Face", "zmin");
   pr.gap = contact.get<double>("Gap", 0.0);
-  pr.slipBoundTraction = contact.get<double>("Slip Bound Traction");
+  pr.slipBoundTraction = law == "Frictionless" ? 0.0 : contact.get<double>("Slip Bound Traction");
   pr.solverParams = pl->sublist("Solver").sublist("SemismoothStarNewton");
   return pr;
 }

@@ -148,10 +148,17 @@ void SemismoothStarNewton::applyS(const std::vector<double>& x, std::vector<doub
 // that y^ lies in d psi(x^):
 //   x^_nu = min(w_nu, d_i),  x^_tau = w_tau max(0, 1 - a g_i / ||w_tau||).
 // A node is in contact when y^_nu > 0 (weak contact, w_nu = d_i, counts as
-// no contact) and sticks when x^_tau = 0.
+// no contact) and sticks when x^_tau = 0. tau are the free tangential
+// directions only: a direction fixed by a Dirichlet condition keeps its
+// value and has no friction (y^ = 0 there), the other one has the same
+// bound g_i in 1D. Without friction (g_i = 0) the prox is the identity on
+// tau and a node never sticks: its tangential rule is dy_tau = 0, which
+// holds at x^_tau = 0 as well. A node with no free tangential direction
+// cannot slide and counts as sticking.
 SemismoothStarNewton::Approximation SemismoothStarNewton::approximationStep(const std::vector<double>& x,
                                                                             const std::vector<double>& Sxl) const {
   const int m = static_cast<int>(contact_.size());
+  const std::vector<char>& prescribed = system().prescribed;
   Approximation ap;
   ap.x.resize(3 * m);
   ap.y.resize(3 * m);
@@ -162,12 +169,22 @@ SemismoothStarNewton::Approximation SemismoothStarNewton::approximationStep(cons
     for (int k = 0; k < 3; ++k) w[k] = x[3 * i + k] - a * Sxl[3 * i + k];
     const bool contact = w[2] > d;
     ap.x[3 * i + 2] = contact ? d : w[2];
-    const double wt = std::hypot(w[0], w[1]);
-    const bool stick = wt <= a * g;
-    const double shrink = stick ? 0.0 : 1.0 - a * g / wt;
-    ap.x[3 * i] = shrink * w[0];
-    ap.x[3 * i + 1] = shrink * w[1];
-    for (int k = 0; k < 3; ++k) ap.y[3 * i + k] = (w[k] - ap.x[3 * i + k]) / a;
+    double wt2 = 0;
+    int freeTangential = 0;
+    for (int k = 0; k < 2; ++k)
+      if (!prescribed[3 * i + k]) {
+        wt2 += w[k] * w[k];
+        ++freeTangential;
+      }
+    const double wt = std::sqrt(wt2);
+    const bool stick = freeTangential == 0 || (g > 0 && wt <= a * g);
+    const double shrink = stick ? 0.0 : (g > 0 ? 1.0 - a * g / wt : 1.0);
+    for (int k = 0; k < 2; ++k) {
+      const int j = 3 * i + k;
+      ap.x[j] = prescribed[j] ? system().xPrescribed[j] : shrink * w[k];
+      ap.y[j] = prescribed[j] ? 0.0 : (w[k] - ap.x[j]) / a;
+    }
+    ap.y[3 * i + 2] = (w[2] - ap.x[3 * i + 2]) / a;
     ap.state[i] = contact ? (stick ? NodeState::ContactStick : NodeState::ContactSlip)
                           : (stick ? NodeState::NoContactStick : NodeState::NoContactSlip);
     ap.contact += contact;
@@ -181,15 +198,19 @@ SemismoothStarNewton::Approximation SemismoothStarNewton::approximationStep(cons
 //   no contact: dy_nu = 0;   contact: dx_nu = 0;
 //   stick: dx_tau = 0;       slide: dy_tau = (g/||x^_tau||)(I - t t') dx_tau, t = x^_tau/||x^_tau||.
 // Eliminating dy leaves (S_FF + G_FF) dx_F = -residual_F on the free components F.
+// Prescribed tangential directions are never free. With one free tangential
+// direction (1D friction) or g = 0, I - t t' (resp. g) vanishes: G = 0.
 void SemismoothStarNewton::linearization(const Approximation& ap, std::vector<char>& freeComp,
                                          std::vector<std::array<double, 4>>& G) const {
   const int m = static_cast<int>(contact_.size());
+  const std::vector<char>& prescribed = system().prescribed;
   freeComp.assign(3 * m, 0);
   G.assign(m, {0, 0, 0, 0});
   for (int i = 0; i < m; ++i) {
     freeComp[3 * i + 2] = !inContact(ap.state[i]);
     if (sticks(ap.state[i])) continue;
-    freeComp[3 * i] = freeComp[3 * i + 1] = 1;
+    for (int k = 0; k < 2; ++k) freeComp[3 * i + k] = !prescribed[3 * i + k];
+    if (!freeComp[3 * i] || !freeComp[3 * i + 1] || contact_[i].g == 0) continue;
     const double xt = std::hypot(ap.x[3 * i], ap.x[3 * i + 1]);
     const double t[2] = {ap.x[3 * i] / xt, ap.x[3 * i + 1] / xt}, c = contact_[i].g / xt;
     for (int p = 0; p < 2; ++p)
@@ -402,8 +423,14 @@ SemismoothResult SemismoothStarNewton::solve(std::ostream* log) {
   res.contactNodes.resize(m);
   res.lambdaN.resize(m);
   res.lambdaT.resize(m);
+  res.normal.resize(m);
+  res.slipBound.resize(m);
+  res.gap.resize(m);
   for (int i = 0; i < m; ++i) {
     res.contactNodes[i] = contact_[i].node;
+    res.normal[i] = {sys.frame[i][2], sys.frame[i][5], sys.frame[i][8]};
+    res.slipBound[i] = contact_[i].g;
+    res.gap[i] = contact_[i].d;
     res.lambdaN[i] = ap.y[3 * i + 2];
     const auto& R = sys.frame[i];
     for (int c = 0; c < 3; ++c) res.lambdaT[i][c] = R[3 * c] * ap.y[3 * i] + R[3 * c + 1] * ap.y[3 * i + 1];

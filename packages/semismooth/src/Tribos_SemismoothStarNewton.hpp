@@ -11,6 +11,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <array>
+#include <map>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -20,11 +21,14 @@
 #include "Tribos_FullSpaceNewton.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_Mesh.hpp"
+#include "Tribos_ResultKKT.hpp"
 
 namespace Tribos {
 namespace Semismooth {
 
-// The rule chosen per node at the last approximation point.
+// The rule chosen per node at the last approximation point. Without
+// friction (g_i = 0) a node slides; a node whose tangential directions are
+// both fixed by Dirichlet conditions sticks.
 enum class NodeState { NoContactStick, NoContactSlip, ContactStick, ContactSlip };
 
 struct SemismoothResult {
@@ -34,14 +38,29 @@ struct SemismoothResult {
   std::vector<int> numContact, numStick, numSlip;  // per approximation step
   int numNodes = 0, numContactNodes = 0;
   std::vector<int> contactNodes;      // mesh node of contact node i
-  std::vector<double> x, y;           // reduced solution x^ and multiplier y^ (3 per node: tau1, tau2, nu)
+  // Reduced solution x^ and multiplier y^ (3 per contact node: tau1, tau2,
+  // nu); a tangential direction fixed by a Dirichlet condition holds its
+  // prescribed value in x and 0 in y.
+  std::vector<double> x, y;
   std::vector<double> u;              // full displacement, 3 per mesh node, global coordinates
   // Multipliers of K u - f + B' lambda = 0: lambdaN_i = y_nu >= 0 and the
   // tangential part in global coordinates; the plane's force on the body is
-  // -(lambdaN_i n_i + lambdaT_i).
+  // -(lambdaN_i n_i + lambdaT_i). lambdaT has no component along a direction
+  // that a Dirichlet condition fixes (the reaction there is not friction).
   std::vector<double> lambdaN;
   std::vector<std::array<double, 3>> lambdaT;
   std::vector<NodeState> state;
+  // Per contact node: the unit outward normal n_i of its frame, the slip
+  // bound g_i (0: frictionless) and the gap d_i.
+  std::vector<std::array<double, 3>> normal;
+  std::vector<double> slipBound, gap;
+  // The assembled K u and f (3 per mesh node, global coordinates, Dirichlet
+  // dofs included) and the Dirichlet map (dof -> value): what
+  // Fem::resultKKT needs besides the contact forces. Filled by
+  // solveFromMesh(), or by addAssembledVectors() after
+  // SemismoothStarNewton::solve().
+  std::vector<double> Ku, f;
+  std::map<long long, double> dirichlet;
   double assemblySeconds = 0, reductionSeconds = 0, solverSeconds = 0;
   double newtonFactorSeconds = 0;     // part of solverSeconds
   // "Reduced CG": total CG steps (= K_rr solves); "CG+MueLu": total CG steps
@@ -71,6 +90,8 @@ class SemismoothStarNewton {
 
   // Not available with "CG+MueLu" (nothing is reduced).
   const ContactReduction& reduction() const;
+  // The problem in contact frames (frames, prescribed tangential directions).
+  const RotatedSystem& system() const { return fullSpace_ ? fullSpace_->system() : reduction_->system(); }
   // The step lengths a_i of the approximation step.
   const std::vector<double>& stepSizes() const { return a_; }
 
@@ -105,10 +126,35 @@ class SemismoothStarNewton {
   int numNodes_ = 0;
 };
 
+// Fills result.Ku = K u, result.f and result.dirichlet from the problem
+// that was solved.
+void addAssembledVectors(const ContactProblem& problem, SemismoothResult& result);
+
+// The contact forces of the result for Fem::resultKKT and the output, one
+// per contact node: normalForce = lambdaN_i >= 0, tangentialForce = -lambdaT_i
+// (the friction force of the plane on the body, global coordinates),
+// slipBound = g_i.
+std::vector<Fem::ContactNodeForce> contactForces(const SemismoothResult& result);
+// The slip of each contact node on its (fixed) plane: the tangential
+// displacement u_i - (u_i.n_i) n_i, global coordinates.
+std::vector<std::array<double, 3>> contactSlip(const SemismoothResult& result);
+// Status of each contact node as written to the result file: 0 no contact,
+// 1 stick, 2 slip (frictionless contact nodes slip).
+std::vector<int> contactStatus(const SemismoothResult& result);
+// The rigid plane of the contact (the common normal of the contact nodes and
+// their gap); throws when the contact nodes do not share one plane.
+Fem::RigidPlane contactPlane(const SemismoothResult& result);
+
 // Assembles K and f of the whole mesh, takes the contact face on a rigid
-// plane at distance gap (outward facet normals; nodes with a prescribed dof
-// are not contact nodes), nodal slip bounds g_i = slipBoundTraction x nodal
-// area, and solves. Timings of all three phases are in the result.
+// plane at distance gap (outward area-weighted facet normals), nodal slip
+// bounds g_i = slipBoundTraction x nodal area (0: frictionless), and solves.
+// Nodes of the face whose normal displacement is prescribed are Dirichlet
+// nodes, not contact nodes; a node with only tangential components
+// prescribed (a symmetry plane) stays a contact node. Timings of all three
+// phases, K u, f and the Dirichlet map are in the result. Throws
+// Tribos::Error when the Dirichlet conditions leave a rigid motion free (the
+// message names the motions) or a prescribed component of a contact node is
+// oblique to its normal.
 // comm (optional): the ranks over which "CG+MueLu" distributes its solves;
 // every rank of comm must call with the same arguments. The other Newton
 // solvers are serial and ignore it.

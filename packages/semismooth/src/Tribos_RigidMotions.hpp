@@ -1,0 +1,31 @@
+// Tribos_RigidMotions.hpp: which rigid motions of a body its Dirichlet
+// conditions leave free. The semismooth* method eliminates the Dirichlet dofs
+// and factors (or iterates on) K restricted to the remaining ones; that
+// matrix is singular exactly when a rigid motion (a combination of the 3
+// translations and 3 rotations) vanishes at every Dirichlet dof, i.e. when the
+// body is held only by the contact (a semicoercive problem).
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace Tribos {
+namespace Semismooth {
+
+// Names of the free rigid motions: "translation x", "rotation about z", or
+// for a free motion that is not along a coordinate axis
+// "translation along (0.707, 0.707, 0)". Rotations are about axes through
+// some point; only the axis direction is named. Empty when every rigid
+// motion is held. coords: node coordinates; dirichlet: global dof
+// (3 node + c) -> prescribed value (only the dofs matter).
+std::vector<std::string> freeRigidMotions(const std::vector<std::array<double, 3>>& coords,
+                                          const std::map<long long, double>& dirichlet);
+
+// Throws Tribos::Error naming the free rigid motions, if any.
+void requireRigidMotionsHeld(const std::vector<std::array<double, 3>>& coords,
+                             const std::map<long long, double>& dirichlet);
+
+}  // namespace Semismooth
+}  // namespace Tribos

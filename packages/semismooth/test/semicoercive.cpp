@@ -1,0 +1,127 @@
+// semicoercive.cpp: problems the semismooth* method must refuse, with a
+// message that says why.
+//  - The quarter block of symmetry_block.cpp pressed onto the plane by a
+//    traction -1e7 on zmax instead of a prescribed displacement: only the
+//    contact holds it in z, K_rr is singular; every "Newton Solver" refuses
+//    it before any factorization, naming "translation z" (and no other
+//    motion).
+//  - freeRigidMotions on other Dirichlet sets of the same block: none
+//    (all six motions free), u_z = 0 on zmin (translation x, y and the
+//    rotation about z free), the symmetry planes with u_z on zmax (none
+//    free), a clamped face (none free).
+//  - The block rotated in space with a symmetry condition u_x = 0 on xmin:
+//    the fixed global x is oblique to the rotated contact normal, refused
+//    naming the node.
+#include "SemismoothTestUtils.hpp"
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <set>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_Loads.hpp"
+#include "Tribos_RigidMotions.hpp"
+
+using namespace Tribos;
+
+namespace {
+
+Fem::DirichletCondition condition(const std::string& face, const std::string& comps, double value = 0.0) {
+  Fem::DirichletCondition d;
+  d.face = face;
+  for (int c = 0; c < 3; ++c) d.fix[c] = comps.find("xyz"[c]) != std::string::npos;
+  d.value = {0, 0, 0};
+  for (int c = 0; c < 3; ++c)
+    if (d.fix[c]) d.value[c] = value;
+  return d;
+}
+
+std::set<std::string> freeMotions(const Mesh::Mesh& mesh, const std::vector<Fem::DirichletCondition>& bcs) {
+  const auto names = Semismooth::freeRigidMotions(mesh.coords, Fem::constrainedDofs(mesh, bcs));
+  return std::set<std::string>(names.begin(), names.end());
+}
+
+std::string join(const std::set<std::string>& s) {
+  std::string out;
+  for (const auto& n : s) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard scope(&argc, &argv);
+  Mesh::BoxSpec spec;
+  spec.cells = {4, 4, 4};
+  spec.type = Mesh::CellType::Hex8;
+  const Mesh::Mesh mesh = Mesh::generateBox(spec);
+  Fem::Material material;
+  material.E = 1e9;
+  material.nu = 0.3;
+
+  // The pressed quarter block: refused by every solver, naming translation z.
+  Fem::LoadCase pressed;
+  pressed.dirichlet = {condition("xmin", "x"), condition("ymin", "y")};
+  pressed.tractions.push_back({"zmax", {0, 0, -1e7}});
+  for (const std::string solver : {"Sparse Direct", "Reduced CG", "CG+MueLu", "Dense Schur"}) {
+    Teuchos::ParameterList params;
+    if (solver == "Dense Schur") params.set("Dense Schur", true);
+    else params.set("Newton Solver", solver);
+    std::string message;
+    bool otherException = false;
+    try {
+      Semismooth::solveFromMesh(mesh, material, pressed, "zmin", 0.0, 0.0, params, nullptr, Tpetra::getDefaultComm());
+    } catch (const Error& e) {
+      message = e.what();
+    } catch (const std::exception& e) {
+      otherException = true;
+      message = e.what();
+    }
+    std::cout << solver << ": " << message << "\n";
+    SS_CHECK(!otherException, solver << ": not a Tribos::Error: " << message);
+    SS_CHECK(message.find("translation z") != std::string::npos && message.find("FETI") != std::string::npos,
+             solver << ": the message does not name translation z and FETI: " << message);
+    SS_CHECK(message.find("translation x") == std::string::npos && message.find("translation y") == std::string::npos &&
+                 message.find("rotation") == std::string::npos,
+             solver << ": the message names motions that are held: " << message);
+  }
+
+  // Which motions other Dirichlet sets leave free.
+  {
+    const std::set<std::string> all{"translation x", "translation y", "translation z",
+                                    "rotation about x", "rotation about y", "rotation about z"};
+    const auto none = freeMotions(mesh, {});
+    SS_CHECK(none == all, "no Dirichlet condition: free " << join(none));
+    const auto bottom = freeMotions(mesh, {condition("zmin", "z")});
+    SS_CHECK(bottom == std::set<std::string>({"translation x", "translation y", "rotation about z"}),
+             "u_z = 0 on zmin: free " << join(bottom));
+    const auto symmetric = freeMotions(mesh, {condition("xmin", "x"), condition("ymin", "y"), condition("zmax", "z", -0.01)});
+    SS_CHECK(symmetric.empty(), "symmetry planes and u_z on zmax: free " << join(symmetric));
+    const auto clamped = freeMotions(mesh, {condition("xmin", "xyz")});
+    SS_CHECK(clamped.empty(), "clamped xmin: free " << join(clamped));
+    const auto planes = freeMotions(mesh, {condition("xmin", "x"), condition("ymin", "y")});
+    SS_CHECK(planes == std::set<std::string>({"translation z"}), "symmetry planes only: free " << join(planes));
+  }
+
+  // An oblique prescribed component: the block rotated about the y axis, so
+  // that the contact normal of zmin is no longer -e_z and the global x that
+  // xmin fixes is neither normal nor tangent to it.
+  {
+    Mesh::Mesh rotated = mesh;
+    const double c = std::cos(0.3), s = std::sin(0.3);
+    for (auto& X : rotated.coords) X = {c * X[0] + s * X[2], X[1], -s * X[0] + c * X[2]};
+    Fem::LoadCase loads;
+    loads.dirichlet = {condition("xmin", "x"), condition("ymin", "y"), condition("zmax", "xyz")};
+    std::string message;
+    try {
+      Semismooth::buildContactProblem(rotated, material, loads, "zmin", 0.0, 0.0);
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    std::cout << "oblique: " << message << "\n";
+    SS_CHECK(message.find("contact node") != std::string::npos &&
+                 message.find("neither its normal") != std::string::npos && message.find("on x,") != std::string::npos,
+             "an oblique prescribed component must be refused naming the node: " << message);
+  }
+  return sstest::finish();
+}
