@@ -246,13 +246,18 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
   const auto active = activeRows(*sol.lambda, sol.status.slipBound);
   try {
     sol.u = dual_->recoverPrimal(*sol.lambda, &active);
-  } catch (const Error& e) {
+  } catch (const Error&) {
     // No equilibrium position: report it as a failed solve, with the rigid
     // part fitted to all rows (GG' is regular) so there is a u to look at.
     const std::vector<char> all(active.size(), 1);
     sol.u = dual_->recoverPrimal(*sol.lambda, &all);
+    const auto motions = dual_->coarse().freeMotions(&active);
+    std::string list;
+    for (const auto& m : motions) list += (list.empty() ? "" : ", ") + m;
     sol.status.converged = false;
-    sol.status.reason = std::string(e.what()) + " (the contact does not hold the body at the solution)";
+    sol.status.reason = "no equilibrium: at the solution no Dirichlet condition and no sticking or closed contact holds " +
+                        (list.empty() ? std::string("the rigid motion") : list) +
+                        " (the load exceeds what the contact and its friction can carry)";
   }
   return sol;
 }

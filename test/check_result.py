@@ -1,0 +1,112 @@
+#!/usr/bin/python3
+"""Runs the tribos driver on a contact problem with an exact solution and
+checks the written result (HDF5) against it, independently of the solver:
+
+  check_result.py --out DIR [options] -- COMMAND ...
+
+--exact UX UY UZ     exact displacement, Python expressions in x, y, z
+--utol T             max |u - exact| <= T max |exact|            (default 1e-5)
+--contact-nodes N    number of contact nodes written
+--status S           every contact node has status S (1 stick, 2 slip)
+--ratio R            |t_T| / t_N = R at every contact node        (abs 1e-4)
+--total-normal P     sum of the normal forces = P                 (rel 1e-5)
+--coulomb F          the friction law is Coulomb with coefficient F
+--gap D              the initial gap (contact face zmin, plane below it)
+--exit E             expected exit code (default 0; 2 = not converged)
+--same-as DIR        the displacement equals that of the result in DIR
+--same-tol T         ... to T max |u| (default 1e-5)
+
+The KKT figures non-penetration, complementarity and friction law are
+recomputed from the HDF5 file alone (with the summary's force and
+displacement scales) and must agree with the summary's.
+"""
+import argparse
+import json
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+sep = sys.argv.index("--")
+ap = argparse.ArgumentParser()
+ap.add_argument("--out", required=True)
+ap.add_argument("--exact", nargs=3)
+ap.add_argument("--utol", type=float, default=1e-5)
+ap.add_argument("--contact-nodes", type=int)
+ap.add_argument("--status", type=int)
+ap.add_argument("--ratio", type=float)
+ap.add_argument("--total-normal", type=float)
+ap.add_argument("--coulomb", type=float, default=0.0)
+ap.add_argument("--gap", type=float, default=0.0)
+ap.add_argument("--exit", type=int, default=0)
+ap.add_argument("--same-as")
+ap.add_argument("--same-tol", type=float, default=1e-5)
+a = ap.parse_args(sys.argv[1:sep])
+cmd = sys.argv[sep + 1:]
+
+failed = []
+
+
+def check(cond, what):
+    print(("ok: " if cond else "FAILED: ") + what)
+    if not cond:
+        failed.append(what)
+
+
+rc = subprocess.run(cmd).returncode
+check(rc == a.exit, f"exit code {rc} == {a.exit}")
+with open(f"{a.out}/summary.json") as f:
+    s = json.load(f)
+check(s["converged"] == (a.exit == 0), f"converged = {s['converged']}")
+h = h5py.File(f"{a.out}/solution.h5", "r")
+X = h["mesh/geometry"][:]
+U = h["nodes/displacement"][:]
+c = h["points/contact"]
+lamN = c["normal_force"][:].ravel()
+phiT = c["tangential_force"][:]
+status = c["status"][:].ravel()
+Xc = c["geometry"][:]
+
+if a.exact:
+    x, y, z = X[:, 0], X[:, 1], X[:, 2]
+    ex = np.column_stack([np.broadcast_to(eval(e, {"np": np}, {"x": x, "y": y, "z": z}), x.shape) for e in a.exact])
+    err = np.abs(U - ex).max() / np.abs(ex).max()
+    check(err <= a.utol, f"max |u - exact| / max |exact| = {err:.3g} <= {a.utol}")
+if a.same_as:
+    V = h5py.File(f"{a.same_as}/solution.h5", "r")["nodes/displacement"][:]
+    d = np.abs(U - V).max() / np.abs(V).max()
+    check(d <= a.same_tol, f"max |u - u_ref| / max |u_ref| = {d:.3g} <= {a.same_tol}")
+if a.contact_nodes is not None:
+    check(len(lamN) == a.contact_nodes, f"{len(lamN)} contact nodes == {a.contact_nodes}")
+if a.status is not None:
+    check(np.all(status == a.status), f"every contact node has status {a.status} (got {sorted(set(status.tolist()))})")
+if a.ratio is not None:
+    r = np.linalg.norm(phiT, axis=1) / lamN
+    check(np.abs(r - a.ratio).max() <= 1e-4, f"|t_T| / t_N = {a.ratio} at every node (max dev {np.abs(r - a.ratio).max():.3g})")
+if a.total_normal is not None:
+    t = lamN.sum()
+    check(abs(t - a.total_normal) <= 1e-5 * abs(a.total_normal), f"total normal force {t:.8g} == {a.total_normal}")
+
+# KKT of the written result from the file alone: plane z = -gap below zmin,
+# outward normal n = (0, 0, -1), the node's displacement looked up by position.
+k = s["kkt"]
+Usc, Psc = max(k["displacement_scale"], 1e-300), max(k["force_scale"], 1e-300)
+index = {tuple(np.round(p, 12)): i for i, p in enumerate(X)}
+Uc = U[[index[tuple(np.round(p, 12))] for p in Xc]]
+un = -Uc[:, 2]
+gap_left = a.gap - un
+pen = max(np.maximum(-gap_left, 0).max(), 0) / Usc
+comp = np.abs(np.minimum(lamN / Psc, gap_left / Usc)).max()
+slip = Uc.copy()
+slip[:, 2] = 0
+g = a.coulomb * np.maximum(lamN, 0)
+trial = phiT - (Psc / Usc) * slip
+nt = np.linalg.norm(trial, axis=1)
+proj = trial * np.minimum(1, g / np.maximum(nt, 1e-300))[:, None]
+fric = (np.linalg.norm(phiT - proj, axis=1) / Psc).max()
+for name, mine in [("nonpenetration", pen), ("complementarity", comp), ("friction_law", fric)]:
+    check(abs(mine - k[name]) <= 1e-8 + 1e-3 * k[name], f"kkt {name}: file {mine:.4g} == summary {k[name]:.4g}")
+    if a.exit == 0:
+        check(k[name] <= k["limit"], f"kkt {name} {k[name]:.3g} <= limit {k['limit']:.3g}")
+sys.exit(1 if failed else 0)
