@@ -116,6 +116,32 @@ int main(int argc, char** argv) {
     Omega.projectedGradient(*x, *g, gP);
     check(maxDiff(gP, {0, 0, 0, 0, 0, 0}) < 1e-15, "radius 0: projected gradient is 0");
 
+    // a shifted disk ||x - c|| <= r, c = (1, 2), r = 1: the same answers
+    // as the disk at 0 translated by c
+    {
+      ConstraintSet shifted(map);
+      shifted.setCircle(4, 5, 0, 1.0, 2.0);
+      shifted.setRadii({1.0});
+      x = local(map, {0, 0, 0, 0, 4, 6});  // x - c = (3, 4): projected to c + (0.6, 0.8)
+      shifted.project(*x);
+      check(maxDiff(*x, {0, 0, 0, 0, 1.6, 2.8}) < 1e-15, "shifted disk: projection onto c + r (x - c)/||x - c||");
+      check(shifted.isFeasible(*x, 1e-12), "shifted disk: the projection is feasible");
+      auto origin = local(map, {0, 0, 0, 0, 0, 0});
+      check(!shifted.isFeasible(*origin, 1e-12), "shifted disk: 0 is outside it");
+      // from the centre along p = (-1, 0): the boundary is 1 away
+      auto centre = local(map, {0, 0, 0, 0, 1, 2});
+      auto p = local(map, {0, 0, 0, 0, -1, 0});
+      check(std::abs(shifted.maxFeasibleStep(*centre, *p) - 1.0) < 1e-14, "shifted disk: feasible step from the centre");
+      // on the boundary at c + (0.6, 0.8) the outward gradient g = -(0.6, 0.8) is chopped to 0...
+      g = local(map, {0, 0, 0, 0, -0.6, -0.8});
+      shifted.projectedGradient(*x, *g, gP);
+      check(maxDiff(gP, {0, 0, 0, 0, 0, 0}) < 1e-15, "shifted disk: outward gradient on the boundary is chopped");
+      // ... and an inward one is kept
+      g = local(map, {0, 0, 0, 0, 0.6, 0.8});
+      shifted.projectedGradient(*x, *g, gP);
+      check(maxDiff(gP, {0, 0, 0, 0, 0.6, 0.8}) < 1e-15, "shifted disk: inward gradient on the boundary is kept");
+    }
+
     // input errors name the parameter
     check(throwsWith([&] { Omega.setRadii({-1.0}); }, "r_0"), "negative radius rejected naming r_0");
     check(throwsWith([&] { Omega.setRadii({1.0, 2.0}); }, "radii"), "wrong number of radii rejected");
