@@ -98,6 +98,18 @@ class GenericPatternSolver : public PatternSolver {
   RCP<LocalSolver> solver_;
 };
 
+// Columns (t1, t2 = n x t1, n) of the rotation of a contact frame, row-major.
+std::array<double, 9> frameMatrix(const std::array<double, 3>& n, const std::array<double, 3>& t1) {
+  const std::array<double, 3> t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+  std::array<double, 9> R{};
+  for (int a = 0; a < 3; ++a) {
+    R[3 * a + 0] = t1[a];
+    R[3 * a + 1] = t2[a];
+    R[3 * a + 2] = n[a];
+  }
+  return R;
+}
+
 // Orthonormal frame (t1, t2, n) with n the normalized outward normal.
 std::array<double, 9> tangentFrame(const std::array<double, 3>& normal) {
   const double len = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
@@ -112,14 +124,7 @@ std::array<double, 9> tangentFrame(const std::array<double, 3>& normal) {
   std::array<double, 3> t1{e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
   const double l1 = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
   for (double& v : t1) v /= l1;
-  const std::array<double, 3> t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
-  std::array<double, 9> R{};
-  for (int a = 0; a < 3; ++a) {
-    R[3 * a + 0] = t1[a];
-    R[3 * a + 1] = t2[a];
-    R[3 * a + 2] = n[a];
-  }
-  return R;
+  return frameMatrix(n, t1);
 }
 
 // The frame of a contact node whose prescribed global components (fixed)
@@ -136,14 +141,7 @@ std::array<double, 9> prescribedTangentFrame(const std::array<double, 3>& normal
   const int c1 = fixed[0] ? 0 : (fixed[1] ? 1 : 2);
   std::array<double, 3> t1{0, 0, 0};
   t1[c1] = 1;
-  const std::array<double, 3> t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
-  std::array<double, 9> R{};
-  for (int a = 0; a < 3; ++a) {
-    R[3 * a + 0] = t1[a];
-    R[3 * a + 1] = t2[a];
-    R[3 * a + 2] = n[a];
-  }
-  return R;
+  return frameMatrix(n, t1);
 }
 
 // K~ = Q' K Q with Q = diag(R_I) (identity on nodes without a frame). K must
