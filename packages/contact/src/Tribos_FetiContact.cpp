@@ -6,8 +6,6 @@
 
 #include <cmath>
 
-#include <Teuchos_LAPACK.hpp>
-
 #include "Tribos_Error.hpp"
 #include "Tribos_QP_Utils.hpp"
 
@@ -174,24 +172,14 @@ void FetiContactProblem::checkHeldByContact(const FrictionSpec& friction) const 
   // leave free, i.e. e minus its part in the range of G_E G_E'.
   const auto& p = dual_->problem();
   const int n = coarse.size();
-  auto A = coarse.gramian(&p.isEqualityRow());
-  Teuchos::LAPACK<int, double> lapack;
-  std::vector<double> w(n), work(1);
-  int info = 0;
-  lapack.SYEV('V', 'L', n, A.data(), n, w.data(), work.data(), -1, &info);
-  work.resize(static_cast<size_t>(std::max(1.0, work[0])));
-  lapack.SYEV('V', 'L', n, A.data(), n, w.data(), work.data(), static_cast<int>(work.size()), &info);
-  TRIBOS_REQUIRE(info == 0, "contact: the eigen-decomposition of G_E G_E' failed");
   const auto& e = dual_->e();
   std::vector<double> alpha(n, 0.0);
   double eNorm = 0;
   for (double v : e) eNorm += v * v;
-  for (int i = 0; i < n; ++i) {
-    if (w[i] > 1e-10 * std::max(w[n - 1], 1e-300)) continue;
-    const double* vi = &A[static_cast<size_t>(i) * n];
+  for (const auto& v : coarse.nullSpace(&p.isEqualityRow())) {
     double c = 0;
-    for (int j = 0; j < n; ++j) c += vi[j] * e[j];
-    for (int j = 0; j < n; ++j) alpha[j] += c * vi[j];
+    for (int j = 0; j < n; ++j) c += v[j] * e[j];
+    for (int j = 0; j < n; ++j) alpha[j] += c * v[j];
   }
   double work_e = 0;
   for (int j = 0; j < n; ++j) work_e += alpha[j] * e[j];

@@ -42,17 +42,6 @@ void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp,
   }
 }
 
-void DenseCholesky::factor(std::vector<double> A, int n, const char* what) {
-  n_ = n;
-  L_ = std::move(A);
-  if (n == 0) return;
-  Teuchos::LAPACK<int, double> lapack;
-  int info = 0;
-  lapack.POTRF('L', n, L_.data(), n, &info);
-  TRIBOS_REQUIRE(info == 0, what << " is singular (Cholesky pivot " << info << " of " << n
-                                 << "): the constraints do not fix every rigid-body mode of the subdomains");
-}
-
 bool DenseCholesky::tryFactor(std::vector<double> A, int n) {
   n_ = n;
   L_ = std::move(A);
@@ -137,15 +126,15 @@ CoarseSpace::CoarseSpace(RCP<const FetiProblem> problem) : problem_(problem) {
     }
     rowptr_.push_back(static_cast<int>(col_.size()));
   }
-  const auto motions = freeMotions(nullptr);
-  if (!motions.empty()) {
+  // GG' is regular unless some rigid motion touches no row of B at all.
+  if (!GGt_.tryFactor(gramian(nullptr), n_)) {
+    const auto motions = freeMotions(nullptr);
     std::string list;
     for (const auto& m : motions) list += (list.empty() ? "" : ", ") + m;
     throw CollectiveError("the body is free to move rigidly (" + list +
                 "): no Dirichlet condition or contact holds this motion, so the displacement is not determined; "
                 "add a Dirichlet condition that holds it");
   }
-  GGt_.factor(gramian(nullptr), n_, "GG'");
   equalityHoldsKernel_ = GEGEt_.tryFactor(gramian(&problem->isEqualityRow()), n_);
 }
 
@@ -298,11 +287,8 @@ std::string CoarseSpace::describeMotion(const std::vector<double>& alpha) const 
   return first ? "a rigid motion of a subdomain" : os.str();
 }
 
-std::vector<std::string> CoarseSpace::freeMotions(const std::vector<char>* rows) const {
+std::vector<std::vector<double>> CoarseSpace::nullSpace(const std::vector<char>* rows) const {
   auto A = gramian(rows);
-  DenseCholesky test;
-  if (test.tryFactor(A, n_)) return {};
-  // Null space of G_S G_S' by its eigen-decomposition (only on this error path).
   Teuchos::LAPACK<int, double> lapack;
   std::vector<double> w(n_);
   int info = 0, lwork = -1;
@@ -311,11 +297,18 @@ std::vector<std::string> CoarseSpace::freeMotions(const std::vector<char>* rows)
   lwork = static_cast<int>(query);
   std::vector<double> work(static_cast<size_t>(std::max(lwork, 1)));
   lapack.SYEV('V', 'L', n_, A.data(), n_, w.data(), work.data(), lwork, &info);
-  TRIBOS_REQUIRE(info == 0, "free rigid motions: the eigen-decomposition of G_S G_S' failed");
+  TRIBOS_REQUIRE(info == 0, "rigid motions: the eigen-decomposition of G_S G_S' failed");
   std::vector<std::vector<double>> nullVectors;
   for (int i = 0; i < n_; ++i)
     if (w[i] <= 1e-10 * std::max(w[n_ - 1], 1e-300))
       nullVectors.emplace_back(A.begin() + static_cast<size_t>(i) * n_, A.begin() + static_cast<size_t>(i + 1) * n_);
+  return nullVectors;
+}
+
+std::vector<std::string> CoarseSpace::freeMotions(const std::vector<char>* rows) const {
+  DenseCholesky test;
+  if (test.tryFactor(gramian(rows), n_)) return {};
+  const auto nullVectors = nullSpace(rows);
   // Name the global motions that lie in the null space; a null space that
   // holds none of them is described by its vectors' fitted motions.
   std::vector<std::string> names;

@@ -37,8 +37,8 @@ class DualOperator : public Operator {
 // Dense symmetric positive definite matrix factored by Cholesky (LAPACK).
 class DenseCholesky {
  public:
-  void factor(std::vector<double> A, int n, const char* what);
-  // As factor, but returns false instead of throwing when A is singular.
+  // Cholesky of A (n x n, column-major); false when A is singular (a pivot
+  // below 1e-12 of the largest, squared).
   bool tryFactor(std::vector<double> A, int n);
   void solve(std::vector<double>& x) const;        // x <- A^-1 x
   void solveLower(std::vector<double>& x) const;   // x <- L^-1 x
@@ -76,6 +76,10 @@ class CoarseSpace {
   std::vector<double> amplitudes(const Vector& r, const std::vector<char>* rows = nullptr) const;
   // G_S G_S' (replicated, n x n column-major) for the local rows S (all when null).
   std::vector<double> gramian(const std::vector<char>* rows) const;
+  // An orthonormal basis of the null space of G_S G_S' (coarse vectors):
+  // the rigid motions that no row S touches. Only for error paths and
+  // checks (an eigen-decomposition of the 6S x 6S Gram matrix).
+  std::vector<std::vector<double>> nullSpace(const std::vector<char>* rows) const;
   // The rigid motions that no row S touches (G_S G_S' singular), named for a
   // person: "translation z", "rotation about x (axis through the centroid)",
   // or a fitted motion; empty when the rows S hold every rigid motion.

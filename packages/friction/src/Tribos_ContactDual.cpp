@@ -50,12 +50,6 @@ QP::ConstraintSet ContactDual::constraintSet(const std::vector<SC>& g) const {
   return Omega;
 }
 
-SC ContactDual::tangentialForce(const Vector& x, int k, int j) const {
-  const LO i = tangentRows[2 * k + j];
-  if (i < 0) return 0.0;
-  return x.getData()[i] - (tangentCenter.empty() ? 0.0 : tangentCenter[2 * k + j]);
-}
-
 std::vector<SC> ContactDual::normalForce(const Vector& x) const {
   auto xv = x.getData();
   std::vector<SC> lambdaN(numLocalContacts());

@@ -55,8 +55,6 @@ struct ContactDual {
   // index that is not tangential) and of the tangential block (lambda_t).
   std::vector<char> normalBlockMask() const;
   std::vector<char> tangentBlockMask() const;
-  // Tangential force of contact k, component j (0 for a fixed direction).
-  SC tangentialForce(const Vector& x, int k, int j) const;
   // Checks sizes and that every index is in range; throws naming the entry.
   void check() const;
 };
