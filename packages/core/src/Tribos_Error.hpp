@@ -22,6 +22,14 @@ class CollectiveError : public Error {
   explicit CollectiveError(const std::string& what) : Error(what) {}
 };
 
+// A failure of the run itself rather than of its input (an output file that
+// cannot be written, a disk that fills up, values that overflow), detected
+// identically on every rank. Drivers exit with code 3 (docs/exit_codes.md).
+class RunFailure : public CollectiveError {
+ public:
+  explicit RunFailure(const std::string& what) : CollectiveError(what) {}
+};
+
 }  // namespace Tribos
 
 // TRIBOS_REQUIRE(cond, "message " << value): throws Tribos::Error when cond fails.
