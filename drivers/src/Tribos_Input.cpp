@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_ParameterReader.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
@@ -96,8 +97,8 @@ RCP<const ParameterList> validParameters() {
   mesh.set("Subdomain Grid", Array<int>(Teuchos::tuple<int>(1, 1, 1)), "boxes along x, y, z (Structured)");
   mesh.set("Subdomains", 1, "number of subdomains (METIS)", range<int>(1, 1000000));
   ParameterList& mat = pl->sublist("Material", false, "isotropic linear elastic material");
-  mat.set("Young's Modulus", 2.1e11, "E > 0", range<double>(1e-300, 1e300));
-  mat.set("Poisson's Ratio", 0.3, "0 <= nu < 0.5", range<double>(0.0, 0.4999999));
+  mat.set("Young's Modulus", 2.1e11, "E > 0");
+  mat.set("Poisson's Ratio", 0.3, "0 <= nu < 0.5 (nu = 0.5, an incompressible material, locks displacement elements)");
   ParameterList& bc = pl->sublist("Boundary Conditions", false, "Dirichlet conditions and loads");
   bc.sublist("Dirichlet", false, "one sublist per condition: Face, Components, Value");
   bc.sublist("Traction", false, "one sublist per load: Face, Value");
@@ -158,6 +159,24 @@ void validateItems(ParameterList& collection, const ParameterList& item, const s
   }
 }
 
+// An int given where a double is expected is promoted (lossless); any other
+// mismatch names the parameter and both types.
+void promoteType(ParameterList& user, const std::string& name, const Teuchos::any& wanted, const std::string& full) {
+  const Teuchos::any& given = user.getEntry(name).getAny();
+  if (given.type() == wanted.type()) return;
+  if (given.type() == typeid(int) && wanted.type() == typeid(double)) {
+    user.set(name, static_cast<double>(user.get<int>(name)));
+    return;
+  }
+  if (given.type() == typeid(Array<int>) && wanted.type() == typeid(Array<double>)) {
+    const auto& a = user.get<Array<int>>(name);
+    user.set(name, Array<double>(a.begin(), a.end()));
+    return;
+  }
+  throw Error("parameter \"" + full + "\" has type " + IO::parameterTypeName(given) + " but must be of type " +
+              IO::parameterTypeName(wanted));
+}
+
 // Recursive validation with messages naming the full path of the parameter.
 void validateLevel(ParameterList& user, const ParameterList& valid, const std::string& path) {
   for (auto it = user.begin(); it != user.end(); ++it) {
@@ -166,12 +185,7 @@ void validateLevel(ParameterList& user, const ParameterList& valid, const std::s
     TRIBOS_REQUIRE(valid.isParameter(name), "unknown parameter \"" << full << "\"; valid at this level: " << joinNames(valid));
     TRIBOS_REQUIRE(user.isSublist(name) == valid.isSublist(name),
                    "parameter \"" << full << "\" must be " << (valid.isSublist(name) ? "a sublist" : "a value, not a sublist"));
-    if (!valid.isSublist(name)) {
-      const auto& given = user.getEntry(name).getAny();
-      const auto& wanted = valid.getEntry(name).getAny();
-      TRIBOS_REQUIRE(given.type() == wanted.type(), "parameter \"" << full << "\" has type " << given.typeName()
-                                                                   << " but must be of type " << wanted.typeName());
-    }
+    if (!valid.isSublist(name)) promoteType(user, name, valid.getEntry(name).getAny(), full);
   }
   user.validateParametersAndSetDefaults(valid, 0);
   for (auto it = valid.begin(); it != valid.end(); ++it) {
@@ -211,6 +225,42 @@ std::string cleanTeuchosMessage(const std::string& what) {
   return out;
 }
 
+// Lists built in memory (embedding applications) bypass the strict reader:
+// NaN and infinity are refused here as well.
+void requireFinite(const ParameterList& list, const std::string& path) {
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    const std::string& name = list.name(it);
+    const std::string full = path.empty() ? name : path + "/" + name;
+    if (list.isSublist(name)) {
+      requireFinite(list.sublist(name), full);
+    } else if (list.isType<double>(name)) {
+      TRIBOS_REQUIRE(std::isfinite(list.get<double>(name)), "parameter \"" << full << "\" is not a finite number");
+    } else if (list.isType<Array<double>>(name)) {
+      for (double v : list.get<Array<double>>(name))
+        TRIBOS_REQUIRE(std::isfinite(v), "parameter \"" << full << "\" has a component that is not a finite number");
+    }
+  }
+}
+
+void validateMaterial(const ParameterList& m) {
+  const double E = m.get<double>("Young's Modulus"), nu = m.get<double>("Poisson's Ratio");
+  TRIBOS_REQUIRE(E > 0, "\"Material/Young's Modulus\" = " << E << ": must be positive");
+  TRIBOS_REQUIRE(nu >= 0 && nu < 0.5, "\"Material/Poisson's Ratio\" = "
+                                          << nu << ": must satisfy 0 <= nu < 0.5"
+                                          << (nu == 0.5 ? " (nu = 0.5 is an incompressible material, which "
+                                                          "displacement-based elements cannot represent)"
+                                                        : ""));
+}
+
+void validateOutput(const ParameterList& out) {
+  const std::string base = out.get<std::string>("Base Name");
+  TRIBOS_REQUIRE(!base.empty() && base != "." && base != ".." && base.find('/') == std::string::npos &&
+                     base.find('\0') == std::string::npos,
+                 "\"Output/Base Name\" = \"" << base << "\": must be a file name without a directory (no '/'); "
+                                                << "use Output/Directory or --output for the directory");
+  TRIBOS_REQUIRE(!out.get<std::string>("Directory").empty(), "\"Output/Directory\" is empty");
+}
+
 }  // namespace
 
 void validate(ParameterList& params, const std::string& source) {
@@ -239,6 +289,10 @@ void validate(ParameterList& params, const std::string& source) {
     }
     const auto& vf = params.sublist("Boundary Conditions").get<Array<double>>("Volume Force");
     TRIBOS_REQUIRE(vf.size() == 3, "\"Boundary Conditions/Volume Force\" needs 3 components");
+    requireFinite(params, "");
+    validateMaterial(params.sublist("Material"));
+    validateOutput(params.sublist("Output"));
+    boxSpec(params);  // cell and node counts fit
   } catch (const Error& e) {
     throw Error(source + ": " + e.what());
   } catch (const std::exception& e) {
@@ -273,51 +327,31 @@ void applyOverride(ParameterList& params, const std::string& assignment) {
                  "--set \"" << assignment << "\": name a key inside a condition, e.g. \"" << path << "/Face\"");
   TRIBOS_REQUIRE(valid->isParameter(key) && !valid->isSublist(key),
                  "--set \"" << assignment << "\": unknown parameter \"" << path << "\"; valid: " << joinNames(*valid));
-  const Teuchos::any& proto = valid->getEntry(key).getAny();
-  try {
-    if (proto.type() == typeid(int)) {
-      size_t used = 0;
-      const int v = std::stoi(value, &used);
-      TRIBOS_REQUIRE(used == value.size(), "not an integer");
-      user->set(key, v);
-    } else if (proto.type() == typeid(double)) {
-      size_t used = 0;
-      const double v = std::stod(value, &used);
-      TRIBOS_REQUIRE(used == value.size(), "not a number");
-      user->set(key, v);
-    } else if (proto.type() == typeid(bool)) {
-      TRIBOS_REQUIRE(value == "true" || value == "false", "not true/false");
-      user->set(key, value == "true");
-    } else if (proto.type() == typeid(std::string)) {
-      user->set(key, value);
-    } else if (proto.type() == typeid(Array<double>)) {
-      user->set(key, Teuchos::fromStringToArray<double>(value));
-    } else if (proto.type() == typeid(Array<int>)) {
-      user->set(key, Teuchos::fromStringToArray<int>(value));
-    } else {
-      throw Error("unsupported type");
-    }
-  } catch (const std::exception& e) {
-    throw Error("--set \"" + assignment + "\": value \"" + value + "\" does not fit the type of \"" + path +
-                "\" (" + e.what() + ")");
-  }
+  const std::string type = IO::parameterTypeName(valid->getEntry(key).getAny());
+  TRIBOS_REQUIRE(!type.empty(), "--set \"" << assignment << "\": \"" << path << "\" cannot be set from the command line");
+  IO::setParsedParameter(*user, key, type, value, "--set: parameter \"" + path + "\"");
 }
 
 RCP<ParameterList> read(const std::string& file, const std::vector<std::string>& overrides) {
-  {
-    std::ifstream probe(file);
-    TRIBOS_REQUIRE(probe.good(), "cannot open input file \"" << file << "\"");
-  }
-  RCP<ParameterList> params;
-  try {
-    params = Teuchos::getParametersFromXmlFile(file);
-  } catch (const std::exception& e) {
-    throw Error("input file \"" + file + "\" is not a valid parameter list: " + cleanTeuchosMessage(e.what()));
-  }
+  RCP<ParameterList> params = IO::readParameterFile(file);
   for (const auto& o : overrides) applyOverride(*params, o);
   validate(*params, "input file \"" + file + "\"");
   return params;
 }
+
+namespace {
+
+// Cells along one axis from Level: k cells per unit length, computed in
+// floating point so that a huge extent is refused instead of wrapping round.
+int cellsFromLevel(int level, double length, char axis) {
+  const double cells = std::max(1.0, std::round(level * length));
+  TRIBOS_REQUIRE(cells <= Mesh::kMaxCellsPerAxis, "\"Mesh/Level\" = " << level << " gives " << cells << " cells along "
+                                                                       << axis << " (extent " << length << "); at most "
+                                                                       << Mesh::kMaxCellsPerAxis << " are allowed");
+  return static_cast<int>(cells);
+}
+
+}  // namespace
 
 Mesh::BoxSpec boxSpec(const ParameterList& params) {
   const auto& m = params.sublist("Mesh");
@@ -332,13 +366,24 @@ Mesh::BoxSpec boxSpec(const ParameterList& params) {
   const int level = m.get<int>("Level");
   if (level == 0) {
     const auto& c = m.get<Array<int>>("Cells");
-    spec.cells = {c[0], c[1], c[2]};
+    for (int a = 0; a < 3; ++a) {
+      TRIBOS_REQUIRE(c[a] <= Mesh::kMaxCellsPerAxis, "\"Mesh/Cells\" = " << c[a] << " along " << "xyz"[a] << ": at most "
+                                                                         << Mesh::kMaxCellsPerAxis << " are allowed");
+      spec.cells[a] = c[a];
+    }
   } else if (m.get<std::string>("Level Rule") == "Prism") {
     spec.cells = Mesh::prismLevelCells(level);
   } else {
     const double len[3] = {x[1] - x[0], y[1] - y[0], z[1] - z[0]};
-    for (int a = 0; a < 3; ++a) spec.cells[a] = std::max(1, static_cast<int>(std::lround(level * len[a])));
+    for (int a = 0; a < 3; ++a) spec.cells[a] = cellsFromLevel(level, len[a], "xyz"[a]);
   }
+  // Node and cell numbers are ints: refuse what does not fit (the memory
+  // estimate refuses most such meshes anyway, with the bytes it would need).
+  const double nodes = double(spec.cells[0] + 1) * (spec.cells[1] + 1) * (spec.cells[2] + 1);
+  const double cells = double(spec.cells[0]) * spec.cells[1] * spec.cells[2] * (spec.type == Mesh::CellType::Tet4 ? 6 : 1);
+  TRIBOS_REQUIRE(nodes * 3 < 2147483647.0 && cells < 2147483647.0,
+                 "Mesh: " << spec.cells[0] << " x " << spec.cells[1] << " x " << spec.cells[2] << " cells (" << nodes
+                          << " nodes) exceed the 2^31 - 1 degrees of freedom and cells a mesh may have");
   return spec;
 }
 

@@ -76,7 +76,7 @@ bool parseArray(const std::string& text, Array<T>& v, std::string& why, Parse pa
   std::stringstream ss(inner);
   for (std::string item; std::getline(ss, item, ',');) {
     T x;
-    if (!parse(item, x, why)) return why = "element " + std::to_string(v.size()) + " \"" + trim(item) + "\" is " + why, false;
+    if (!parse(item, x, why)) return why = "element " + std::to_string(v.size()) + " (\"" + trim(item) + "\") is " + why, false;
     v.push_back(x);
   }
   if (!inner.empty() && inner.back() == ',') return why = "an array with an empty last element", false;
@@ -88,7 +88,7 @@ void setValue(ParameterList& list, const std::string& name, const std::string& t
               const std::string& type, Parse parse) {
   T v{};
   std::string why;
-  TRIBOS_REQUIRE(parse(text, v, why), where << " = \"" << text << "\" is " << why << " (type " << type << ")");
+  TRIBOS_REQUIRE(parse(text, v, why), where << " = \"" << text << "\": " << why << " (expected " << type << ")");
   list.set(name, v);
 }
 

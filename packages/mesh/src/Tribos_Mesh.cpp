@@ -135,9 +135,11 @@ Mesh generateBox(const BoxSpec& spec) {
 
 std::array<int, 3> prismLevelCells(int L) {
   TRIBOS_REQUIRE(L >= 1, "Mesh/Level: the prism level must be >= 1, got " << L);
-  const int nx = static_cast<int>(std::ceil(std::pow(2.0, (L + 4) / 2.0) - 1e-12));
-  const int ny = static_cast<int>(std::ceil(std::pow(2.0, (L + 2) / 2.0) - 1e-12));
-  return {nx, ny, ny};
+  const double nx = std::ceil(std::pow(2.0, (L + 4) / 2.0) - 1e-12);
+  const double ny = std::ceil(std::pow(2.0, (L + 2) / 2.0) - 1e-12);
+  TRIBOS_REQUIRE(nx <= kMaxCellsPerAxis, "Mesh/Level: the prism level " << L << " gives " << nx << " cells along x; at most "
+                                                                        << kMaxCellsPerAxis << " are allowed");
+  return {static_cast<int>(nx), static_cast<int>(ny), static_cast<int>(ny)};
 }
 
 }  // namespace Mesh

@@ -61,5 +61,9 @@ Mesh generateBox(const BoxSpec& spec);
 // nx = ceil(2^((L+4)/2)), ny = nz = ceil(2^((L+2)/2)).
 std::array<int, 3> prismLevelCells(int L);
 
+// More cells along one axis of a box than any run could hold: counts are
+// checked against it before they are multiplied.
+constexpr int kMaxCellsPerAxis = 1 << 20;
+
 }  // namespace Mesh
 }  // namespace Tribos
