@@ -2,22 +2,28 @@
 // algorithm, compare with the stored solution when there is one, and report.
 //   tribos_fclib FILE.hdf5 [--xml solver.xml] [--algorithm NAME] [--summary FILE.json]
 //                [--mass-solver KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose]
+// Exit status: 0 converged; 1 bad input or error (usage, unreadable or invalid
+// problem, unusable output path: nothing solved, nothing written); 2 not
+// converged (the summary and the solution file are still written, and
+// stop_reason says why).
 // The solve runs on rank 0 with a communicator of one rank (Amesos2 is not
 // usable on multi-rank communicators in this Trilinos build); other ranks wait.
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Core.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "Tribos_Error.hpp"
 #include "Tribos_FCLIB.hpp"
 #include "Tribos_FCLIB_Accuracy.hpp"
+#include "Tribos_FCLIB_Files.hpp"
 #include "Tribos_FCLIB_Solve.hpp"
-#include "Tribos_ResultWriter.hpp"
 #include "Tribos_Summary.hpp"
 
 namespace {
@@ -29,11 +35,16 @@ const char* kUsage =
     "                   [--summary FILE.json] [--mass-solver KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose]\n"
     "solver.xml: a ParameterList holding the friction solver list (sublists \"Algorithm 1\", \"MSA\",\n"
     "\"Algorithm 2\"), either at its root or in a sublist \"Solver\"; \"Outer Algorithm\" there picks the\n"
-    "algorithm (default Algorithm2, --algorithm wins).\n";
+    "algorithm (default Algorithm2, --algorithm wins).\n"
+    "converged: true means the result solves the FCLIB problem: every value finite, natural-map error and\n"
+    "KKT residuals within Result Check Factor (default 100) times the requested tolerance.\n"
+    "exit status: 0 converged; 1 bad input or error (nothing written); 2 not converged (results written).\n";
+
+enum ExitStatus { kConverged = 0, kError = 1, kNotConverged = 2 };
 
 struct Args {
   std::string input, xml, summary, algorithm, massSolver = "KLU2", writeSolution;
-  bool verbose = false;
+  bool verbose = false, help = false;
 };
 
 Args parse(int argc, char** argv) {
@@ -50,31 +61,33 @@ Args parse(int argc, char** argv) {
     else if (s == "--mass-solver") a.massSolver = next("--mass-solver");
     else if (s == "--write-solution") a.writeSolution = next("--write-solution");
     else if (s == "--verbose") a.verbose = true;
-    else if (s == "--help" || s == "-h") throw Error(kUsage);
+    else if (s == "--help" || s == "-h") a.help = true;
     else if (!s.empty() && s[0] == '-') throw Error("unknown option " + s + "\n" + kUsage);
     else {
       TRIBOS_REQUIRE(a.input.empty(), "more than one input file given\n" << kUsage);
       a.input = s;
     }
   }
-  TRIBOS_REQUIRE(!a.input.empty(), "no input file given\n" << kUsage);
+  TRIBOS_REQUIRE(a.help || !a.input.empty(), "no input file given\n" << kUsage);
   return a;
 }
 
-double relDiff(const std::vector<double>& a, const std::vector<double>& b) {
-  double d = 0, n = 0;
-  for (size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]), n += b[i] * b[i];
-  return std::sqrt(d) / std::max(std::sqrt(n), 1e-300);
+// Output paths are checked before anything is read or solved, so that a
+// mistyped directory fails at once, not after a long solve; and no output
+// may replace the input or the other output.
+void checkOutputs(const Args& a) {
+  const std::vector<std::pair<std::string, std::string>> outputs = {{"--summary", a.summary},
+                                                                    {"--write-solution", a.writeSolution}};
+  for (const auto& [flag, path] : outputs) {
+    if (path.empty()) continue;
+    FCLIB::checkOutputPath(path, flag);
+    TRIBOS_REQUIRE(!FCLIB::sameFile(path, a.input), flag << ": " << path << " is the input file");
+  }
+  TRIBOS_REQUIRE(a.summary.empty() || a.writeSolution.empty() || !FCLIB::sameFile(a.summary, a.writeSolution),
+                 "--summary and --write-solution name the same file " << a.summary);
 }
 
-IO::Summary errSummary(const FCLIB::NaturalMapError& e) {
-  IO::Summary s;
-  s.set("absolute", e.absolute).set("relative_to_q", e.relativeToQ).set("relative_to_max", e.relativeToMax);
-  s.set("norm_q", e.normQ).set("norm_r", e.normR).set("norm_u", e.normU);
-  return s;
-}
-
-IO::Summary run(const Args& args, const RCP<const Comm>& self) {
+FCLIB::SolveOptions solveOptions(const Args& args) {
   FCLIB::SolveOptions options;
   options.massSolver = args.massSolver;
   options.verbose = args.verbose;
@@ -85,44 +98,124 @@ IO::Summary run(const Args& args, const RCP<const Comm>& self) {
     if (solver.isParameter("Outer Algorithm")) options.algorithm = solver.get<std::string>("Outer Algorithm");
   }
   if (!args.algorithm.empty()) options.algorithm = args.algorithm;
+  return options;
+}
 
-  IO::Summary summary;
-  summary.set("input", args.input);
-  const FCLIB::Info info = FCLIB::readInfo(args.input);
-  summary.set("title", info.title);
-  const auto kind = FCLIB::problemKind(args.input);
-  FCLIB::SolveReport rep;
-  std::optional<FCLIB::Solution> stored = FCLIB::readSolution(args.input);
-  IO::Summary storedSummary;
-  if (kind == FCLIB::ProblemKind::Local) {
-    const auto p = FCLIB::readLocal(args.input);
-    summary.set("kind", "local").set("contacts", p.numberOfContacts());
-    rep = FCLIB::solve(p, options, self);
-    if (stored && stored->r.size() == rep.r.size()) {
-      storedSummary.set("err", errSummary(FCLIB::naturalMapError(p, stored->r)));
-      storedSummary.set("rel_diff_r", relDiff(rep.r, stored->r));
+// Text from the file (title, messages quoting it) made safe for the JSON
+// summary, whose writer escapes only quotes, backslashes and newlines:
+// control characters and bytes that are not UTF-8 become '?'.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (std::size_t k = 0; k < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[k]);
+    const int length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    bool valid = length > 0 && k + length <= text.size();
+    for (int j = 1; valid && j < length; ++j) valid = (static_cast<unsigned char>(text[k + j]) >> 6) == 0x2;
+    if (!valid || (length == 1 && (c < 0x20 || c == 0x7F) && c != '\n')) {
+      out += '?';
+      ++k;
+      continue;
     }
-    if (!args.writeSolution.empty()) {
-      FCLIB::Solution s{{}, rep.u, rep.r, {}};
-      FCLIB::writeLocal(args.writeSolution, p, info, &s);
-    }
-  } else {
-    const auto p = FCLIB::readGlobal(args.input);
-    summary.set("kind", "global").set("contacts", p.numberOfContacts()).set("dofs", p.M.m);
-    rep = FCLIB::solve(p, options, self);
-    if (stored && stored->r.size() == rep.r.size()) {
-      FCLIB::MassSolver M(p.M, options.massSolver);
-      storedSummary.set("err", errSummary(FCLIB::naturalMapError(p, stored->r, M.function())));
-      storedSummary.set("rel_diff_r", relDiff(rep.r, stored->r));
-      if (stored->v.size() == rep.v.size()) storedSummary.set("rel_diff_v", relDiff(rep.v, stored->v));
-    }
-    if (!args.writeSolution.empty()) {
-      FCLIB::Solution s{rep.v, rep.u, rep.r, {}};
-      FCLIB::writeGlobal(args.writeSolution, p, info, &s);
-    }
+    out.append(text, k, length);
+    k += length;
   }
+  return out;
+}
+
+// ||a - b|| / max(||a||, ||b||): 0 for two zero vectors, never a division by ~0.
+double relDiff(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0, na = 0, nb = 0;
+  for (size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]), na += a[i] * a[i], nb += b[i] * b[i];
+  const double scale = std::sqrt(std::max(na, nb));
+  return scale > 0 ? std::sqrt(d) / scale : 0.0;
+}
+
+IO::Summary errSummary(const FCLIB::NaturalMapError& e) {
+  IO::Summary s;
+  s.set("absolute", e.absolute).set("relative_to_q", e.relativeToQ).set("relative_to_max", e.relativeToMax);
+  s.set("norm_q", e.normQ).set("norm_r", e.normR).set("norm_u", e.normU);
+  return s;
+}
+
+bool allFinite(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+}
+
+// What a run produced, whatever the kind of problem.
+struct Outcome {
+  IO::Summary summary;                  // input, title, kind and sizes, then the solve
+  std::optional<IO::Summary> stored;    // the comparison with the stored solution
+  bool converged = false;
+  std::vector<std::string> notes;
+};
+
+// The stored solution is reference data: compared with ours when it has the
+// right sizes, otherwise ignored with a note (readSolutionLeniently).
+template <typename ErrOf>
+void compareStored(const std::optional<FCLIB::Solution>& stored, const FCLIB::SolveReport& rep, ErrOf errOf,
+                   Outcome& out) {
+  if (!stored) return;
+  IO::Summary& s = out.stored.emplace();
+  if (!stored->r.empty()) {
+    s.set("err", errSummary(errOf(stored->r)));
+    s.set("rel_diff_r", relDiff(rep.r, stored->r));
+  }
+  if (!stored->v.empty() && stored->v.size() == rep.v.size()) s.set("rel_diff_v", relDiff(rep.v, stored->v));
+}
+
+// --write-solution: the result is written converged or not (exit 2 still
+// reports it), but not with non-finite entries, which no FCLIB reader accepts.
+template <typename Problem, typename Writer>
+void writeResult(const Args& args, const Problem& p, const FCLIB::Info& info, const FCLIB::Solution& s,
+                 Writer write, Outcome& out) {
+  if (args.writeSolution.empty()) return;
+  if (!allFinite(s.r) || !allFinite(s.u) || !allFinite(s.v)) {
+    out.notes.push_back("--write-solution " + args.writeSolution + " not written: the result has non-finite entries");
+    return;
+  }
+  write(args.writeSolution, p, info, &s, {}, FCLIB::Storage::CompressedRows);
+}
+
+void solveLocal(const Args& args, const FCLIB::SolveOptions& options, const RCP<const Comm>& self,
+                const FCLIB::Info& info, FCLIB::SolveReport& rep, Outcome& out) {
+  const auto p = FCLIB::readLocal(args.input);
+  const auto stored = FCLIB::readSolutionLeniently(args.input, out.notes);
+  out.summary.set("kind", "local").set("contacts", p.numberOfContacts());
+  rep = FCLIB::solve(p, options, self);
+  compareStored(stored, rep, [&](const std::vector<double>& r) { return FCLIB::naturalMapError(p, r); }, out);
+  writeResult(args, p, info, FCLIB::Solution{{}, rep.u, rep.r, {}}, FCLIB::writeLocal, out);
+}
+
+void solveGlobal(const Args& args, const FCLIB::SolveOptions& options, const RCP<const Comm>& self,
+                 const FCLIB::Info& info, FCLIB::SolveReport& rep, Outcome& out) {
+  const auto p = FCLIB::readGlobal(args.input);
+  const auto stored = FCLIB::readSolutionLeniently(args.input, out.notes);
+  out.summary.set("kind", "global").set("contacts", p.numberOfContacts()).set("dofs", p.M.m);
+  rep = FCLIB::solve(p, options, self);
+  compareStored(
+      stored, rep,
+      [&](const std::vector<double>& r) {
+        FCLIB::MassSolver M(p.M, options.massSolver);
+        return FCLIB::naturalMapError(p, r, M.function());
+      },
+      out);
+  writeResult(args, p, info, FCLIB::Solution{rep.v, rep.u, rep.r, {}}, FCLIB::writeGlobal, out);
+}
+
+// Info is descriptive only: an unreadable one is noted, not fatal.
+FCLIB::Info readInfo(const std::string& path, std::vector<std::string>& notes) {
+  try {
+    return FCLIB::readInfo(path);
+  } catch (const std::exception& e) {
+    notes.push_back(std::string(e.what()) + "; the info strings are ignored");
+    return {};
+  }
+}
+
+void reportSolve(const Args& args, const FCLIB::SolveReport& rep, FCLIB::ProblemKind kind, IO::Summary& summary) {
   summary.set("algorithm", rep.algorithm);
-  summary.set("converged", rep.status.converged).set("stop_reason", rep.status.reason);
+  summary.set("converged", rep.converged).set("solver_converged", rep.status.converged);
+  summary.set("stop_reason", printable(rep.stopReason));
   summary.set("outer_iterations", rep.status.outer_iterations).set("msa_iterations", rep.status.msa_iterations);
   summary.set("inner_iterations", rep.status.inner_iterations);
   summary.set("n_A", rep.n_A).set("n_A_qpp", static_cast<long long>(rep.status.n_A_qpp));
@@ -132,15 +225,32 @@ IO::Summary run(const Args& args, const RCP<const Comm>& self) {
   summary.set("err", errSummary(rep.err));
   IO::Summary kkt;
   kkt.set("nonpenetration", rep.kktNormal).set("complementarity", rep.kktComplementarity);
-  kkt.set("friction_law", rep.kktFriction);
+  kkt.set("friction_law", rep.kktFriction).set("tolerance", rep.tolerance).set("limit", rep.limit);
   summary.set("kkt", kkt);
   IO::Summary w;
   w.set("norm_estimate", rep.normW);
   if (rep.spectrumKnown) w.set("eig_min", rep.eigMin).set("eig_max", rep.eigMax).set("numerical_rank", rep.numericalRank);
   summary.set("W", w);
-  if (!rep.note.empty()) summary.set("note", rep.note);
-  if (stored) summary.set("stored_solution", storedSummary);
-  return summary;
+}
+
+Outcome run(const Args& args, const RCP<const Comm>& self) {
+  const FCLIB::SolveOptions options = solveOptions(args);
+  const auto kind = FCLIB::problemKind(args.input);
+  Outcome out;
+  out.summary.set("input", printable(args.input));
+  const FCLIB::Info info = readInfo(args.input, out.notes);
+  out.summary.set("title", printable(info.title));
+  FCLIB::SolveReport rep;
+  if (kind == FCLIB::ProblemKind::Local) solveLocal(args, options, self, info, rep, out);
+  else solveGlobal(args, options, self, info, rep, out);
+  reportSolve(args, rep, kind, out.summary);
+  if (!rep.note.empty()) out.notes.insert(out.notes.begin(), rep.note);
+  std::string note;
+  for (const auto& n : out.notes) note += (note.empty() ? "" : "; ") + n;
+  if (!note.empty()) out.summary.set("note", printable(note));
+  if (out.stored) out.summary.set("stored_solution", *out.stored);
+  out.converged = rep.converged;
+  return out;
 }
 
 }  // namespace
@@ -150,17 +260,23 @@ int main(int argc, char** argv) {
   auto comm = Tpetra::getDefaultComm();
   const int rank = comm->getRank();
   auto self = comm->split(rank == 0 ? 0 : 1, rank);
-  int status = 0;
+  int status = kConverged;
   if (rank == 0) {
     try {
       const Args args = parse(argc, argv);
-      const auto summary = run(args, self);
-      const std::string json = summary.toJson() + "\n";
-      if (!args.summary.empty()) IO::writeFileAtomically(args.summary, json);
-      std::cout << json;
+      if (args.help) {
+        std::cout << kUsage;
+      } else {
+        checkOutputs(args);
+        const Outcome outcome = run(args, self);
+        const std::string json = outcome.summary.toJson() + "\n";
+        if (!args.summary.empty()) FCLIB::writeTextAtomically(args.summary, json);
+        std::cout << json;
+        status = outcome.converged ? kConverged : kNotConverged;
+      }
     } catch (const std::exception& e) {
       std::cerr << "tribos_fclib: error: " << e.what() << std::endl;
-      status = 1;
+      status = kError;
     }
   }
   Teuchos::broadcast(*comm, 0, &status);

@@ -1,9 +1,13 @@
 #include "Tribos_FCLIB.hpp"
 
+#include "Tribos_FCLIB_Files.hpp"
+
 #include <hdf5.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -56,17 +60,18 @@ class QuietHdf5Errors {
   void* data_ = nullptr;
 };
 
-// Where we are in which file, for error messages.
+// Where we are in which file, for error messages. 'group' is the absolute
+// HDF5 path of the current group ("" for the root), so that messages name
+// datasets the way h5dump and h5py do: /fclib_local/vectors/q.
 struct Location {
   std::string file;
-  std::string group;  // path inside the file, without leading '/'
+  std::string group;
 
   [[noreturn]] void fail(const std::string& why) const {
     throw std::runtime_error("FCLIB file " + file + ": " + why);
   }
-  Location child(const std::string& name) const {
-    return {file, group.empty() ? name : group + "/" + name};
-  }
+  Location child(const std::string& name) const { return {file, path(name)}; }
+  std::string path(const std::string& name) const { return group + "/" + name; }
   std::string groupLabel() const { return group.empty() ? "root group" : "group " + group; }
 };
 
@@ -77,14 +82,14 @@ bool hasLink(hid_t loc, const std::string& name) {
 Handle openGroup(hid_t loc, const Location& where, const std::string& name) {
   if (!hasLink(loc, name)) where.fail(where.groupLabel() + " has no group " + name);
   hid_t id = H5Gopen2(loc, name.c_str(), H5P_DEFAULT);
-  if (id < 0) where.fail("cannot open group " + where.child(name).group);
+  if (id < 0) where.fail("cannot open group " + where.path(name));
   return Handle(id, H5Gclose);
 }
 
 Handle openDataset(hid_t loc, const Location& where, const std::string& name) {
   if (!hasLink(loc, name)) where.fail(where.groupLabel() + " has no dataset " + name);
   hid_t id = H5Dopen2(loc, name.c_str(), H5P_DEFAULT);
-  if (id < 0) where.fail("cannot open dataset " + where.child(name).group);
+  if (id < 0) where.fail("cannot open dataset " + where.path(name));
   return Handle(id, H5Dclose);
 }
 
@@ -98,107 +103,226 @@ Handle openFileForReading(const std::string& path) {
 
 // ---------------------------------------------------------------- reading
 
-hssize_t elementCount(hid_t dataset, const Location& where, const std::string& name) {
-  Handle space(H5Dget_space(dataset), H5Sclose);
-  hssize_t count = H5Sget_simple_extent_npoints(space.get());
-  if (count < 0) where.fail("cannot get the size of dataset " + where.child(name).group);
-  return count;
+// Deflate, the compression filter of a standard HDF5 build, never shrinks
+// data by more than about 1032:1.
+constexpr double kMaxCompressionRatio = 1100.0;
+// Unwritten parts of a dataset read as its fill value, and some FCLIB writers
+// leave zero vectors unwritten (the /solution/r of the samples); such parts
+// are allowed up to this multiple of the file size.
+constexpr double kFillAllowance = 16.0;
+
+double fileSize(hid_t object) {
+  Handle file(H5Iget_file_id(object), H5Fclose);
+  hsize_t size = 0;
+  return file.get() >= 0 && H5Fget_filesize(file.get(), &size) >= 0 ? static_cast<double>(size) : 0.0;
 }
 
+// A dataset may declare an extent far beyond the bytes the file holds for it,
+// so a file of a few kilobytes could make the reader allocate terabytes. The
+// declared bytes must be backed by the stored ones (times the compression a
+// filter could have achieved), up to a fill-value allowance.
+void checkStored(hid_t dataset, hssize_t count, std::size_t typeSize, const Location& where,
+                 const std::string& name) {
+  const double declared = static_cast<double>(count) * static_cast<double>(typeSize);
+  const double stored = static_cast<double>(H5Dget_storage_size(dataset));
+  Handle plist(H5Dget_create_plist(dataset), H5Pclose);
+  const bool filtered = plist.get() >= 0 && H5Pget_nfilters(plist.get()) > 0;
+  const double file = fileSize(dataset);
+  if (declared > (filtered ? kMaxCompressionRatio : 1.0) * stored + kFillAllowance * file)
+    where.fail(where.path(name) + " declares " + std::to_string(count) + " entries (" +
+               std::to_string(static_cast<long long>(declared)) + " bytes) but the file stores " +
+               std::to_string(static_cast<long long>(stored)) + " bytes for it (file size " +
+               std::to_string(static_cast<long long>(file)) + " bytes)");
+}
+
+enum class Numeric { Integer, Real };
+
+// Number of entries of a numeric dataset, once its type fits and its extent is
+// backed by stored data. Integers may be read as reals, not the reverse: a
+// real-valued size or index would be truncated silently.
+std::size_t numericExtent(hid_t dataset, const Location& where, const std::string& name,
+                          Numeric kind) {
+  Handle type(H5Dget_type(dataset), H5Tclose);
+  const H5T_class_t typeClass = H5Tget_class(type.get());
+  if (kind == Numeric::Integer && typeClass != H5T_INTEGER)
+    where.fail(where.path(name) + " is not an integer dataset");
+  if (kind == Numeric::Real && typeClass != H5T_FLOAT && typeClass != H5T_INTEGER)
+    where.fail(where.path(name) + " is not a numeric dataset");
+  Handle space(H5Dget_space(dataset), H5Sclose);
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count < 0) where.fail("cannot get the size of dataset " + where.path(name));
+  checkStored(dataset, count, H5Tget_size(type.get()), where, name);
+  return static_cast<std::size_t>(count);
+}
+
+// Reads a whole numeric dataset; 'expected', when given, is checked against
+// the extent before anything is allocated.
 template <typename T>
-std::vector<T> readArray(hid_t loc, const Location& where, const std::string& name,
-                         hid_t memType) {
+std::vector<T> readArray(hid_t loc, const Location& where, const std::string& name, Numeric kind,
+                         hid_t memType, std::optional<std::size_t> expected = std::nullopt,
+                         const std::string& expectedWhy = "") {
   Handle dataset = openDataset(loc, where, name);
-  std::vector<T> data(static_cast<std::size_t>(elementCount(dataset.get(), where, name)));
-  if (!data.empty() &&
+  const std::size_t count = numericExtent(dataset.get(), where, name, kind);
+  if (expected && count != *expected)
+    where.fail(where.path(name) + " has " + std::to_string(count) + " entries, expected " +
+               std::to_string(*expected) + expectedWhy);
+  std::vector<T> data(count);
+  if (count > 0 &&
       H5Dread(dataset.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
-    where.fail("cannot read dataset " + where.child(name).group);
+    where.fail("cannot read dataset " + where.path(name));
   return data;
 }
 
-std::vector<double> readDoubles(hid_t loc, const Location& where, const std::string& name) {
-  return readArray<double>(loc, where, name, H5T_NATIVE_DOUBLE);
+std::vector<double> readDoubles(hid_t loc, const Location& where, const std::string& name,
+                                std::optional<std::size_t> expected = std::nullopt,
+                                const std::string& expectedWhy = "") {
+  return readArray<double>(loc, where, name, Numeric::Real, H5T_NATIVE_DOUBLE, expected,
+                           expectedWhy);
 }
 
-std::vector<int> readInts(hid_t loc, const Location& where, const std::string& name) {
-  return readArray<int>(loc, where, name, H5T_NATIVE_INT);
+// Integers are read as 64 bits so that a value beyond int32 is reported as
+// what it is instead of being clamped by the HDF5 conversion.
+std::vector<int> readInts(hid_t loc, const Location& where, const std::string& name,
+                          std::optional<std::size_t> expected = std::nullopt,
+                          const std::string& expectedWhy = "") {
+  const std::vector<long long> wide = readArray<long long>(
+      loc, where, name, Numeric::Integer, H5T_NATIVE_LLONG, expected, expectedWhy);
+  std::vector<int> values(wide.size());
+  for (std::size_t k = 0; k < wide.size(); ++k) {
+    if (wide[k] < std::numeric_limits<int>::min() || wide[k] > std::numeric_limits<int>::max())
+      where.fail(where.path(name) + "[" + std::to_string(k) + "] = " + std::to_string(wide[k]) +
+                 " does not fit in 32 bits");
+    values[k] = static_cast<int>(wide[k]);
+  }
+  return values;
 }
 
 int readInt(hid_t loc, const Location& where, const std::string& name) {
   std::vector<int> value = readInts(loc, where, name);
   if (value.size() != 1)
-    where.fail("dataset " + where.child(name).group + " should hold one integer, has " +
+    where.fail(where.path(name) + " should hold one integer, has " +
                std::to_string(value.size()) + " values");
   return value[0];
 }
 
-std::vector<double> readVector(hid_t loc, const Location& where, const std::string& name,
-                               std::size_t expected) {
-  std::vector<double> v = readDoubles(loc, where, name);
-  if (v.size() != expected)
-    where.fail("dataset " + where.child(name).group + " has " + std::to_string(v.size()) +
-               " entries, expected " + std::to_string(expected));
-  return v;
+// Extent of a dataset without reading it (sizes of the problem: mu, f).
+std::size_t datasetExtent(hid_t loc, const Location& where, const std::string& name) {
+  Handle dataset = openDataset(loc, where, name);
+  return numericExtent(dataset.get(), where, name, Numeric::Real);
 }
 
 std::string readString(hid_t loc, const Location& where, const std::string& name) {
   Handle dataset = openDataset(loc, where, name);
   Handle fileType(H5Dget_type(dataset.get()), H5Tclose);
   if (H5Tget_class(fileType.get()) != H5T_STRING)
-    where.fail("dataset " + where.child(name).group + " is not a string");
+    where.fail(where.path(name) + " is not a string");
+  // One string only: the buffers below hold one, and H5Dread would write
+  // every element of a larger dataspace into them.
+  Handle space(H5Dget_space(dataset.get()), H5Sclose);
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count != 1)
+    where.fail(where.path(name) + " should hold one string, has " + std::to_string(count));
   Handle memType(H5Tcopy(H5T_C_S1), H5Tclose);
   if (H5Tis_variable_str(fileType.get()) > 0) {
     H5Tset_size(memType.get(), H5T_VARIABLE);
     char* text = nullptr;
     if (H5Dread(dataset.get(), memType.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &text) < 0)
-      where.fail("cannot read string " + where.child(name).group);
+      where.fail("cannot read string " + where.path(name));
     std::string result = text ? text : "";
     H5free_memory(text);
     return result;
   }
   const std::size_t size = H5Tget_size(fileType.get());
+  checkStored(dataset.get(), 1, size, where, name);
   H5Tset_size(memType.get(), size + 1);  // room for a terminator if the file has none
   std::vector<char> buffer(size + 1, '\0');
   if (H5Dread(dataset.get(), memType.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0)
-    where.fail("cannot read string " + where.child(name).group);
+    where.fail("cannot read string " + where.path(name));
   return std::string(buffer.data());
 }
 
-SparseMatrix readMatrix(hid_t parent, const Location& parentWhere, const std::string& name) {
-  Handle group = openGroup(parent, parentWhere, name);
-  const Location where = parentWhere.child(name);
-  const int m = readInt(group.get(), where, "m");
-  const int n = readInt(group.get(), where, "n");
-  const int nz = readInt(group.get(), where, "nz");
-  std::vector<int> p = readInts(group.get(), where, "p");
-  std::vector<int> i = readInts(group.get(), where, "i");
-  std::vector<double> x = readDoubles(group.get(), where, "x");
-  const std::string what = "FCLIB file " + where.file + ": matrix " + where.group;
+// A dimension a matrix must have, and where that number comes from.
+struct Dimension {
+  std::size_t value;
+  std::string source;  // e.g. " = 3 x 48 contacts (the length of /fclib_local/vectors/mu)"
+};
+
+void expectDimension(int declared, const Dimension& expected, const Location& where,
+                     const std::string& name) {
+  if (declared < 0 || static_cast<std::size_t>(declared) != expected.value)
+    where.fail(where.path(name) + " = " + std::to_string(declared) + ", expected " +
+               std::to_string(expected.value) + expected.source);
+}
+
+// nzmax is the allocated length of the writer (CSparse): never less than the
+// entries in use. It sizes nothing here, but a smaller value means the header
+// and the arrays disagree.
+void checkNzmax(hid_t group, const Location& where, std::size_t used) {
+  if (!hasLink(group, "nzmax")) return;
+  const int nzmax = readInt(group, where, "nzmax");
+  if (nzmax < 0 || static_cast<std::size_t>(nzmax) < used)
+    where.fail(where.path("nzmax") + " = " + std::to_string(nzmax) + " is less than the " +
+               std::to_string(used) + " entries in use");
+}
+
+void checkFiniteValues(const std::vector<double>& x, std::size_t used, const Location& where) {
+  for (std::size_t k = 0; k < used; ++k)
+    if (!std::isfinite(x[k]))
+      where.fail(where.path("x") + "[" + std::to_string(k) + "] is not finite (" +
+                 (std::isnan(x[k]) ? "nan" : "inf") + ")");
+}
+
+SparseMatrix buildMatrix(int m, int n, int nz, std::vector<int> p, std::vector<int> i,
+                         std::vector<double> x, const Location& where) {
+  const std::string what = "FCLIB file " + where.file + ": " + where.group;
   if (nz == -2) return SparseMatrix::fromCSR(m, n, p, i, x, what);
   if (nz == -1) return SparseMatrix::fromCSC(m, n, p, i, x, what);
-  if (nz < 0) where.fail("matrix " + where.group + " has invalid nz = " + std::to_string(nz));
   // Triplets: only the first nz entries are meaningful (arrays may be nzmax long).
-  if (p.size() < static_cast<std::size_t>(nz) || i.size() < static_cast<std::size_t>(nz) ||
-      x.size() < static_cast<std::size_t>(nz))
-    where.fail("matrix " + where.group + " has nz = " + std::to_string(nz) +
-               " but shorter i, p or x arrays");
+  for (const auto& [name, size] : {std::pair<const char*, std::size_t>{"p", p.size()},
+                                   {"i", i.size()}, {"x", x.size()}})
+    if (size < static_cast<std::size_t>(nz))
+      where.fail(where.path("nz") + " = " + std::to_string(nz) + " but " + where.path(name) +
+                 " has only " + std::to_string(size) + " entries");
   p.resize(nz);
   i.resize(nz);
   x.resize(nz);
   return SparseMatrix::fromTriplets(m, n, i, p, x, what);
 }
 
-std::optional<SparseMatrix> readOptionalMatrix(hid_t parent, const Location& where,
-                                               const std::string& name) {
-  if (!hasLink(parent, name)) return std::nullopt;
-  return readMatrix(parent, where, name);
+// Reads a sparse matrix whose dimensions are already known from the stored
+// vectors: the declared m and n are checked before any array is read, so a
+// wrong header is reported as such and never sizes an allocation.
+SparseMatrix readMatrix(hid_t parent, const Location& parentWhere, const std::string& name,
+                        const Dimension& rows, const Dimension& columns) {
+  Handle group = openGroup(parent, parentWhere, name);
+  const Location where = parentWhere.child(name);
+  const hid_t g = group.get();
+  const int m = readInt(g, where, "m");
+  const int n = readInt(g, where, "n");
+  expectDimension(m, rows, where, "m");
+  expectDimension(n, columns, where, "n");
+  const int nz = readInt(g, where, "nz");
+  if (nz < -2)
+    where.fail(where.path("nz") + " = " + std::to_string(nz) +
+               ", expected -2 (compressed rows), -1 (compressed columns) or >= 0 (triplets)");
+  std::optional<std::size_t> pointers;
+  if (nz < 0) pointers = static_cast<std::size_t>(nz == -2 ? m : n) + 1;
+  std::vector<int> p = readInts(g, where, "p", pointers,
+                                nz == -2 ? " (m + 1 row pointers)" : " (n + 1 column pointers)");
+  std::vector<int> i = readInts(g, where, "i");
+  std::vector<double> x = readDoubles(g, where, "x");
+  SparseMatrix A = buildMatrix(m, n, nz, p, i, x, where);
+  const std::size_t used = nz < 0 ? static_cast<std::size_t>(p.back()) : nz;
+  checkNzmax(g, where, used);
+  checkFiniteValues(x, used, where);
+  return A;
 }
 
 // ---------------------------------------------------------------- writing
 
 Handle createGroup(hid_t loc, const Location& where, const std::string& name) {
   hid_t id = H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (id < 0) where.fail("cannot create group " + where.child(name).group);
+  if (id < 0) where.fail("cannot create group " + where.path(name));
   return Handle(id, H5Gclose);
 }
 
@@ -209,9 +333,9 @@ void writeArray(hid_t loc, const Location& where, const std::string& name, hid_t
   Handle dataset(H5Dcreate2(loc, name.c_str(), fileType, space.get(), H5P_DEFAULT, H5P_DEFAULT,
                             H5P_DEFAULT),
                  H5Dclose);
-  if (dataset.get() < 0) where.fail("cannot create dataset " + where.child(name).group);
+  if (dataset.get() < 0) where.fail("cannot create dataset " + where.path(name));
   if (count > 0 && H5Dwrite(dataset.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-    where.fail("cannot write dataset " + where.child(name).group);
+    where.fail("cannot write dataset " + where.path(name));
 }
 
 void writeDoubles(hid_t loc, const Location& where, const std::string& name,
@@ -241,7 +365,7 @@ void writeString(hid_t loc, const Location& where, const std::string& name,
                  H5Dclose);
   if (dataset.get() < 0 ||
       H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.c_str()) < 0)
-    where.fail("cannot write string " + where.child(name).group);
+    where.fail("cannot write string " + where.path(name));
 }
 
 void writeMatrix(hid_t parent, const Location& parentWhere, const std::string& name,
@@ -254,7 +378,8 @@ void writeMatrix(hid_t parent, const Location& parentWhere, const std::string& n
   writeInt(g, where, "n", A.n);
   if (storage == Storage::CompressedRows) {
     writeInt(g, where, "nz", -2);
-    writeInts(g, where, "p", A.rowptr);
+    // A 0 x n matrix built by hand may have no row pointer; the file needs one.
+    writeInts(g, where, "p", A.rowptr.empty() ? std::vector<int>{0} : A.rowptr);
     writeInts(g, where, "i", A.col);
   } else {
     std::vector<int> row, column;
@@ -296,12 +421,12 @@ void writeSolutionAndGuesses(hid_t file, const Location& root, const Solution* s
     writeSolutionGroup(group.get(), where, std::to_string(k + 1), guesses[k]);
 }
 
-// Runs 'body' on a fresh HDF5 file at path + ".tmp" and renames it onto path
-// only after the file is closed without error; on failure the temporary file
-// is removed and whatever was at path is left untouched.
+// Runs 'body' on a fresh HDF5 file at temporaryPath(path) and renames it onto
+// path only after the file is closed without error; on failure the temporary
+// file is removed and whatever was at path is left untouched.
 template <typename Body>
 void writeAtomically(const std::string& path, Body body) {
-  const std::string tmp = path + ".tmp";
+  const std::string tmp = temporaryPath(path);
   QuietHdf5Errors quiet;
   try {
     {
@@ -322,64 +447,162 @@ void writeAtomically(const std::string& path, Body body) {
 
 // ---------------------------------------------------------------- checks
 
-void require(bool condition, const std::string& where, const std::string& message) {
-  if (!condition) throw std::runtime_error(where + ": " + message);
+// Checks of a problem in memory. Every message names the FCLIB dataset the
+// value is (or would be) stored in, after 'context' (e.g. "FCLIB file X").
+class Checker {
+ public:
+  Checker(std::string context, std::string group)
+      : context_(std::move(context)), group_(std::move(group)) {}
+
+  [[noreturn]] void fail(const std::string& why) const {
+    throw std::runtime_error(context_ + ": " + why);
+  }
+  std::string name(const std::string& dataset) const { return group_ + "/" + dataset; }
+
+  void spacedim(int value) const {
+    if (value != 2 && value != 3)
+      fail(name("spacedim") + " = " + std::to_string(value) + ", expected 2 or 3");
+  }
+
+  void size(const std::vector<double>& v, const std::string& dataset, std::size_t expected,
+            const std::string& why) const {
+    if (v.size() != expected)
+      fail(name(dataset) + " has " + std::to_string(v.size()) + " entries, expected " +
+           std::to_string(expected) + why);
+  }
+
+  void finite(const std::vector<double>& v, const std::string& dataset) const {
+    for (std::size_t k = 0; k < v.size(); ++k)
+      if (!std::isfinite(v[k]))
+        fail(name(dataset) + "[" + std::to_string(k) + "] is not finite (" + kind(v[k]) + ")");
+  }
+
+  // Coulomb's cone K_mu = {||r_T|| <= mu r_N} is a cone only for mu >= 0.
+  void frictionCoefficients(const std::vector<double>& mu, const std::string& dataset) const {
+    finite(mu, dataset);
+    for (std::size_t k = 0; k < mu.size(); ++k)
+      if (mu[k] < 0.0)
+        fail(name(dataset) + "[" + std::to_string(k) + "] = " + number(mu[k]) +
+             " is negative (a friction coefficient is >= 0)");
+  }
+
+  // Canonical CSR as SparseMatrix documents it, m x n as the problem needs,
+  // and finite entries (duplicates summed on reading may overflow).
+  void matrix(const SparseMatrix& A, const std::string& dataset, std::size_t m, std::size_t n,
+              const std::string& why) const {
+    if (A.m < 0 || A.n < 0 || static_cast<std::size_t>(A.m) != m ||
+        static_cast<std::size_t>(A.n) != n)
+      fail(name(dataset) + " is " + std::to_string(A.m) + " x " + std::to_string(A.n) +
+           ", expected " + std::to_string(m) + " x " + std::to_string(n) + why);
+    structure(A, dataset);
+    for (int r = 0; r < A.m; ++r)
+      for (int k = A.rowptr[r]; k < A.rowptr[r + 1]; ++k)
+        if (!std::isfinite(A.val[k]))
+          fail(name(dataset) + " has a non-finite entry (" + kind(A.val[k]) + ") at row " +
+               std::to_string(r) + ", column " + std::to_string(A.col[k]));
+  }
+
+ private:
+  static const char* kind(double x) { return std::isnan(x) ? "nan" : "inf"; }
+  static std::string number(double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", x);
+    return buffer;
+  }
+
+  void structure(const SparseMatrix& A, const std::string& dataset) const {
+    auto bad = [&](const std::string& why) {
+      fail(name(dataset) + " is not a valid compressed-row matrix: " + why);
+    };
+    if (A.rowptr.empty() && A.m == 0 && A.col.empty() && A.val.empty()) return;
+    if (A.rowptr.size() != static_cast<std::size_t>(A.m) + 1)
+      bad(std::to_string(A.rowptr.size()) + " row pointers for " + std::to_string(A.m) + " rows");
+    if (A.rowptr[0] != 0) bad("the first row pointer is " + std::to_string(A.rowptr[0]));
+    for (int r = 0; r < A.m; ++r)
+      if (A.rowptr[r + 1] < A.rowptr[r]) bad("row pointers decrease at row " + std::to_string(r));
+    const std::size_t nnz = static_cast<std::size_t>(A.rowptr.back());
+    if (A.col.size() != nnz || A.val.size() != nnz)
+      bad(std::to_string(A.col.size()) + " column indices and " + std::to_string(A.val.size()) +
+          " values for " + std::to_string(nnz) + " entries");
+    for (std::size_t k = 0; k < nnz; ++k)
+      if (A.col[k] < 0 || A.col[k] >= A.n)
+        bad("column index " + std::to_string(A.col[k]) + " outside [0, " + std::to_string(A.n) +
+            ")");
+  }
+
+  std::string context_, group_;
+};
+
+std::string contactsWhy(std::size_t nc, int spacedim, const std::string& muPath) {
+  return " = " + std::to_string(spacedim) + " x " + std::to_string(nc) +
+         " contacts (the length of " + muPath + ")";
 }
 
-std::string dims(const SparseMatrix& A) {
-  return std::to_string(A.m) + " x " + std::to_string(A.n);
+// Solution vectors are data about the problem: sized by it and finite.
+void checkSolution(const Solution& s, std::size_t contact, std::optional<std::size_t> velocity,
+                   const Checker& c) {
+  for (const auto& [vector, dataset] : {std::pair<const std::vector<double>*, const char*>{&s.u, "u"},
+                                        {&s.r, "r"}, {&s.v, "v"}, {&s.l, "l"}}) {
+    if (vector->empty()) continue;
+    const bool contactSized = std::string(dataset) == "u" || std::string(dataset) == "r";
+    if (contactSized) c.size(*vector, dataset, contact, " (spacedim x contacts)");
+    if (std::string(dataset) == "v" && velocity)
+      c.size(*vector, dataset, *velocity, " (the size of M)");
+    c.finite(*vector, dataset);
+  }
 }
 
-std::string sizeMismatch(const std::string& name, std::size_t actual, std::size_t expected) {
-  return name + " has " + std::to_string(actual) + " entries, expected " +
-         std::to_string(expected);
-}
-
-void checkSpacedim(int spacedim, const std::string& where) {
-  require(spacedim == 2 || spacedim == 3, where,
-          "spacedim is " + std::to_string(spacedim) + ", expected 2 or 3");
+void checkSolutions(const Solution* solution, const std::vector<Solution>& guesses,
+                    std::size_t contact, std::optional<std::size_t> velocity,
+                    const std::string& context) {
+  if (solution) checkSolution(*solution, contact, velocity, Checker(context, "/solution"));
+  for (std::size_t k = 0; k < guesses.size(); ++k)
+    checkSolution(guesses[k], contact, velocity,
+                  Checker(context, "/guesses/" + std::to_string(k + 1)));
 }
 
 }  // namespace
 
 // ---------------------------------------------------------------- public
 
-void checkDimensions(const LocalProblem& P, const std::string& where) {
-  checkSpacedim(P.spacedim, where);
+void validate(const LocalProblem& P, const std::string& context) {
+  const Checker c(context, "/" + std::string(kLocalGroup));
+  c.spacedim(P.spacedim);
   const std::size_t nc = P.mu.size();
-  const int m = static_cast<int>(nc) * P.spacedim;
-  require(P.W.m == m && P.W.n == m, where,
-          "W is " + dims(P.W) + ", expected " + std::to_string(m) + " x " + std::to_string(m) +
-              " for " + std::to_string(nc) + " contacts (length of mu)");
-  require(P.q.size() == static_cast<std::size_t>(m), where, sizeMismatch("q", P.q.size(), m));
-  if (P.V || P.R || P.s) {
-    require(P.V && P.R && P.s, where, "V, R and s must be given together");
-    const int p = P.R->m;
-    require(P.V->m == m && P.V->n == p, where, "V is " + dims(*P.V) + ", expected " +
-                                                   std::to_string(m) + " x " + std::to_string(p));
-    require(P.R->n == p, where, "R is " + dims(*P.R) + ", expected square");
-    require(P.s->size() == static_cast<std::size_t>(p), where, sizeMismatch("s", P.s->size(), p));
-  }
+  const std::size_t m = nc * static_cast<std::size_t>(P.spacedim);
+  const std::string why = contactsWhy(nc, P.spacedim, c.name("vectors/mu"));
+  c.matrix(P.W, "W", m, m, why);
+  c.size(P.q, "vectors/q", m, why);
+  c.frictionCoefficients(P.mu, "vectors/mu");
+  c.finite(P.q, "vectors/q");
+  if (!P.V && !P.R && !P.s) return;
+  if (!(P.V && P.R && P.s)) c.fail(c.name("") + "{V, R, vectors/s}: a mixed problem needs all three");
+  const std::size_t p = P.s->size();
+  const std::string sWhy = " (the length of " + c.name("vectors/s") + ")";
+  c.matrix(*P.R, "R", p, p, sWhy);
+  c.matrix(*P.V, "V", m, p, " (spacedim x contacts rows, columns" + sWhy + ")");
+  c.finite(*P.s, "vectors/s");
 }
 
-void checkDimensions(const GlobalProblem& P, const std::string& where) {
-  checkSpacedim(P.spacedim, where);
+void validate(const GlobalProblem& P, const std::string& context) {
+  const Checker c(context, "/" + std::string(kGlobalGroup));
+  c.spacedim(P.spacedim);
   const std::size_t nc = P.mu.size();
-  const int m = static_cast<int>(nc) * P.spacedim;
-  const int ndof = P.M.m;
-  require(P.M.n == ndof, where, "M is " + dims(P.M) + ", expected square");
-  require(P.H.m == ndof && P.H.n == m, where,
-          "H is " + dims(P.H) + ", expected " + std::to_string(ndof) + " x " +
-              std::to_string(m) + " (rows = size of M, columns = spacedim x contacts)");
-  require(P.f.size() == static_cast<std::size_t>(ndof), where, sizeMismatch("f", P.f.size(), ndof));
-  require(P.w.size() == static_cast<std::size_t>(m), where, sizeMismatch("w", P.w.size(), m));
-  if (P.G || P.b) {
-    require(P.G && P.b, where, "G and b must be given together");
-    require(P.G->m == ndof, where, "G is " + dims(*P.G) + ", expected " + std::to_string(ndof) +
-                                       " rows");
-    require(P.b->size() == static_cast<std::size_t>(P.G->n), where,
-            sizeMismatch("b", P.b->size(), P.G->n));
-  }
+  const std::size_t m = nc * static_cast<std::size_t>(P.spacedim);
+  const std::string why = contactsWhy(nc, P.spacedim, c.name("vectors/mu"));
+  const std::size_t ndof = P.f.size();
+  const std::string fWhy = " (the length of " + c.name("vectors/f") + ")";
+  c.matrix(P.M, "M", ndof, ndof, fWhy);
+  c.matrix(P.H, "H", ndof, m, " (rows" + fWhy + ", columns" + why + ")");
+  c.size(P.w, "vectors/w", m, why);
+  c.frictionCoefficients(P.mu, "vectors/mu");
+  c.finite(P.f, "vectors/f");
+  c.finite(P.w, "vectors/w");
+  if (!P.G && !P.b) return;
+  if (!(P.G && P.b)) c.fail(c.name("") + "{G, vectors/b}: G and b come together");
+  c.matrix(*P.G, "G", ndof, P.b->size(),
+           " (rows" + fWhy + ", columns the length of " + c.name("vectors/b") + ")");
+  c.finite(*P.b, "vectors/b");
 }
 
 ProblemKind problemKind(const std::string& path) {
@@ -387,9 +610,61 @@ ProblemKind problemKind(const std::string& path) {
   Handle file = openFileForReading(path);
   if (hasLink(file.get(), kLocalGroup)) return ProblemKind::Local;
   if (hasLink(file.get(), kGlobalGroup)) return ProblemKind::Global;
-  throw std::runtime_error("FCLIB file " + path + ": has neither group fclib_local nor " +
-                           "group fclib_global");
+  throw std::runtime_error("FCLIB file " + path + ": has neither group /fclib_local nor " +
+                           "group /fclib_global");
 }
+
+namespace {
+
+int readSpacedim(hid_t group, const Location& where) {
+  const int spacedim = readInt(group, where, "spacedim");
+  if (spacedim != 2 && spacedim != 3)
+    where.fail(where.path("spacedim") + " = " + std::to_string(spacedim) + ", expected 2 or 3");
+  return spacedim;
+}
+
+// spacedim x (length of mu): the size of r, u, q, w and of W.
+Dimension contactDimension(std::size_t nc, int spacedim, const Location& vectorsWhere) {
+  return {nc * static_cast<std::size_t>(spacedim),
+          contactsWhy(nc, spacedim, vectorsWhere.path("mu"))};
+}
+
+// The optional parts of a mixed problem must come together.
+bool readAllOrNone(const std::vector<std::pair<bool, std::string>>& parts, const Location& where) {
+  std::string present, missing;
+  for (const auto& [has, name] : parts) (has ? present : missing) += " " + name;
+  if (present.empty()) return false;
+  if (!missing.empty())
+    where.fail(where.groupLabel() + " has" + present + " but not" + missing +
+               " (they come together)");
+  return true;
+}
+
+// The file layer is checked while reading (types, extents, headers, index
+// arrays, raw values) so that messages name the dataset and entry in the
+// file; validate() then checks the problem as a whole.
+void readMixedPart(hid_t group, hid_t vectors, const Location& where,
+                   const Location& vectorsWhere, const Dimension& contact, LocalProblem& P) {
+  if (!readAllOrNone({{hasLink(group, "V"), "V"}, {hasLink(group, "R"), "R"},
+                      {hasLink(vectors, "s"), "vectors/s"}},
+                     where))
+    return;
+  P.s = readDoubles(vectors, vectorsWhere, "s");
+  const Dimension multipliers{P.s->size(), " (the length of " + vectorsWhere.path("s") + ")"};
+  P.R = readMatrix(group, where, "R", multipliers, multipliers);
+  P.V = readMatrix(group, where, "V", contact, multipliers);
+}
+
+void readConstraintPart(hid_t group, hid_t vectors, const Location& where,
+                        const Location& vectorsWhere, const Dimension& dofs, GlobalProblem& P) {
+  if (!readAllOrNone({{hasLink(group, "G"), "G"}, {hasLink(vectors, "b"), "vectors/b"}}, where))
+    return;
+  P.b = readDoubles(vectors, vectorsWhere, "b");
+  P.G = readMatrix(group, where, "G", dofs,
+                   {P.b->size(), " (the length of " + vectorsWhere.path("b") + ")"});
+}
+
+}  // namespace
 
 LocalProblem readLocal(const std::string& path) {
   QuietHdf5Errors quiet;
@@ -401,17 +676,13 @@ LocalProblem readLocal(const std::string& path) {
   const Location vectorsWhere = where.child("vectors");
 
   LocalProblem P;
-  P.spacedim = readInt(group.get(), where, "spacedim");
-  checkSpacedim(P.spacedim, "FCLIB file " + path + ": group " + where.group);
-  P.W = readMatrix(group.get(), where, "W");
-  P.V = readOptionalMatrix(group.get(), where, "V");
-  P.R = readOptionalMatrix(group.get(), where, "R");
+  P.spacedim = readSpacedim(group.get(), where);
   P.mu = readDoubles(vectors.get(), vectorsWhere, "mu");
-  const std::size_t m = P.mu.size() * P.spacedim;
-  P.q = readVector(vectors.get(), vectorsWhere, "q", m);
-  if (hasLink(vectors.get(), "s"))
-    P.s = readVector(vectors.get(), vectorsWhere, "s", P.R ? P.R->m : 0);
-  checkDimensions(P, "FCLIB file " + path + ": group " + where.group);
+  const Dimension contact = contactDimension(P.mu.size(), P.spacedim, vectorsWhere);
+  P.q = readDoubles(vectors.get(), vectorsWhere, "q", contact.value, contact.source);
+  P.W = readMatrix(group.get(), where, "W", contact, contact);
+  readMixedPart(group.get(), vectors.get(), where, vectorsWhere, contact, P);
+  validate(P, "FCLIB file " + path);
   return P;
 }
 
@@ -425,17 +696,16 @@ GlobalProblem readGlobal(const std::string& path) {
   const Location vectorsWhere = where.child("vectors");
 
   GlobalProblem P;
-  P.spacedim = readInt(group.get(), where, "spacedim");
-  checkSpacedim(P.spacedim, "FCLIB file " + path + ": group " + where.group);
-  P.M = readMatrix(group.get(), where, "M");
-  P.H = readMatrix(group.get(), where, "H");
-  P.G = readOptionalMatrix(group.get(), where, "G");
+  P.spacedim = readSpacedim(group.get(), where);
   P.mu = readDoubles(vectors.get(), vectorsWhere, "mu");
-  P.f = readVector(vectors.get(), vectorsWhere, "f", P.M.m);
-  P.w = readVector(vectors.get(), vectorsWhere, "w", P.mu.size() * P.spacedim);
-  if (hasLink(vectors.get(), "b"))
-    P.b = readVector(vectors.get(), vectorsWhere, "b", P.G ? P.G->n : 0);
-  checkDimensions(P, "FCLIB file " + path + ": group " + where.group);
+  const Dimension contact = contactDimension(P.mu.size(), P.spacedim, vectorsWhere);
+  P.f = readDoubles(vectors.get(), vectorsWhere, "f");
+  const Dimension dofs{P.f.size(), " (the length of " + vectorsWhere.path("f") + ")"};
+  P.w = readDoubles(vectors.get(), vectorsWhere, "w", contact.value, contact.source);
+  P.M = readMatrix(group.get(), where, "M", dofs, dofs);
+  P.H = readMatrix(group.get(), where, "H", dofs, contact);
+  readConstraintPart(group.get(), vectors.get(), where, vectorsWhere, dofs, P);
+  validate(P, "FCLIB file " + path);
   return P;
 }
 
@@ -446,7 +716,7 @@ Info readInfo(const std::string& path) {
   const char* problemName = hasLink(file.get(), kLocalGroup)    ? kLocalGroup
                             : hasLink(file.get(), kGlobalGroup) ? kGlobalGroup
                                                                 : nullptr;
-  if (!problemName) root.fail("has neither group fclib_local nor group fclib_global");
+  if (!problemName) root.fail("has neither group /fclib_local nor group /fclib_global");
   Handle problem = openGroup(file.get(), root, problemName);
   Info info;
   // The info group and each of its strings are optional in FCLIB.
@@ -465,30 +735,41 @@ Info readInfo(const std::string& path) {
 
 namespace {
 
-// Sizes a solution must have for the problem stored in the same file:
-// u and r have spacedim x contacts entries, v has the size of M (global only).
+// Sizes a solution must have for the problem stored in the same file, taken
+// from the stored vectors (spacedim x length of mu; length of f), not from
+// matrix headers: a broken header is the problem's fault, reported when the
+// problem is read, never blamed on the solution.
 struct SolutionSizes {
   std::size_t contact = 0;
   std::optional<std::size_t> velocity;
 };
 
 SolutionSizes expectedSolutionSizes(hid_t file, const Location& root) {
+  const bool local = hasLink(file, kLocalGroup);
+  if (!local && !hasLink(file, kGlobalGroup))
+    root.fail("has neither group /fclib_local nor group /fclib_global");
+  const char* name = local ? kLocalGroup : kGlobalGroup;
+  Handle problem = openGroup(file, root, name);
+  const Location where = root.child(name);
+  Handle vectors = openGroup(problem.get(), where, "vectors");
+  const Location vectorsWhere = where.child("vectors");
   SolutionSizes sizes;
-  if (hasLink(file, kLocalGroup)) {
-    Handle problem = openGroup(file, root, kLocalGroup);
-    const Location where = root.child(kLocalGroup);
-    Handle W = openGroup(problem.get(), where, "W");
-    sizes.contact = readInt(W.get(), where.child("W"), "m");
-  } else if (hasLink(file, kGlobalGroup)) {
-    Handle problem = openGroup(file, root, kGlobalGroup);
-    const Location where = root.child(kGlobalGroup);
-    Handle H = openGroup(problem.get(), where, "H");
-    sizes.contact = readInt(H.get(), where.child("H"), "n");
-    sizes.velocity = readInt(H.get(), where.child("H"), "m");
-  } else {
-    root.fail("has neither group fclib_local nor group fclib_global");
-  }
+  sizes.contact = datasetExtent(vectors.get(), vectorsWhere, "mu") *
+                  static_cast<std::size_t>(readSpacedim(problem.get(), where));
+  if (!local) sizes.velocity = datasetExtent(vectors.get(), vectorsWhere, "f");
   return sizes;
+}
+
+std::vector<double> readSolutionVector(hid_t group, const Location& where, const std::string& name,
+                                       const SolutionSizes& sizes) {
+  std::optional<std::size_t> expected;
+  std::string why;
+  if (name == "u" || name == "r") expected = sizes.contact, why = " (spacedim x contacts)";
+  if (name == "v") expected = sizes.velocity, why = " (the size of M)";
+  // The size of l depends on G, which is absent from every known file: not checked.
+  std::vector<double> v = readDoubles(group, where, name, expected, why);
+  Checker("FCLIB file " + where.file, where.group).finite(v, name);
+  return v;
 }
 
 Solution readSolutionGroup(hid_t parent, const Location& parentWhere, const std::string& name,
@@ -496,16 +777,10 @@ Solution readSolutionGroup(hid_t parent, const Location& parentWhere, const std:
   Handle group = openGroup(parent, parentWhere, name);
   const Location where = parentWhere.child(name);
   Solution s;
-  if (hasLink(group.get(), "u")) s.u = readVector(group.get(), where, "u", sizes.contact);
-  if (hasLink(group.get(), "r")) s.r = readVector(group.get(), where, "r", sizes.contact);
-  if (hasLink(group.get(), "v")) {
-    s.v = readDoubles(group.get(), where, "v");
-    if (sizes.velocity && s.v.size() != *sizes.velocity)
-      where.fail("dataset " + where.child("v").group + " has " + std::to_string(s.v.size()) +
-                 " entries, expected " + std::to_string(*sizes.velocity));
-  }
-  // The size of l depends on G, which is absent from every known file: not checked.
-  if (hasLink(group.get(), "l")) s.l = readDoubles(group.get(), where, "l");
+  for (auto [dataset, vector] : {std::pair<const char*, std::vector<double>*>{"v", &s.v},
+                                 {"u", &s.u}, {"r", &s.r}, {"l", &s.l}})
+    if (hasLink(group.get(), dataset))
+      *vector = readSolutionVector(group.get(), where, dataset, sizes);
   return s;
 }
 
@@ -519,6 +794,33 @@ std::optional<Solution> readSolution(const std::string& path) {
   return readSolutionGroup(file.get(), root, "solution", expectedSolutionSizes(file.get(), root));
 }
 
+std::optional<Solution> readSolutionLeniently(const std::string& path,
+                                              std::vector<std::string>& notes) {
+  QuietHdf5Errors quiet;
+  try {
+    Handle file = openFileForReading(path);
+    const Location root{path, ""};
+    if (!hasLink(file.get(), "solution")) return std::nullopt;
+    const SolutionSizes sizes = expectedSolutionSizes(file.get(), root);
+    Handle group = openGroup(file.get(), root, "solution");
+    const Location where = root.child("solution");
+    Solution s;
+    for (auto [dataset, vector] : {std::pair<const char*, std::vector<double>*>{"v", &s.v},
+                                   {"u", &s.u}, {"r", &s.r}, {"l", &s.l}}) {
+      if (!hasLink(group.get(), dataset)) continue;
+      try {
+        *vector = readSolutionVector(group.get(), where, dataset, sizes);
+      } catch (const std::exception& e) {
+        notes.push_back(std::string(e.what()) + "; the stored " + dataset + " is ignored");
+      }
+    }
+    return s;
+  } catch (const std::exception& e) {
+    notes.push_back(std::string(e.what()) + "; the stored solution is ignored");
+    return std::nullopt;
+  }
+}
+
 std::vector<Solution> readGuesses(const std::string& path) {
   QuietHdf5Errors quiet;
   Handle file = openFileForReading(path);
@@ -529,7 +831,8 @@ std::vector<Solution> readGuesses(const std::string& path) {
   Handle group = openGroup(file.get(), root, "guesses");
   const Location where = root.child("guesses");
   const int count = readInt(group.get(), where, "number_of_guesses");
-  if (count < 0) where.fail("number_of_guesses is negative");
+  if (count < 0)
+    where.fail(where.path("number_of_guesses") + " = " + std::to_string(count) + " is negative");
   for (int k = 1; k <= count; ++k)
     guesses.push_back(readSolutionGroup(group.get(), where, std::to_string(k), sizes));
   return guesses;
@@ -538,7 +841,9 @@ std::vector<Solution> readGuesses(const std::string& path) {
 void writeLocal(const std::string& path, const LocalProblem& P, const Info& info,
                 const Solution* solution, const std::vector<Solution>& guesses,
                 Storage storage) {
-  checkDimensions(P, "FCLIB file " + path + ": local problem to write");
+  const std::string context = "FCLIB file " + path + " (writing)";
+  validate(P, context);
+  checkSolutions(solution, guesses, P.q.size(), std::nullopt, context);
   writeAtomically(path, [&](hid_t file, const Location& root) {
     Handle group = createGroup(file, root, kLocalGroup);
     const Location where = root.child(kLocalGroup);
@@ -561,7 +866,9 @@ void writeLocal(const std::string& path, const LocalProblem& P, const Info& info
 void writeGlobal(const std::string& path, const GlobalProblem& P, const Info& info,
                  const Solution* solution, const std::vector<Solution>& guesses,
                  Storage storage) {
-  checkDimensions(P, "FCLIB file " + path + ": global problem to write");
+  const std::string context = "FCLIB file " + path + " (writing)";
+  validate(P, context);
+  checkSolutions(solution, guesses, P.w.size(), P.f.size(), context);
   writeAtomically(path, [&](hid_t file, const Location& root) {
     Handle group = createGroup(file, root, kGlobalGroup);
     const Location where = root.child(kGlobalGroup);

@@ -23,7 +23,17 @@
 // with r in the Coulomb cone and the De Saxce complementarity (see
 // Tribos_FCLIB_Accuracy.hpp).
 //
-// All errors throw std::runtime_error naming the file and the group/dataset.
+// All errors throw std::runtime_error naming the file and the dataset, e.g.
+//   FCLIB file X.hdf5: /fclib_local/vectors/q[17] is not finite (inf)
+//
+// A problem is validated when it is read, before anything uses it: every
+// value finite (matrix entries, q, f, w, b, s, mu), mu >= 0, spacedim 2 or 3,
+// and every size consistent with the stored vectors: the number of contacts
+// nc is the length of mu, W is (spacedim nc) x (spacedim nc), ndof is the
+// length of f, M is ndof x ndof, H is ndof x (spacedim nc). A declared size
+// (a matrix's m, n, nz, pointers) that disagrees with the stored data is
+// refused before it sizes any allocation, and so is a dataset whose declared
+// extent the file does not actually store. Zero contacts is a valid problem.
 #pragma once
 
 #include <optional>
@@ -74,18 +84,29 @@ enum class Storage { CompressedRows, Triplets };
 
 ProblemKind problemKind(const std::string& path);
 
+// Read and validate (see above and validate()).
 LocalProblem readLocal(const std::string& path);
 GlobalProblem readGlobal(const std::string& path);
 // Info of whichever problem the file holds.
 Info readInfo(const std::string& path);
-// std::nullopt when the file has no /solution group.
+// std::nullopt when the file has no /solution group. Vectors are sized by the
+// problem (u, r: spacedim x length of mu; v: length of f) and must be finite.
 std::optional<Solution> readSolution(const std::string& path);
+// The stored solution as reference data for a problem already read: a vector
+// of the wrong size or with a non-finite entry is left empty, an unreadable
+// /solution group gives std::nullopt, and each time the reason is appended to
+// 'notes'. Never throws for the content of the file: a stored solution is
+// never a reason to refuse the problem.
+std::optional<Solution> readSolutionLeniently(const std::string& path,
+                                              std::vector<std::string>& notes);
 // Empty when the file has no /guesses group.
 std::vector<Solution> readGuesses(const std::string& path);
 
-// Writers create path + ".tmp" and rename it onto path only once everything
-// is written, so a failure never leaves a truncated file in place of a good
-// one. Dimensions are checked before anything is written.
+// Writers create temporaryPath(path) (Tribos_FCLIB_Files.hpp) and rename it
+// onto path only once everything is written, so a failure never leaves a
+// truncated file in place of a good one. The problem is validated and the
+// solution and guesses checked (sizes, finite values) before anything is
+// written: what a writer accepts, the readers accept.
 void writeLocal(const std::string& path, const LocalProblem& problem, const Info& info,
                 const Solution* solution = nullptr,
                 const std::vector<Solution>& guesses = {},
@@ -95,9 +116,12 @@ void writeGlobal(const std::string& path, const GlobalProblem& problem, const In
                  const std::vector<Solution>& guesses = {},
                  Storage storage = Storage::Triplets);
 
-// Dimension checks used by readers and writers; 'where' prefixes the message.
-void checkDimensions(const LocalProblem& problem, const std::string& where);
-void checkDimensions(const GlobalProblem& problem, const std::string& where);
+// The checks of the readers on a problem in memory (built by hand, exported,
+// about to be solved or written): sizes, canonical CSR structure, finite
+// values, mu >= 0. Throws std::runtime_error "context: /fclib_local/W is ...",
+// naming the dataset the offending value belongs to.
+void validate(const LocalProblem& problem, const std::string& context);
+void validate(const GlobalProblem& problem, const std::string& context);
 
 }  // namespace FCLIB
 }  // namespace Tribos

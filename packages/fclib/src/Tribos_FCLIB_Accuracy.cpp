@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -28,7 +29,10 @@ double norm2(const std::vector<double>& x) {
   return std::sqrt(sum);
 }
 
+// A non-finite normalizer (inf or nan in q, r or u) gives nan, never the 0
+// that value / inf would: an error relative to an infinite scale says nothing.
 double safeDivide(double value, double normalizer) {
+  if (!std::isfinite(normalizer)) return std::numeric_limits<double>::quiet_NaN();
   return normalizer > DBL_MIN ? value / normalizer : value;
 }
 
@@ -57,7 +61,11 @@ NaturalMapError naturalMapError(const std::vector<double>& r, const std::vector<
   e.normR = norm2(r);
   e.normU = norm2(u);
   e.relativeToQ = safeDivide(e.absolute, e.normQ);
-  e.relativeToMax = safeDivide(e.absolute, std::max({e.normQ, e.normR, e.normU}));
+  // std::max would drop a nan norm; the sum keeps it (and an inf).
+  const double anyNonFinite = e.normQ + e.normR + e.normU;
+  e.relativeToMax = safeDivide(e.absolute, std::isfinite(anyNonFinite)
+                                               ? std::max({e.normQ, e.normR, e.normU})
+                                               : anyNonFinite);
   return e;
 }
 

@@ -41,7 +41,8 @@ struct NaturalMapError {
 
 // The measure for given r and u (3nc each) and the vector q used for scaling.
 // A normalizer below the smallest positive double is replaced by 1, so that a
-// problem with q = 0 reports the absolute error instead of inf/nan.
+// problem with q = 0 reports the absolute error instead of inf/nan; a
+// non-finite entry anywhere makes the relative errors nan (never 0).
 NaturalMapError naturalMapError(const std::vector<double>& r, const std::vector<double>& u,
                                 const std::vector<double>& mu, const std::vector<double>& q);
 

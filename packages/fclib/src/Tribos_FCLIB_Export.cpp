@@ -99,7 +99,7 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::Material& mat, c
   solution.v = v;
   out.H.multiplyTranspose(v, solution.u);
   for (size_t i = 0; i < solution.u.size(); ++i) solution.u[i] += out.w[i];
-  checkDimensions(out, "FCLIB export");
+  validate(out, "FCLIB export");
 }
 
 void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Fem::Material& mat,

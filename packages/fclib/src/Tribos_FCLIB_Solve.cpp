@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -20,6 +21,10 @@ namespace {
 
 double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+bool allFinite(const std::vector<double>& a) {
+  return std::all_of(a.begin(), a.end(), [](double v) { return std::isfinite(v); });
 }
 
 double normInf(const std::vector<double>& a) {
@@ -47,6 +52,7 @@ void fillDefaults(Teuchos::ParameterList& given, const Teuchos::ParameterList& d
 
 MassSolver::MassSolver(const SparseMatrix& M, const std::string& name) {
   if (M.m != M.n) throw std::runtime_error("MassSolver: M is not square");
+  if (M.m == 0) return;  // no degrees of freedom: nothing to factor, v is empty
   LocalCsr A;
   A.rows = M.m;
   A.cols = M.n;
@@ -55,13 +61,20 @@ MassSolver::MassSolver(const SparseMatrix& M, const std::string& name) {
   A.val = M.val;
   const auto t0 = std::chrono::steady_clock::now();
   solver_ = createLocalSolver(name);
-  solver_->factor(A);
+  try {
+    solver_->factor(A);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("FCLIB solve: the " + name + " factorization of M (" +
+                             std::to_string(M.m) + " x " + std::to_string(M.n) +
+                             ") failed; M must be nonsingular" +
+                             (name == "KLU2" ? "" : " (and SPD for " + name + ")") + ": " + e.what());
+  }
   factorSeconds_ = seconds(t0);
 }
 
 void MassSolver::solve(const std::vector<double>& b, std::vector<double>& x) const {
   x.assign(b.size(), 0.0);
-  solver_->solve(b.data(), x.data(), 1);
+  if (solver_) solver_->solve(b.data(), x.data(), 1);
   ++solves_;
 }
 
@@ -156,6 +169,8 @@ Teuchos::ParameterList defaultSolverParameters() {
 
 namespace {
 
+using ContactDualPtr = std::shared_ptr<Friction::ContactDual>;
+
 // Counts applications of the wrapped operator (the Hessian work n_A).
 class CountingOperator : public Operator {
  public:
@@ -180,6 +195,11 @@ class CountingOperator : public Operator {
 // closed and stuck, u is round-off and would not be a scale.
 void kktResiduals(const std::vector<double>& r, const std::vector<double>& u, const std::vector<double>& mu,
                   const std::vector<double>& q, SolveReport& rep) {
+  // std::max drops a nan, so a non-finite result would look exact here.
+  if (!allFinite(r) || !allFinite(u)) {
+    rep.kktNormal = rep.kktComplementarity = rep.kktFriction = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
   const double maxR = std::max(normInf(r), 1e-300), maxU = std::max({normInf(u), normInf(q), 1e-300});
   const double c = maxR / maxU;
   double pen = 0, comp = 0, fric = 0;
@@ -199,71 +219,104 @@ void kktResiduals(const std::vector<double>& r, const std::vector<double>& u, co
   rep.kktFriction = fric / maxR;
 }
 
+// The friction list with the defaults filled in, and the tolerance the user
+// asked of the chosen method (as Tribos_Run.cpp does for FETI runs).
+Teuchos::ParameterList solverList(const SolveOptions& options) {
+  Teuchos::ParameterList params(options.solverParams);
+  fillDefaults(params, defaultSolverParameters());
+  return params;
+}
+
+double requestedTolerance(const Teuchos::ParameterList& params, const std::string& algorithm) {
+  if (algorithm == "Algorithm2") return params.sublist("Algorithm 2").get<double>("Relative Tolerance");
+  const double smalbe = params.sublist("Algorithm 1").sublist("SMALBE").get<double>("Relative Tolerance");
+  return algorithm == "MSA+Algorithm1" ? std::max(smalbe, params.sublist("MSA").get<double>("Tolerance")) : smalbe;
+}
+
+// What 'converged' is checked against: the requested tolerance and the limit
+// Result Check Factor times it. Checked before any work.
+struct ResultLimit {
+  double tolerance, limit;
+};
+
+ResultLimit resultLimit(const Teuchos::ParameterList& params, const SolveOptions& options) {
+  const double factor = params.isParameter("Result Check Factor") ? params.get<double>("Result Check Factor")
+                                                                   : options.resultCheckFactor;
+  if (!(factor >= 1.0) || !std::isfinite(factor))
+    throw std::runtime_error("FCLIB solve: Result Check Factor = " + std::to_string(factor) + ", expected >= 1");
+  const double tolerance = requestedTolerance(params, options.algorithm);
+  return {tolerance, factor * tolerance};
+}
+
+using SolverPtr = RCP<Friction::FrictionSolver>;
+
+// Extreme eigenvalues of the symmetric part of W, formed densely.
+void spectrum(const DelassusOperator& op, int n, SolveReport& rep) {
+  std::vector<double> D = op.dense();
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < i; ++j) {
+      const double s = 0.5 * (D[static_cast<size_t>(i) * n + j] + D[static_cast<size_t>(j) * n + i]);
+      D[static_cast<size_t>(i) * n + j] = D[static_cast<size_t>(j) * n + i] = s;
+    }
+  std::vector<double> eig(n), work(1);
+  int info = 0;
+  Teuchos::LAPACK<int, double> lapack;
+  lapack.SYEV('N', 'U', n, D.data(), n, eig.data(), work.data(), -1, &info);
+  work.resize(static_cast<size_t>(work[0]));
+  lapack.SYEV('N', 'U', n, D.data(), n, eig.data(), work.data(), static_cast<int>(work.size()), &info);
+  if (info != 0) return;
+  rep.spectrumKnown = true;
+  rep.eigMin = eig.front();
+  rep.eigMax = eig.back();
+  rep.numericalRank =
+      static_cast<int>(std::count_if(eig.begin(), eig.end(), [&](double e) { return e > 1e-12 * rep.eigMax; }));
+}
+
+// W = 0 (no contacts, or contacts no degree of freedom sees): u = q whatever
+// r, so the problem has a solution exactly when r = 0 is one, i.e. when q
+// itself satisfies Coulomb's law. The friction solvers need a nonzero
+// Hessian; this case is settled without them.
+SolveReport solveWithZeroW(const std::vector<double>& q, const std::vector<double>& mu, const SolveOptions& options) {
+  SolveReport rep;
+  rep.algorithm = options.algorithm;
+  rep.r.assign(q.size(), 0.0);
+  rep.u = q;
+  rep.status.converged = true;
+  rep.status.reason = mu.empty() ? "no contacts: r and u are empty" : "W = 0: u = q whatever r, r = 0 checked";
+  rep.note = mu.empty() ? "the problem has no contacts (mu is empty): r and u are empty"
+                        : "W = 0: u = q whatever r; the problem has a solution (r = 0) exactly when q satisfies "
+                          "Coulomb's law, which err and kkt check";
+  rep.err = naturalMapError(rep.r, rep.u, mu, q);
+  kktResiduals(rep.r, rep.u, mu, q, rep);
+  return rep;
+}
+
+ContactDualPtr contactDual(const Operator& A, double scale, const std::vector<double>& q,
+                           const std::vector<double>& mu, const RCP<const Map>& map);
+
 // The common part: W (as op), q, mu -> r, u, status, err, spectrum.
 SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, const std::vector<double>& mu,
-                         const SolveOptions& options, const RCP<const Map>& map) {
+                         const SolveOptions& options, Friction::FrictionSolver& solver, const RCP<const Map>& map) {
   SolveReport rep;
   rep.algorithm = options.algorithm;
   const int nc = static_cast<int>(mu.size());
   const int n = 3 * nc;
   const auto t0 = std::chrono::steady_clock::now();
-  if (n > 0 && n <= options.denseSpectrumLimit) {
-    std::vector<double> D = op.dense();
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < i; ++j) {
-        const double s = 0.5 * (D[static_cast<size_t>(i) * n + j] + D[static_cast<size_t>(j) * n + i]);
-        D[static_cast<size_t>(i) * n + j] = D[static_cast<size_t>(j) * n + i] = s;
-      }
-    std::vector<double> eig(n), work(1);
-    int info = 0;
-    Teuchos::LAPACK<int, double> lapack;
-    lapack.SYEV('N', 'U', n, D.data(), n, eig.data(), work.data(), -1, &info);
-    work.resize(static_cast<size_t>(work[0]));
-    lapack.SYEV('N', 'U', n, D.data(), n, eig.data(), work.data(), static_cast<int>(work.size()), &info);
-    if (info == 0) {
-      rep.spectrumKnown = true;
-      rep.eigMin = eig.front();
-      rep.eigMax = eig.back();
-      rep.numericalRank = static_cast<int>(
-          std::count_if(eig.begin(), eig.end(), [&](double e) { return e > 1e-12 * rep.eigMax; }));
-    }
-  }
+  if (n <= options.denseSpectrumLimit) spectrum(op, n, rep);
   CountingOperator A(op);
   long powerSteps = 0;
-  rep.normW = n > 0 ? QP::estimateNorm(op, 50, powerSteps) : 0.0;
-  rep.scale = rep.normW > 0 ? 1.0 / rep.normW : 1.0;
+  rep.normW = QP::estimateNorm(op, 50, powerSteps);
+  rep.scale = 1.0 / rep.normW;
   op.setScale(rep.scale);
   if (options.verbose)
     std::cout << "FCLIB: " << nc << " contacts, ||W|| ~ " << rep.normW << ", eig(W) in [" << rep.eigMin << ", "
               << rep.eigMax << "], numerical rank " << rep.numericalRank << ", ||q|| " << std::sqrt(std::inner_product(q.begin(), q.end(), q.begin(), 0.0)) << "\n";
-
-  Friction::ContactDual cd;
-  cd.A = Teuchos::rcpFromRef(A);
-  auto b = rcp(new Vector(map));
-  {
-    auto bv = b->getDataNonConst();
-    for (int i = 0; i < n; ++i) bv[i] = -rep.scale * q[i];
-  }
-  cd.b = b;
-  for (int k = 0; k < nc; ++k) {
-    cd.normalRows.push_back(3 * k);
-    cd.tangentRows.push_back(3 * k + 1);
-    cd.tangentRows.push_back(3 * k + 2);
-  }
-  cd.normalLower.assign(nc, 0.0);
-  cd.normalOffset.assign(nc, 0.0);
-  cd.slipBound.assign(nc, 0.0);
-  cd.frictionCoefficient = mu;
-  cd.check();
-
-  Teuchos::ParameterList params(options.solverParams);
-  fillDefaults(params, defaultSolverParameters());
-  auto solver = Friction::FrictionSolverFactory().create(options.algorithm, params);
-  if (options.verbose) solver->setOutputStream(Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout)));
+  const auto cd = contactDual(A, rep.scale, q, mu, map);
+  if (options.verbose) solver.setOutputStream(Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout)));
   rep.timeSetup = seconds(t0);
   const auto t1 = std::chrono::steady_clock::now();
   Vector x(map);
-  rep.status = solver->solve(cd, x);
+  rep.status = solver.solve(*cd, x);
   rep.timeSolve = seconds(t1);
   rep.n_A = A.count();
   {
@@ -284,39 +337,121 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   return rep;
 }
 
+// The Tresca QP of the slip bound g: A = s W, b = -s q, normal row 3k,
+// tangential rows 3k+1, 3k+2, no equality constraint.
+ContactDualPtr contactDual(const Operator& A, double scale, const std::vector<double>& q,
+                           const std::vector<double>& mu, const RCP<const Map>& map) {
+  const int nc = static_cast<int>(mu.size());
+  auto cd = std::make_shared<Friction::ContactDual>();
+  cd->A = Teuchos::rcpFromRef(A);
+  auto b = rcp(new Vector(map));
+  {
+    auto bv = b->getDataNonConst();
+    for (int i = 0; i < 3 * nc; ++i) bv[i] = -scale * q[i];
+  }
+  cd->b = b;
+  for (int k = 0; k < nc; ++k) {
+    cd->normalRows.push_back(3 * k);
+    cd->tangentRows.push_back(3 * k + 1);
+    cd->tangentRows.push_back(3 * k + 2);
+  }
+  cd->normalLower.assign(nc, 0.0);
+  cd->normalOffset.assign(nc, 0.0);
+  cd->slipBound.assign(nc, 0.0);
+  cd->frictionCoefficient = mu;
+  cd->check();
+  return cd;
+}
+
 RCP<const Map> serialMap(int n, const RCP<const Comm>& comm) {
   if (comm->getSize() != 1)
     throw std::runtime_error("FCLIB solve: use a communicator of one rank (got " + std::to_string(comm->getSize()) + ")");
   return rcp(new Map(static_cast<Tpetra::global_size_t>(n), 0, comm));
 }
 
+const char* kContext = "FCLIB solve";
+
+// The method, its parameters and the result check, validated before any work.
+struct Setup {
+  SolverPtr solver;
+  ResultLimit limit;
+};
+
+Setup setup(const SolveOptions& options) {
+  const Teuchos::ParameterList params = solverList(options);
+  return {Friction::FrictionSolverFactory().create(options.algorithm, params), resultLimit(params, options)};
+}
+
+void finish(const ResultLimit& limit, SolveReport& rep) {
+  rep.tolerance = limit.tolerance;
+  rep.limit = limit.limit;
+  judgeResult(rep);
+}
+
 }  // namespace
 
+void judgeResult(SolveReport& rep) {
+  const bool finite = allFinite(rep.r) && allFinite(rep.u) && allFinite(rep.v);
+  const std::vector<std::pair<const char*, double>> figures = {
+      {"natural-map error (relative to max(||q||, ||r||, ||u||))", rep.err.relativeToMax},
+      {"non-penetration", rep.kktNormal},
+      {"complementarity", rep.kktComplementarity},
+      {"friction law", rep.kktFriction}};
+  std::ostringstream reason;
+  if (!rep.status.converged)
+    reason << (rep.status.reason.empty() ? "the solver did not converge" : rep.status.reason);
+  else if (!finite)
+    reason << "the result has non-finite entries";
+  else
+    for (const auto& [name, value] : figures)
+      if (!(value <= rep.limit)) {  // a nan fails too
+        reason << "the " << name << " of the result, " << value << ", exceeds " << rep.limit
+               << " (Result Check Factor times the requested tolerance " << rep.tolerance << ")";
+        break;
+      }
+  rep.converged = reason.str().empty();
+  rep.stopReason = rep.converged ? (rep.status.reason.empty() ? "converged" : rep.status.reason) : reason.str();
+}
+
 SolveReport solve(const LocalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm) {
-  checkDimensions(problem, "FCLIB solve");
+  validate(problem, kContext);
   if (problem.V || problem.R || problem.s)
     throw std::runtime_error("FCLIB solve: mixed local problems (V, R, s) are not supported");
   if (problem.spacedim != 3) throw std::runtime_error("FCLIB solve: only spacedim = 3 is supported");
+  const Setup s = setup(options);
   const auto map = serialMap(3 * problem.numberOfContacts(), serialComm);
-  DelassusOperator op(problem.W, map);
-  return solveReduced(op, problem.q, problem.mu, options, map);
+  SolveReport rep;
+  if (problem.W.maxAbs() == 0.0) {
+    rep = solveWithZeroW(problem.q, problem.mu, options);
+  } else {
+    DelassusOperator op(problem.W, map);
+    rep = solveReduced(op, problem.q, problem.mu, options, *s.solver, map);
+  }
+  finish(s.limit, rep);
+  return rep;
 }
 
 SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm) {
-  checkDimensions(problem, "FCLIB solve");
+  validate(problem, kContext);
   if (problem.G) throw std::runtime_error("FCLIB solve: global problems with equality constraints G are not supported");
   if (problem.spacedim != 3) throw std::runtime_error("FCLIB solve: only spacedim = 3 is supported");
+  const Setup s = setup(options);
+  const auto map = serialMap(3 * problem.numberOfContacts(), serialComm);
   const auto t0 = std::chrono::steady_clock::now();
   auto M = std::make_shared<const MassSolver>(problem.M, options.massSolver);
-  const auto map = serialMap(3 * problem.numberOfContacts(), serialComm);
   // q = H' M^-1 f + w: the contact velocities at r = 0.
   std::vector<double> vFree, q;
   M->solve(problem.f, vFree);
   problem.H.multiplyTranspose(vFree, q);
   for (size_t i = 0; i < q.size(); ++i) q[i] += problem.w[i];
   const double reduction = seconds(t0);
-  DelassusOperator op(problem.H, M, map);
-  SolveReport rep = solveReduced(op, q, problem.mu, options, map);
+  SolveReport rep;
+  if (problem.H.maxAbs() == 0.0) {  // W = H'M^-1 H = 0
+    rep = solveWithZeroW(q, problem.mu, options);
+  } else {
+    DelassusOperator op(problem.H, M, map);
+    rep = solveReduced(op, q, problem.mu, options, *s.solver, map);
+  }
   rep.timeSetup += reduction;
   // v = M^-1 (H r + f), and u = H' v + w from it (the same as W r + q up to round-off).
   std::vector<double> rhs;
@@ -328,6 +463,7 @@ SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, con
   rep.err = naturalMapError(rep.r, rep.u, problem.mu, q);
   kktResiduals(rep.r, rep.u, problem.mu, q, rep);
   rep.massSolves = M->solves();
+  finish(s.limit, rep);
   return rep;
 }
 

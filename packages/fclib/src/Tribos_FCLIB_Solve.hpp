@@ -90,8 +90,8 @@ class DelassusOperator : public Operator {
 };
 
 struct SolveOptions {
-  // "MSA+Algorithm1" | "Algorithm2" (or "Tresca" with the slip bound
-  // "Slip Bound" of the ParameterList below, rarely useful here).
+  // "MSA+Algorithm1" | "Algorithm2" (or "Tresca": one Tresca solve with the
+  // slip bound 0, i.e. the frictionless problem; rarely useful here).
   std::string algorithm = "Algorithm2";
   // The "Solver" list of the friction factory (sublists "Algorithm 1", "MSA",
   // "Algorithm 2"); entries not given take the values of defaultSolverParameters().
@@ -100,6 +100,10 @@ struct SolveOptions {
   // W is formed densely for its spectrum when 3nc does not exceed this.
   int denseSpectrumLimit = 3000;
   bool verbose = false;
+  // SolveReport::converged holds the result to this factor times the
+  // requested tolerance; "Result Check Factor" at the root of solverParams
+  // (Solver/Result Check Factor of a Tribos input) wins.
+  double resultCheckFactor = 100.0;
 };
 
 // Tolerances tight enough for err <= 1e-8 on the samples: the friction
@@ -125,8 +129,29 @@ struct SolveReport {
   // max(||q||, ||W r||): the algorithms' own KKT view, next to err.
   double kktNormal = 0, kktComplementarity = 0, kktFriction = 0;
   std::string note;              // e.g. why a guarantee does not apply
+  // 'converged' is a promise about the returned result, not the solver's own
+  // stopping test (that is status.converged): the solver stopped on its test,
+  // every entry of r, u and v is finite, and the natural-map error relative
+  // to max(||q||, ||r||, ||u||) and the three KKT residuals above are at most
+  // limit = Result Check Factor x tolerance, the tolerance asked of the method
+  // (Algorithm 2's Relative Tolerance; Algorithm 1's SMALBE Relative
+  // Tolerance, for MSA the larger of it and the MSA Tolerance). It refers to
+  // the FCLIB (Coulomb) problem whatever the method: "Tresca" solves with the
+  // slip bound 0 and is converged only where that solves the Coulomb problem.
+  bool converged = false;
+  std::string stopReason;        // why not converged, else the solver's reason
+  double tolerance = 0, limit = 0;
 };
 
+// Sets rep.converged and rep.stopReason from rep.status, rep.r, rep.u, rep.v,
+// rep.err and the KKT residuals against rep.limit (see SolveReport).
+void judgeResult(SolveReport& rep);
+
+// The problem is validated (validate() of Tribos_FCLIB.hpp) and the method
+// and its parameters checked before any work. Zero contacts is a valid
+// problem: r and u are empty (global: v = M^-1 f). More generally W = 0
+// (no degree of freedom sees a contact) needs no friction solver: u = q
+// whatever r, and r = 0 is a solution exactly when q satisfies Coulomb's law.
 SolveReport solve(const LocalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm);
 SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm);
 

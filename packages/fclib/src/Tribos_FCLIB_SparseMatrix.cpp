@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -15,9 +16,12 @@ namespace {
   throw std::runtime_error(what + ": " + why);
 }
 
+// m + 1 row pointers must fit in an int, as FCLIB stores them in int32.
 void checkShape(int m, int n, const std::string& what) {
   if (m < 0 || n < 0)
     fail(what, "negative dimension " + std::to_string(m) + " x " + std::to_string(n));
+  if (m == std::numeric_limits<int>::max() || n == std::numeric_limits<int>::max())
+    fail(what, "dimension " + std::to_string(m) + " x " + std::to_string(n) + " is too large");
 }
 
 // Validates a pointer array of 'count'+1 entries that indexes 'nnzAvailable'
@@ -25,22 +29,27 @@ void checkShape(int m, int n, const std::string& what) {
 void checkPointers(const std::vector<int>& ptr, int count, std::size_t nnzAvailable,
                    const std::string& what) {
   if (ptr.size() != static_cast<std::size_t>(count) + 1)
-    fail(what, "pointer array p has " + std::to_string(ptr.size()) + " entries, expected " +
-                   std::to_string(count + 1));
-  if (ptr[0] != 0) fail(what, "pointer array p does not start at 0");
+    fail(what, "p has " + std::to_string(ptr.size()) + " entries, expected " +
+                   std::to_string(static_cast<long long>(count) + 1) + " (one pointer per " +
+                   "row or column, plus one)");
+  if (ptr[0] != 0) fail(what, "p[0] = " + std::to_string(ptr[0]) + ", expected 0");
   for (int k = 0; k < count; ++k)
-    if (ptr[k + 1] < ptr[k]) fail(what, "pointer array p decreases at " + std::to_string(k));
+    if (ptr[k + 1] < ptr[k])
+      fail(what, "p[" + std::to_string(k + 1) + "] = " + std::to_string(ptr[k + 1]) +
+                     " is less than p[" + std::to_string(k) + "] = " + std::to_string(ptr[k]) +
+                     " (pointers must not decrease)");
   if (static_cast<std::size_t>(ptr[count]) > nnzAvailable)
-    fail(what, "pointer array p ends at " + std::to_string(ptr[count]) + " but only " +
-                   std::to_string(nnzAvailable) + " entries are stored");
+    fail(what, "p[" + std::to_string(count) + "] = " + std::to_string(ptr[count]) +
+                   " entries, but only " + std::to_string(nnzAvailable) +
+                   " are stored in i and x");
 }
 
 void checkIndices(const std::vector<int>& idx, std::size_t count, int bound,
                   const std::string& arrayName, const std::string& what) {
   for (std::size_t k = 0; k < count; ++k)
     if (idx[k] < 0 || idx[k] >= bound)
-      fail(what, "index " + arrayName + "[" + std::to_string(k) + "] = " +
-                     std::to_string(idx[k]) + " is outside [0, " + std::to_string(bound) + ")");
+      fail(what, arrayName + "[" + std::to_string(k) + "] = " + std::to_string(idx[k]) +
+                     " is outside [0, " + std::to_string(bound) + ")");
 }
 
 }  // namespace
@@ -76,6 +85,8 @@ SparseMatrix SparseMatrix::fromTriplets(int m, int n, const std::vector<int>& ro
   if (column.size() != count || value.size() != count)
     fail(what, "triplet arrays have different lengths (" + std::to_string(row.size()) + ", " +
                    std::to_string(column.size()) + ", " + std::to_string(value.size()) + ")");
+  if (count > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    fail(what, std::to_string(count) + " entries do not fit in int32 pointers");
   checkIndices(row, count, m, "i", what);
   checkIndices(column, count, n, "p", what);
 
@@ -90,7 +101,7 @@ SparseMatrix SparseMatrix::fromTriplets(int m, int n, const std::vector<int>& ro
   SparseMatrix A;
   A.m = m;
   A.n = n;
-  A.rowptr.assign(m + 1, 0);
+  A.rowptr.assign(static_cast<std::size_t>(m) + 1, 0);
   A.col.reserve(count);
   A.val.reserve(count);
   int lastRow = -1, lastCol = -1;

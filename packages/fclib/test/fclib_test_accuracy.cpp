@@ -105,7 +105,7 @@ void checkLocalExactSolution() {
   P.W.multiply(e.r, Wr);
   P.q.resize(Wr.size());
   for (std::size_t k = 0; k < Wr.size(); ++k) P.q[k] = e.u[k] - Wr[k];
-  checkDimensions(P, "constructed local problem");
+  validate(P, "constructed local problem");
 
   const NaturalMapError exact = naturalMapError(P, e.r);
   std::cout << std::scientific << std::setprecision(3) << "local exact: err/||q|| = "
@@ -153,7 +153,7 @@ void checkGlobalExactSolution() {
   for (int i = 0; i < ndof; ++i) P.f[i] = Mv[i] - Hr[i];
   P.w.resize(m);
   for (int j = 0; j < m; ++j) P.w[j] = e.u[j] - Htv[j];
-  checkDimensions(P, "constructed global problem");
+  validate(P, "constructed global problem");
 
   const fclib_test::DenseCholesky chol(P.M);
   const SolveM solve = [&](const std::vector<double>& b, std::vector<double>& x) {

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "Tribos_FCLIB.hpp"
+#include "Tribos_FCLIB_Files.hpp"
 #include "fclib_test_util.hpp"
 
 using namespace Tribos::FCLIB;
@@ -68,8 +69,8 @@ void roundTrip(const Sample& s, Storage storage, Reader read, Writer write) {
   FCLIB_CHECK(guesses.size() == guesses2.size(), s.name << " number of guesses");
   for (std::size_t k = 0; k < std::min(guesses.size(), guesses2.size()); ++k)
     FCLIB_CHECK(sameSolution(guesses[k], guesses2[k]), s.name << " guess " << k + 1);
-  std::ifstream tmp(out + ".tmp");
-  FCLIB_CHECK(!tmp.good(), "temporary file left behind: " << out << ".tmp");
+  std::ifstream tmp(temporaryPath(out));
+  FCLIB_CHECK(!tmp.good(), "temporary file left behind: " << temporaryPath(out));
   std::remove(out.c_str());
   std::cout << s.name << ": round trip (" << storageName(storage) << ") done" << std::endl;
 }
@@ -103,7 +104,7 @@ void failedWriteKeepsOldFile() {
   FCLIB_CHECK(readInfo(out).title == "good", "old file damaged by a rejected write");
 
   // Block the temporary file with a directory so that HDF5 cannot create it.
-  const std::string tmp = out + ".tmp";
+  const std::string tmp = temporaryPath(out);
   ::mkdir(tmp.c_str(), 0700);
   try {
     writeLocal(out, P, Info{"replaced", "", ""});

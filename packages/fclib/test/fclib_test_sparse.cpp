@@ -136,7 +136,7 @@ void checkCompressedColumnFile() {
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
     std::cout << "expected error: " << what << std::endl;
-    FCLIB_CHECK(what == "FCLIB file " + path + ": group fclib_global/vectors has no dataset w",
+    FCLIB_CHECK(what == "FCLIB file " + path + ": group /fclib_global/vectors has no dataset w",
                 what);
   }
   std::remove(path.c_str());
