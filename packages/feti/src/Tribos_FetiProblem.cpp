@@ -19,6 +19,7 @@
 
 #include "Tribos_DenseBlas.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_Progress.hpp"
 
 namespace Tribos {
 namespace Feti {
@@ -377,7 +378,9 @@ void FetiProblem::factorSubdomains() {
   const auto t0 = std::chrono::steady_clock::now();
   if (denseRowLimit_ >= 0) boundary_ = boundaryDofs();
   KplusBB_.assign(systems_.size(), {});
+  Progress::stage("factorization of " + std::to_string(systems_.size()) + " subdomain matrices on this rank");
   for (size_t k = 0; k < systems_.size(); ++k) {
+    Progress::iteration("subdomain " + std::to_string(k + 1) + " of " + std::to_string(systems_.size()));
     const auto& sys = systems_[k];
     LocalCsr Kreg = sys.K;
     const int n = sys.numDofs();
@@ -646,27 +649,11 @@ std::vector<double> FetiProblem::nodalDisplacement(const Vector& u) const {
 }
 
 std::vector<double> FetiProblem::assembledProduct(const std::vector<double>& uNodal) const {
-  std::vector<double> Ku(uNodal.size(), 0.0), us, Kus;
-  for (const auto& sys : systems_) {
-    us.assign(sys.numDofs(), 0.0);
-    Kus.assign(sys.numDofs(), 0.0);
-    for (size_t a = 0; a < sys.nodes.size(); ++a)
-      for (int c = 0; c < 3; ++c) us[3 * a + c] = uNodal[3 * static_cast<size_t>(sys.nodes[a]) + c];
-    sys.K.multiply(us.data(), Kus.data());
-    for (size_t a = 0; a < sys.nodes.size(); ++a)
-      for (int c = 0; c < 3; ++c) Ku[3 * static_cast<size_t>(sys.nodes[a]) + c] += Kus[3 * a + c];
-  }
-  MPI_Allreduce(MPI_IN_PLACE, Ku.data(), static_cast<int>(Ku.size()), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
-  return Ku;
+  return Fem::assembledProduct(systems_, uNodal, *comm_);
 }
 
 std::vector<double> FetiProblem::assembledLoad() const {
-  std::vector<double> f(3 * static_cast<size_t>(disc_.mesh.numNodes()), 0.0);
-  for (const auto& sys : systems_)
-    for (size_t a = 0; a < sys.nodes.size(); ++a)
-      for (int c = 0; c < 3; ++c) f[3 * static_cast<size_t>(sys.nodes[a]) + c] += sys.f[3 * a + c];
-  MPI_Allreduce(MPI_IN_PLACE, f.data(), static_cast<int>(f.size()), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
-  return f;
+  return Fem::assembledLoad(systems_, disc_.mesh.numNodes(), *comm_);
 }
 
 }  // namespace Feti

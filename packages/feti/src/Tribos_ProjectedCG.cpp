@@ -1,5 +1,7 @@
 #include "Tribos_ProjectedCG.hpp"
 
+#include "Tribos_Progress.hpp"
+
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Vector.hpp>
@@ -131,6 +133,8 @@ PCGStatus ProjectedCG::solve(const FetiDual& dual, Vector& lambda) const {
     wy = wyNew;
     ++st.iterations;
     st.relativeResidual = w.norm2() / norm0;
+    Progress::iteration("projected CG " + std::to_string(st.iterations) + ": relative residual " +
+                        std::to_string(st.relativeResidual));
     if (!out_.is_null()) *out_ << "PCG " << st.iterations << "  ||Pg||/||Ph|| = " << st.relativeResidual << "\n";
   }
   st.converged = st.relativeResidual <= tol_;

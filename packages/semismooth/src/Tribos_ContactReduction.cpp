@@ -219,7 +219,7 @@ RotatedSystem::RotatedSystem(const ContactProblem& p) : numNodes(p.numNodes()), 
                  "semismooth*: ContactProblem::coords must hold the node coordinates (" << p.coords.size() << " for "
                                                                                          << numNodes << " nodes)");
   // Before any factorization: K on the unprescribed dofs must be definite.
-  requireRigidMotionsHeld(p.coords, p.dirichlet);
+  Fem::requireRigidMotionsHeld(p.coords, p.dirichlet, "semismooth*", kSemicoerciveAdvice);
 
   // Prescribed values by dof; at contact nodes they move into the frame below.
   uPrescribed.assign(n, 0.0);

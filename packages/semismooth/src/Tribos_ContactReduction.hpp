@@ -20,6 +20,11 @@
 namespace Tribos {
 namespace Semismooth {
 
+// Why a body that Dirichlet conditions do not hold is refused here.
+inline const char* const kSemicoerciveAdvice =
+    "the semismooth* method needs every rigid motion held by Dirichlet conditions (the contact alone does not "
+    "hold the body); use Solver/Type = FETI";
+
 // Euclidean norm of a replicated vector (contact values, free dofs).
 double norm2(const std::vector<double>& v);
 

@@ -1,5 +1,7 @@
 #include "Tribos_SemismoothStarNewton.hpp"
 
+#include "Tribos_Progress.hpp"
+
 #include <Teuchos_Array.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Teuchos_Time.hpp>
@@ -333,6 +335,7 @@ void SemismoothStarNewton::solveReduced(SemismoothResult& res, Approximation& ap
     for (int j = 0; j < nc; ++j) r[j] = Sxh[j] - l[j] + ap.y[j];
     const double rel = norm2(r) / scale;
     record(res, ap, rel, k, log);
+    Progress::iteration("Newton " + std::to_string(k) + ": relative residual " + std::to_string(rel));
     if (rel <= tol) {
       res.converged = true;
       break;

@@ -37,7 +37,7 @@ Fem::DirichletCondition condition(const std::string& face, const std::string& co
 }
 
 std::set<std::string> freeMotions(const Mesh::Mesh& mesh, const std::vector<Fem::DirichletCondition>& bcs) {
-  const auto names = Semismooth::freeRigidMotions(mesh.coords, Fem::constrainedDofs(mesh, bcs));
+  const auto names = Fem::freeRigidMotions(mesh.coords, Fem::constrainedDofs(mesh, bcs));
   return std::set<std::string>(names.begin(), names.end());
 }
 

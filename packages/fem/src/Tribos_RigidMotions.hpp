@@ -1,9 +1,10 @@
 // Tribos_RigidMotions.hpp: which rigid motions of a body its Dirichlet
-// conditions leave free. The semismooth* method eliminates the Dirichlet dofs
-// and factors (or iterates on) K restricted to the remaining ones; that
-// matrix is singular exactly when a rigid motion (a combination of the 3
-// translations and 3 rotations) vanishes at every Dirichlet dof, i.e. when the
-// body is held only by the contact (a semicoercive problem).
+// conditions leave free. Solvers that eliminate the Dirichlet dofs and factor
+// (or iterate on) K restricted to the remaining ones (the monolithic solve,
+// the semismooth* method) need that matrix regular, which fails exactly when
+// a rigid motion (a combination of the 3 translations and 3 rotations)
+// vanishes at every Dirichlet dof: a floating body, or one held only by its
+// contact (a semicoercive problem).
 #pragma once
 
 #include <array>
@@ -12,7 +13,7 @@
 #include <vector>
 
 namespace Tribos {
-namespace Semismooth {
+namespace Fem {
 
 // Names of the free rigid motions: "translation x", "rotation about z", or
 // for a free motion that is not along a coordinate axis
@@ -23,9 +24,11 @@ namespace Semismooth {
 std::vector<std::string> freeRigidMotions(const std::vector<std::array<double, 3>>& coords,
                                           const std::map<long long, double>& dirichlet);
 
-// Throws Tribos::Error naming the free rigid motions, if any.
+// Throws Tribos::CollectiveError naming the free rigid motions, if any:
+// "<method>: the Dirichlet conditions leave the rigid motion(s) ... free; <advice>".
 void requireRigidMotionsHeld(const std::vector<std::array<double, 3>>& coords,
-                             const std::map<long long, double>& dirichlet);
+                             const std::map<long long, double>& dirichlet, const std::string& method,
+                             const std::string& advice);
 
-}  // namespace Semismooth
+}  // namespace Fem
 }  // namespace Tribos

@@ -7,7 +7,7 @@
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
-namespace Semismooth {
+namespace Fem {
 
 namespace {
 
@@ -159,15 +159,15 @@ std::vector<std::string> freeRigidMotions(const std::vector<std::array<double, 3
 }
 
 void requireRigidMotionsHeld(const std::vector<std::array<double, 3>>& coords,
-                             const std::map<long long, double>& dirichlet) {
+                             const std::map<long long, double>& dirichlet, const std::string& method,
+                             const std::string& advice) {
   const std::vector<std::string> free = freeRigidMotions(coords, dirichlet);
   if (free.empty()) return;
   std::string list;
   for (size_t k = 0; k < free.size(); ++k) list += (k ? ", " : "") + free[k];
-  throw CollectiveError("semismooth*: the Dirichlet conditions leave the rigid motion" + std::string(free.size() > 1 ? "s " : " ") +
-              list + " free; the semismooth* method needs every rigid motion held by Dirichlet conditions (the "
-              "contact alone does not hold the body); use Solver/Type = FETI");
+  throw CollectiveError(method + ": the Dirichlet conditions leave the rigid motion" + (free.size() > 1 ? "s " : " ") +
+                        list + " free; " + advice);
 }
 
-}  // namespace Semismooth
+}  // namespace Fem
 }  // namespace Tribos

@@ -1,0 +1,122 @@
+// Tribos_Progress.hpp: what a long run is doing, for the person waiting at
+// the terminal. Stages ("assembly", "factorization 3 of 8 subdomains") and
+// solver iterations are reported here by the code that does the work; a
+// driver decides whether and where they are printed (the tribos driver: rank
+// 0's stderr unless --quiet) by holding a Progress::Session.
+//
+// Short runs stay silent: nothing is printed until the run has lasted
+// kDelay seconds. From then on the current stage is printed (by a ticker
+// thread if the stage itself says nothing, so that one long factorization
+// still shows), every later stage as it starts, and iteration lines at most
+// one per kInterval seconds; each line is flushed. The current stage is kept
+// even when nothing is printed, so that an out-of-memory failure can say
+// where it happened.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <mutex>
+#include <ostream>
+#include <string>
+#include <thread>
+
+namespace Tribos {
+
+class Progress {
+ public:
+  static constexpr double kDelay = 2.0, kInterval = 1.0;
+
+  // Prints to `out` while alive (one session at a time).
+  class Session {
+   public:
+    explicit Session(std::ostream* out) {
+      State& s = state();
+      std::lock_guard<std::mutex> lock(s.mutex);
+      s.out = out;
+      s.start = Clock::now();
+      s.stop = false;
+      if (out) ticker_ = std::thread(tick);
+    }
+    ~Session() {
+      State& s = state();
+      {
+        std::lock_guard<std::mutex> lock(s.mutex);
+        s.stop = true;
+        s.out = nullptr;
+      }
+      s.wake.notify_all();
+      if (ticker_.joinable()) ticker_.join();
+    }
+    Session(const Session&) = delete;
+    Session& operator=(const Session&) = delete;
+
+   private:
+    std::thread ticker_;
+  };
+
+  // A new stage of the run.
+  static void stage(const std::string& what) {
+    State& s = state();
+    std::lock_guard<std::mutex> lock(s.mutex);
+    s.stage = what;
+    s.printedStage = false;
+    flushStage(s);
+  }
+
+  // One iteration of the current stage, e.g. "outer 3: residual 1.2e-05, n_A 140".
+  static void iteration(const std::string& what) {
+    State& s = state();
+    std::lock_guard<std::mutex> lock(s.mutex);
+    if (!s.out) return;
+    const double t = elapsed(s);
+    if (t < kDelay || t - s.lastIteration < kInterval) return;
+    flushStage(s);
+    s.lastIteration = t;
+    print(s, "  " + what);
+  }
+
+  static std::string currentStage() {
+    State& s = state();
+    std::lock_guard<std::mutex> lock(s.mutex);
+    return s.stage;
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  struct State {
+    std::mutex mutex;
+    std::condition_variable wake;
+    std::ostream* out = nullptr;
+    Clock::time_point start = Clock::now();
+    std::string stage = "start-up";
+    bool printedStage = false, stop = false;
+    double lastIteration = -1e300;
+  };
+  static State& state() {
+    static State s;
+    return s;
+  }
+  static double elapsed(const State& s) { return std::chrono::duration<double>(Clock::now() - s.start).count(); }
+  // Callers hold the mutex.
+  static void flushStage(State& s) {
+    if (!s.out || s.printedStage || elapsed(s) < kDelay) return;
+    s.printedStage = true;
+    print(s, s.stage);
+  }
+  static void print(const State& s, const std::string& line) {
+    char stamp[32];
+    std::snprintf(stamp, sizeof stamp, "[%7.1f s] ", elapsed(s));
+    *s.out << stamp << line << std::endl;
+  }
+  static void tick() {
+    State& s = state();
+    std::unique_lock<std::mutex> lock(s.mutex);
+    while (!s.stop) {
+      flushStage(s);
+      s.wake.wait_for(lock, std::chrono::milliseconds(250));
+    }
+  }
+};
+
+}  // namespace Tribos
