@@ -44,15 +44,19 @@ enum ExitStatus { kConverged = 0, kError = 1, kNotConverged = 2 };
 
 struct Args {
   std::string input, xml, summary, algorithm, massSolver = "KLU2", writeSolution;
-  bool verbose = false, help = false;
+  bool verbose = false;
 };
 
 Args parse(int argc, char** argv) {
   Args a;
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
+    // A value that looks like an option is a forgotten value ("--summary
+    // --verbose" would write a file named --verbose); write ./-x for such a name.
     auto next = [&](const char* flag) {
-      TRIBOS_REQUIRE(i + 1 < argc, flag << " needs a value\n" << kUsage);
+      TRIBOS_REQUIRE(i + 1 < argc && argv[i + 1][0] != '-',
+                     flag << " needs a value" << (i + 1 < argc ? std::string(", got the option ") + argv[i + 1] : "")
+                          << "\n" << kUsage);
       return std::string(argv[++i]);
     };
     if (s == "--xml") a.xml = next("--xml");
@@ -61,14 +65,13 @@ Args parse(int argc, char** argv) {
     else if (s == "--mass-solver") a.massSolver = next("--mass-solver");
     else if (s == "--write-solution") a.writeSolution = next("--write-solution");
     else if (s == "--verbose") a.verbose = true;
-    else if (s == "--help" || s == "-h") a.help = true;
     else if (!s.empty() && s[0] == '-') throw Error("unknown option " + s + "\n" + kUsage);
     else {
       TRIBOS_REQUIRE(a.input.empty(), "more than one input file given\n" << kUsage);
       a.input = s;
     }
   }
-  TRIBOS_REQUIRE(a.help || !a.input.empty(), "no input file given\n" << kUsage);
+  TRIBOS_REQUIRE(!a.input.empty(), "no input file given\n" << kUsage);
   return a;
 }
 
@@ -253,9 +256,21 @@ Outcome run(const Args& args, const RCP<const Comm>& self) {
   return out;
 }
 
+// Kokkos (under Tpetra::ScopeGuard) answers --help with its own text, so ours
+// is printed before it starts.
+bool helpRequested(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") return true;
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (helpRequested(argc, argv)) {
+    std::cout << kUsage;
+    return kConverged;
+  }
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   const int rank = comm->getRank();
@@ -264,16 +279,12 @@ int main(int argc, char** argv) {
   if (rank == 0) {
     try {
       const Args args = parse(argc, argv);
-      if (args.help) {
-        std::cout << kUsage;
-      } else {
-        checkOutputs(args);
-        const Outcome outcome = run(args, self);
-        const std::string json = outcome.summary.toJson() + "\n";
-        if (!args.summary.empty()) FCLIB::writeTextAtomically(args.summary, json);
-        std::cout << json;
-        status = outcome.converged ? kConverged : kNotConverged;
-      }
+      checkOutputs(args);
+      const Outcome outcome = run(args, self);
+      const std::string json = outcome.summary.toJson() + "\n";
+      if (!args.summary.empty()) FCLIB::writeTextAtomically(args.summary, json);
+      std::cout << json;
+      status = outcome.converged ? kConverged : kNotConverged;
     } catch (const std::exception& e) {
       std::cerr << "tribos_fclib: error: " << e.what() << std::endl;
       status = kError;

@@ -631,12 +631,13 @@ Dimension contactDimension(std::size_t nc, int spacedim, const Location& vectors
 
 // The optional parts of a mixed problem must come together.
 bool readAllOrNone(const std::vector<std::pair<bool, std::string>>& parts, const Location& where) {
-  std::string present, missing;
-  for (const auto& [has, name] : parts) (has ? present : missing) += " " + name;
+  std::string present, missing, all;
+  auto add = [](std::string& list, const std::string& name) { list += (list.empty() ? "" : ", ") + name; };
+  for (const auto& [has, name] : parts) add(has ? present : missing, name), add(all, name);
   if (present.empty()) return false;
   if (!missing.empty())
-    where.fail(where.groupLabel() + " has" + present + " but not" + missing +
-               " (they come together)");
+    where.fail(where.groupLabel() + " has " + present + " but not " + missing + " (" + all +
+               " come together)");
   return true;
 }
 

@@ -36,7 +36,9 @@ std::string resolvedName(const std::string& path) {
 }  // namespace
 
 std::string temporaryPath(const std::string& path) {
-  return path + "." + std::to_string(static_cast<long long>(::getpid())) + ".tmp";
+  const std::string dir = directoryOf(path);
+  return (dir == "/" ? "" : dir) + "/." + baseNameOf(path) + "." +
+         std::to_string(static_cast<long long>(::getpid())) + ".tmp";
 }
 
 void checkOutputPath(const std::string& path, const std::string& what) {

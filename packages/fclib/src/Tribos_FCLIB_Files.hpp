@@ -7,8 +7,9 @@
 namespace Tribos {
 namespace FCLIB {
 
-// path + "." + pid + ".tmp": unique per process, so two runs writing the same
-// target never share, truncate or remove each other's temporary.
+// dir/.name.<pid>.tmp for dir/name: hidden, in the target's directory (so the
+// rename is atomic), unique per process, so two runs writing the same target
+// never share, truncate or remove each other's temporary.
 std::string temporaryPath(const std::string& path);
 
 // Throws std::runtime_error (the message starts with 'what', e.g. "--summary")

@@ -1,0 +1,279 @@
+// Validation of FCLIB problems in memory and of what a solve may promise:
+// - validate() refuses each corruption of a valid local and global problem
+//   (one per case, data-driven) with a message naming the dataset, and so do
+//   solve() (before any work) and the writers (leaving no file behind);
+// - zero contacts and W = 0 are solved exactly, without a friction solver;
+// - 'converged' requires finite values and the result check (judgeResult);
+// - a stored solution of the wrong size is refused by readSolution and
+//   ignored with a note by readSolutionLeniently;
+// - output path checks and atomic text writes.
+// Corrupted files read through the driver: fclib_test_driver.py.
+#include <hdf5.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <Teuchos_DefaultSerialComm.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <limits>
+
+#include "Tribos_FCLIB.hpp"
+#include "Tribos_FCLIB_Files.hpp"
+#include "Tribos_FCLIB_Solve.hpp"
+#include "fclib_test_util.hpp"
+
+using namespace Tribos;
+using namespace Tribos::FCLIB;
+
+namespace {
+
+const double kInf = std::numeric_limits<double>::infinity();
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+RCP<const Comm> serialComm() { return Teuchos::rcp(new Teuchos::SerialComm<int>()); }
+
+bool exists(const std::string& path) {
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+// Runs f, which must throw std::runtime_error with 'fragment' in its message.
+void expectError(const std::string& label, const std::function<void()>& f, const std::string& fragment) {
+  try {
+    f();
+    FCLIB_CHECK(false, label << ": no error, expected one with \"" << fragment << "\"");
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    FCLIB_CHECK(what.find(fragment) != std::string::npos,
+                label << ": message \"" << what << "\" lacks \"" << fragment << "\"");
+  }
+}
+
+template <typename Problem>
+struct Corruption {
+  std::string label;
+  std::function<void(Problem&)> apply;
+  std::string fragment;  // expected in the message
+};
+
+std::vector<Corruption<LocalProblem>> localCorruptions() {
+  return {
+      {"negative mu", [](LocalProblem& P) { P.mu[3] = -0.3; }, "/fclib_local/vectors/mu[3] = -0.3 is negative"},
+      {"nan mu", [](LocalProblem& P) { P.mu[0] = kNaN; }, "/fclib_local/vectors/mu[0] is not finite (nan)"},
+      {"inf q", [](LocalProblem& P) { P.q[17] = kInf; }, "/fclib_local/vectors/q[17] is not finite (inf)"},
+      {"nan q", [](LocalProblem& P) { P.q[5] = kNaN; }, "/fclib_local/vectors/q[5] is not finite (nan)"},
+      {"nan in W", [](LocalProblem& P) { P.W.val[7] = kNaN; }, "/fclib_local/W has a non-finite entry (nan)"},
+      {"short q", [](LocalProblem& P) { P.q.pop_back(); }, "/fclib_local/vectors/q has 143 entries, expected 144"},
+      {"extra contact", [](LocalProblem& P) { P.mu.push_back(0.5); },
+       "/fclib_local/W is 144 x 144, expected 147 x 147 = 3 x 49 contacts"},
+      {"spacedim", [](LocalProblem& P) { P.spacedim = 4; }, "/fclib_local/spacedim = 4, expected 2 or 3"},
+      {"column out of range", [](LocalProblem& P) { P.W.col[2] = 144; },
+       "/fclib_local/W is not a valid compressed-row matrix: column index 144 outside [0, 144)"},
+      {"decreasing pointers", [](LocalProblem& P) { std::swap(P.W.rowptr[1], P.W.rowptr[2]); },
+       "/fclib_local/W is not a valid compressed-row matrix: row pointers decrease"},
+      {"V without R and s", [](LocalProblem& P) { P.V = P.W; }, "/fclib_local/{V, R, vectors/s}: a mixed problem needs all three"},
+  };
+}
+
+std::vector<Corruption<GlobalProblem>> globalCorruptions() {
+  return {
+      {"negative mu", [](GlobalProblem& P) { P.mu[8] = -1.0; }, "/fclib_global/vectors/mu[8] = -1 is negative"},
+      {"nan f", [](GlobalProblem& P) { P.f[4] = kNaN; }, "/fclib_global/vectors/f[4] is not finite (nan)"},
+      {"inf w", [](GlobalProblem& P) { P.w[2] = -kInf; }, "/fclib_global/vectors/w[2] is not finite (inf)"},
+      {"inf in M", [](GlobalProblem& P) { P.M.val[0] = kInf; }, "/fclib_global/M has a non-finite entry (inf)"},
+      {"nan in H", [](GlobalProblem& P) { P.H.val[1] = kNaN; }, "/fclib_global/H has a non-finite entry (nan)"},
+      {"short f", [](GlobalProblem& P) { P.f.pop_back(); }, "/fclib_global/M is 162 x 162, expected 161 x 161"},
+      {"extra contact", [](GlobalProblem& P) { P.mu.push_back(0.3); },
+       "/fclib_global/H is 162 x 27, expected 162 x 30"},
+      {"short w", [](GlobalProblem& P) { P.w.resize(26); }, "/fclib_global/vectors/w has 26 entries, expected 27"},
+      {"b without G", [](GlobalProblem& P) { P.b = std::vector<double>{1.0}; }, "/fclib_global/{G, vectors/b}: G and b come together"},
+  };
+}
+
+// Each corruption is refused by validate, by solve (before any work: the
+// message is validate's) and by the writer, which leaves nothing behind.
+template <typename Problem, typename Writer>
+void checkCorruptions(const Problem& valid, const std::vector<Corruption<Problem>>& cases, Writer write) {
+  const std::string out = fclib_test::scratchPath("validate", "refused.hdf5");
+  std::remove(out.c_str());
+  for (const auto& c : cases) {
+    Problem P = valid;
+    c.apply(P);
+    expectError(c.label + " (validate)", [&] { validate(P, "test"); }, "test: " + c.fragment);
+    expectError(c.label + " (solve)", [&] { solve(P, SolveOptions(), serialComm()); }, "FCLIB solve: " + c.fragment);
+    expectError(c.label + " (write)", [&] { write(out, P, Info{}, nullptr, {}, Storage::CompressedRows); },
+                c.fragment);
+    FCLIB_CHECK(!exists(out) && !exists(temporaryPath(out)), c.label << ": a refused write left a file");
+  }
+  std::cout << cases.size() << " corruptions refused" << std::endl;
+}
+
+// No contacts: r and u are empty, and a global problem still has v = M^-1 f.
+void checkZeroContacts(const GlobalProblem& global) {
+  LocalProblem L;
+  L.W = SparseMatrix::fromTriplets(0, 0, {}, {}, {}, "empty W");
+  const SolveReport lr = solve(L, SolveOptions(), serialComm());
+  FCLIB_CHECK(lr.converged && lr.r.empty() && lr.u.empty() && lr.err.absolute == 0.0,
+              "zero contacts (local): " << lr.stopReason);
+  GlobalProblem G = global;
+  G.mu.clear();
+  G.w.clear();
+  G.H = SparseMatrix::fromTriplets(G.M.m, 0, {}, {}, {}, "empty H");
+  const SolveReport gr = solve(G, SolveOptions(), serialComm());
+  std::vector<double> Mv;
+  G.M.multiply(gr.v, Mv);
+  double residual = 0, norm = 0;
+  for (std::size_t i = 0; i < Mv.size(); ++i) residual += std::pow(Mv[i] - G.f[i], 2), norm += G.f[i] * G.f[i];
+  const double rel = std::sqrt(residual / norm);
+  std::cout << "zero contacts (global): ||M v - f|| / ||f|| = " << rel << std::endl;
+  FCLIB_CHECK(gr.converged && gr.r.empty() && gr.u.empty(), "zero contacts (global): " << gr.stopReason);
+  FCLIB_CHECK(gr.v.size() == G.f.size() && rel < 1e-10, "zero contacts (global): v = M^-1 f, residual " << rel);
+}
+
+// W = 0 with contacts: u = q whatever r. A separating q (q_N > 0, q_T = 0)
+// is solved by r = 0; a penetrating one (q_N < 0) has no solution at all.
+void checkZeroW(const LocalProblem& valid) {
+  LocalProblem P = valid;
+  std::fill(P.W.val.begin(), P.W.val.end(), 0.0);
+  for (int k = 0; k < P.numberOfContacts(); ++k) P.q[3 * k] = 1.0, P.q[3 * k + 1] = P.q[3 * k + 2] = 0.0;
+  const SolveReport ok = solve(P, SolveOptions(), serialComm());
+  FCLIB_CHECK(ok.converged && ok.err.absolute == 0.0, "W = 0, separating q: " << ok.stopReason);
+  P.q[0] = -1.0;
+  const SolveReport bad = solve(P, SolveOptions(), serialComm());
+  FCLIB_CHECK(!bad.converged && bad.stopReason.find("natural-map error") != std::string::npos,
+              "W = 0, penetrating q must not converge: " << bad.stopReason);
+}
+
+// judgeResult: converged only with the solver's test, finite values and
+// every figure within the limit.
+void checkJudgement() {
+  SolveReport base;
+  base.status.converged = true;
+  base.r = {1.0, 0.0, 0.0};
+  base.u = {0.0, 0.0, 0.0};
+  base.limit = 1e-10;
+  base.tolerance = 1e-12;
+  SolveReport rep = base;
+  judgeResult(rep);
+  FCLIB_CHECK(rep.converged, "a clean report converges: " << rep.stopReason);
+  const std::vector<std::pair<std::string, std::function<void(SolveReport&)>>> spoilers = {
+      {"the solver did not converge", [](SolveReport& r) { r.status.converged = false; }},
+      {"non-finite", [](SolveReport& r) { r.u[1] = kNaN; }},
+      {"non-finite", [](SolveReport& r) { r.v = {0.0, kInf}; }},
+      {"natural-map error", [](SolveReport& r) { r.err.relativeToMax = 0.3; }},
+      {"natural-map error", [](SolveReport& r) { r.err.relativeToMax = kNaN; }},
+      {"friction law", [](SolveReport& r) { r.kktFriction = 0.3; }},
+      {"non-penetration", [](SolveReport& r) { r.kktNormal = kNaN; }},
+  };
+  for (const auto& [fragment, spoil] : spoilers) {
+    SolveReport r = base;
+    spoil(r);
+    judgeResult(r);
+    FCLIB_CHECK(!r.converged && r.stopReason.find(fragment) != std::string::npos,
+                "expected not converged with \"" << fragment << "\", got " << r.converged << " " << r.stopReason);
+  }
+}
+
+// A relative error against an infinite scale is nan, never 0.
+void checkNonFiniteAccuracy() {
+  const NaturalMapError e = naturalMapError({0, 0, 0}, {kInf, 0, 0}, {0.3}, {kInf, 0, 0});
+  FCLIB_CHECK(std::isnan(e.relativeToQ) && std::isnan(e.relativeToMax),
+              "err with inf q: " << e.relativeToQ << " " << e.relativeToMax);
+}
+
+// A solve stopped early reports solver_converged false and converged false.
+void checkNotConverged(const LocalProblem& P) {
+  SolveOptions options;
+  options.solverParams.sublist("Algorithm 2").set("Maximum Iterations", 1);
+  const SolveReport rep = solve(P, options, serialComm());
+  FCLIB_CHECK(!rep.status.converged && !rep.converged, "one Algorithm 2 iteration converged: " << rep.stopReason);
+  SolveOptions strict;
+  strict.solverParams.set("Result Check Factor", 0.5);
+  expectError("Result Check Factor < 1", [&] { solve(P, strict, serialComm()); }, "Result Check Factor");
+}
+
+void copyFile(const std::string& from, const std::string& to) {
+  std::ifstream in(from, std::ios::binary);
+  std::ofstream out(to, std::ios::binary | std::ios::trunc);
+  out << in.rdbuf();
+}
+
+// A copy of a sample whose /solution/u has 10 entries instead of 144.
+std::string fileWithShortStoredU(const std::string& sample) {
+  const std::string path = fclib_test::scratchPath("validate", "short_u.hdf5");
+  copyFile(sample, path);
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  H5Ldelete(file, "/solution/u", H5P_DEFAULT);
+  hsize_t n = 10;
+  hid_t space = H5Screate_simple(1, &n, nullptr);
+  hid_t set = H5Dcreate2(file, "/solution/u", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const std::vector<double> values(n, 1.0);
+  H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+  H5Dclose(set);
+  H5Sclose(space);
+  H5Fclose(file);
+  return path;
+}
+
+void checkStoredSolutionOfWrongSize(const std::string& sample) {
+  const std::string path = fileWithShortStoredU(sample);
+  FCLIB_CHECK(readLocal(path).numberOfContacts() == 48, "the problem itself reads");
+  expectError("strict readSolution", [&] { readSolution(path); },
+              "/solution/u has 10 entries, expected 144");
+  std::vector<std::string> notes;
+  const auto s = readSolutionLeniently(path, notes);
+  FCLIB_CHECK(s && s->u.empty() && s->r.size() == 144, "lenient: u dropped, r kept");
+  FCLIB_CHECK(notes.size() == 1 && notes[0].find("/solution/u has 10 entries") != std::string::npos &&
+                  notes[0].find("ignored") != std::string::npos,
+              "lenient: one note naming /solution/u, got " << notes.size());
+  std::remove(path.c_str());
+}
+
+void checkOutputPaths() {
+  const std::string dir = fclib_test::scratchPath("validate", "dir");
+  ::mkdir(dir.c_str(), 0700);
+  expectError("missing directory", [] { checkOutputPath("no/such/dir/out.json", "--summary"); },
+              "--summary: directory no/such/dir of no/such/dir/out.json does not exist");
+  expectError("a directory", [&] { checkOutputPath(dir, "--write-solution"); }, "is a directory");
+  expectError("trailing slash", [] { checkOutputPath("newdir/", "--summary"); }, "is a directory");
+  expectError("empty", [] { checkOutputPath("", "--summary"); }, "empty file name");
+  checkOutputPath(dir + "/out.json", "--summary");  // must not throw
+  FCLIB_CHECK(sameFile(dir + "/../" + dir + "/x", dir + "/x"), "same file through ..");
+  FCLIB_CHECK(!sameFile(dir + "/x", dir + "/y"), "different names");
+  // Renaming onto a directory fails: the temporary must go, the target stay.
+  expectError("write onto a directory", [&] { writeTextAtomically(dir, "text"); }, "cannot rename");
+  FCLIB_CHECK(!exists(temporaryPath(dir)), "temporary left after a failed write");
+  writeTextAtomically(dir + "/out.json", "{}\n");
+  FCLIB_CHECK(exists(dir + "/out.json") && !exists(temporaryPath(dir + "/out.json")), "atomic text write");
+  std::remove((dir + "/out.json").c_str());
+  ::rmdir(dir.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard guard(&argc, &argv);  // Kokkos, for the Tpetra vectors of solve()
+  const auto samples = fclib_test::samples();
+  const std::string localPath = fclib_test::samplePath(samples[0]);   // local_problem_test, 48 contacts
+  const std::string globalPath = fclib_test::samplePath(samples[3]);  // LMGC ...00046, 9 contacts, 162 dofs
+  try {
+    const LocalProblem local = readLocal(localPath);
+    const GlobalProblem global = readGlobal(globalPath);
+    checkCorruptions(local, localCorruptions(), writeLocal);
+    checkCorruptions(global, globalCorruptions(), writeGlobal);
+    checkZeroContacts(global);
+    checkZeroW(local);
+    checkJudgement();
+    checkNonFiniteAccuracy();
+    checkNotConverged(local);
+    checkStoredSolutionOfWrongSize(localPath);
+    checkOutputPaths();
+  } catch (const std::exception& e) {
+    FCLIB_CHECK(false, e.what());
+  }
+  return fclib_test::finish("fclib_test_validate");
+}
