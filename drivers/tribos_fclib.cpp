@@ -72,6 +72,9 @@ Args parse(int argc, char** argv) {
     }
   }
   TRIBOS_REQUIRE(!a.input.empty(), "no input file given\n" << kUsage);
+  // Checked here: a local problem never factors M, so a typo would pass unseen.
+  TRIBOS_REQUIRE(a.massSolver == "KLU2" || a.massSolver == "CHOLMOD" || a.massSolver == "Tacho",
+                 "--mass-solver: unknown \"" << a.massSolver << "\"; valid: KLU2, CHOLMOD, Tacho");
   return a;
 }
 

@@ -99,11 +99,14 @@ int main(int argc, char** argv) {
       opt.algorithm = alg;
       const auto rep = FCLIB::solve(p, opt, self);
       const double dv = relDiff(rep.v, uFeti), dr = relDiff(rep.r, stored->r);
-      std::printf("%-15s converged %d, n_A %lld, err/max %.2e, |v - u_FETI|/|u_FETI| = %.2e, |r - r_FETI|/|r_FETI| = %.2e\n",
-                  alg.c_str(), rep.status.converged, rep.n_A, rep.err.relativeToMax, dv, dr);
+      std::printf("%-15s converged %d (result check %d: %s), n_A %lld, err/max %.2e, kkt %.1e %.1e %.1e, "
+                  "|v - u_FETI|/|u_FETI| = %.2e, |r - r_FETI|/|r_FETI| = %.2e\n",
+                  alg.c_str(), rep.status.converged, rep.converged, rep.stopReason.c_str(), rep.n_A,
+                  rep.err.relativeToMax, rep.kktNormal, rep.kktComplementarity, rep.kktFriction, dv, dr);
       // phi mixes forces (r ~ 1e6 N) and displacements (u ~ 1e-5 m), so err/||q|| is
       // dominated by the force scale; the max-normalized measure is the meaningful one here.
       FCLIB_CHECK(rep.err.relativeToMax <= 1e-8, alg << ": err/max " << rep.err.relativeToMax);
+      FCLIB_CHECK(rep.converged, alg << ": result check " << rep.stopReason);
       FCLIB_CHECK(dv <= 1e-6, alg << ": FCLIB v vs FETI u " << dv);
       FCLIB_CHECK(dr <= 1e-5, alg << ": FCLIB r vs FETI multipliers " << dr);
     }

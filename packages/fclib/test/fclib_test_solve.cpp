@@ -66,6 +66,8 @@ int main(int argc, char** argv) {
                 c.file << ": numerical rank of W " << rep.numericalRank << ", expected " << c.rank);
     FCLIB_CHECK((rep.numericalRank < 3 * nc) == !rep.note.empty(), c.file << ": singular W is reported in the note");
     FCLIB_CHECK(rep.status.converged, c.file << " " << c.algorithm << ": not converged (" << rep.status.reason << ")");
+    // ... and the result check passes: what tribos_fclib reports as converged.
+    FCLIB_CHECK(rep.converged, c.file << " " << c.algorithm << ": result check failed (" << rep.stopReason << ")");
     FCLIB_CHECK(rep.err.relativeToQ <= 1e-8, c.file << " " << c.algorithm << ": err " << rep.err.relativeToQ);
   }
   return fclib_test::finish("fclib_test_solve");
