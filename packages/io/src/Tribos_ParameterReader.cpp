@@ -4,11 +4,14 @@
 #include <Teuchos_StringInputSource.hpp>
 #include <Teuchos_XMLObject.hpp>
 
+#include <sys/stat.h>
+
 #include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -135,6 +138,9 @@ void fill(ParameterList& list, const Teuchos::XMLObject& xml, const std::string&
 }
 
 std::string readText(const std::string& file) {
+  struct stat st;
+  TRIBOS_REQUIRE(stat(file.c_str(), &st) == 0, "cannot open input file \"" << file << "\": " << std::strerror(errno));
+  TRIBOS_REQUIRE(!S_ISDIR(st.st_mode), "input file \"" << file << "\" is a directory");
   std::ifstream in(file);
   TRIBOS_REQUIRE(in.good(), "cannot open input file \"" << file << "\"");
   std::ostringstream os;
@@ -180,6 +186,7 @@ void setParsedParameter(ParameterList& list, const std::string& name, const std:
 
 RCP<ParameterList> readParameterFile(const std::string& file) {
   const std::string text = readText(file);
+  TRIBOS_REQUIRE(!trim(text).empty(), "input file \"" << file << "\" is empty");
   const int depth = nestingDepth(text);
   TRIBOS_REQUIRE(depth <= kMaxParameterListDepth, "input file \"" << file << "\": ParameterList elements nest " << depth
                                                                   << " deep; at most " << kMaxParameterListDepth
