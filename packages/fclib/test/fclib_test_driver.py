@@ -16,6 +16,7 @@ import argparse
 import glob
 import json
 import os
+import resource
 import shutil
 import subprocess
 import sys
@@ -187,8 +188,14 @@ BAD_INPUTS = [
 ]
 
 
+def limit_memory():
+    """16 GB of address space: a reader that trusts a declared size fails
+    with bad_alloc (and this test with it) instead of exhausting the machine."""
+    resource.setrlimit(resource.RLIMIT_AS, (16 << 30, 16 << 30))
+
+
 def run(cmd):
-    p = subprocess.run(cmd, capture_output=True, text=True, errors="replace")
+    p = subprocess.run(cmd, capture_output=True, text=True, errors="replace", preexec_fn=limit_memory)
     return p.returncode, p.stdout, p.stderr
 
 
