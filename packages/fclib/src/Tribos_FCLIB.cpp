@@ -305,6 +305,8 @@ SparseMatrix readMatrix(hid_t parent, const Location& parentWhere, const std::st
   if (nz < -2)
     where.fail(where.path("nz") + " = " + std::to_string(nz) +
                ", expected -2 (compressed rows), -1 (compressed columns) or >= 0 (triplets)");
+  // Compressed storage has one pointer per row (column) plus one; triplets
+  // have at least nz column indices, checked with i and x when building.
   std::optional<std::size_t> pointers;
   if (nz < 0) pointers = static_cast<std::size_t>(nz == -2 ? m : n) + 1;
   std::vector<int> p = readInts(g, where, "p", pointers,
