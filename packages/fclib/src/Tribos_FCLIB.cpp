@@ -1,15 +1,18 @@
 #include "Tribos_FCLIB.hpp"
 
-#include "Tribos_FCLIB_Files.hpp"
-
 #include <hdf5.h>
+#include <sys/stat.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
 #include <utility>
+
+#include "Tribos_FCLIB_Files.hpp"
 
 namespace Tribos {
 namespace FCLIB {
@@ -93,11 +96,16 @@ Handle openDataset(hid_t loc, const Location& where, const std::string& name) {
   return Handle(id, H5Dclose);
 }
 
+// A directory or an empty file is named as such rather than as "not HDF5".
 Handle openFileForReading(const std::string& path) {
-  if (!std::ifstream(path).good())
-    throw std::runtime_error("FCLIB file " + path + ": cannot open for reading");
+  auto fail = [&](const std::string& why) { throw std::runtime_error("FCLIB file " + path + ": " + why); };
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) fail(std::string("cannot open for reading: ") + std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) fail("is a directory, expected an HDF5 file");
+  if (st.st_size == 0) fail("is empty, expected an HDF5 file");
+  if (!std::ifstream(path).good()) fail("cannot open for reading");
   hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (id < 0) throw std::runtime_error("FCLIB file " + path + ": not a readable HDF5 file");
+  if (id < 0) fail("not a readable HDF5 file");
   return Handle(id, H5Fclose);
 }
 

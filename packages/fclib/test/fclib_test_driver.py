@@ -228,13 +228,20 @@ def bad_inputs(args):
     summary, solution = outputs(args.work, "not_hdf5")
     expect_refusal(args, "not_hdf5", [args.driver, path, "--summary", summary], "not a readable HDF5 file",
                    summary, solution)
+    for name, make, fragment in (("empty_file", lambda p: open(p, "w").close(), "is empty, expected an HDF5 file"),
+                                 ("directory", os.makedirs, "is a directory, expected an HDF5 file"),
+                                 ("missing_file", lambda p: None, "cannot open for reading: No such file")):
+        path = os.path.join(args.work, name + ".hdf5")
+        make(path)
+        summary, solution = outputs(args.work, name)
+        expect_refusal(args, name, [args.driver, path, "--summary", summary], fragment, summary, solution)
     path = os.path.join(args.work, "no_problem.hdf5")
     with h5py.File(path, "w") as f:
         f.create_dataset("other", data=[1.0])
     summary, solution = outputs(args.work, "no_problem")
     expect_refusal(args, "no_problem", [args.driver, path, "--summary", summary],
                    "has neither group /fclib_local nor group /fclib_global", summary, solution)
-    print(f"{len(BAD_INPUTS) + 2} bad inputs refused", flush=True)
+    print(f"{len(BAD_INPUTS) + 5} bad inputs refused", flush=True)
 
 
 def solve(args, name, path, status=0, extra=()):
