@@ -1,15 +1,23 @@
 #include "Tribos_ResultWriter.hpp"
 
+#include <fcntl.h>
 #include <hdf5.h>
 #include <mpi.h>
+#include <sys/resource.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
 
 #include <Teuchos_DefaultMpiComm.hpp>
 
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_FileSystem.hpp"
+#include "Tribos_OutputDirectory.hpp"
+#include "Tribos_ResultSet.hpp"
 
 namespace Tribos {
 namespace IO {
@@ -31,158 +39,530 @@ std::pair<long long, long long> blockOffset(long long mine, MPI_Comm comm) {
   return {offset, total};
 }
 
-class H5File {
+// HDF5 prints its whole error stack on every failing rank by default; the
+// writer reports one line instead. The previous handler is restored, so other
+// users of HDF5 in the process keep theirs.
+class QuietHdf5Errors {
  public:
-  H5File(const std::string& path, MPI_Comm comm) : path_(path) {
-    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-    H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL);
-    id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-    H5Pclose(fapl);
-    TRIBOS_REQUIRE(id >= 0, "cannot create HDF5 file " << path);
+  QuietHdf5Errors() {
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   }
-  ~H5File() {
-    if (id >= 0) H5Fclose(id);
+  ~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+};
+
+// The innermost entry of HDF5's current error stack (the low-level
+// operation that failed) and the MPI error string if MPI-IO reported one.
+std::string hdf5Cause() {
+  struct Walk {
+    std::string innermost, mpi;
+  } walk;
+  auto visit = [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
+    auto& w = *static_cast<Walk*>(data);
+    const std::string desc = e->desc ? e->desc : "";
+    if (n == 0) w.innermost = desc;
+    if (e->min_num == H5E_MPIERRSTR && w.mpi.empty()) w.mpi = desc;
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, visit, &walk);
+  std::string cause = "HDF5: " + (walk.innermost.empty() ? std::string("no error message") : walk.innermost);
+  if (!walk.mpi.empty() && walk.mpi != walk.innermost) cause += ", MPI: " + walk.mpi;
+  return cause;
+}
+
+// Why `bytes` more bytes cannot go into a file of the directory of path ("" if
+// they can, as far as the free space and the file size limit tell).
+std::string roomMissing(const std::string& path, hsize_t bytes) {
+  struct statvfs fs;
+  if (::statvfs(directoryOf(path).c_str(), &fs) == 0) {
+    const unsigned long long freeBytes =
+        static_cast<unsigned long long>(::geteuid() == 0 ? fs.f_bfree : fs.f_bavail) * fs.f_frsize;
+    if (freeBytes < bytes) return systemReason(ENOSPC) + " (" + std::to_string(freeBytes) + " bytes free)";
   }
-  void close() {
-    TRIBOS_REQUIRE(H5Fclose(id) >= 0, "cannot close HDF5 file " << path_);
-    id = -1;
-  }
-  // Collective write of rows [offset, offset + count) of a total x cols dataset.
-  template <class T>
-  void writeRows(const std::string& name, const std::vector<T>& data, long long offset, long long count, long long total,
-                 int cols) {
-    const hid_t type = std::is_same<T, double>::value ? H5T_NATIVE_DOUBLE : H5T_NATIVE_LLONG;
-    hsize_t dims[2] = {static_cast<hsize_t>(total), static_cast<hsize_t>(cols)};
-    hid_t fspace = H5Screate_simple(2, dims, nullptr);
-    hid_t dset = H5Dcreate2(id, name.c_str(), type, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    TRIBOS_REQUIRE(dset >= 0, "cannot create dataset " << name << " in " << path_);
-    hsize_t start[2] = {static_cast<hsize_t>(offset), 0}, cnt[2] = {static_cast<hsize_t>(count), static_cast<hsize_t>(cols)};
-    H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
-    hid_t mspace = H5Screate_simple(2, cnt, nullptr);
-    hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
-    H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
-    const herr_t st = H5Dwrite(dset, type, mspace, fspace, dxpl, data.empty() ? nullptr : data.data());
-    H5Pclose(dxpl);
-    H5Sclose(mspace);
-    H5Sclose(fspace);
-    H5Dclose(dset);
-    TRIBOS_REQUIRE(st >= 0, "cannot write dataset " << name << " in " << path_);
-  }
+  struct rlimit limit;
+  if (::getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && limit.rlim_cur < bytes)
+    return systemReason(EFBIG) + " (file size limit " + std::to_string(limit.rlim_cur) + " bytes)";
+  return "";
+}
+
+// A failure every rank has agreed on: all ranks throw it at the same step,
+// so that all of them take the same path to close the file.
+struct AgreedFailure {
+  std::string message;
+};
+
+// One dataset: this rank's rows [offset, offset + count) of a total x cols array.
+struct Block {
+  std::string name;
+  hid_t type;
+  long long offset, count, total;
+  int cols;
+  const void* data;
   hid_t id = -1;
+};
+
+template <class T>
+Block block(const std::string& name, const std::vector<T>& data, std::pair<long long, long long> offsetTotal,
+            long long count, int cols) {
+  static_assert(std::is_same<T, double>::value || std::is_same<T, long long>::value, "double or long long data");
+  const hid_t type = std::is_same<T, double>::value ? H5T_NATIVE_DOUBLE : H5T_NATIVE_LLONG;
+  return Block{name, type, offsetTotal.first, count, offsetTotal.second, cols, data.data()};
+}
+
+// Records the first failure of a sequence of HDF5 calls on a file, with
+// HDF5's own cause, which must be read at once: the next call clears it.
+class FirstFailure {
+ public:
+  // HDF5 keeps its error stack until the next API call clears it, and errno
+  // keeps any old value: both are reset so that a failure reports its own cause.
+  explicit FirstFailure(const std::string& path) : path_(path) {
+    H5Eclear2(H5E_DEFAULT);
+    errno = 0;
+  }
+  // Returns whether `result` (an hid_t or herr_t) is a failure.
+  bool failed(long long result, const char* call, const std::string& object) {
+    if (result >= 0) return false;
+    if (message.empty()) {
+      const int err = errno;  // before the error walk can change it
+      // MPI-IO reports a short write as a success, and HDF5 then only knows
+      // that bytes are missing: the likely reasons are a full file system or
+      // a file size limit.
+      const std::string reason = err != 0 ? systemReason(err) : roomMissing(path_, 1 << 20);
+      message = std::string(call) + " of " + object + " failed: " + (reason.empty() ? "" : reason + " ") + "(" +
+                hdf5Cause() + ")";
+    }
+    return true;
+  }
+  std::string message;
 
  private:
   std::string path_;
 };
 
-std::string baseNameOf(const std::string& path) {
-  const auto pos = path.find_last_of('/');
-  return pos == std::string::npos ? path : path.substr(pos + 1);
+// A parallel HDF5 file whose every collective call is followed by an
+// agreement on its outcome: either all ranks go on, or all ranks throw
+// AgreedFailure at the same call and then abandon() the file together.
+class ParallelH5File {
+ public:
+  ParallelH5File(const std::string& path, const RCP<const Comm>& comm) : path_(path), comm_(comm) {
+    FirstFailure f(path_);
+    const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    if (!f.failed(fapl, "H5Pcreate", "a file access list") &&
+        !f.failed(H5Pset_fapl_mpio(fapl, rawComm(comm), MPI_INFO_NULL), "H5Pset_fapl_mpio", "the file"))
+      f.failed(id_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "H5Fcreate", "the file");
+    if (fapl >= 0) H5Pclose(fapl);
+    agree(f.message);
+  }
+  // Never closes the file: closing is collective, and a destructor may run on
+  // one rank only (an exception that is not an AgreedFailure). The owner
+  // calls close() or abandon() on every rank.
+  ~ParallelH5File() = default;
+
+  void createGroup(const std::string& name) {
+    FirstFailure f(path_);
+    const hid_t g = H5Gcreate2(id_, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (!f.failed(g, "H5Gcreate", "group " + name)) H5Gclose(g);
+    agree(f.message);
+  }
+
+  void createDataset(Block& b) {
+    FirstFailure f(path_);
+    const hsize_t dims[2] = {static_cast<hsize_t>(b.total), static_cast<hsize_t>(b.cols)};
+    const hid_t space = H5Screate_simple(2, dims, nullptr);
+    if (!f.failed(space, "H5Screate_simple", "dataset " + b.name)) {
+      b.id = H5Dcreate2(id_, b.name.c_str(), b.type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      f.failed(b.id, "H5Dcreate", "dataset " + b.name);
+      H5Sclose(space);
+    }
+    agree(f.message);
+  }
+
+  void writeAttribute(const std::string& name, const std::string& value) {
+    // A fixed-length string of at least one byte (HDF5 has no empty type).
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, std::max<size_t>(value.size(), 1));
+    H5Tset_strpad(type, H5T_STR_NULLPAD);
+    const std::string padded = value.empty() ? std::string(1, '\0') : value;
+    writeScalarAttribute(name, type, padded.data());
+    H5Tclose(type);
+  }
+
+  void writeAttribute(const std::string& name, double value) { writeScalarAttribute(name, H5T_NATIVE_DOUBLE, &value); }
+
+  // The size of the file as allocated so far: every dataset is allocated at
+  // its creation in parallel HDF5, so after the last one this is the final size.
+  hsize_t allocatedSize() {
+    FirstFailure f(path_);
+    hsize_t size = 0;
+    f.failed(H5Fget_filesize(id_, &size), "H5Fget_filesize", "the file");
+    agree(f.message);
+    return size;
+  }
+
+  // Writes the metadata: what remains are the data writes.
+  void flush() {
+    FirstFailure f(path_);
+    f.failed(H5Fflush(id_, H5F_SCOPE_GLOBAL), "H5Fflush", "the file");
+    agree(f.message);
+  }
+
+  void write(const Block& b) {
+    if (b.total == 0) return;  // nothing to write, on every rank alike
+    FirstFailure f(path_);
+    const hid_t fspace = H5Dget_space(b.id);
+    const hsize_t start[2] = {static_cast<hsize_t>(b.offset), 0};
+    const hsize_t count[2] = {static_cast<hsize_t>(b.count), static_cast<hsize_t>(b.cols)};
+    const hid_t mspace = H5Screate_simple(2, count, nullptr);
+    // Independent transfers: the rows of a rank are one contiguous extent of
+    // the file, so collective buffering gains little, and Open MPI 4.1's
+    // collective write (OMPIO) returns success when an aggregator's write
+    // fails (seen on a full disk: the data were missing). A rank without rows
+    // still calls, with an empty selection (a hyperslab of zero rows is an
+    // error in HDF5), so that every rank agrees on the outcome.
+    if (b.count > 0) H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr);
+    else H5Sselect_none(fspace), H5Sselect_none(mspace);
+    const hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
+    H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_INDEPENDENT);
+    static const double none = 0;
+    f.failed(H5Dwrite(b.id, b.type, mspace, fspace, dxpl, b.count > 0 ? b.data : &none), "H5Dwrite", "dataset " + b.name);
+    H5Pclose(dxpl);
+    H5Sclose(mspace);
+    H5Sclose(fspace);
+    agree(f.message);
+  }
+
+  void closeDataset(Block& b) {
+    FirstFailure f(path_);
+    f.failed(H5Dclose(b.id), "H5Dclose", "dataset " + b.name);
+    b.id = -1;
+    agree(f.message);
+  }
+
+  void close() {
+    FirstFailure f(path_);
+    f.failed(H5Fclose(id_), "H5Fclose", "the file");
+    id_ = -1;
+    agree(f.message);
+  }
+
+  // After an AgreedFailure, on every rank: closes what is open. HDF5 1.10
+  // leaves a file whose close failed in its tables, and its shutdown in
+  // MPI_Finalize then crashes; the close flushes the metadata, so rank 0
+  // first empties the file to give back the space of the data written.
+  void abandon(std::vector<Block>& blocks) {
+    for (Block& b : blocks)
+      if (b.id >= 0) H5Dclose(b.id), b.id = -1;
+    if (id_ < 0) return;
+    comm_->barrier();  // no rank writes data any more
+    if (comm_->getRank() == 0) {
+      const int r = ::truncate(path_.c_str(), 0);
+      (void)r;
+    }
+    comm_->barrier();
+    H5Fclose(id_);
+    id_ = -1;
+  }
+
+ private:
+  void writeScalarAttribute(const std::string& name, hid_t type, const void* value) {
+    FirstFailure f(path_);
+    const hid_t space = H5Screate(H5S_SCALAR);
+    const hid_t attr = H5Acreate2(id_, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+    if (!f.failed(attr, "H5Acreate", "attribute " + name)) {
+      f.failed(H5Awrite(attr, type, value), "H5Awrite", "attribute " + name);
+      H5Aclose(attr);
+    }
+    H5Sclose(space);
+    agree(f.message);
+  }
+
+  void agree(const std::string& localError) {
+    const std::string error = agreeOnError(*comm_, localError);
+    if (!error.empty()) throw AgreedFailure{error};
+  }
+
+  std::string path_;
+  RCP<const Comm> comm_;
+  hid_t id_ = -1;
+};
+
+// Rank 0 allocates `bytes` at the start of the file at path (fallocate: no
+// data written), so that a disk too small, a quota or a file size limit fails
+// here, before HDF5 writes anything. HDF5 1.10 cannot survive a failure of
+// its metadata writes: rank 0 leaves the flush early while the others wait in
+// it, and a file whose close failed crashes MPI_Finalize. A file system
+// without fallocate: the free space and the file size limit are checked instead.
+std::string reserveOnRoot(const std::string& path, hsize_t bytes, const Comm& comm) {
+  std::string error;
+  if (comm.getRank() == 0) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+    const int err = fd < 0 ? errno : ::fallocate(fd, 0, 0, static_cast<off_t>(bytes)) == 0 ? 0 : errno;
+    if (fd >= 0) ::close(fd);
+    const std::string reason = err == EOPNOTSUPP || err == ENOSYS ? roomMissing(path, bytes)
+                               : err != 0                        ? systemReason(err)
+                                                                 : "";
+    if (!reason.empty()) error = "cannot reserve " + std::to_string(bytes) + " bytes for the file: " + reason;
+  }
+  return agreeOnError(comm, error);
+}
+
+// An upper bound of the file's size: the data plus HDF5's headers, B-trees
+// and heaps (below 4 kB per object and attribute, plus the superblock and
+// the metadata block of 2 kB that HDF5 allocates at a time).
+hsize_t sizeBound(const std::vector<std::string>& groups, const std::vector<Block>& blocks,
+                  const ResultAttributes& attributes) {
+  hsize_t bytes = 64 * 1024;
+  for (const Block& b : blocks) bytes += static_cast<hsize_t>(b.total) * b.cols * 8 + 4096;
+  bytes += 4096 * groups.size();
+  for (const auto& a : attributes.text) bytes += 4096 + a.first.size() + a.second.size();
+  bytes += 4096 * attributes.numbers.size();
+  return bytes;
+}
+
+// The whole content, in an order that keeps failures cheap: metadata first,
+// then the space of the whole file, then the data.
+void writeAll(ParallelH5File& file, const std::string& path, const std::vector<std::string>& groups,
+              std::vector<Block>& blocks, const ResultAttributes& attributes, bool reserveSpace, const Comm& comm) {
+  for (const std::string& g : groups) file.createGroup(g);
+  for (Block& b : blocks) file.createDataset(b);
+  for (const auto& a : attributes.text) file.writeAttribute(a.first, a.second);
+  for (const auto& a : attributes.numbers) file.writeAttribute(a.first, a.second);
+  if (reserveSpace) {
+    const std::string error = reserveOnRoot(path, file.allocatedSize(), comm);
+    if (!error.empty()) throw AgreedFailure{error};
+  }
+  file.flush();
+  for (const Block& b : blocks) file.write(b);
+  for (Block& b : blocks) file.closeDataset(b);
+}
+
+std::string xmlEscaped(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '&') out += "&amp;";
+    else if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+void xdmfDataItem(std::ostream& os, const std::string& h5, const std::string& dataset, long long rows, int cols,
+                  const char* numberType) {
+  os << "        <DataItem Dimensions=\"" << rows << " " << cols << "\" NumberType=\"" << numberType
+     << "\" Precision=\"8\" Format=\"HDF\">" << xmlEscaped(h5) << ":" << xmlEscaped(dataset) << "</DataItem>\n";
 }
 
 void xdmfAttribute(std::ostream& os, const std::string& h5, const std::string& group, const Field& f, long long n,
                    const char* center) {
-  os << "      <Attribute Name=\"" << f.name << "\" AttributeType=\"" << (f.components == 1 ? "Scalar" : "Vector")
-     << "\" Center=\"" << center << "\">\n"
-     << "        <DataItem Dimensions=\"" << n << " " << f.components
-     << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":/" << group << "/" << f.name
-     << "</DataItem>\n      </Attribute>\n";
+  os << "      <Attribute Name=\"" << xmlEscaped(f.name) << "\" AttributeType=\""
+     << (f.components == 1 ? "Scalar" : "Vector") << "\" Center=\"" << center << "\">\n";
+  xdmfDataItem(os, h5, group + "/" + f.name, n, f.components, "Float");
+  os << "      </Attribute>\n";
+}
+
+// The sizes of everything written, identical on every rank.
+struct Totals {
+  long long nodes = 0, cells = 0;
+  std::vector<long long> points;  // per point set
+};
+
+std::string xdmfIndex(const std::string& h5, const Mesh::Mesh& mesh, const Totals& n,
+                      const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
+                      const std::vector<PointSet>& pointSets) {
+  const int npc = mesh.nodesPerCell();
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n"
+    << "    <Grid Name=\"body\" GridType=\"Uniform\">\n"
+    << "      <Topology TopologyType=\"" << (mesh.type == Mesh::CellType::Tet4 ? "Tetrahedron" : "Hexahedron")
+    << "\" NumberOfElements=\"" << n.cells << "\">\n";
+  xdmfDataItem(x, h5, "/mesh/topology", n.cells, npc, "Int");
+  x << "      </Topology>\n      <Geometry GeometryType=\"XYZ\">\n";
+  xdmfDataItem(x, h5, "/mesh/geometry", n.nodes, 3, "Float");
+  x << "      </Geometry>\n";
+  xdmfAttribute(x, h5, "/nodes", Field{"displacement", 3, {}}, n.nodes, "Node");
+  for (const Field& f : nodeFields) xdmfAttribute(x, h5, "/nodes", f, n.nodes, "Node");
+  for (const Field& f : cellFields) xdmfAttribute(x, h5, "/cells", f, n.cells, "Cell");
+  x << "    </Grid>\n";
+  for (size_t k = 0; k < pointSets.size(); ++k) {
+    const PointSet& ps = pointSets[k];
+    const std::string group = "/points/" + ps.name;
+    x << "    <Grid Name=\"" << xmlEscaped(ps.name) << "\" GridType=\"Uniform\">\n"
+      << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n.points[k]
+      << "\" NodesPerElement=\"1\"/>\n      <Geometry GeometryType=\"XYZ\">\n";
+    xdmfDataItem(x, h5, group + "/geometry", n.points[k], 3, "Float");
+    x << "      </Geometry>\n";
+    for (const Field& f : ps.fields) xdmfAttribute(x, h5, group, f, n.points[k], "Node");
+    x << "    </Grid>\n";
+  }
+  x << "  </Domain>\n</Xdmf>\n";
+  return x.str();
+}
+
+// What decides the sequence of collective calls (names, components, counts of
+// datasets) and the attribute values: it must be the same on every rank, or
+// the ranks would call HDF5 differently and hang.
+std::string layoutSignature(const std::string& h5Name, const std::vector<Field>& nodeFields,
+                            const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets,
+                            const ResultAttributes& attributes) {
+  std::ostringstream s;
+  s.precision(17);
+  s << h5Name << '\n';
+  for (const Field& f : nodeFields) s << "node " << f.name << ' ' << f.components << '\n';
+  for (const Field& f : cellFields) s << "cell " << f.name << ' ' << f.components << '\n';
+  for (const PointSet& ps : pointSets) {
+    s << "points " << ps.name << '\n';
+    for (const Field& f : ps.fields) s << "  " << f.name << ' ' << f.components << '\n';
+  }
+  for (const auto& a : attributes.text) s << "text " << a.first << '=' << a.second << '\n';
+  for (const auto& a : attributes.numbers) s << "number " << a.first << '=' << a.second << '\n';
+  return s.str();
+}
+
+// This rank's complaint about its arguments ("" if none).
+std::string argumentError(const Mesh::Discretization& disc, const std::vector<double>& uGlobal, long long nOwned,
+                          long long nCells, const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
+                          const std::vector<PointSet>& pointSets) {
+  std::ostringstream e;
+  if (uGlobal.size() != 3 * static_cast<size_t>(disc.mesh.numNodes()))
+    e << "the displacement has " << uGlobal.size() << " values for " << disc.mesh.numNodes() << " nodes";
+  auto check = [&](const Field& f, long long rows, const std::string& what) {
+    if (f.components < 1 || f.values.size() != static_cast<size_t>(rows * f.components))
+      e << (e.tellp() > 0 ? "; " : "") << what << " field " << f.name << " has " << f.values.size() << " values for "
+        << rows << " rows of " << f.components;
+  };
+  for (const Field& f : nodeFields) check(f, nOwned, "node");
+  for (const Field& f : cellFields) check(f, nCells, "cell");
+  for (const PointSet& ps : pointSets)
+    for (const Field& f : ps.fields) check(f, static_cast<long long>(ps.coords.size()), "point set " + ps.name);
+  return e.str();
 }
 
 }  // namespace
 
 ResultWriter::ResultWriter(const Mesh::Discretization& disc, const RCP<const Comm>& comm) : disc_(disc), comm_(comm) {}
 
-void ResultWriter::write(const std::string& dir, const std::string& base, const std::vector<double>& uGlobal,
-                         const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
-                         const std::vector<PointSet>& pointSets) const {
+void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, const std::string& xmfPath,
+                         const std::vector<double>& uGlobal, const std::vector<Field>& nodeFields,
+                         const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets,
+                         const ResultAttributes& attributes) const {
   const MPI_Comm comm = rawComm(comm_);
+  const bool root = comm_->getRank() == 0;
   const Mesh::Mesh& mesh = disc_.mesh;
   const int npc = mesh.nodesPerCell();
   const auto& owned = disc_.ownedNodes();
   const auto cells = disc_.localCells();
-  auto outIndex = [&](int n) { return disc_.nodeIndex()[n]; };
-
   const long long nOwned = static_cast<long long>(owned.size()), nCells = static_cast<long long>(cells.size());
-  const auto nodeBlock = blockOffset(nOwned, comm), cellBlock = blockOffset(nCells, comm);
+  const std::string shownName = directoryOf(h5Path) + "/" + h5Name;
+
+  // Arguments first: a wrong one must stop every rank before the first HDF5 call.
+  const std::string signature = layoutSignature(h5Name, nodeFields, cellFields, pointSets, attributes);
+  std::string error = broadcastFromRoot(*comm_, signature) == signature
+                          ? argumentError(disc_, uGlobal, nOwned, nCells, nodeFields, cellFields, pointSets)
+                          : "rank " + std::to_string(comm_->getRank()) +
+                                " passes other names, components or attributes than rank 0";
+  error = agreeOnError(*comm_, error);
+  if (!error.empty()) throw CollectiveError("cannot write the result file " + shownName + ": " + error);
+
+  // Everything is packed before the first collective HDF5 call: from there on
+  // nothing may throw on one rank only.
   std::vector<double> xyz, disp;
   for (int n : owned)
     for (int d = 0; d < 3; ++d) xyz.push_back(mesh.coords[n][d]), disp.push_back(uGlobal[3 * n + d]);
   std::vector<long long> topo;
   for (int c : cells)
-    for (int k = 0; k < npc; ++k) topo.push_back(outIndex(mesh.cell(c)[k]));
+    for (int k = 0; k < npc; ++k) topo.push_back(disc_.nodeIndex()[mesh.cell(c)[k]]);
+  std::vector<std::vector<double>> pointXyz(pointSets.size());
+  for (size_t k = 0; k < pointSets.size(); ++k)
+    for (const auto& p : pointSets[k].coords) pointXyz[k].insert(pointXyz[k].end(), p.begin(), p.end());
 
-  const std::string h5 = base + ".h5", h5path = dir + "/" + h5, tmp = h5path + ".tmp";
-  {
-    H5File file(tmp, comm);
-    for (const char* g : {"/mesh", "/nodes", "/cells", "/points"}) H5Gclose(H5Gcreate2(file.id, g, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-    file.writeRows("/mesh/geometry", xyz, nodeBlock.first, nOwned, nodeBlock.second, 3);
-    file.writeRows("/mesh/topology", topo, cellBlock.first, nCells, cellBlock.second, npc);
-    file.writeRows("/nodes/displacement", disp, nodeBlock.first, nOwned, nodeBlock.second, 3);
-    for (const Field& f : nodeFields) {
-      TRIBOS_REQUIRE(f.values.size() == static_cast<size_t>(nOwned * f.components), "node field " << f.name << " has wrong size");
-      file.writeRows("/nodes/" + f.name, f.values, nodeBlock.first, nOwned, nodeBlock.second, f.components);
-    }
-    for (const Field& f : cellFields) {
-      TRIBOS_REQUIRE(f.values.size() == static_cast<size_t>(nCells * f.components), "cell field " << f.name << " has wrong size");
-      file.writeRows("/cells/" + f.name, f.values, cellBlock.first, nCells, cellBlock.second, f.components);
-    }
-    for (const PointSet& ps : pointSets) {
-      const long long np = static_cast<long long>(ps.coords.size());
-      const auto block = blockOffset(np, comm);
-      H5Gclose(H5Gcreate2(file.id, ("/points/" + ps.name).c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-      std::vector<double> pxyz;
-      for (const auto& p : ps.coords) pxyz.insert(pxyz.end(), p.begin(), p.end());
-      file.writeRows("/points/" + ps.name + "/geometry", pxyz, block.first, np, block.second, 3);
-      for (const Field& f : ps.fields)
-        file.writeRows("/points/" + ps.name + "/" + f.name, f.values, block.first, np, block.second, f.components);
-    }
-    file.close();
-  }
-  // Point-set sizes are needed by rank 0 for the index.
-  std::vector<long long> pointTotals;
-  for (const PointSet& ps : pointSets) pointTotals.push_back(blockOffset(static_cast<long long>(ps.coords.size()), comm).second);
-  MPI_Barrier(comm);
-  if (comm_->getRank() != 0) return;
-  TRIBOS_REQUIRE(std::rename(tmp.c_str(), h5path.c_str()) == 0, "cannot rename " << tmp << " to " << h5path);
-
-  const long long N = nodeBlock.second, C = cellBlock.second;
-  std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n"
-    << "    <Grid Name=\"body\" GridType=\"Uniform\">\n"
-    << "      <Topology TopologyType=\"" << (mesh.type == Mesh::CellType::Tet4 ? "Tetrahedron" : "Hexahedron")
-    << "\" NumberOfElements=\"" << C << "\">\n        <DataItem Dimensions=\"" << C << " " << npc
-    << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << h5 << ":/mesh/topology</DataItem>\n      </Topology>\n"
-    << "      <Geometry GeometryType=\"XYZ\">\n        <DataItem Dimensions=\"" << N
-    << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":/mesh/geometry</DataItem>\n      </Geometry>\n";
-  xdmfAttribute(x, h5, "nodes", Field{"displacement", 3, {}}, N, "Node");
-  for (const Field& f : nodeFields) xdmfAttribute(x, h5, "nodes", f, N, "Node");
-  for (const Field& f : cellFields) xdmfAttribute(x, h5, "cells", f, C, "Cell");
-  x << "    </Grid>\n";
+  const auto nodeBlock = blockOffset(nOwned, comm), cellBlock = blockOffset(nCells, comm);
+  Totals totals{nodeBlock.second, cellBlock.second, {}};
+  std::vector<std::string> groups = {"/mesh", "/nodes", "/cells", "/points"};
+  std::vector<Block> blocks = {block("/mesh/geometry", xyz, nodeBlock, nOwned, 3),
+                               block("/mesh/topology", topo, cellBlock, nCells, npc),
+                               block("/nodes/displacement", disp, nodeBlock, nOwned, 3)};
+  for (const Field& f : nodeFields) blocks.push_back(block("/nodes/" + f.name, f.values, nodeBlock, nOwned, f.components));
+  for (const Field& f : cellFields) blocks.push_back(block("/cells/" + f.name, f.values, cellBlock, nCells, f.components));
   for (size_t k = 0; k < pointSets.size(); ++k) {
     const PointSet& ps = pointSets[k];
-    const long long np = pointTotals[k];
-    x << "    <Grid Name=\"" << ps.name << "\" GridType=\"Uniform\">\n"
-      << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << np << "\" NodesPerElement=\"1\"/>\n"
-      << "      <Geometry GeometryType=\"XYZ\">\n        <DataItem Dimensions=\"" << np
-      << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":/points/" << ps.name
-      << "/geometry</DataItem>\n      </Geometry>\n";
-    for (const Field& f : ps.fields) xdmfAttribute(x, h5, "points/" + ps.name, f, np, "Node");
-    x << "    </Grid>\n";
+    const long long np = static_cast<long long>(ps.coords.size());
+    const auto pointBlock = blockOffset(np, comm);
+    totals.points.push_back(pointBlock.second);
+    groups.push_back("/points/" + ps.name);
+    blocks.push_back(block(groups.back() + "/geometry", pointXyz[k], pointBlock, np, 3));
+    for (const Field& f : ps.fields) blocks.push_back(block(groups.back() + "/" + f.name, f.values, pointBlock, np, f.components));
   }
-  x << "  </Domain>\n</Xdmf>\n";
-  writeFileAtomically(dir + "/" + base + ".xmf", x.str());
+
+  QuietHdf5Errors quiet;
+  std::string failure;
+  try {
+    // The probe: a disk without room for the file, or a file size limit below
+    // it, fails here, before HDF5 has metadata that it could not write (a
+    // failed close of an HDF5 1.10 file crashes MPI_Finalize). H5Fcreate
+    // then truncates the file; the space is reserved again before the data.
+    if (reserveSpace_) {
+      const std::string error = reserveOnRoot(h5Path, sizeBound(groups, blocks, attributes), *comm_);
+      if (!error.empty()) throw AgreedFailure{error};
+    }
+    ParallelH5File file(h5Path, comm_);
+    try {
+      writeAll(file, h5Path, groups, blocks, attributes, reserveSpace_, *comm_);
+      file.close();
+    } catch (const AgreedFailure&) {
+      file.abandon(blocks);
+      throw;
+    }
+  } catch (const AgreedFailure& f) {
+    failure = "cannot write the result file " + shownName + ": " + f.message;
+  }
+  if (failure.empty()) {
+    const std::string xmfError =
+        root ? writeWholeFile(xmfPath, xdmfIndex(h5Name, mesh, totals, nodeFields, cellFields, pointSets)) : "";
+    failure = rootError(*comm_, xmfError.empty() ? "" : "cannot write the XDMF index of " + shownName + ": " + xmfError);
+  }
+  if (!failure.empty()) {
+    if (root) removeIfExists(h5Path), removeIfExists(xmfPath);
+    throw RunFailure(failure);
+  }
+}
+
+void ResultWriter::write(const std::string& directory, const std::string& baseName, const std::vector<double>& uGlobal,
+                         const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
+                         const std::vector<PointSet>& pointSets) const {
+  const OutputDirectory dir(directory, comm_);
+  ResultSet files(dir, comm_);
+  const std::string h5 = files.add(baseName + ".h5"), xmf = files.add(baseName + ".xmf");
+  write(h5, baseName + ".h5", xmf, uGlobal, nodeFields, cellFields, pointSets);
+  files.commit();
 }
 
 void writeFileAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream os(tmp);
-    TRIBOS_REQUIRE(os.good(), "cannot write file " << tmp);
-    os << text;
-    os.close();
-    TRIBOS_REQUIRE(os.good(), "cannot write file " << tmp);
+  const std::string tmp = temporaryName(directoryOf(path), fileNameOf(path), static_cast<long>(::getpid()));
+  std::string error = writeWholeFile(tmp, text);
+  if (error.empty()) error = renameFile(tmp, path);
+  if (!error.empty()) {
+    removeIfExists(tmp);
+    throw RunFailure("cannot write " + path + ": " + error);
   }
-  TRIBOS_REQUIRE(std::rename(tmp.c_str(), path.c_str()) == 0, "cannot rename " << tmp << " to " << path);
+}
+
+void writeFileAtomically(const std::string& path, const std::string& text, const RCP<const Comm>& comm) {
+  std::string error;
+  if (comm->getRank() == 0) {
+    try {
+      writeFileAtomically(path, text);
+    } catch (const RunFailure& e) {
+      error = e.what();
+    }
+  }
+  error = rootError(*comm, error);
+  if (!error.empty()) throw RunFailure(error);
 }
 
 }  // namespace IO

@@ -1,11 +1,15 @@
 // Tribos_ResultWriter.hpp: results to one parallel HDF5 file per run with an
 // XDMF index that ParaView opens directly. Every rank writes the nodes it owns
-// and the cells of its subdomains as contiguous hyperslabs (collective MPI-IO).
-// Files are written under a temporary name and renamed when complete, so a
-// failed run never leaves a partial file in place of a good one.
+// and the cells of its subdomains as contiguous hyperslabs (MPI-IO).
+// The writer writes to the paths it is given (temporaries of a ResultSet,
+// Tribos_ResultSet.hpp, which renames them when the whole set is written) and
+// turns every HDF5 or file failure on any rank into the same exception on
+// every rank, with the partial files removed.
 #pragma once
 
+#include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "Tribos_Discretization.hpp"
@@ -21,29 +25,68 @@ struct Field {
 };
 
 // A set of points with their own fields (e.g. contact nodes), written as a
-// second XDMF grid of vertices.
+// second XDMF grid of vertices. It may be empty on some or all ranks.
 struct PointSet {
   std::string name;
   std::vector<std::array<double, 3>> coords;  // this rank's points
   std::vector<Field> fields;                  // per point of this rank
 };
 
+// Attributes of the HDF5 file's root group, identical on every rank.
+struct ResultAttributes {
+  std::vector<std::pair<std::string, std::string>> text;  // e.g. stop_reason, problem
+  std::vector<std::pair<std::string, double>> numbers;    // e.g. converged (1/0), solver_converged
+};
+
 class ResultWriter {
  public:
   ResultWriter(const Mesh::Discretization& disc, const RCP<const Comm>& comm);
 
-  // uGlobal: replicated displacement (3 numNodes). nodeFields/cellFields as above.
+  // Writes the HDF5 file to h5Path and the XDMF index to xmfPath (rank 0);
+  // the index names the HDF5 file h5Name (its final name, relative: the two
+  // files end up in one directory). uGlobal: replicated displacement
+  // (3 numNodes); nodeFields per owned node, cellFields per local cell,
+  // pointSets per point of this rank; every rank passes the same names,
+  // components and attributes. Collective. On any HDF5 or file failure on
+  // any rank, every rank closes what it opened, rank 0 removes the partial
+  // files, and every rank throws Tribos::RunFailure with one message (naming
+  // the call, the dataset, the file and the system's reason). Arguments that
+  // differ between ranks or fields of the wrong size: Tribos::CollectiveError
+  // on every rank, nothing written.
+  void write(const std::string& h5Path, const std::string& h5Name, const std::string& xmfPath,
+             const std::vector<double>& uGlobal, const std::vector<Field>& nodeFields,
+             const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets = {},
+             const ResultAttributes& attributes = {}) const;
+
+  // The former interface: writes directory/baseName.h5 and .xmf as one
+  // ResultSet in an OutputDirectory of their own (Tribos_ResultSet.hpp).
+  // Kept for drivers that do not hold an OutputDirectory for the whole run;
+  // new code takes the directory before any work and uses the overload above.
   void write(const std::string& directory, const std::string& baseName, const std::vector<double>& uGlobal,
              const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
              const std::vector<PointSet>& pointSets = {}) const;
 
+  // Before writing the data, rank 0 reserves the file's blocks (fallocate),
+  // so that a disk too small fails there, before any data is written, and a
+  // disk that fills up during the write cannot hit the data. On by default;
+  // off only to exercise the failure of the data writes themselves.
+  void reserveSpace(bool on) { reserveSpace_ = on; }
+
  private:
   const Mesh::Discretization& disc_;
   RCP<const Comm> comm_;
+  bool reserveSpace_ = true;
 };
 
-// Writes text to path atomically (temporary file + rename).
+// Writes text to path atomically: to path's directory under a temporary name
+// unique to this process (.NAME.<pid>.tmp), flushed to the device, then
+// renamed. Not collective. On failure the temporary is removed, the old file
+// at path is untouched, and Tribos::RunFailure is thrown on the calling rank.
 void writeFileAtomically(const std::string& path, const std::string& text);
+
+// The same, collective: rank 0 writes, every rank throws Tribos::RunFailure
+// if it failed.
+void writeFileAtomically(const std::string& path, const std::string& text, const RCP<const Comm>& comm);
 
 }  // namespace IO
 }  // namespace Tribos

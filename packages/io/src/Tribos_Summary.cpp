@@ -16,12 +16,24 @@ std::string number(double v) {
   std::snprintf(buf, sizeof buf, "%.10g", v);
   return buf;
 }
+// A JSON string (RFC 8259, section 7): quotation mark, reverse solidus and the
+// control characters below 0x20 must be escaped; bytes from 0x80 on pass
+// through (the text is UTF-8).
 std::string quote(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
+    const unsigned char u = static_cast<unsigned char>(c);
     if (c == '"' || c == '\\') out += '\\', out += c;
     else if (c == '\n') out += "\\n";
-    else out += c;
+    else if (c == '\t') out += "\\t";
+    else if (c == '\r') out += "\\r";
+    else if (c == '\b') out += "\\b";
+    else if (c == '\f') out += "\\f";
+    else if (u < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", u);
+      out += buf;
+    } else out += c;
   }
   return out + "\"";
 }

@@ -1,0 +1,45 @@
+// Tribos_FileSystem.hpp: the POSIX file operations behind the output
+// transaction, each reporting failure as a message (empty on success) that
+// names the operation, the path and the system's reason, so that the message
+// can be shared by all ranks before anyone throws. And the two ways ranks
+// agree on an outcome: rank 0 decides, or the lowest failing rank speaks.
+#pragma once
+
+#include <string>
+
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace IO {
+
+// "No space left on device" etc. for an errno value.
+std::string systemReason(int errnoValue);
+
+// dir/.name.<pid>.tmp: a hidden name that no result file has and that
+// isTemporaryName() recognises, so a later run can remove it.
+std::string temporaryName(const std::string& dir, const std::string& name, long pid);
+bool isTemporaryName(const std::string& fileName);
+
+// The directory part of a path ("." when it has none) and the last component.
+std::string directoryOf(const std::string& path);
+std::string fileNameOf(const std::string& path);
+
+// Creates or truncates path, writes text, flushes it to the device.
+std::string writeWholeFile(const std::string& path, const std::string& text);
+// Flushes a written file (or a directory, after renames in it) to the device.
+std::string syncPath(const std::string& path);
+// Removes a file; a file that is already gone is not an error.
+std::string removeIfExists(const std::string& path);
+std::string renameFile(const std::string& from, const std::string& to);
+
+// Collective: the error of the lowest rank that has one, on every rank ("" if
+// no rank failed). Used after every step that each rank does for itself.
+std::string agreeOnError(const Comm& comm, const std::string& localError);
+// Collective: rank 0's error on every rank. Used after steps that only rank 0 does.
+std::string rootError(const Comm& comm, const std::string& errorOnRoot);
+// Collective: rank 0's value on every rank.
+std::string broadcastFromRoot(const Comm& comm, const std::string& value);
+long broadcastFromRoot(const Comm& comm, long value);
+
+}  // namespace IO
+}  // namespace Tribos

@@ -1,0 +1,54 @@
+// Tribos_ResultSet.hpp: the files of one result (HDF5 data, XDMF index,
+// summary) replaced as a set. They are written under temporary names and
+// renamed together at commit(), the summary last: a directory holds either
+// one run's complete set, or part of the new set without its summary, never
+// a new data file beside an old summary.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "Tribos_OutputDirectory.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace IO {
+
+// The files of one result, written under temporary names and replaced as a set.
+class ResultSet {
+ public:
+  // dir must outlive the set (it holds the directory's lock).
+  ResultSet(const OutputDirectory& dir, const RCP<const Comm>& comm);
+  ResultSet(const ResultSet&) = delete;
+  ResultSet& operator=(const ResultSet&) = delete;
+
+  // The temporary path to write the file `name` (a plain file name, no
+  // directory) to; it becomes dir/name at commit(). Add the summary, the
+  // marker of a complete set, last.
+  std::string add(const std::string& name);
+
+  // Collective. Rank 0 checks that every temporary was written and flushes it
+  // to the device, removes the old files of the set (the last-added one, the
+  // summary, first), then renames the temporaries in the order added, the
+  // last one last, and flushes the directory: what is in the directory is
+  // always either one run's complete set or a subset of the new one without
+  // its summary. Failure on rank 0 -> every rank throws Tribos::RunFailure.
+  void commit();
+
+  // Removes (rank 0) the temporaries that were not committed: error paths,
+  // exceptions. Not collective.
+  ~ResultSet();
+
+ private:
+  const OutputDirectory& dir_;
+  RCP<const Comm> comm_;
+  std::vector<std::pair<std::string, std::string>> files_;  // final path, temporary path
+};
+
+// Collective: rank 0 writes text to path (e.g. a temporary of a ResultSet) and
+// flushes it; every rank throws Tribos::RunFailure if that failed.
+void writeTextFile(const std::string& path, const std::string& text, const RCP<const Comm>& comm);
+
+}  // namespace IO
+}  // namespace Tribos

@@ -1,0 +1,115 @@
+// IoTestSupport.hpp: what the io tests share: a scratch directory per test
+// run, a small distributed mesh with fields, file helpers, and the collective
+// verdict (a test passes only if it passes on every rank).
+#pragma once
+
+#include <dirent.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <Teuchos_CommHelpers.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "Tribos_Discretization.hpp"
+#include "Tribos_FileSystem.hpp"
+#include "Tribos_ResultWriter.hpp"
+#include "Tribos_TestSupport.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace Test {
+
+// A fresh directory under TMPDIR (or /tmp), made by rank 0, known to all.
+inline std::string scratchDirectory(const Comm& comm, const std::string& tag) {
+  std::string path;
+  if (comm.getRank() == 0) {
+    const char* base = std::getenv("TMPDIR");
+    std::string pattern = std::string(base && *base ? base : "/tmp") + "/tribos_" + tag + "_XXXXXX";
+    path = ::mkdtemp(&pattern[0]) ? pattern : "";
+  }
+  return IO::broadcastFromRoot(comm, path);
+}
+
+inline void removeTree(const std::string& path) {
+  if (DIR* d = ::opendir(path.c_str())) {
+    while (const dirent* e = ::readdir(d)) {
+      const std::string name = e->d_name;
+      if (name == "." || name == "..") continue;
+      const std::string child = path + "/" + name;
+      struct stat st;
+      if (::lstat(child.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) removeTree(child);
+      else ::unlink(child.c_str());
+    }
+    ::closedir(d);
+  }
+  ::rmdir(path.c_str());
+}
+
+inline bool exists(const std::string& path) {
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+inline std::vector<std::string> listDirectory(const std::string& path) {
+  std::vector<std::string> names;
+  if (DIR* d = ::opendir(path.c_str())) {
+    while (const dirent* e = ::readdir(d))
+      if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") names.push_back(e->d_name);
+    ::closedir(d);
+  }
+  return names;
+}
+
+// Files of a directory that a run uses as temporaries.
+inline std::vector<std::string> temporariesIn(const std::string& path) {
+  std::vector<std::string> found;
+  for (const std::string& name : listDirectory(path))
+    if (IO::isTemporaryName(name) || name.find(".tmp") != std::string::npos) found.push_back(name);
+  return found;
+}
+
+inline std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline void writePlainFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// An nx x ny x nz Hex8 box in nx structured subdomains along x, spread over the ranks.
+inline Mesh::Discretization boxDiscretization(int nx, int ny, int nz, const Comm& comm) {
+  Mesh::BoxSpec spec;
+  spec.type = Mesh::CellType::Hex8;
+  spec.cells = {nx, ny, nz};
+  Mesh::DecompositionSpec dec;
+  dec.partitioner = "Structured";
+  dec.grid = {std::max(2, comm.getSize()), 1, 1};
+  return Mesh::Discretization(Mesh::generateBox(spec), spec, dec, comm.getSize(), comm.getRank());
+}
+
+// u(x) = (x, 2y, 3z) + 10 * node number: every value tells where it belongs.
+inline std::vector<double> displacementOf(const Mesh::Discretization& disc) {
+  std::vector<double> u;
+  for (int n = 0; n < disc.mesh.numNodes(); ++n)
+    for (int d = 0; d < 3; ++d) u.push_back((d + 1) * disc.mesh.coords[n][d] + 10.0 * n);
+  return u;
+}
+
+// Collective: the number of failed checks over all ranks; prints the verdict on rank 0.
+inline int verdict(const Comm& comm, const std::string& name) {
+  int mine = failures(), all = 0;
+  Teuchos::reduceAll<int, int>(comm, Teuchos::REDUCE_SUM, mine, Teuchos::outArg(all));
+  if (comm.getRank() == 0) std::cout << name << ": " << (all == 0 ? "passed" : "FAILED") << std::endl;
+  return all == 0 ? 0 : 1;
+}
+
+}  // namespace Test
+}  // namespace Tribos

@@ -1,0 +1,198 @@
+// A result that does not fit: under a file size limit (setrlimit after
+// MPI_Init, SIGXFSZ ignored so that writes fail with EFBIG) and, where the
+// machine lets us mount one, on a tmpfs too small for it (ENOSPC). Every rank
+// must throw Tribos::RunFailure with the same one-line message, no temporary
+// may remain, the previous result set must be intact, and nothing may hang.
+// With --exit-status the program behaves like a driver instead: it prints the
+// message once and exits with status 3 on every rank (disk_full_exit.sh
+// checks that from outside: status, one message, no core, no hang).
+#include <sys/mount.h>
+#include <sys/resource.h>
+
+#include <Tpetra_Core.hpp>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <iostream>
+
+#include "IoTestSupport.hpp"
+#include "Tribos_Error.hpp"
+#include "Tribos_OutputDirectory.hpp"
+#include "Tribos_ResultSet.hpp"
+
+using namespace Tribos;
+using namespace Tribos::Test;
+
+namespace {
+
+const std::vector<std::string> kSet = {"solution.h5", "solution.xmf", "summary.json"};
+
+// The file size limit of this process, while in scope.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    rlimit lim = saved_;
+    lim.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &lim);
+  }
+  ~FileSizeLimit() { setrlimit(RLIMIT_FSIZE, &saved_); }
+
+ private:
+  rlimit saved_;
+};
+
+struct Outcome {
+  bool committed = false, runFailure = false;
+  std::string message;
+};
+
+// Writes a 12^3 Hex8 result (about 250 kB) as one ResultSet in dir.
+Outcome writeResult(const IO::OutputDirectory& dir, const Mesh::Discretization& disc, bool reserve,
+                    const RCP<const Comm>& comm) {
+  Outcome out;
+  IO::Field pressure{"pressure", 1, std::vector<double>(disc.ownedNodes().size(), 1.5)};
+  IO::Field stress{"von_mises", 1, std::vector<double>(disc.localCells().size(), 2.5)};
+  IO::PointSet contact{"contact", {}, {IO::Field{"gap", 1, {}}}};
+  if (comm->getRank() == 0)
+    for (int k = 0; k < 50; ++k) contact.coords.push_back({k * 0.01, 0, 0}), contact.fields[0].values.push_back(k);
+  IO::ResultAttributes attributes{{{"stop_reason", "converged"}}, {{"converged", 1.0}}};
+  try {
+    IO::ResultSet files(dir, comm);
+    const std::string h5 = files.add(kSet[0]), xmf = files.add(kSet[1]), summary = files.add(kSet[2]);
+    IO::ResultWriter writer(disc, comm);
+    writer.reserveSpace(reserve);
+    writer.write(h5, kSet[0], xmf, displacementOf(disc), {pressure}, {stress}, {contact}, attributes);
+    IO::writeTextFile(summary, "{\"converged\": true}\n", comm);
+    files.commit();
+    out.committed = true;
+  } catch (const RunFailure& e) {
+    out.runFailure = true, out.message = e.what();
+  } catch (const std::exception& e) {
+    out.message = std::string("not a RunFailure: ") + e.what();
+  }
+  return out;
+}
+
+void writeOldSet(const std::string& dir, const Comm& comm) {
+  if (comm.getRank() == 0)
+    for (const std::string& f : kSet) writePlainFile(dir + "/" + f, "old " + f);
+  comm.barrier();
+}
+
+// Every rank failed with RunFailure, with rank 0's message, one line naming
+// the file and a reason; no temporary left; the old set untouched.
+void checkFailure(const Outcome& out, const std::string& dir, const std::string& label, const RCP<const Comm>& comm) {
+  CHECK(out.runFailure, label << ": RunFailure expected, got " << (out.committed ? "success" : out.message));
+  const std::string rootMessage = IO::broadcastFromRoot(*comm, out.message);
+  CHECK(out.message == rootMessage, label << ": rank " << comm->getRank() << " has another message: " << out.message);
+  CHECK(out.message.find('\n') == std::string::npos, label << ": message of one line: " << out.message);
+  CHECK(contains(out.message, "solution.h5"), label << ": message names the file: " << out.message);
+  CHECK(contains(out.message, "File too large") || contains(out.message, "No space left"),
+        label << ": message gives the reason: " << out.message);
+  if (comm->getRank() == 0) {
+    std::cout << "  " << label << ": " << out.message << std::endl;
+    CHECK(temporariesIn(dir).empty(), label << ": temporaries left: " << temporariesIn(dir).front());
+    for (const std::string& f : kSet) CHECK(readFile(dir + "/" + f) == "old " + f, label << ": old " << f << " changed");
+  }
+}
+
+void fileSizeLimitCases(const std::string& base, const Mesh::Discretization& disc, const RCP<const Comm>& comm) {
+  IO::OutputDirectory dir(base + "/limit", comm);
+  // From the first metadata block to most of the data.
+  // (Only with the space reserved: without, HDF5 1.10 cannot close a file
+  // whose metadata lies beyond the limit, and crashes in MPI_Finalize.)
+  for (rlim_t kib : {1, 4, 16, 64, 160, 240}) {
+    writeOldSet(dir.path(), *comm);
+    Outcome out;
+    {
+      FileSizeLimit limit(kib * 1024);
+      out = writeResult(dir, disc, true, comm);
+    }
+    checkFailure(out, dir.path(), "limit " + std::to_string(kib) + " KiB", comm);
+  }
+  // A limit the result fits under changes nothing.
+  writeOldSet(dir.path(), *comm);
+  Outcome out;
+  {
+    FileSizeLimit limit(64 << 20);
+    out = writeResult(dir, disc, true, comm);
+  }
+  CHECK(out.committed, "limit 64 MiB: committed: " << out.message);
+  if (comm->getRank() == 0) CHECK(readFile(dir.path() + "/summary.json") == "{\"converged\": true}\n", "new summary");
+}
+
+// Mounts a tmpfs of `size` at path (rank 0); "" or why not.
+std::string mountSmallDisk(const std::string& path, const std::string& size, const Comm& comm) {
+  std::string error;
+  if (comm.getRank() == 0) {
+    ::mkdir(path.c_str(), 0755);
+    if (::mount("tribos_test", path.c_str(), "tmpfs", 0, ("size=" + size).c_str()) != 0) error = std::strerror(errno);
+  }
+  return IO::rootError(comm, error);
+}
+
+// Small tmpfs disks: 96k holds the old set, the lock and HDF5's metadata but
+// not the data, 24k not even the metadata. Without the space reserved, the
+// data writes fail (only at 96k: a failure of HDF5 1.10's metadata writes
+// hangs or crashes inside HDF5, which the reservation exists to prevent).
+// Skipped where mounting is not allowed.
+void smallDiskCases(const std::string& base, const Mesh::Discretization& disc, const RCP<const Comm>& comm) {
+  for (const std::string size : {"96k", "24k"}) {
+    const std::string mountPoint = base + "/tmpfs" + size;
+    const std::string error = mountSmallDisk(mountPoint, size, *comm);
+    if (!error.empty()) {
+      if (comm->getRank() == 0) std::cout << "  small disk: skipped, cannot mount a tmpfs (" << error << ")" << std::endl;
+      return;
+    }
+    {
+      IO::OutputDirectory dir(mountPoint + "/out", comm);
+      for (bool reserve : {true, false}) {
+        if (!reserve && size != "96k") continue;
+        writeOldSet(dir.path(), *comm);
+        checkFailure(writeResult(dir, disc, reserve, comm), dir.path(),
+                     "tmpfs " + size + (reserve ? ", reserved" : ", not reserved"), comm);
+      }
+    }
+    comm->barrier();
+    if (comm->getRank() == 0) ::umount2(mountPoint.c_str(), MNT_DETACH);
+  }
+}
+
+// Like a driver: one message on rank 0, exit status 3 on every rank.
+int exitStatusCase(const std::string& base, const Mesh::Discretization& disc, const RCP<const Comm>& comm) {
+  IO::OutputDirectory dir(base + "/exit", comm);
+  Outcome out;
+  {
+    FileSizeLimit limit(16 * 1024);
+    out = writeResult(dir, disc, false, comm);
+  }
+  if (out.committed) return 0;
+  if (comm->getRank() == 0) std::cerr << "io_test_disk_full: error: " << out.message << std::endl;
+  return out.runFailure ? 3 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard guard(&argc, &argv);
+  // Only a test program may do this, never the library: with SIGXFSZ ignored,
+  // a write beyond the file size limit fails with EFBIG instead of killing us.
+  std::signal(SIGXFSZ, SIG_IGN);
+  auto comm = Tpetra::getDefaultComm();
+  comm->barrier();  // MPI's own shared-memory files exist before any limit
+  const std::string base = scratchDirectory(*comm, "disk_full");
+  const auto disc = boxDiscretization(12, 12, 12, *comm);
+  int status = 0;
+  if (argc > 1 && std::string(argv[1]) == "--exit-status") {
+    status = exitStatusCase(base, disc, comm);
+  } else {
+    fileSizeLimitCases(base, disc, comm);
+    smallDiskCases(base, disc, comm);
+    status = verdict(*comm, "io_test_disk_full");
+  }
+  comm->barrier();
+  if (comm->getRank() == 0) removeTree(base);
+  return status;
+}
