@@ -51,9 +51,13 @@ class MassSolver {
   // symmetric positive definite).
   MassSolver(const SparseMatrix& M, const std::string& name);
   void solve(const std::vector<double>& b, std::vector<double>& x) const;
-  void solve(const double* b, double* x, int nrhs) const { solver_->solve(b, x, nrhs); }
+  // Without degrees of freedom (M is 0 x 0) nothing is factored and every
+  // solve is empty.
+  void solve(const double* b, double* x, int nrhs) const {
+    if (solver_) solver_->solve(b, x, nrhs);
+  }
   SolveM function() const;
-  int size() const { return solver_->size(); }
+  int size() const { return solver_ ? solver_->size() : 0; }
   long long solves() const { return solves_; }
   double factorSeconds() const { return factorSeconds_; }
 
