@@ -31,8 +31,9 @@ std::string makeDirectories(const std::string& path) {
     const std::string prefix = path.substr(0, end);
     struct stat st;
     if (!prefix.empty() && ::stat(prefix.c_str(), &st) == 0) {
-      if (S_ISREG(st.st_mode)) return prefix + " is a regular file, not a directory";
-      if (!S_ISDIR(st.st_mode)) return prefix + " is not a directory";
+      const std::string what = prefix == path ? "it" : prefix;
+      if (S_ISREG(st.st_mode)) return what + " is a regular file, not a directory";
+      if (!S_ISDIR(st.st_mode)) return what + " is not a directory";
     } else if (!prefix.empty() && errno != ENOENT) {
       return "cannot access " + prefix + ": " + systemReason(errno);
     } else if (!prefix.empty() && ::mkdir(prefix.c_str(), 0755) != 0 && errno != EEXIST) {
@@ -111,10 +112,10 @@ std::string withoutTrailingSlashes(std::string path) {
 
 OutputDirectory::OutputDirectory(const std::string& path, const RCP<const Comm>& comm)
     : path_(withoutTrailingSlashes(path)), comm_(comm) {
+  if (path_.empty()) throw CollectiveError("no output directory given");
   std::string error;
   if (comm->getRank() == 0) {
-    if (path_.empty()) error = "no directory given";
-    if (error.empty()) error = makeDirectories(path_);
+    error = makeDirectories(path_);
     if (error.empty()) error = lock(path_, lockFd_);
     if (error.empty()) error = probe(path_);
     if (error.empty()) error = removeStaleTemporaries(path_);

@@ -55,23 +55,40 @@ class QuietHdf5Errors {
   void* data_ = nullptr;
 };
 
-// The innermost entry of HDF5's current error stack (the low-level
+// What HDF5's current error stack tells: the innermost entry (the low-level
 // operation that failed) and the MPI error string if MPI-IO reported one.
-std::string hdf5Cause() {
-  struct Walk {
-    std::string innermost, mpi;
-  } walk;
+struct Hdf5Cause {
+  std::string innermost, mpi;
+};
+
+Hdf5Cause hdf5Cause() {
+  Hdf5Cause cause;
   auto visit = [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
-    auto& w = *static_cast<Walk*>(data);
-    const std::string desc = e->desc ? e->desc : "";
-    if (n == 0) w.innermost = desc;
-    if (e->min_num == H5E_MPIERRSTR && w.mpi.empty()) w.mpi = desc;
+    auto& c = *static_cast<Hdf5Cause*>(data);
+    std::string desc = e->desc ? e->desc : "";
+    // HDF5 appends "MPI error string is '...'" to the failed MPI call.
+    const std::string marker = "MPI error string is '";
+    const size_t at = desc.find(marker);
+    if (at != std::string::npos) {
+      if (c.mpi.empty()) c.mpi = desc.substr(at + marker.size(), desc.rfind('\'') - at - marker.size());
+      desc = desc.substr(0, at);
+      while (!desc.empty() && (desc.back() == ' ' || desc.back() == ':' || desc.back() == ',')) desc.pop_back();
+    }
+    if (n == 0) c.innermost = desc;
     return 0;
   };
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, visit, &walk);
-  std::string cause = "HDF5: " + (walk.innermost.empty() ? std::string("no error message") : walk.innermost);
-  if (!walk.mpi.empty() && walk.mpi != walk.innermost) cause += ", MPI: " + walk.mpi;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, visit, &cause);
+  if (cause.innermost.empty()) cause.innermost = "no error message";
   return cause;
+}
+
+// errno after an HDF5 call is only a clue: MPI-IO's cleanup after a failure
+// may have changed it (EBADF after a failed open). These values name a
+// storage problem whatever call set them.
+bool isStorageError(int err) {
+  for (int e : {ENOSPC, EFBIG, EDQUOT, EIO, EROFS, EACCES, EPERM, ENOENT, ENOTDIR, EISDIR, ENAMETOOLONG})
+    if (err == e) return true;
+  return false;
 }
 
 // Why `bytes` more bytes cannot go into a file of the directory of path ("" if
@@ -128,12 +145,15 @@ class FirstFailure {
     if (result >= 0) return false;
     if (message.empty()) {
       const int err = errno;  // before the error walk can change it
+      const Hdf5Cause cause = hdf5Cause();
       // MPI-IO reports a short write as a success, and HDF5 then only knows
       // that bytes are missing: the likely reasons are a full file system or
       // a file size limit.
-      const std::string reason = err != 0 ? systemReason(err) : roomMissing(path_, 1 << 20);
-      message = std::string(call) + " of " + object + " failed: " + (reason.empty() ? "" : reason + " ") + "(" +
-                hdf5Cause() + ")";
+      const std::string reason = !cause.mpi.empty()   ? cause.mpi
+                                 : isStorageError(err) ? systemReason(err)
+                                                       : roomMissing(path_, 1 << 20);
+      message = std::string(call) + " of " + object + " failed: " + (reason.empty() ? "" : reason + " ") +
+                "(HDF5: " + cause.innermost + ")";
     }
     return true;
   }
@@ -186,6 +206,7 @@ class ParallelH5File {
     const hid_t type = H5Tcopy(H5T_C_S1);
     H5Tset_size(type, std::max<size_t>(value.size(), 1));
     H5Tset_strpad(type, H5T_STR_NULLPAD);
+    H5Tset_cset(type, H5T_CSET_UTF8);
     const std::string padded = value.empty() ? std::string(1, '\0') : value;
     writeScalarAttribute(name, type, padded.data());
     H5Tclose(type);
@@ -300,8 +321,9 @@ std::string reserveOnRoot(const std::string& path, hsize_t bytes, const Comm& co
   std::string error;
   if (comm.getRank() == 0) {
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
-    const int err = fd < 0 ? errno : ::fallocate(fd, 0, 0, static_cast<off_t>(bytes)) == 0 ? 0 : errno;
-    if (fd >= 0) ::close(fd);
+    if (fd < 0) return agreeOnError(comm, "cannot create the file: " + systemReason(errno));
+    const int err = ::fallocate(fd, 0, 0, static_cast<off_t>(bytes)) == 0 ? 0 : errno;
+    ::close(fd);
     const std::string reason = err == EOPNOTSUPP || err == ENOSYS ? roomMissing(path, bytes)
                                : err != 0                        ? systemReason(err)
                                                                  : "";
