@@ -1,31 +1,53 @@
 // tribos: the XML-driven solver.
 //   mpirun -np N tribos input/FILE.xml [--output DIR] [--summary FILE.json]
-//                      [--set "Sublist/Key=value" ...] [--verify] [--export-fclib FILE.hdf5]
+//                      [--set "Sublist/Key=value" ...] [--verify] [--verbose] [--quiet]
+//                      [--max-memory SIZE] [--export-fclib FILE.hdf5]
+// Exit codes (docs/exit_codes.md): 0 converged; 1 bad input or a problem
+// refused before any work, nothing written; 2 not converged, the result is
+// written and marked so; 3 the run failed (output not writable, disk full,
+// out of memory, numerical breakdown), no result written.
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Core.hpp>
 
 #include <mpi.h>
 
+#include <cstdio>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
 #include "Tribos_Error.hpp"
 #include "Tribos_Input.hpp"
+#include "Tribos_MemoryEstimate.hpp"
+#include "Tribos_Progress.hpp"
 #include "Tribos_ResultWriter.hpp"
 #include "Tribos_Run.hpp"
 
 namespace {
 
 const char* kUsage =
-    "usage: tribos INPUT.xml [--output DIR] [--summary FILE.json] [--set \"Sublist/Key=value\" ...] [--verify] [--verbose]\n"
-    "             [--export-fclib FILE.hdf5]\n";
+    "usage: tribos INPUT.xml [options]\n"
+    "  --output DIR            result directory (default: Output/Directory of the input)\n"
+    "  --summary FILE.json     also write the run summary to FILE.json (it is always printed on stdout)\n"
+    "  --set \"Sublist/Key=value\"  override one input parameter (repeatable), e.g. --set \"Mesh/Level=8\"\n"
+    "  --verify                also solve monolithically and report the difference (linear problems)\n"
+    "  --verbose               print solver iterations and timers on stdout\n"
+    "  --quiet                 no progress lines on stderr\n"
+    "  --max-memory SIZE       refuse a run estimated to need more than SIZE (e.g. 4G) on one machine\n"
+    "  --export-fclib FILE     write the FETI contact problem and its solution as an FCLIB file\n"
+    "  --help                  this text\n"
+    "exit codes: 0 converged, 1 bad input (nothing written), 2 not converged (result written, marked),\n"
+    "            3 run failure: output, memory or numerical breakdown (no result written)\n";
+
+enum Exit { kConverged = 0, kBadInput = 1, kNotConverged = 2, kRunFailure = 3 };
 
 struct Args {
-  std::string input, summary;
+  std::string input;
   std::vector<std::string> overrides;
   Tribos::RunOptions options;
+  bool help = false, quiet = false;
 };
 
 Args parse(int argc, char** argv) {
@@ -34,30 +56,93 @@ Args parse(int argc, char** argv) {
     const std::string s = argv[i];
     auto next = [&](const char* flag) {
       TRIBOS_REQUIRE(i + 1 < argc, flag << " needs a value\n" << kUsage);
-      return std::string(argv[++i]);
+      const std::string v = argv[++i];
+      TRIBOS_REQUIRE(!v.empty(), flag << " needs a non-empty value");
+      return v;
     };
     if (s == "--output") a.options.outputDir = next("--output");
-    else if (s == "--summary") a.summary = next("--summary");
+    else if (s == "--summary") a.options.summaryFile = next("--summary");
     else if (s == "--set") a.overrides.push_back(next("--set"));
     else if (s == "--verify") a.options.verify = true;
     else if (s == "--verbose") a.options.verbose = true;
+    else if (s == "--quiet") a.quiet = true;
+    else if (s == "--max-memory") a.options.maxMemory = Tribos::parseMemorySize(next("--max-memory"), "--max-memory");
     else if (s == "--export-fclib") a.options.exportFclib = next("--export-fclib");
-    else if (s == "--help" || s == "-h") throw Tribos::Error(kUsage);
+    else if (s == "--help" || s == "-h") a.help = true;
     else if (!s.empty() && s[0] == '-') throw Tribos::Error("unknown option " + s + "\n" + kUsage);
     else {
       TRIBOS_REQUIRE(a.input.empty(), "more than one input file given (" << a.input << ", " << s << ")\n" << kUsage);
       a.input = s;
     }
   }
-  TRIBOS_REQUIRE(!a.input.empty(), "no input file given\n" << kUsage);
+  TRIBOS_REQUIRE(a.help || !a.input.empty(), "no input file given\n" << kUsage);
   a.options.inputName = a.input;
   return a;
+}
+
+// Runs the problem; returns the exit code. Errors every rank detects alike
+// are reported once by rank 0; an error on one rank alone (out of memory,
+// a failure inside a library) can only end the run by MPI_Abort.
+int runAndReport(const Args& args, const Teuchos::ParameterList& params, const Teuchos::RCP<const Tribos::Comm>& comm) {
+  const bool root = comm->getRank() == 0;
+  try {
+    const auto result = Tribos::run(params, args.options, comm);
+    // Teuchos timers of the phases (factorization, F applications, QP solvers, output).
+    if (args.options.verbose) Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
+    const std::string json = result.summary.toJson() + "\n";
+    if (root) std::cout << json << std::flush;
+    if (!args.options.summaryFile.empty()) {
+      int ok = 1;
+      if (root) {
+        try {
+          Tribos::IO::writeFileAtomically(args.options.summaryFile, json);
+        } catch (const std::exception& e) {
+          std::cerr << "tribos: error: " << e.what() << " (the summary is on stdout)" << std::endl;
+          ok = 0;
+        }
+      }
+      Teuchos::broadcast(*comm, 0, &ok);
+      if (!ok) return kRunFailure;
+    }
+    if (!result.converged) {
+      if (root)
+        std::cerr << "tribos: not converged: " << result.stopReason
+                  << (result.written ? "; the result is written, marked converged = false" : "") << std::endl;
+      return kNotConverged;
+    }
+    return kConverged;
+  } catch (const Tribos::RunFailure& e) {
+    if (root) std::cerr << "tribos: run failed: " << e.what() << std::endl;
+    return kRunFailure;
+  } catch (const Tribos::CollectiveError& e) {
+    // Every rank took the same decision before any result: report once, no abort.
+    if (root) std::cerr << "tribos: error: " << e.what() << std::endl;
+    return kBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "tribos: run failed: out of memory during " << Tribos::Progress::currentStage()
+              << (comm->getSize() > 1 ? " on rank " + std::to_string(comm->getRank()) : "")
+              << "; the summary's memory_estimate_mb or --max-memory can help size the run" << std::endl;
+  } catch (const std::exception& e) {
+    std::cerr << "tribos: run failed" << (comm->getSize() > 1 ? " on rank " + std::to_string(comm->getRank()) : "")
+              << " during " << Tribos::Progress::currentStage() << ": " << e.what() << std::endl;
+  }
+  if (comm->getSize() > 1) MPI_Abort(MPI_COMM_WORLD, kRunFailure);
+  return kRunFailure;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
+  // Line-buffered stdout, so that --verbose lines reach a pipe as they happen.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  // Kokkos answers --help itself: keep it from seeing ours.
+  std::vector<char*> kokkosArgs;
+  for (int i = 0; i < argc; ++i)
+    if (std::string(argv[i]) != "--help" && std::string(argv[i]) != "-h") kokkosArgs.push_back(argv[i]);
+  int kokkosArgc = static_cast<int>(kokkosArgs.size());
+  kokkosArgs.push_back(nullptr);
+  char** kokkosArgv = kokkosArgs.data();
+  Tpetra::ScopeGuard guard(&kokkosArgc, &kokkosArgv);
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
   Args args;
@@ -65,35 +150,16 @@ int main(int argc, char** argv) {
   // Input errors happen identically on every rank: report once and exit.
   try {
     args = parse(argc, argv);
+    if (args.help) {
+      if (root) std::cout << kUsage;
+      return kConverged;
+    }
     params = Tribos::Input::read(args.input, args.overrides);
-    Tribos::checkRunnable(*params, comm->getSize());
+    Tribos::checkRunnable(*params, args.options, comm->getSize());
   } catch (const std::exception& e) {
     if (root) std::cerr << "tribos: error: " << e.what() << std::endl;
-    return 1;
+    return kBadInput;
   }
-  try {
-    const auto result = Tribos::run(*params, args.options, comm);
-    const auto& summary = result.summary;
-    // Teuchos timers of the phases (factorization, F applications, QP solvers, output).
-    if (args.options.verbose) Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
-    if (root) {
-      const std::string json = summary.toJson() + "\n";
-      if (!args.summary.empty()) Tribos::IO::writeFileAtomically(args.summary, json);
-      std::cout << json;
-    }
-    if (!result.converged) {
-      if (root) std::cerr << "tribos: not converged: see stop_reason in the summary; the result is written" << std::endl;
-      return 2;
-    }
-  } catch (const Tribos::CollectiveError& e) {
-    // Every rank took the same decision: report once, no abort.
-    if (root) std::cerr << "tribos: error: " << e.what() << std::endl;
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "tribos: error" << (comm->getSize() > 1 ? " on rank " + std::to_string(comm->getRank()) : "") << ": "
-              << e.what() << std::endl;
-    if (comm->getSize() > 1) MPI_Abort(MPI_COMM_WORLD, 1);
-    return 1;
-  }
-  return 0;
+  Tribos::Progress::Session progress(root && !args.quiet ? &std::cerr : nullptr);
+  return runAndReport(args, *params, comm);
 }

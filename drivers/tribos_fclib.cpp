@@ -8,7 +8,6 @@
 // stop_reason says why).
 // The solve runs on rank 0 with a communicator of one rank (Amesos2 is not
 // usable on multi-rank communicators in this Trilinos build); other ranks wait.
-#include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Core.hpp>
 
@@ -24,6 +23,7 @@
 #include "Tribos_FCLIB_Accuracy.hpp"
 #include "Tribos_FCLIB_Files.hpp"
 #include "Tribos_FCLIB_Solve.hpp"
+#include "Tribos_ParameterReader.hpp"
 #include "Tribos_Summary.hpp"
 
 namespace {
@@ -98,7 +98,7 @@ FCLIB::SolveOptions solveOptions(const Args& args) {
   options.massSolver = args.massSolver;
   options.verbose = args.verbose;
   if (!args.xml.empty()) {
-    auto pl = Teuchos::getParametersFromXmlFile(args.xml);
+    auto pl = IO::readParameterFile(args.xml);  // every value parsed completely, finite
     const Teuchos::ParameterList& solver = pl->isSublist("Solver") ? pl->sublist("Solver") : *pl;
     options.solverParams = solver;
     if (solver.isParameter("Outer Algorithm")) options.algorithm = solver.get<std::string>("Outer Algorithm");

@@ -2,12 +2,13 @@
 
 #include <Teuchos_TimeMonitor.hpp>
 
-#include <sys/stat.h>
-
 #include <chrono>
+#include <cmath>
+#include <memory>
 #include <sstream>
 
 #include "Tribos_Assembly.hpp"
+#include "Tribos_ContactReduction.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_FCLIB_Export.hpp"
 #include "Tribos_FetiContact.hpp"
@@ -15,7 +16,11 @@
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_ProjectedCG.hpp"
 #include "Tribos_Input.hpp"
+#include "Tribos_MemoryEstimate.hpp"
 #include "Tribos_Monolithic.hpp"
+#include "Tribos_OutputDirectory.hpp"
+#include "Tribos_Progress.hpp"
+#include "Tribos_ResultSet.hpp"
 #include "Tribos_ResultWriter.hpp"
 #include "Tribos_RigidMotions.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
@@ -36,18 +41,6 @@ double maxOverRanks(double v, const Comm& comm) {
   double out = v;
   Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, v, Teuchos::outArg(out));
   return out;
-}
-
-void makeDirectory(const std::string& dir) {
-  std::string partial;
-  for (size_t i = 0; i <= dir.size(); ++i) {
-    if (i == dir.size() || dir[i] == '/') {
-      if (!partial.empty()) mkdir(partial.c_str(), 0755);
-    }
-    if (i < dir.size()) partial += dir[i];
-  }
-  struct stat st;
-  TRIBOS_REQUIRE(stat(dir.c_str(), &st) == 0 && S_ISDIR(st.st_mode), "cannot create output directory " << dir);
 }
 
 // Von Mises stress, subdomain and rank of every local cell.
@@ -92,7 +85,8 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
   const double slipTraction = law == "Frictionless" ? 0.0 : contact.get<double>("Slip Bound Traction");
   // Every rank refuses a body the Dirichlet conditions do not hold, before
   // rank 0 starts (the method eliminates them and factors K_rr).
-  Semismooth::requireRigidMotionsHeld(disc.mesh.coords, Fem::constrainedDofs(disc.mesh, loads.dirichlet));
+  Fem::requireRigidMotionsHeld(disc.mesh.coords, Fem::constrainedDofs(disc.mesh, loads.dirichlet), "semismooth*",
+                               Semismooth::kSemicoerciveAdvice);
   std::vector<double> u(3 * static_cast<size_t>(disc.mesh.numNodes()), 0.0);
   double info[5] = {0};
   std::vector<double> residuals;
@@ -202,8 +196,9 @@ double requestedTolerance(const Teuchos::ParameterList& params) {
 // `converged` is a promise about the written result: the solver stopped on
 // its own test AND every KKT residual of the result (Fem::resultKKT) is
 // within Result Check Factor times the requested tolerance.
-void setResultCheck(const Teuchos::ParameterList& params, bool solverConverged, const std::string& solverReason,
-                    const Fem::ResultKKT& kkt, IO::Summary& summary, bool& converged) {
+// Returns the stop reason written to the summary.
+std::string setResultCheck(const Teuchos::ParameterList& params, bool solverConverged, const std::string& solverReason,
+                           const Fem::ResultKKT& kkt, IO::Summary& summary, bool& converged) {
   const double tol = requestedTolerance(params);
   const double limit = params.sublist("Solver").get<double>("Result Check Factor") * tol;
   std::string worstName;
@@ -225,12 +220,216 @@ void setResultCheck(const Teuchos::ParameterList& params, bool solverConverged, 
   }
   summary.set("solver_converged", solverConverged);
   summary.set("converged", converged);
-  summary.set("stop_reason", converged ? std::string(solverReason.empty() ? "converged" : solverReason) : reason);
+  const std::string stopReason = converged ? (solverReason.empty() ? "converged" : solverReason) : reason;
+  summary.set("stop_reason", stopReason);
+  return stopReason;
+}
+
+// The displacement and the KKT figures of the result must be finite, and the
+// work of the forces on it (at most dofs U P) representable: values beyond
+// double precision (a modulus of 1e-299, loads of 1e308) are a numerical
+// breakdown, not a result.
+void requireRepresentable(const std::vector<double>& u, const Fem::ResultKKT& kkt, const std::string& method) {
+  bool finite = std::isfinite(kkt.worst()) && std::isfinite(kkt.displacementScale) && std::isfinite(kkt.forceScale);
+  for (double v : u) finite = finite && std::isfinite(v);
+  const double work = double(u.size()) * kkt.displacementScale * kkt.forceScale;
+  if (finite && std::isfinite(work)) return;
+  std::ostringstream os;
+  os << method << " produced " << (finite ? "values whose products overflow" : "non-finite values")
+     << " (largest displacement " << kkt.displacementScale << ", largest nodal force " << kkt.forceScale
+     << "): the problem's scales are beyond double precision; check Material/Young's Modulus and the loads. "
+        "No result is written";
+  throw RunFailure(os.str());
+}
+
+// Rank 0 writes text to path; every rank learns whether it worked.
+void writeOnRoot(const std::string& path, const std::string& text, const Comm& comm) {
+  int ok = 1;
+  std::string why;
+  if (comm.getRank() == 0) {
+    try {
+      IO::writeFileAtomically(path, text);
+    } catch (const std::exception& e) {
+      ok = 0;
+      why = e.what();
+    }
+  }
+  Teuchos::broadcast(comm, 0, &ok);
+  if (!ok) throw RunFailure(comm.getRank() == 0 ? why : "cannot write " + path);
+}
+
+std::string outputDirectory(const Teuchos::ParameterList& params, const RunOptions& options) {
+  return options.outputDir.empty() ? params.sublist("Output").get<std::string>("Directory") : options.outputDir;
+}
+
+// Everything the run will write is checked before any work: the output
+// directory (created, locked for this run, probed) and the files named on
+// the command line.
+std::unique_ptr<IO::OutputDirectory> prepareOutput(const Teuchos::ParameterList& params, const RunOptions& options,
+                                                   const RCP<const Comm>& comm) {
+  std::unique_ptr<IO::OutputDirectory> dir;
+  if (params.sublist("Output").get<bool>("Write Results"))
+    dir = std::make_unique<IO::OutputDirectory>(outputDirectory(params, options), comm);
+  if (!options.summaryFile.empty()) IO::requireWritableFile(options.summaryFile, "--summary", comm);
+  if (!options.exportFclib.empty()) IO::requireWritableFile(options.exportFclib, "--export-fclib", comm);
+  return dir;
+}
+
+// What a solver leaves for the result check and the files.
+struct Solution {
+  std::vector<double> u;  // nodal displacement, replicated
+  Contact::ContactNodeResults contactNodes;
+  bool solverConverged = false;
+  std::string solverReason;
+  Fem::ResultKKT kkt;
+  double setupSeconds = 0, solveSeconds = 0;  // the solver's setup (assembly, factorization) and its iterations
+};
+
+Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discretization& disc, const Fem::Material& mat,
+                         const Fem::LoadCase& loads, const RCP<const Comm>& comm, IO::Summary& summary) {
+  // K restricted to the free dofs is singular when a rigid motion is free.
+  const auto dirichlet = Fem::constrainedDofs(disc.mesh, loads.dirichlet);
+  Fem::requireRigidMotionsHeld(disc.mesh.coords, dirichlet, "Solver/Type = Monolithic",
+                               "a body that Dirichlet conditions do not hold has no unique displacement; hold it, or "
+                               "use Solver/Type = FETI, which finds the equilibrium of a floating body");
+  Progress::stage("assembly");
+  const auto t0 = std::chrono::steady_clock::now();
+  Fem::MonolithicSystem system(disc, mat, loads, comm);
+  Solution sol;
+  sol.setupSeconds = seconds(t0);
+  Progress::stage("monolithic solve");
+  const auto t1 = std::chrono::steady_clock::now();
+  const auto res = system.solve(params.sublist("Solver").sublist("Monolithic"));
+  sol.solveSeconds = seconds(t1);
+  sol.u = res.u;
+  sol.solverConverged = res.converged;
+  if (!res.converged) sol.solverReason = "monolithic CG: maximum iterations";
+  summary.set("primal_dofs", static_cast<long long>(system.matrix()->getGlobalNumRows()));
+  summary.set("dual_dofs", 0);
+  summary.set("outer_iterations", res.iterations);
+  summary.set("n_A", static_cast<long long>(res.iterations));
+  summary.set("relative_residual", res.relativeResidual);
+  // The residuals of the result from K and f assembled anew, as for FETI.
+  Progress::stage("result check");
+  std::vector<Fem::SubdomainSystem> systems;
+  for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s)
+    systems.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, loads));
+  sol.kkt = Fem::resultKKT(sol.u, Fem::assembledProduct(systems, sol.u, *comm),
+                           Fem::assembledLoad(systems, disc.mesh.numNodes(), *comm), dirichlet, Fem::RigidPlane{},
+                           Fem::FrictionLaw{}, {}, *comm);
+  return sol;
+}
+
+Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& options, const Mesh::Discretization& disc,
+                   const Fem::Material& mat, const Fem::LoadCase& loads, const RCP<const Comm>& comm,
+                   IO::Summary& summary) {
+  const auto& fetiParams = params.sublist("Solver").sublist("FETI");
+  Teuchos::ParameterList problemParams;
+  for (const auto& name : {"Local Solver", "Gluing", "Formulation", "Dual Operator"})
+    problemParams.set(name, fetiParams.get<std::string>(name));
+  const auto& contactParams = params.sublist("Contact");
+  Feti::ContactSpec contact;
+  contact.enabled = contactParams.get<bool>("Enabled");
+  contact.face = contactParams.get<std::string>("Face");
+  contact.gap = contactParams.get<double>("Gap");
+  Progress::stage("FETI setup: assembly, gluing, coarse space");
+  const auto t0 = std::chrono::steady_clock::now();
+  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, contact, problemParams, comm));
+  auto dual = rcp(new Feti::FetiDual(problem));
+  Vector lambda(problem->dualMap());
+  Contact::FrictionSpec friction;
+  Solution sol;
+  sol.setupSeconds = seconds(t0);
+  const auto t1 = std::chrono::steady_clock::now();
+  if (!contact.enabled) {
+    Progress::stage("projected CG");
+    Feti::ProjectedCG pcg(fetiParams.sublist("Projected CG"));
+    const auto st = pcg.solve(*dual, lambda);
+    summary.set("outer_iterations", st.iterations);
+    summary.set("n_A", st.n_A);
+    summary.set("relative_residual", st.relativeResidual);
+    sol.solverConverged = st.converged;
+    if (!st.converged) sol.solverReason = "projected CG: maximum iterations";
+    sol.solveSeconds = seconds(t1);
+    Progress::stage("result check");
+    sol.u = problem->nodalDisplacement(*dual->recoverPrimal(lambda));
+    sol.kkt = Contact::resultKKT(*problem, sol.u, {}, friction);
+  } else {
+    friction.law = contactParams.get<std::string>("Friction Law");
+    friction.coefficient = contactParams.get<double>("Friction Coefficient");
+    friction.slipBoundTraction = contactParams.get<double>("Slip Bound Traction");
+    Contact::FetiContactProblem cp(dual, friction);
+    const std::string outer = params.sublist("Solver").get<std::string>("Outer Algorithm");
+    Progress::stage("contact solve: " + outer);
+    const auto result = cp.solve(outer, params.sublist("Solver"),
+                                 options.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
+                                                 : RCP<Teuchos::FancyOStream>());
+    const auto& st = result.status;
+    lambda.assign(*result.lambda);
+    summary.set("outer_algorithm", outer);
+    summary.set("friction_law", friction.law);
+    summary.set("outer_iterations", st.outer_iterations);
+    summary.set("msa_iterations", st.msa_iterations);
+    summary.set("inner_iterations", st.inner_iterations);
+    summary.set("n_A", static_cast<long long>(result.n_A));
+    summary.set("n_A_qpp", static_cast<long long>(st.n_A_qpp));
+    summary.set("n_A_qpq", static_cast<long long>(st.n_A_qpq));
+    summary.set("slip_bound_change", st.slip_bound_change);
+    summary.set("history", st.history);
+    sol.solverConverged = st.converged;
+    sol.solverReason = st.reason;
+    sol.solveSeconds = seconds(t1);
+    Progress::stage("result check");
+    sol.u = problem->nodalDisplacement(*result.u);
+    Contact::ContactCounts counts;
+    sol.contactNodes = Contact::contactResults(*problem, sol.u, lambda, st.slipBound, counts);
+    sol.kkt = Contact::resultKKT(*problem, sol.u, sol.contactNodes, friction);
+    IO::Summary c;
+    c.set("nodes", counts.nodes).set("active", counts.active).set("stick", counts.stick).set("slip", counts.slip);
+    summary.set("contact", c);
+    if (!options.exportFclib.empty()) {
+      // FCLIB global problem: assembled K, contact rows in the local frame, gaps, F (docs/fclib.md).
+      Progress::stage("FCLIB export");
+      FCLIB::Info info{params.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + outer, ""};
+      FCLIB::exportFeti(options.exportFclib, *problem, mat, loads, friction.law, friction.coefficient, *result.u, lambda,
+                        info);
+      summary.set("fclib_export", options.exportFclib);
+    }
+  }
+  summary.set("primal_dofs", static_cast<long long>(problem->primalMap()->getGlobalNumElements()));
+  summary.set("dual_dofs", static_cast<long long>(problem->dualMap()->getGlobalNumElements()));
+  summary.set("local_solver", problem->localSolverName());
+  summary.set("time_factor_s", maxOverRanks(problem->factorTime(), *comm));
+  summary.set("factor_memory_mb", maxOverRanks(problem->factorMemoryMb(), *comm));
+  return sol;
+}
+
+// The result files: Base Name .h5 (with the verdict as root attributes),
+// .xmf and .json (the summary, written last: a set without it is incomplete).
+void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory& dir, const Mesh::Discretization& disc,
+                 const Fem::Material& mat, const Solution& sol, bool converged, const std::string& stopReason,
+                 IO::Summary& summary,
+                 const RCP<const Comm>& comm) {
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::output"));
+  Progress::stage("writing results");
+  const std::string base = params.sublist("Output").get<std::string>("Base Name");
+  summary.set("output", dir.path() + "/" + base + ".xmf");
+  IO::ResultSet files(dir, comm);
+  const std::string h5 = files.add(base + ".h5"), xmf = files.add(base + ".xmf"), json = files.add(base + ".json");
+  std::vector<IO::PointSet> points;
+  if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.contactNodes));
+  IO::ResultAttributes attributes;
+  attributes.numbers = {{"converged", converged ? 1.0 : 0.0}, {"solver_converged", sol.solverConverged ? 1.0 : 0.0}};
+  attributes.text = {{"problem", params.get<std::string>("Problem Name")},
+                     {"stop_reason", stopReason}};
+  IO::ResultWriter(disc, comm).write(h5, base + ".h5", xmf, sol.u, {}, cellFields(disc, mat, sol.u), points, attributes);
+  writeOnRoot(json, summary.toJson() + "\n", *comm);
+  files.commit();
 }
 
 }  // namespace
 
-void checkRunnable(const Teuchos::ParameterList& params, int numRanks) {
+void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& options, int numRanks) {
   const auto decomposition = decompositionFor(params, numRanks);
   const int S = requestedSubdomains(decomposition);
   TRIBOS_REQUIRE(S >= numRanks, "the run has " << numRanks << " MPI ranks but Mesh asks for " << S
@@ -242,13 +441,25 @@ void checkRunnable(const Teuchos::ParameterList& params, int numRanks) {
       TRIBOS_REQUIRE(spec.cells[a] % decomposition.grid[a] == 0,
                      "Mesh/Subdomain Grid: " << decomposition.grid[a] << " boxes along " << "xyz"[a]
                                              << " do not divide the " << spec.cells[a] << " cells of the mesh");
+  const bool fetiContact = params.sublist("Contact").get<bool>("Enabled") &&
+                           params.sublist("Solver").get<std::string>("Type") == "FETI" &&
+                           params.sublist("Solver").get<std::string>("Outer Algorithm") != "SemismoothStarNewton";
+  TRIBOS_REQUIRE(options.exportFclib.empty() || fetiContact,
+                 "--export-fclib writes a FETI contact problem; this run is "
+                     << (params.sublist("Contact").get<bool>("Enabled") ? "solved by the semismooth* method"
+                                                                        : "a linear problem without contact"));
 }
 
 RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) {
   const auto t0 = std::chrono::steady_clock::now();
+  Progress::stage("memory estimate");
+  const MemoryEstimate memory = requireMemory(params, options.maxMemory, options.verify, comm);
+  Progress::stage("checking output paths");
+  const auto outputDir = prepareOutput(params, options, comm);
   IO::Summary summary;
   summary.set("problem", params.get<std::string>("Problem Name"));
   if (!options.inputName.empty()) summary.set("input", options.inputName);
+  Progress::stage("mesh and decomposition");
   const auto spec = Input::boxSpec(params);
   const auto mat = Input::material(params);
   const auto loads = Input::loadCase(params);
@@ -258,151 +469,54 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   for (const auto& d : loads.dirichlet) disc.mesh.face(d.face);
   for (const auto& t : loads.tractions) disc.mesh.face(t.face);
   const std::string type = params.sublist("Solver").get<std::string>("Type");
-  summary.set("algorithm", type);
+  const bool semismooth = params.sublist("Contact").get<bool>("Enabled") &&
+                          params.sublist("Solver").get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
+  summary.set("algorithm", semismooth ? std::string("SemismoothStarNewton") : type);
   summary.set("ranks", comm->getSize());
   summary.set("subdomains", disc.numSubdomains());
   summary.set("element", Mesh::cellTypeName(spec.type));
   summary.set("nodes", disc.mesh.numNodes());
   summary.set("cells", disc.mesh.numCells());
 
-  std::vector<double> u;
-  Contact::ContactNodeResults contactNodes;
-  double setupTime = 0, solveTime = 0;
-  // The solver's own verdict, and the KKT residuals of the written result
-  // that decide `converged` (setResultCheck).
-  bool solverConverged = false, haveKKT = true, converged = false;
-  std::string solverReason;
-  Fem::ResultKKT kkt;
-  const bool semismooth = params.sublist("Contact").get<bool>("Enabled") &&
-                          params.sublist("Solver").get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
+  const auto t1 = std::chrono::steady_clock::now();
+  Solution sol;
   if (semismooth) {
-    summary.set("algorithm", "SemismoothStarNewton");
-    setupTime = seconds(t0);
+    Progress::stage("semismooth* Newton");
     const auto t2 = std::chrono::steady_clock::now();
-    u = solveSemismooth(params, disc, mat, loads, *comm, options.verbose, summary, contactNodes, solverConverged, kkt);
-    solveTime = seconds(t2);
-    if (!solverConverged) solverReason = "semismooth*: maximum Newton iterations";
+    sol.u = solveSemismooth(params, disc, mat, loads, *comm, options.verbose, summary, sol.contactNodes,
+                            sol.solverConverged, sol.kkt);
+    sol.solveSeconds = seconds(t2);
+    if (!sol.solverConverged) sol.solverReason = "semismooth*: maximum Newton iterations";
   } else if (type == "Monolithic") {
-    Fem::MonolithicSystem system(disc, mat, loads, comm);
-    setupTime = seconds(t0);
-    const auto t2 = std::chrono::steady_clock::now();
-    const auto res = system.solve(params.sublist("Solver").sublist("Monolithic"));
-    solveTime = seconds(t2);
-    u = res.u;
-    summary.set("primal_dofs", static_cast<long long>(system.matrix()->getGlobalNumRows()));
-    summary.set("dual_dofs", 0);
-    summary.set("outer_iterations", res.iterations);
-    summary.set("n_A", static_cast<long long>(res.iterations));
-    summary.set("relative_residual", res.relativeResidual);
-    summary.set("converged", res.converged);
-    haveKKT = false;
-    converged = res.converged;
+    sol = solveMonolithic(params, disc, mat, loads, comm, summary);
   } else {
-    const auto& fetiParams = params.sublist("Solver").sublist("FETI");
-    Teuchos::ParameterList problemParams;
-    for (const auto& name : {"Local Solver", "Gluing", "Formulation", "Dual Operator"})
-      problemParams.set(name, fetiParams.get<std::string>(name));
-    const auto& contactParams = params.sublist("Contact");
-    Feti::ContactSpec contact;
-    contact.enabled = contactParams.get<bool>("Enabled");
-    contact.face = contactParams.get<std::string>("Face");
-    contact.gap = contactParams.get<double>("Gap");
-    auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, contact, problemParams, comm));
-    auto dual = rcp(new Feti::FetiDual(problem));
-    setupTime = seconds(t0);
-    const auto t2 = std::chrono::steady_clock::now();
-    Vector lambda(problem->dualMap());
-    RCP<Vector> uPrimal;
-    Contact::FrictionSpec friction;
-    if (!contact.enabled) {
-      Feti::ProjectedCG pcg(fetiParams.sublist("Projected CG"));
-      const auto st = pcg.solve(*dual, lambda);
-      uPrimal = dual->recoverPrimal(lambda);
-      summary.set("outer_iterations", st.iterations);
-      summary.set("n_A", st.n_A);
-      summary.set("relative_residual", st.relativeResidual);
-      solverConverged = st.converged;
-      if (!st.converged) solverReason = "projected CG: maximum iterations";
-      solveTime = seconds(t2);
-      u = problem->nodalDisplacement(*uPrimal);
-      kkt = Contact::resultKKT(*problem, u, {}, friction);
-    } else {
-      friction.law = contactParams.get<std::string>("Friction Law");
-      friction.coefficient = contactParams.get<double>("Friction Coefficient");
-      friction.slipBoundTraction = contactParams.get<double>("Slip Bound Traction");
-      Contact::FetiContactProblem cp(dual, friction);
-      const std::string outer = params.sublist("Solver").get<std::string>("Outer Algorithm");
-      const auto sol = cp.solve(outer, params.sublist("Solver"),
-                                options.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
-                                                : RCP<Teuchos::FancyOStream>());
-      const auto& st = sol.status;
-      const long long n_A = sol.n_A;
-      lambda.assign(*sol.lambda);
-      uPrimal = sol.u;
-      solveTime = seconds(t2);
-      summary.set("outer_algorithm", outer);
-      summary.set("friction_law", friction.law);
-      summary.set("outer_iterations", st.outer_iterations);
-      summary.set("msa_iterations", st.msa_iterations);
-      summary.set("inner_iterations", st.inner_iterations);
-      summary.set("n_A", static_cast<long long>(n_A));
-      summary.set("n_A_qpp", static_cast<long long>(st.n_A_qpp));
-      summary.set("n_A_qpq", static_cast<long long>(st.n_A_qpq));
-      solverConverged = st.converged;
-      solverReason = st.reason;
-      summary.set("slip_bound_change", st.slip_bound_change);
-      summary.set("history", st.history);
-      u = problem->nodalDisplacement(*uPrimal);
-      Contact::ContactCounts counts;
-      contactNodes = Contact::contactResults(*problem, u, lambda, st.slipBound, counts);
-      kkt = Contact::resultKKT(*problem, u, contactNodes, friction);
-      if (!options.exportFclib.empty()) {
-        // FCLIB global problem: assembled K, contact rows in the local frame, gaps, F (docs/fclib.md).
-        FCLIB::Info info{params.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + outer, ""};
-        FCLIB::exportFeti(options.exportFclib, *problem, mat, loads, friction.law, friction.coefficient, *uPrimal,
-                          lambda, info);
-        summary.set("fclib_export", options.exportFclib);
-      }
-      IO::Summary c;
-      c.set("nodes", counts.nodes).set("active", counts.active).set("stick", counts.stick).set("slip", counts.slip);
-      summary.set("contact", c);
-    }
-    summary.set("primal_dofs", static_cast<long long>(problem->primalMap()->getGlobalNumElements()));
-    summary.set("dual_dofs", static_cast<long long>(problem->dualMap()->getGlobalNumElements()));
-    summary.set("local_solver", problem->localSolverName());
-    summary.set("time_factor_s", maxOverRanks(problem->factorTime(), *comm));
-    summary.set("factor_memory_mb", maxOverRanks(problem->factorMemoryMb(), *comm));
+    sol = solveFeti(params, options, disc, mat, loads, comm, summary);
   }
-  if (haveKKT) setResultCheck(params, solverConverged, solverReason, kkt, summary, converged);
+  requireRepresentable(sol.u, sol.kkt, semismooth ? "the semismooth* method" : "the " + type + " solve");
+  bool converged = false;
+  const std::string stopReason = setResultCheck(params, sol.solverConverged, sol.solverReason, sol.kkt, summary, converged);
   if (options.verify && params.sublist("Contact").get<bool>("Enabled")) {
     summary.set("verify_note", "--verify compares with the monolithic linear solve; it does not apply to contact problems");
   } else if (options.verify) {
+    Progress::stage("monolithic reference solve (--verify)");
     Fem::MonolithicSystem reference(disc, mat, loads, comm);
     const auto ref = reference.solve(params.sublist("Solver").sublist("Monolithic"));
     double diff = 0, norm = 0;
-    for (size_t i = 0; i < u.size(); ++i) diff += (u[i] - ref.u[i]) * (u[i] - ref.u[i]), norm += ref.u[i] * ref.u[i];
+    for (size_t i = 0; i < sol.u.size(); ++i)
+      diff += (sol.u[i] - ref.u[i]) * (sol.u[i] - ref.u[i]), norm += ref.u[i] * ref.u[i];
     summary.set("verify_rel_diff_u", std::sqrt(diff / std::max(norm, 1e-300)));
   }
-  summary.set("time_setup_s", maxOverRanks(setupTime, *comm));
-  summary.set("time_solve_s", maxOverRanks(solveTime, *comm));
-
-  const auto& out = params.sublist("Output");
-  if (out.get<bool>("Write Results")) {
-    Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::output"));
-    const std::string dir = options.outputDir.empty() ? out.get<std::string>("Directory") : options.outputDir;
-    if (comm->getRank() == 0) makeDirectory(dir);
-    comm->barrier();
-    IO::ResultWriter writer(disc, comm);
-    std::vector<IO::PointSet> points;
-    if (!contactNodes.nodes.empty() || params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, contactNodes));
-    writer.write(dir, out.get<std::string>("Base Name"), u, {}, cellFields(disc, mat, u), points);
-    summary.set("output", dir + "/" + out.get<std::string>("Base Name") + ".xmf");
-  }
+  // Setup: from the start to a solver ready to iterate; solve: its iterations.
+  const double meshSeconds = std::chrono::duration<double>(t1 - t0).count();
+  summary.set("time_setup_s", maxOverRanks(meshSeconds + sol.setupSeconds, *comm));
+  summary.set("time_solve_s", maxOverRanks(sol.solveSeconds, *comm));
   double maxU = 0;
-  for (double v : u) maxU = std::max(maxU, std::abs(v));
+  for (double v : sol.u) maxU = std::max(maxU, std::abs(v));
   summary.set("max_abs_displacement", maxU);
+  summary.set("memory_estimate_mb", maxOverRanks(memory.total() / (1024.0 * 1024.0), *comm));
   summary.set("peak_rss_mb", maxOverRanks(IO::peakRssMb(), *comm));
-  return {summary, converged};
+  if (outputDir) writeResult(params, *outputDir, disc, mat, sol, converged, stopReason, summary, comm);
+  return {summary, converged, stopReason, outputDir != nullptr};
 }
 
 }  // namespace Tribos

@@ -17,18 +17,28 @@ struct RunOptions {
   bool verbose = false;      // print solver iterations
   std::string inputName;     // for the summary
   std::string exportFclib;   // write the contact problem and its solution as an FCLIB global problem
+  std::string summaryFile;   // a copy of the summary (checked before any work; written by the caller)
+  double maxMemory = 0;      // bytes one machine may give the run; 0: its available memory
 };
 
 // Checks what can be checked identically on every rank before any work
-// (e.g. enough subdomains for the ranks); throws Tribos::Error naming it.
-void checkRunnable(const Teuchos::ParameterList& params, int numRanks);
+// (e.g. enough subdomains for the ranks, options that apply to the
+// problem); throws Tribos::Error naming it.
+void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& options, int numRanks);
 
 struct RunResult {
   IO::Summary summary;     // identical on every rank
   bool converged = false;  // the summary's "converged": the written result passed its KKT check
+  std::string stopReason;  // the summary's "stop_reason"
+  bool written = false;    // the result files were written
 };
 
-// Runs the problem, writes the result (also when it did not converge).
+// Runs the problem and writes the result (also when it did not converge,
+// marked so). Before any work: the memory the run needs is estimated and
+// every output path is checked (Tribos::CollectiveError). The result files
+// (Output/Base Name .h5, .xmf and .json, the summary last) replace an earlier
+// set only when all are written. Numerical breakdown (non-finite or
+// overflowing values) and failed writes throw Tribos::RunFailure.
 RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm);
 
 }  // namespace Tribos

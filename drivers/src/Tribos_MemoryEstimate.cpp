@@ -1,0 +1,176 @@
+#include "Tribos_MemoryEstimate.hpp"
+
+#include <Teuchos_DefaultMpiComm.hpp>
+
+#include <mpi.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "Tribos_Decomposition.hpp"
+#include "Tribos_Error.hpp"
+#include "Tribos_FetiProblem.hpp"
+#include "Tribos_Input.hpp"
+
+namespace Tribos {
+
+namespace {
+
+constexpr double kMB = 1024.0 * 1024.0, kGB = 1024.0 * kMB;
+
+std::string bytes(double b) {
+  std::ostringstream os;
+  os.precision(b >= kGB ? 3 : 2);
+  if (b >= kGB) os << b / kGB << " GB";
+  else os << std::fixed << b / kMB << " MB";
+  return os.str();
+}
+
+// Nonzeros of a sparse Cholesky factor of a 3D elasticity matrix with d dofs
+// under nested dissection grow like d^(4/3); 150 bytes per unit fits CHOLMOD.
+double factorBytes(double dofs) { return 150.0 * std::pow(dofs, 4.0 / 3.0); }
+
+// One subdomain of the FETI run: a box of a x b x c cells (structured), or
+// the average METIS part, which has about the surface of a cube.
+struct SubdomainShape {
+  double nodes = 0, surfaceNodes = 0;
+};
+
+SubdomainShape subdomainShape(const Mesh::BoxSpec& spec, const Mesh::DecompositionSpec& dec, int S) {
+  SubdomainShape s;
+  if (dec.partitioner == "Structured") {
+    double n[3];
+    for (int a = 0; a < 3; ++a) n[a] = double(spec.cells[a]) / dec.grid[a] + 1.0;
+    s.nodes = n[0] * n[1] * n[2];
+    s.surfaceNodes = 2.0 * (n[0] * n[1] + n[1] * n[2] + n[0] * n[2]);
+  } else {
+    const double total = double(spec.cells[0] + 1) * (spec.cells[1] + 1) * (spec.cells[2] + 1);
+    s.nodes = 1.1 * total / S;  // interface nodes are copied
+    s.surfaceNodes = 6.0 * std::pow(s.nodes, 2.0 / 3.0);
+  }
+  return s;
+}
+
+double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec, int numRanks, int rank) {
+  const auto dec = Input::decompositionSpec(params);
+  const int S = dec.partitioner == "METIS" ? dec.subdomains : dec.grid[0] * dec.grid[1] * dec.grid[2];
+  const auto layout = Mesh::makeRankLayout(S, numRanks);
+  const int mine = layout.firstSubdomain(rank + 1) - layout.firstSubdomain(rank);
+  const SubdomainShape s = subdomainShape(spec, dec, S);
+  const double d = 3.0 * s.nodes, b = 1.5 * s.surfaceNodes;
+  const std::string op = params.sublist("Solver").sublist("FETI").get<std::string>("Dual Operator");
+  const bool contact = params.sublist("Contact").get<bool>("Enabled");
+  const bool explicitF = op == "Explicit" || (op == "Auto" && contact && b <= Feti::FetiProblem::kAutoExplicitRows);
+  return mine * (4000.0 * s.nodes + factorBytes(d) + (explicitF ? 16.0 * b * b : 0.0));
+}
+
+double monolithicBytes(const Teuchos::ParameterList& params, double nodes, int numRanks) {
+  const bool direct = params.sublist("Solver").sublist("Monolithic").get<std::string>("Linear Solver") == "Direct";
+  return 8000.0 * nodes / numRanks + (direct ? 2.0 * factorBytes(3.0 * nodes) : 0.0);
+}
+
+// Reads "Key: value kB" from /proc/meminfo.
+double meminfo(const char* key) {
+  std::ifstream in("/proc/meminfo");
+  for (std::string k; in >> k;) {
+    double v = 0;
+    std::string unit;
+    in >> v >> unit;
+    if (k == std::string(key) + ":") return v * 1024.0;
+  }
+  return 0;
+}
+
+// The cgroup (v2 or v1) memory limit of this process, 0 when none.
+double cgroupLimit() {
+  for (const char* path : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+    std::ifstream in(path);
+    std::string v;
+    if (in >> v && v != "max") {
+      const double limit = std::strtod(v.c_str(), nullptr);
+      if (limit > 0 && limit < 1e18) return limit;
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::string MemoryEstimate::describe() const {
+  return bytes(total()) + " (mesh and vectors " + bytes(mesh) + ", solver " + bytes(solver) + ")";
+}
+
+MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks, int rank, bool verify) {
+  const Mesh::BoxSpec spec = Input::boxSpec(params);
+  const double cx = spec.cells[0], cy = spec.cells[1], cz = spec.cells[2];
+  const double nodes = (cx + 1) * (cy + 1) * (cz + 1);
+  const double cells = cx * cy * cz * (spec.type == Mesh::CellType::Tet4 ? 6.0 : 1.0);
+  MemoryEstimate e;
+  e.mesh = 80.0 * kMB + 400.0 * nodes + 50.0 * cells;
+  const auto& solver = params.sublist("Solver");
+  const bool semismooth = params.sublist("Contact").get<bool>("Enabled") &&
+                          solver.get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
+  if (semismooth)
+    e.solver = rank == 0 ? 28000.0 * nodes + factorBytes(3.0 * nodes) : 0.0;
+  else if (solver.get<std::string>("Type") == "Monolithic")
+    e.solver = monolithicBytes(params, nodes, numRanks);
+  else
+    e.solver = fetiBytes(params, spec, numRanks, rank);
+  if (verify && !params.sublist("Contact").get<bool>("Enabled")) e.solver += monolithicBytes(params, nodes, numRanks);
+  return e;
+}
+
+double availableMemory() {
+  const double available = meminfo("MemAvailable"), limit = cgroupLimit();
+  if (available > 0 && limit > 0) return std::min(available, limit);
+  return std::max(available, limit);
+}
+
+double parseMemorySize(const std::string& text, const std::string& what) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  std::string unit(end ? end : "");
+  for (char& c : unit) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (unit.size() == 2 && unit[1] == 'B') unit.pop_back();
+  const double scale = unit.empty() ? 1.0 : unit == "K" ? 1024.0 : unit == "M" ? kMB : unit == "G" ? kGB
+                                                                    : unit == "T" ? 1024.0 * kGB : -1.0;
+  TRIBOS_REQUIRE(end != text.c_str() && scale > 0 && std::isfinite(v) && v > 0,
+                 what << " \"" << text << "\": expected a positive size such as 4G, 500M or 2.5GB");
+  return v * scale;
+}
+
+MemoryEstimate requireMemory(const Teuchos::ParameterList& params, double limit, bool verify, const RCP<const Comm>& comm) {
+  const MemoryEstimate mine = estimateMemory(params, comm->getSize(), comm->getRank(), verify);
+  const MPI_Comm world = *Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm, true)->getRawMpiComm();
+  MPI_Comm machine;
+  MPI_Comm_split_type(world, MPI_COMM_TYPE_SHARED, comm->getRank(), MPI_INFO_NULL, &machine);
+  double parts[2] = {mine.mesh, mine.solver}, sum[2] = {0, 0};
+  MPI_Allreduce(parts, sum, 2, MPI_DOUBLE, MPI_SUM, machine);
+  int ranksHere = 1;
+  MPI_Comm_size(machine, &ranksHere);
+  MPI_Comm_free(&machine);
+  const double allowed = limit > 0 ? limit : availableMemory();
+  // The machine that is shortest of memory speaks for all.
+  struct {
+    double ratio;
+    int rank;
+  } worst{allowed > 0 ? (sum[0] + sum[1]) / allowed : 0.0, comm->getRank()}, global{};
+  MPI_Allreduce(&worst, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  if (global.ratio <= 1.0) return mine;
+  double report[4] = {sum[0], sum[1], allowed, double(ranksHere)};
+  MPI_Bcast(report, 4, MPI_DOUBLE, global.rank, world);
+  MemoryEstimate need;
+  need.mesh = report[0];
+  need.solver = report[1];
+  std::ostringstream os;
+  os << "the run needs about " << need.describe() << " on a machine running " << report[3] << " of its ranks, but "
+     << bytes(report[2]) << (limit > 0 ? " are allowed (--max-memory)" : " are available there")
+     << "; use a coarser mesh (Mesh/Level, Mesh/Cells), more subdomains or more machines"
+     << (limit > 0 ? ", or raise --max-memory" : "");
+  throw CollectiveError(os.str());
+}
+
+}  // namespace Tribos

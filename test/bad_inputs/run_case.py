@@ -1,0 +1,191 @@
+#!/usr/bin/python3
+"""One case of the bad-input suite (cases.txt), run on N ranks:
+
+  run_case.py CASES NAME --np N --work DIR -- MPIEXEC ... TRIBOS
+
+A case line is  name | exit | stderr regex | input | arguments | check
+  exit      the expected exit code (0 converged, 1 bad input, 2 not
+            converged, 3 run failure; docs/exit_codes.md)
+  regex     must match stderr (exit 1-3) or stdout (exit 0 with --help)
+  input     input/NAME.xml, data/NAME.xml (test/data), gen:NAME (a file
+            written here, see GENERATED) or "-" for none
+  arguments more command-line arguments ({work}: the case's directory,
+            {out}: its output directory)
+  check     optional Python expression over s (the summary), h5 (the
+            result file) and a (its root attributes), e.g.
+            s['contact']['nodes'] == 0
+
+Whatever the case, the run must end within the timeout without a crash,
+and what it leaves must not lie:
+  exit 0    the summary on stdout is valid JSON with converged true; a
+            written result is a complete set (h5, xmf, json) marked converged
+  exit 2    a complete set whose json and h5 say converged = false
+  exit 1, 3 no result file and no temporary in the output directory
+"""
+import json
+import os
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SOURCE = os.path.dirname(os.path.dirname(HERE))
+
+
+def base_input(text_changes, base="brick_linear.xml"):
+    with open(os.path.join(SOURCE, "input", base)) as f:
+        text = f.read()
+    for old, new in text_changes:
+        assert old in text, old
+        text = text.replace(old, new, 1)
+    return text
+
+
+# Inputs that cannot be said with --set: they are written into the case's directory.
+GENERATED = {
+    "value_text": lambda: base_input([('value="0.277"', 'value="abc"')]),
+    "value_trailing": lambda: base_input([('value="21.2e10"', 'value="21.2e10abc"')]),
+    "array_nan": lambda: base_input([('value="{0.0, 3.0}"', 'value="{0.0, nan}"')]),
+    "int_float": lambda: base_input([('name="Level" type="int" value="6"', 'name="Level" type="int" value="2.9"')]),
+    "duplicate": lambda: base_input([('<ParameterList name="Material">',
+                                      '<ParameterList name="Material">\n    <Parameter name="Poisson\'s Ratio" '
+                                      'type="double" value="0.3"/>')]),
+    "duplicate_list": lambda: base_input([('<ParameterList name="Material">',
+                                           '<ParameterList name="Material"></ParameterList>\n'
+                                           '  <ParameterList name="Material">')]),
+    "unknown_type": lambda: base_input([('type="double" value="0.277"', 'type="float" value="0.277"')]),
+    "no_value": lambda: base_input([('type="double" value="0.277"', 'type="double"')]),
+    "malformed": lambda: base_input([("</ParameterList>\n", "")]),
+    "empty": lambda: "",
+    "root_not_list": lambda: '<Parameter name="a" type="int" value="1"/>\n',
+    "tab_name": lambda: base_input([('value="brick_linear"', 'value="tab&#9;quote&quot;backslash\\newline&#10;end"')]),
+    "deep": lambda: "<ParameterList>" + "<ParameterList name=\"a\">" * 20000 + "</ParameterList>" * 20001 + "\n",
+    "element": lambda: base_input([('<ParameterList name="Mesh">', '<ParameterList name="Mesh">\n    <Foo/>')]),
+}
+
+
+def parse_cases(path):
+    cases = {}
+    with open(path) as f:
+        for line in f:
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            fields = [x.strip() for x in line.split("|")]
+            fields += [""] * (6 - len(fields))
+            name, code, regex, inp, args, check = fields[:6]
+            cases[name] = dict(exit=int(code), regex=regex, input=inp, args=args, check=check)
+    return cases
+
+
+def fail(msg, out="", err=""):
+    print("FAIL: " + msg)
+    if out:
+        print("--- stdout ---\n" + out[-3000:])
+    if err:
+        print("--- stderr ---\n" + err[-3000:])
+    sys.exit(1)
+
+
+def result_files(out_dir):
+    if not os.path.isdir(out_dir):
+        return [], []
+    names = os.listdir(out_dir)
+    results = [n for n in names if n.endswith((".h5", ".xmf", ".json")) and not n.startswith(".")]
+    temporaries = [n for n in names if n.endswith(".tmp")]
+    return results, temporaries
+
+
+def check_set(out_dir, converged, err):
+    import h5py
+    results, temporaries = result_files(out_dir)
+    if temporaries:
+        fail("temporaries left: %s" % temporaries, err=err)
+    bases = {os.path.splitext(n)[0] for n in results}
+    if len(bases) != 1:
+        fail("expected one result set in %s, found %s" % (out_dir, results), err=err)
+    base = os.path.join(out_dir, bases.pop())
+    for ext in (".h5", ".xmf", ".json"):
+        if not os.path.exists(base + ext):
+            fail("incomplete result set: no " + base + ext, err=err)
+    with open(base + ".json") as f:
+        s = json.load(f)
+    h5 = h5py.File(base + ".h5", "r")
+    if s["converged"] != converged or int(h5.attrs["converged"]) != int(converged):
+        fail("result set not marked converged = %s (json %s, h5 %s)" % (converged, s["converged"], h5.attrs["converged"]))
+    with open(base + ".xmf") as f:
+        for ref in re.findall(r">[^<>:]+\.h5:(/[^<]+)<", f.read()):
+            if ref not in h5:
+                fail("the xmf names %s, which the h5 lacks" % ref)
+    return s, h5
+
+
+def main():
+    sep = sys.argv.index("--")
+    cases_file, name = sys.argv[1], sys.argv[2]
+    opts = sys.argv[3:sep]
+    np_ = opts[opts.index("--np") + 1]
+    work = os.path.join(opts[opts.index("--work") + 1], "%s_np%s" % (name, np_))
+    command = sys.argv[sep + 1:]
+    case = parse_cases(cases_file)[name]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    out_dir = os.path.join(work, "out")
+    inp = case["input"]
+    if inp.startswith("gen:"):
+        path = os.path.join(work, inp[4:] + ".xml")
+        with open(path, "w") as f:
+            f.write(GENERATED[inp[4:]]())
+        inp_args = [path]
+    elif inp.startswith("input/"):
+        inp_args = [os.path.join(SOURCE, inp)]
+    elif inp.startswith("data/"):
+        inp_args = [os.path.join(SOURCE, "test", inp)]
+    else:
+        inp_args = []
+    extra = [a.replace("{work}", work).replace("{out}", out_dir) for a in shlex.split(case["args"])]
+    if "--output" not in extra:
+        extra += ["--output", out_dir]
+    mpi = [np_ if c == "NP" else c for c in command[:-1]]
+    full = mpi + [command[-1]] + inp_args + extra
+    try:
+        p = subprocess.run(full, capture_output=True, text=True, timeout=300, cwd=work)
+    except subprocess.TimeoutExpired:
+        fail("no exit within 300 s (hang): " + " ".join(full))
+    out, err = p.stdout, p.stderr
+    if p.returncode != case["exit"]:
+        fail("exit %d, expected %d: %s" % (p.returncode, case["exit"], " ".join(full)), out, err)
+    for crash in ("Segmentation fault", "core dumped", "Aborted", "MPI_ABORT", "HDF5-DIAG", "terminate called"):
+        if crash in err or crash in out:
+            fail("the run crashed or printed a raw library error (%s)" % crash, out, err)
+    text = out if case["exit"] == 0 else err
+    if case["regex"] and not re.search(case["regex"], text):
+        fail("output does not match /%s/" % case["regex"], out, err)
+    s, h5 = None, None
+    if case["exit"] in (1, 3):
+        results, temporaries = result_files(out_dir)
+        if results or temporaries:
+            fail("a failed run left files: %s" % (results + temporaries), out, err)
+    elif case["exit"] == 2:
+        s, h5 = check_set(out_dir, False, err)
+    elif "--help" not in extra:
+        try:
+            s = json.loads(out)
+        except ValueError as e:
+            fail("the summary on stdout is not valid JSON: %s" % e, out, err)
+        if not s["converged"]:
+            fail("exit 0 without converged = true", out, err)
+        if os.path.isdir(out_dir) and result_files(out_dir)[0]:
+            s, h5 = check_set(out_dir, True, err)
+    # The HDF5 root attributes, strings decoded.
+    a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h5.attrs.items()} if h5 is not None else {}
+    if case["check"] and not eval(case["check"], {"s": s, "h5": h5, "a": a}):
+        fail("check failed: " + case["check"], out, err)
+    print("ok: %s (np %s): exit %d" % (name, np_, p.returncode))
+    print(err.strip()[-600:])
+
+
+if __name__ == "__main__":
+    main()

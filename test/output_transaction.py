@@ -1,0 +1,200 @@
+#!/usr/bin/python3
+"""The output of a run is a transaction; three ways to try to break it:
+
+  output_transaction.py concurrent --work DIR -- MPIEXEC... TRIBOS
+      a second run into the directory a first run is writing is refused at
+      once ("in use by another run"); the first run completes its set.
+  output_transaction.py kill --work DIR -- MPIEXEC... TRIBOS
+      runs killed (SIGKILL) at many moments never leave a mixed set: a
+      summary (the set's last file) always comes with the h5 and xmf of the
+      same run; the next run removes the killed runs' temporaries.
+  output_transaction.py disk-full --np N --work DIR -- MPIEXEC... TRIBOS
+      output on filesystems too small for the result (tmpfs of 256 kB, and of
+      sizes around the result's, where the HDF5 file fits but its index or
+      summary may not): every run ends on every rank with exit 3 and one
+      clear message and nothing left, or with exit 0 and a complete set; no
+      hang, no crash. Skipped (exit 0 with a message) where mount is refused.
+
+MPIEXEC may contain the token NP, replaced by the rank count.
+"""
+import glob
+import json
+import os
+import random
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+INPUT = os.path.join(os.path.dirname(HERE), "input", "brick_coulomb_F03.xml")
+
+
+def fail(msg):
+    print("FAIL: " + msg)
+    sys.exit(1)
+
+
+def command(mpi, tribos, np_, out, *sets, name="run"):
+    cmd = [np_ if c == "NP" else c for c in mpi] + [tribos, INPUT, "--output", out, "--quiet"]
+    for s in sets + ("Problem Name=" + name,):
+        cmd += ["--set", s]
+    return cmd
+
+
+def check_sets(out):
+    """Every summary in out comes with the h5 and xmf of the same run."""
+    import h5py
+    for summary in glob.glob(os.path.join(out, "*.json")):
+        base = summary[:-5]
+        with open(summary) as f:
+            s = json.load(f)
+        for ext in (".h5", ".xmf"):
+            if not os.path.exists(base + ext):
+                fail("%s without its %s" % (summary, ext))
+        with h5py.File(base + ".h5", "r") as h5:
+            problem = h5.attrs["problem"]
+            problem = problem.decode() if isinstance(problem, bytes) else problem
+            if problem != s["problem"] or int(h5.attrs["converged"]) != int(s["converged"]):
+                fail("%s and its h5 come from different runs (%s, %s)" % (summary, s["problem"], problem))
+            with open(base + ".xmf") as f:
+                for ref in re.findall(r">[^<>:]+\.h5:(/[^<]+)<", f.read()):
+                    if ref not in h5:
+                        fail("the xmf names %s, which the h5 of %s lacks" % (ref, s["problem"]))
+
+
+def temporaries(out):
+    return [n for n in os.listdir(out) if n.endswith(".tmp")]
+
+
+def concurrent(mpi, tribos, work):
+    out = os.path.join(work, "out")
+    first = subprocess.Popen(command(mpi, tribos, "1", out, "Mesh/Level=14", name="first"),
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # The first run holds the directory once its lock file exists.
+    for _ in range(200):
+        if os.path.exists(os.path.join(out, ".tribos.lock")):
+            break
+        time.sleep(0.05)
+    time.sleep(0.3)
+    t = time.time()
+    second = subprocess.run(command(mpi, tribos, "2", out, "Mesh/Level=4", name="second"),
+                            capture_output=True, text=True, timeout=120)
+    waited = time.time() - t
+    if first.poll() is not None:
+        fail("the first run ended before the second started; make it longer")
+    if second.returncode != 1 or "in use by another run" not in second.stderr:
+        fail("second run: exit %d, stderr %s" % (second.returncode, second.stderr))
+    if waited > 20:
+        fail("the second run took %.1f s to be refused" % waited)
+    out1, err1 = first.communicate(timeout=600)
+    if first.returncode != 0:
+        fail("first run: exit %d\n%s" % (first.returncode, err1))
+    check_sets(out)
+    with open(os.path.join(out, "solution.json")) as f:
+        if json.load(f)["problem"] != "first":
+            fail("the set is not the first run's")
+    print("ok: the second run was refused in %.1f s: %s" % (waited, second.stderr.strip()))
+
+
+def kill(mpi, tribos, work):
+    out = os.path.join(work, "out")
+    done = subprocess.run(command(mpi, tribos, "1", out, "Mesh/Level=4", name="complete"),
+                          capture_output=True, text=True, timeout=600)
+    if done.returncode != 0:
+        fail("the first run failed: " + done.stderr)
+    # How long a run takes, to spread the kills over it.
+    t = time.time()
+    subprocess.run(command(mpi, tribos, "1", out, "Mesh/Level=8", name="timed"), capture_output=True, timeout=600)
+    duration = time.time() - t
+    random.seed(1)
+    kills = 0
+    for k in range(12):
+        delay = duration * (0.3 + 0.7 * random.random())
+        p = subprocess.Popen(command(mpi, tribos, "1", out, "Mesh/Level=8", name="killed%d" % k),
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+        time.sleep(delay)
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+            kills += 1
+        p.wait()
+        check_sets(out)
+    last = subprocess.run(command(mpi, tribos, "1", out, "Mesh/Level=4", name="after"),
+                          capture_output=True, text=True, timeout=600)
+    if last.returncode != 0:
+        fail("the run after the kills failed: " + last.stderr)
+    check_sets(out)
+    if temporaries(out):
+        fail("temporaries of killed runs remain: %s" % temporaries(out))
+    print("ok: %d runs killed between %.1f and %.1f s, every state consistent" % (kills, 0.3 * duration, duration))
+
+
+def run_on_small_disk(mpi, tribos, np_, out, size_kb):
+    """One run with its output on a tmpfs of size_kb; returns (exit, message)."""
+    subprocess.run(["umount", out], capture_output=True)
+    m = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=%dk" % size_kb, "tmpfs", out], capture_output=True, text=True)
+    if m.returncode != 0:
+        return None, m.stderr.strip()
+    try:
+        try:
+            p = subprocess.run(command(mpi, tribos, np_, out, "Mesh/Level=8", name="full"),
+                               capture_output=True, text=True, timeout=300)
+        except subprocess.TimeoutExpired:
+            fail("hang with %d kB of disk (%s ranks)" % (size_kb, np_))
+        err = p.stderr
+        for crash in ("Segmentation", "core dumped", "MPI_ABORT", "HDF5-DIAG", "terminate called"):
+            if crash in err:
+                fail("crash or raw library error with %d kB of disk:\n%s" % (size_kb, err))
+        lines = [l for l in err.splitlines() if l.startswith("tribos:")]
+        if p.returncode == 0:
+            check_sets(out)
+            return 0, "complete"
+        if p.returncode != 3:
+            fail("exit %d with %d kB of disk, expected 0 or 3\n%s" % (p.returncode, size_kb, err))
+        if len(lines) != 1 or "space" not in lines[0].lower():
+            fail("expected one clear message naming the full device:\n" + err)
+        left = [n for n in os.listdir(out) if not n.startswith(".tribos.lock")]
+        if left:
+            fail("a failed write with %d kB of disk left %s" % (size_kb, left))
+        return 3, lines[0]
+    finally:
+        subprocess.run(["umount", out], capture_output=True)
+
+
+def disk_full(mpi, tribos, work, np_):
+    out = os.path.join(work, "small")
+    os.makedirs(out, exist_ok=True)
+    # Far too small, then sizes around the result's (about 790 kB: the h5
+    # fits but the xmf or the summary may not), then enough.
+    outcomes = {}
+    for size_kb in [256, 764, 768, 770, 772, 774, 776, 780, 4096]:
+        code, message = run_on_small_disk(mpi, tribos, np_, out, size_kb)
+        if code is None:
+            print("skipped: cannot mount a small tmpfs here (%s)" % message)
+            return
+        outcomes[size_kb] = code
+        print("%5d kB: exit %d: %s" % (size_kb, code, message))
+    if outcomes[256] != 3 or outcomes[4096] != 0:
+        fail("256 kB must fail and 4 MB succeed: %s" % outcomes)
+    print("ok: %s ranks, every size ended cleanly" % np_)
+
+
+def main():
+    sep = sys.argv.index("--")
+    what, opts = sys.argv[1], sys.argv[2:sep]
+    work = opts[opts.index("--work") + 1]
+    np_ = opts[opts.index("--np") + 1] if "--np" in opts else "1"
+    mpi, tribos = sys.argv[sep + 1:-1], sys.argv[-1]
+    work = os.path.join(work, what + "_np" + np_)
+    if os.path.ismount(os.path.join(work, "small")):
+        subprocess.run(["umount", os.path.join(work, "small")])
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    {"concurrent": lambda: concurrent(mpi, tribos, work), "kill": lambda: kill(mpi, tribos, work),
+     "disk-full": lambda: disk_full(mpi, tribos, work, np_)}[what]()
+
+
+if __name__ == "__main__":
+    main()
