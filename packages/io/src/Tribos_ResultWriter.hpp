@@ -66,10 +66,13 @@ class ResultWriter {
              const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
              const std::vector<PointSet>& pointSets = {}) const;
 
-  // Before writing the data, rank 0 reserves the file's blocks (fallocate),
-  // so that a disk too small fails there, before any data is written, and a
-  // disk that fills up during the write cannot hit the data. On by default;
-  // off only to exercise the failure of the data writes themselves.
+  // Before HDF5 writes anything, rank 0 checks that the file fits (fallocate
+  // of a bound of its size, released again), and before the data it reserves
+  // the file's blocks: a full disk, a quota or a file size limit then fails
+  // there, in one clean step. On by default. Off only to test the failure of
+  // the data writes themselves: without it, a disk that cannot take HDF5's
+  // metadata makes HDF5 1.10 hang (rank 0 leaves a collective flush early)
+  // or crash in MPI_Finalize (a file whose close failed stays registered).
   void reserveSpace(bool on) { reserveSpace_ = on; }
 
  private:

@@ -166,11 +166,13 @@ int exitStatusCase(const std::string& base, const Mesh::Discretization& disc, co
   Outcome out;
   {
     FileSizeLimit limit(16 * 1024);
-    out = writeResult(dir, disc, false, comm);
+    out = writeResult(dir, disc, true, comm);
   }
   if (out.committed) return 0;
   if (comm->getRank() == 0) std::cerr << "io_test_disk_full: error: " << out.message << std::endl;
-  return out.runFailure ? 3 : 1;
+  const bool clean = IO::broadcastFromRoot(*comm, static_cast<long>(temporariesIn(dir.path()).empty())) != 0;
+  if (!clean && comm->getRank() == 0) std::cout << "FAILED: temporaries left in " << dir.path() << std::endl;
+  return out.runFailure && clean ? 3 : 1;
 }
 
 }  // namespace

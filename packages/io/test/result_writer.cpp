@@ -319,6 +319,6 @@ int main(int argc, char** argv) {
   failures(base, comm);
   formerInterface(base, comm);
   comm->barrier();
-  if (comm->getRank() == 0 && !std::getenv("KEEP")) removeTree(base);
+  if (comm->getRank() == 0) removeTree(base);
   return verdict(*comm, "io_test_result_writer");
 }
