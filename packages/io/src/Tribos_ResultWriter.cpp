@@ -319,9 +319,10 @@ class ParallelH5File {
 // without fallocate: the free space and the file size limit are checked instead.
 std::string reserveOnRoot(const std::string& path, hsize_t bytes, const Comm& comm) {
   std::string error;
-  if (comm.getRank() == 0) {
-    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0) return agreeOnError(comm, "cannot create the file: " + systemReason(errno));
+  const int fd = comm.getRank() == 0 ? ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644) : -1;
+  if (comm.getRank() == 0 && fd < 0) {
+    error = "cannot create the file: " + systemReason(errno);
+  } else if (comm.getRank() == 0) {
     const int err = ::fallocate(fd, 0, 0, static_cast<off_t>(bytes)) == 0 ? 0 : errno;
     ::close(fd);
     const std::string reason = err == EOPNOTSUPP || err == ENOSYS ? roomMissing(path, bytes)
@@ -447,9 +448,11 @@ std::string layoutSignature(const std::string& h5Name, const std::vector<Field>&
 }
 
 // This rank's complaint about its arguments ("" if none).
-std::string argumentError(const Mesh::Discretization& disc, const std::vector<double>& uGlobal, long long nOwned,
-                          long long nCells, const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
+std::string argumentError(const Mesh::Discretization& disc, const std::vector<double>& uGlobal,
+                          const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
                           const std::vector<PointSet>& pointSets) {
+  const long long nOwned = static_cast<long long>(disc.ownedNodes().size());
+  const long long nCells = static_cast<long long>(disc.localCells().size());
   std::ostringstream e;
   if (uGlobal.size() != 3 * static_cast<size_t>(disc.mesh.numNodes()))
     e << "the displacement has " << uGlobal.size() << " values for " << disc.mesh.numNodes() << " nodes";
@@ -465,6 +468,79 @@ std::string argumentError(const Mesh::Discretization& disc, const std::vector<do
   return e.str();
 }
 
+// This rank's rows of every dataset, in the order they are written, with the
+// groups that hold them and the global sizes.
+struct Content {
+  Content(const Mesh::Discretization& disc, const std::vector<double>& uGlobal, const std::vector<Field>& nodeFields,
+          const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets, MPI_Comm comm) {
+    const Mesh::Mesh& mesh = disc.mesh;
+    const int npc = mesh.nodesPerCell();
+    const auto cells = disc.localCells();
+    for (int n : disc.ownedNodes())
+      for (int d = 0; d < 3; ++d) xyz.push_back(mesh.coords[n][d]), disp.push_back(uGlobal[3 * n + d]);
+    for (int c : cells)
+      for (int k = 0; k < npc; ++k) topo.push_back(disc.nodeIndex()[mesh.cell(c)[k]]);
+    pointXyz.resize(pointSets.size());
+    for (size_t k = 0; k < pointSets.size(); ++k)
+      for (const auto& p : pointSets[k].coords) pointXyz[k].insert(pointXyz[k].end(), p.begin(), p.end());
+
+    const long long nOwned = static_cast<long long>(disc.ownedNodes().size());
+    const long long nCells = static_cast<long long>(cells.size());
+    const auto nodeBlock = blockOffset(nOwned, comm), cellBlock = blockOffset(nCells, comm);
+    totals = {nodeBlock.second, cellBlock.second, {}};
+    groups = {"/mesh", "/nodes", "/cells", "/points"};
+    blocks = {block("/mesh/geometry", xyz, nodeBlock, nOwned, 3), block("/mesh/topology", topo, cellBlock, nCells, npc),
+              block("/nodes/displacement", disp, nodeBlock, nOwned, 3)};
+    for (const Field& f : nodeFields) blocks.push_back(block("/nodes/" + f.name, f.values, nodeBlock, nOwned, f.components));
+    for (const Field& f : cellFields) blocks.push_back(block("/cells/" + f.name, f.values, cellBlock, nCells, f.components));
+    for (size_t k = 0; k < pointSets.size(); ++k) {
+      const long long np = static_cast<long long>(pointSets[k].coords.size());
+      const auto pointBlock = blockOffset(np, comm);
+      totals.points.push_back(pointBlock.second);
+      groups.push_back("/points/" + pointSets[k].name);
+      blocks.push_back(block(groups.back() + "/geometry", pointXyz[k], pointBlock, np, 3));
+      for (const Field& f : pointSets[k].fields)
+        blocks.push_back(block(groups.back() + "/" + f.name, f.values, pointBlock, np, f.components));
+    }
+  }
+  Content(const Content&) = delete;  // blocks point into the vectors
+
+  std::vector<double> xyz, disp;
+  std::vector<long long> topo;
+  std::vector<std::vector<double>> pointXyz;
+  Totals totals;
+  std::vector<std::string> groups;
+  std::vector<Block> blocks;
+};
+
+// The HDF5 file, collectively; "" or the message every rank agreed on, after
+// every rank has closed what it opened.
+std::string writeHdf5(const std::string& path, const Content& content, const ResultAttributes& attributes,
+                      bool reserveSpace, const RCP<const Comm>& comm) {
+  QuietHdf5Errors quiet;
+  std::vector<Block> blocks = content.blocks;  // they receive the dataset ids
+  try {
+    // The probe: a disk without room for the file, or a file size limit below
+    // it, fails here, before HDF5 has metadata that it could not write.
+    // H5Fcreate then truncates the file; writeAll reserves its exact size.
+    if (reserveSpace) {
+      const std::string error = reserveOnRoot(path, sizeBound(content.groups, blocks, attributes), *comm);
+      if (!error.empty()) return error;
+    }
+    ParallelH5File file(path, comm);
+    try {
+      writeAll(file, path, content.groups, blocks, attributes, reserveSpace, *comm);
+      file.close();
+    } catch (const AgreedFailure&) {
+      file.abandon(blocks);
+      throw;
+    }
+  } catch (const AgreedFailure& f) {
+    return f.message;
+  }
+  return "";
+}
+
 }  // namespace
 
 ResultWriter::ResultWriter(const Mesh::Discretization& disc, const RCP<const Comm>& comm) : disc_(disc), comm_(comm) {}
@@ -473,19 +549,11 @@ void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, c
                          const std::vector<double>& uGlobal, const std::vector<Field>& nodeFields,
                          const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets,
                          const ResultAttributes& attributes) const {
-  const MPI_Comm comm = rawComm(comm_);
-  const bool root = comm_->getRank() == 0;
-  const Mesh::Mesh& mesh = disc_.mesh;
-  const int npc = mesh.nodesPerCell();
-  const auto& owned = disc_.ownedNodes();
-  const auto cells = disc_.localCells();
-  const long long nOwned = static_cast<long long>(owned.size()), nCells = static_cast<long long>(cells.size());
   const std::string shownName = directoryOf(h5Path) + "/" + h5Name;
-
   // Arguments first: a wrong one must stop every rank before the first HDF5 call.
   const std::string signature = layoutSignature(h5Name, nodeFields, cellFields, pointSets, attributes);
   std::string error = broadcastFromRoot(*comm_, signature) == signature
-                          ? argumentError(disc_, uGlobal, nOwned, nCells, nodeFields, cellFields, pointSets)
+                          ? argumentError(disc_, uGlobal, nodeFields, cellFields, pointSets)
                           : "rank " + std::to_string(comm_->getRank()) +
                                 " passes other names, components or attributes than rank 0";
   error = agreeOnError(*comm_, error);
@@ -493,63 +561,18 @@ void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, c
 
   // Everything is packed before the first collective HDF5 call: from there on
   // nothing may throw on one rank only.
-  std::vector<double> xyz, disp;
-  for (int n : owned)
-    for (int d = 0; d < 3; ++d) xyz.push_back(mesh.coords[n][d]), disp.push_back(uGlobal[3 * n + d]);
-  std::vector<long long> topo;
-  for (int c : cells)
-    for (int k = 0; k < npc; ++k) topo.push_back(disc_.nodeIndex()[mesh.cell(c)[k]]);
-  std::vector<std::vector<double>> pointXyz(pointSets.size());
-  for (size_t k = 0; k < pointSets.size(); ++k)
-    for (const auto& p : pointSets[k].coords) pointXyz[k].insert(pointXyz[k].end(), p.begin(), p.end());
-
-  const auto nodeBlock = blockOffset(nOwned, comm), cellBlock = blockOffset(nCells, comm);
-  Totals totals{nodeBlock.second, cellBlock.second, {}};
-  std::vector<std::string> groups = {"/mesh", "/nodes", "/cells", "/points"};
-  std::vector<Block> blocks = {block("/mesh/geometry", xyz, nodeBlock, nOwned, 3),
-                               block("/mesh/topology", topo, cellBlock, nCells, npc),
-                               block("/nodes/displacement", disp, nodeBlock, nOwned, 3)};
-  for (const Field& f : nodeFields) blocks.push_back(block("/nodes/" + f.name, f.values, nodeBlock, nOwned, f.components));
-  for (const Field& f : cellFields) blocks.push_back(block("/cells/" + f.name, f.values, cellBlock, nCells, f.components));
-  for (size_t k = 0; k < pointSets.size(); ++k) {
-    const PointSet& ps = pointSets[k];
-    const long long np = static_cast<long long>(ps.coords.size());
-    const auto pointBlock = blockOffset(np, comm);
-    totals.points.push_back(pointBlock.second);
-    groups.push_back("/points/" + ps.name);
-    blocks.push_back(block(groups.back() + "/geometry", pointXyz[k], pointBlock, np, 3));
-    for (const Field& f : ps.fields) blocks.push_back(block(groups.back() + "/" + f.name, f.values, pointBlock, np, f.components));
-  }
-
-  QuietHdf5Errors quiet;
-  std::string failure;
-  try {
-    // The probe: a disk without room for the file, or a file size limit below
-    // it, fails here, before HDF5 has metadata that it could not write (a
-    // failed close of an HDF5 1.10 file crashes MPI_Finalize). H5Fcreate
-    // then truncates the file; the space is reserved again before the data.
-    if (reserveSpace_) {
-      const std::string error = reserveOnRoot(h5Path, sizeBound(groups, blocks, attributes), *comm_);
-      if (!error.empty()) throw AgreedFailure{error};
-    }
-    ParallelH5File file(h5Path, comm_);
-    try {
-      writeAll(file, h5Path, groups, blocks, attributes, reserveSpace_, *comm_);
-      file.close();
-    } catch (const AgreedFailure&) {
-      file.abandon(blocks);
-      throw;
-    }
-  } catch (const AgreedFailure& f) {
-    failure = "cannot write the result file " + shownName + ": " + f.message;
-  }
+  const Content content(disc_, uGlobal, nodeFields, cellFields, pointSets, rawComm(comm_));
+  std::string failure = writeHdf5(h5Path, content, attributes, reserveSpace_, comm_);
+  if (!failure.empty()) failure = "cannot write the result file " + shownName + ": " + failure;
   if (failure.empty()) {
     const std::string xmfError =
-        root ? writeWholeFile(xmfPath, xdmfIndex(h5Name, mesh, totals, nodeFields, cellFields, pointSets)) : "";
+        comm_->getRank() == 0
+            ? writeWholeFile(xmfPath, xdmfIndex(h5Name, disc_.mesh, content.totals, nodeFields, cellFields, pointSets))
+            : "";
     failure = rootError(*comm_, xmfError.empty() ? "" : "cannot write the XDMF index of " + shownName + ": " + xmfError);
   }
   if (!failure.empty()) {
-    if (root) removeIfExists(h5Path), removeIfExists(xmfPath);
+    if (comm_->getRank() == 0) removeIfExists(h5Path), removeIfExists(xmfPath);
     throw RunFailure(failure);
   }
 }
