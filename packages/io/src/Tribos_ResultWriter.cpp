@@ -16,8 +16,6 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_FileSystem.hpp"
-#include "Tribos_OutputDirectory.hpp"
-#include "Tribos_ResultSet.hpp"
 
 namespace Tribos {
 namespace IO {
@@ -575,16 +573,6 @@ void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, c
     if (comm_->getRank() == 0) removeIfExists(h5Path), removeIfExists(xmfPath);
     throw RunFailure(failure);
   }
-}
-
-void ResultWriter::write(const std::string& directory, const std::string& baseName, const std::vector<double>& uGlobal,
-                         const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
-                         const std::vector<PointSet>& pointSets) const {
-  const OutputDirectory dir(directory, comm_);
-  ResultSet files(dir, comm_);
-  const std::string h5 = files.add(baseName + ".h5"), xmf = files.add(baseName + ".xmf");
-  write(h5, baseName + ".h5", xmf, uGlobal, nodeFields, cellFields, pointSets);
-  files.commit();
 }
 
 void writeFileAtomically(const std::string& path, const std::string& text) {

@@ -58,14 +58,6 @@ class ResultWriter {
              const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets = {},
              const ResultAttributes& attributes = {}) const;
 
-  // The former interface: writes directory/baseName.h5 and .xmf as one
-  // ResultSet in an OutputDirectory of their own (Tribos_ResultSet.hpp).
-  // Kept for drivers that do not hold an OutputDirectory for the whole run;
-  // new code takes the directory before any work and uses the overload above.
-  void write(const std::string& directory, const std::string& baseName, const std::vector<double>& uGlobal,
-             const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
-             const std::vector<PointSet>& pointSets = {}) const;
-
   // Before HDF5 writes anything, rank 0 checks that the file fits (fallocate
   // of a bound of its size, released again), and before the data it reserves
   // the file's blocks: a full disk, a quota or a file size limit then fails

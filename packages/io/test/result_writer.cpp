@@ -297,17 +297,6 @@ void failures(const std::string& base, const RCP<const Comm>& comm) {
   if (root) CHECK(temporariesIn(dir.path()).empty(), "no temporaries after failures");
 }
 
-// The former interface still writes a complete, committed pair.
-void formerInterface(const std::string& base, const RCP<const Comm>& comm) {
-  const auto disc = boxDiscretization(6, 2, 2, *comm);
-  IO::ResultWriter(disc, comm).write(base + "/former", "result", displacementOf(disc), {}, {});
-  if (comm->getRank() != 0) return;
-  H5Reader h5(base + "/former/result.h5");
-  CHECK(h5.has("/nodes/displacement") && h5.has("/mesh/topology"), "former interface: datasets");
-  CHECK(contains(readFile(base + "/former/result.xmf"), "result.h5:/mesh/geometry"), "former interface: index");
-  CHECK(temporariesIn(base + "/former").empty(), "former interface: no temporaries");
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -317,7 +306,6 @@ int main(int argc, char** argv) {
   const std::string base = scratchDirectory(*comm, "result_writer");
   writeAndReadBack(base, comm);
   failures(base, comm);
-  formerInterface(base, comm);
   comm->barrier();
   if (comm->getRank() == 0) removeTree(base);
   return verdict(*comm, "io_test_result_writer");
