@@ -121,7 +121,8 @@ int runAndReport(const Args& args, const Teuchos::ParameterList& params, const T
   } catch (const std::bad_alloc&) {
     std::cerr << "tribos: run failed: out of memory during " << Tribos::Progress::currentStage()
               << (comm->getSize() > 1 ? " on rank " + std::to_string(comm->getRank()) : "")
-              << "; the summary's memory_estimate_mb or --max-memory can help size the run" << std::endl;
+              << "; the memory estimate made before the run (docs/exit_codes.md) found enough memory, so a limit "
+                 "(ulimit, cgroup) or other processes may hold it" << std::endl;
   } catch (const std::exception& e) {
     std::cerr << "tribos: run failed" << (comm->getSize() > 1 ? " on rank " + std::to_string(comm->getRank()) : "")
               << " during " << Tribos::Progress::currentStage() << ": " << e.what() << std::endl;

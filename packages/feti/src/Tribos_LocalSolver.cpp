@@ -12,6 +12,7 @@
 #include <cstring>
 
 #include "Tribos_DenseBlas.hpp"
+#include "Tribos_CholmodStatus.hpp"
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -73,7 +74,8 @@ class CholmodSolver : public LocalSolver {
     cholmod_sparse S = cholmodView(A, true);
     if (L_) cholmod_free_factor(&L_, &common_);
     L_ = cholmod_analyze(&S, &common_);
-    TRIBOS_REQUIRE(L_ != nullptr, "CHOLMOD analysis failed (status " << common_.status << ")");
+    requireCholmodOk(common_, "analysis");
+    TRIBOS_REQUIRE(L_ != nullptr, "CHOLMOD: analysis failed");
     numericFactor(S);
   }
   // The rows of `last` are ordered after all others by constrained minimum
@@ -90,8 +92,8 @@ class CholmodSolver : public LocalSolver {
       set[i] = 1;
     }
     cholmod_sparse S = cholmodView(A, true);
-    TRIBOS_REQUIRE(cholmod_camd(&S, nullptr, 0, set.data(), perm.data(), &common_),
-                   "CHOLMOD: constrained ordering failed (status " << common_.status << ")");
+    cholmod_camd(&S, nullptr, 0, set.data(), perm.data(), &common_);
+    requireCholmodOk(common_, "constrained ordering");
     for (auto it = perm.end() - last.size(); it != perm.end(); ++it)
       TRIBOS_REQUIRE(set[*it], "CHOLMOD: the constrained ordering did not put the given rows last");
     std::copy(last.begin(), last.end(), perm.end() - last.size());  // `last` in the caller's order
@@ -106,7 +108,8 @@ class CholmodSolver : public LocalSolver {
     common_.nmethods = nmethods;
     common_.method[0].ordering = ordering;
     common_.postorder = postorder;
-    TRIBOS_REQUIRE(L_ != nullptr, "CHOLMOD analysis failed (status " << common_.status << ")");
+    requireCholmodOk(common_, "analysis");
+    TRIBOS_REQUIRE(L_ != nullptr, "CHOLMOD: analysis failed");
     TRIBOS_REQUIRE(std::equal(perm.begin(), perm.end(), static_cast<const int*>(L_->Perm)),
                    "CHOLMOD did not keep the given ordering");
     numericFactor(S);
@@ -133,7 +136,8 @@ class CholmodSolver : public LocalSolver {
     // cholmod_solve2 keeps its result and workspaces between calls: the
     // F = B K+ B' application solves once per subdomain, many times.
     const int ok = cholmod_solve2(CHOLMOD_A, L_, &B, nullptr, &X_, nullptr, &Y_, &E_, &common_);
-    TRIBOS_REQUIRE(ok && X_ != nullptr, "CHOLMOD solve failed");
+    requireCholmodOk(common_, "solve");
+    TRIBOS_REQUIRE(ok && X_ != nullptr, "CHOLMOD: solve failed");
     std::copy(static_cast<double*>(X_->x), static_cast<double*>(X_->x) + static_cast<size_t>(n_) * nrhs, x);
   }
   std::string name() const override { return "CHOLMOD"; }
@@ -141,8 +145,7 @@ class CholmodSolver : public LocalSolver {
  private:
   void numericFactor(cholmod_sparse& S) {
     cholmod_factorize(&S, L_, &common_);
-    TRIBOS_REQUIRE(common_.status == CHOLMOD_OK && L_->minor == L_->n,
-                   "CHOLMOD: matrix of size " << n_ << " is not positive definite (pivot " << L_->minor << ")");
+    requireCholmodOk(common_, "factorization", L_);
   }
   // The last |last_| rows and columns of L, dense column-major (lower triangle).
   std::vector<double> trailingFactor() const {
@@ -169,7 +172,7 @@ class CholmodSolver : public LocalSolver {
     // Simplicial (small matrices): an LL' copy, since the factor may be LDL'.
     cholmod_factor* L = cholmod_copy_factor(L_, &common_);
     cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, L, &common_);
-    TRIBOS_REQUIRE(common_.status == CHOLMOD_OK, "CHOLMOD: factor conversion failed (status " << common_.status << ")");
+    requireCholmodOk(common_, "factor conversion");
     const int* Lp = static_cast<const int*>(L->p);
     const int* Li = static_cast<const int*>(L->i);
     const double* Lx = static_cast<const double*>(L->x);
@@ -300,7 +303,7 @@ class TachoSolver : public LocalSolver {
     common.print = 0;
     cholmod_sparse S = cholmodView(A, false);
     cholmod_factor* L = cholmod_analyze(&S, &common);
-    TRIBOS_REQUIRE(L != nullptr, "Tacho: ordering by CHOLMOD analysis failed (status " << common.status << ")");
+    requireCholmodOk(common, "analysis (the ordering for Tacho)");
     std::copy(static_cast<const int*>(L->Perm), static_cast<const int*>(L->Perm) + A.rows, perm);
     cholmod_free_factor(&L, &common);
     cholmod_finish(&common);

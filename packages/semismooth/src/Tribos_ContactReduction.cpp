@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "Tribos_CholmodStatus.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_LocalSolver.hpp"
 #include "Tribos_RigidMotions.hpp"
@@ -31,7 +32,7 @@ class CholmodPatternSolver : public PatternSolver {
     cholmod_start(&common_);
     common_.print = 0;
     L_ = cholmod_analyze(view(), &common_);
-    TRIBOS_REQUIRE(L_ != nullptr, "CHOLMOD analysis failed (status " << common_.status << ")");
+    requireCholmodOk(common_, "analysis");
   }
   ~CholmodPatternSolver() override {
     if (L_) cholmod_free_factor(&L_, &common_);
@@ -40,8 +41,7 @@ class CholmodPatternSolver : public PatternSolver {
   void factor(const std::vector<double>& values) override {
     A_.val = values;
     cholmod_factorize(view(), L_, &common_);
-    TRIBOS_REQUIRE(common_.status == CHOLMOD_OK && L_->minor == L_->n,
-                   "CHOLMOD: matrix of size " << A_.rows << " is not positive definite (pivot " << L_->minor << ")");
+    requireCholmodOk(common_, "factorization", L_);
   }
   void solve(const double* b, double* x, int nrhs) const override {
     cholmod_dense B;
@@ -54,7 +54,8 @@ class CholmodPatternSolver : public PatternSolver {
     B.xtype = CHOLMOD_REAL;
     B.dtype = CHOLMOD_DOUBLE;
     cholmod_dense* X = cholmod_solve(CHOLMOD_A, L_, &B, &common_);
-    TRIBOS_REQUIRE(X != nullptr, "CHOLMOD solve failed");
+    requireCholmodOk(common_, "solve");
+    TRIBOS_REQUIRE(X != nullptr, "CHOLMOD: solve failed");
     std::copy_n(static_cast<double*>(X->x), static_cast<size_t>(A_.rows) * nrhs, x);
     cholmod_free_dense(&X, &common_);
   }
