@@ -378,7 +378,7 @@ void FetiProblem::factorSubdomains() {
   const auto t0 = std::chrono::steady_clock::now();
   if (denseRowLimit_ >= 0) boundary_ = boundaryDofs();
   KplusBB_.assign(systems_.size(), {});
-  Progress::stage("factorization of " + std::to_string(systems_.size()) + " subdomain matrices on this rank");
+  Progress::stage("factorization of " + std::to_string(systems_.size()) + " subdomain matrices");
   for (size_t k = 0; k < systems_.size(); ++k) {
     Progress::iteration("subdomain " + std::to_string(k + 1) + " of " + std::to_string(systems_.size()));
     const auto& sys = systems_[k];
