@@ -12,6 +12,7 @@
 
 #include <mpi.h>
 
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <new>
@@ -92,17 +93,12 @@ int runAndReport(const Args& args, const Teuchos::ParameterList& params, const T
     const std::string json = result.summary.toJson() + "\n";
     if (root) std::cout << json << std::flush;
     if (!args.options.summaryFile.empty()) {
-      int ok = 1;
-      if (root) {
-        try {
-          Tribos::IO::writeFileAtomically(args.options.summaryFile, json);
-        } catch (const std::exception& e) {
-          std::cerr << "tribos: error: " << e.what() << " (the summary is on stdout)" << std::endl;
-          ok = 0;
-        }
+      try {
+        Tribos::IO::writeFileAtomically(args.options.summaryFile, json, comm);
+      } catch (const Tribos::RunFailure& e) {
+        if (root) std::cerr << "tribos: run failed: " << e.what() << " (the summary is on stdout)" << std::endl;
+        return kRunFailure;
       }
-      Teuchos::broadcast(*comm, 0, &ok);
-      if (!ok) return kRunFailure;
     }
     if (!result.converged) {
       if (root)
@@ -161,6 +157,9 @@ int main(int argc, char** argv) {
     if (root) std::cerr << "tribos: error: " << e.what() << std::endl;
     return kBadInput;
   }
+  // A file-size limit (ulimit -f) makes writes fail with EFBIG, reported
+  // like a full disk, instead of killing the process.
+  std::signal(SIGXFSZ, SIG_IGN);
   Tribos::Progress::Session progress(root && !args.quiet ? &std::cerr : nullptr);
   return runAndReport(args, *params, comm);
 }

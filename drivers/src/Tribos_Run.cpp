@@ -242,22 +242,6 @@ void requireRepresentable(const std::vector<double>& u, const Fem::ResultKKT& kk
   throw RunFailure(os.str());
 }
 
-// Rank 0 writes text to path; every rank learns whether it worked.
-void writeOnRoot(const std::string& path, const std::string& text, const Comm& comm) {
-  int ok = 1;
-  std::string why;
-  if (comm.getRank() == 0) {
-    try {
-      IO::writeFileAtomically(path, text);
-    } catch (const std::exception& e) {
-      ok = 0;
-      why = e.what();
-    }
-  }
-  Teuchos::broadcast(comm, 0, &ok);
-  if (!ok) throw RunFailure(comm.getRank() == 0 ? why : "cannot write " + path);
-}
-
 std::string outputDirectory(const Teuchos::ParameterList& params, const RunOptions& options) {
   return options.outputDir.empty() ? params.sublist("Output").get<std::string>("Directory") : options.outputDir;
 }
@@ -423,7 +407,7 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   attributes.text = {{"problem", params.get<std::string>("Problem Name")},
                      {"stop_reason", stopReason}};
   IO::ResultWriter(disc, comm).write(h5, base + ".h5", xmf, sol.u, {}, cellFields(disc, mat, sol.u), points, attributes);
-  writeOnRoot(json, summary.toJson() + "\n", *comm);
+  IO::writeTextFile(json, summary.toJson() + "\n", comm);
   files.commit();
 }
 
