@@ -48,21 +48,6 @@ class Handle {
   Closer closer_ = nullptr;
 };
 
-// HDF5 prints its error stack to stderr by default; the messages thrown here
-// say more, so printing is switched off while this library talks to HDF5.
-class QuietHdf5Errors {
- public:
-  QuietHdf5Errors() {
-    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-
- private:
-  H5E_auto2_t function_ = nullptr;
-  void* data_ = nullptr;
-};
-
 // Where we are in which file, for error messages. 'group' is the absolute
 // HDF5 path of the current group ("" for the root), so that messages name
 // datasets the way h5dump and h5py do: /fclib_local/vectors/q.

@@ -15,6 +15,7 @@
 #include <type_traits>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_QuietHdf5Errors.hpp"
 #include "Tribos_FileSystem.hpp"
 
 namespace Tribos {
@@ -36,22 +37,6 @@ std::pair<long long, long long> blockOffset(long long mine, MPI_Comm comm) {
   MPI_Allreduce(&mine, &total, 1, MPI_LONG_LONG, MPI_SUM, comm);
   return {offset, total};
 }
-
-// HDF5 prints its whole error stack on every failing rank by default; the
-// writer reports one line instead. The previous handler is restored, so other
-// users of HDF5 in the process keep theirs.
-class QuietHdf5Errors {
- public:
-  QuietHdf5Errors() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
 
 // What HDF5's current error stack tells: the innermost entry (the low-level
 // operation that failed) and the MPI error string if MPI-IO reported one.
