@@ -10,6 +10,8 @@
 #include <fstream>
 #include <limits>
 #include <stdexcept>
+
+#include "Tribos_QuietHdf5Errors.hpp"
 #include <utility>
 
 #include "Tribos_FCLIB_Files.hpp"
