@@ -10,11 +10,10 @@
 #include <fstream>
 #include <limits>
 #include <stdexcept>
-
-#include "Tribos_QuietHdf5Errors.hpp"
 #include <utility>
 
 #include "Tribos_FCLIB_Files.hpp"
+#include "Tribos_QuietHdf5Errors.hpp"
 
 namespace Tribos {
 namespace FCLIB {
