@@ -20,6 +20,6 @@ function(tribos_add_test)
               $<TARGET_FILE:${T_NAME}> ${T_ARGS})
     set_tests_properties(${T_NAME}_np${np} PROPERTIES PROCESSORS ${np}
       LABELS "${T_LABELS}" TIMEOUT 600
-      ENVIRONMENT "OMPI_MCA_rmaps_base_oversubscribe=1;TRIBOS_SOURCE_DIR=${PROJECT_SOURCE_DIR};TRIBOS_SHARED_DIR=${PROJECT_SOURCE_DIR}/../shared")
+      ENVIRONMENT "OMPI_MCA_rmaps_base_oversubscribe=1;TRIBOS_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
   endforeach()
 endfunction()

@@ -37,13 +37,9 @@ inline int finish(const char* name) {
   return 1;
 }
 
-// Directory of the sample files: $TRIBOS_SHARED_DIR/fclib, else the CMake
-// cache variable TRIBOS_SHARED_DIR compiled in.
-inline std::string sampleDir() {
-  const char* env = std::getenv("TRIBOS_SHARED_DIR");
-  std::string base = (env && *env) ? env : TRIBOS_SHARED_DIR_DEFAULT;
-  return base + "/fclib";
-}
+// Directory of the sample files: test/data of this package, compiled in so
+// that the tests need no environment and run from any clone.
+inline std::string sampleDir() { return TRIBOS_FCLIB_SAMPLE_DIR; }
 
 struct Sample {
   std::string name;
