@@ -23,3 +23,39 @@ function(tribos_add_test)
       ENVIRONMENT "OMPI_MCA_rmaps_base_oversubscribe=1;TRIBOS_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
   endforeach()
 endfunction()
+
+# Every test also gets the label of the package that adds it: the directory
+# under packages/ (qp, friction, ...) or the top directory (drivers, test),
+# so that `ctest -L qp` runs one package. Set through the directory property
+# LABELS once every directory is known, so that tests added by a plain
+# add_test are labelled too.
+function(_tribos_package_label dir out)
+  file(RELATIVE_PATH rel "${PROJECT_SOURCE_DIR}" "${dir}")
+  string(REPLACE "/" ";" parts "${rel}")
+  list(GET parts 0 label)
+  list(LENGTH parts depth)
+  if(label STREQUAL "packages")
+    if(depth GREATER 1)
+      list(GET parts 1 label)
+    else()
+      set(label "")  # the directory of the packages adds no test of its own
+    endif()
+  endif()
+  set(${out} "${label}" PARENT_SCOPE)
+endfunction()
+
+function(_tribos_label_tests_by_package dir)
+  get_property(subdirs DIRECTORY "${dir}" PROPERTY SUBDIRECTORIES)
+  foreach(sub IN LISTS subdirs)
+    _tribos_package_label("${sub}" label)
+    get_property(labels DIRECTORY "${sub}" PROPERTY LABELS)
+    if(label AND NOT label IN_LIST labels)
+      set_property(DIRECTORY "${sub}" APPEND PROPERTY LABELS "${label}")
+    endif()
+    _tribos_label_tests_by_package("${sub}")
+  endforeach()
+endfunction()
+
+if(CMAKE_VERSION VERSION_GREATER_EQUAL 3.19)
+  cmake_language(DEFER CALL _tribos_label_tests_by_package "${CMAKE_CURRENT_SOURCE_DIR}")
+endif()
