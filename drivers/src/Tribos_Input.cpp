@@ -177,6 +177,34 @@ void promoteType(ParameterList& user, const std::string& name, const Teuchos::an
               IO::parameterTypeName(wanted));
 }
 
+// The validator's verdict said in one line naming the parameter, the value
+// and what is allowed (Teuchos' own messages span several lines and name
+// the list as "Tribos->Solver->FETI").
+template <class T>
+void checkRange(const Teuchos::ParameterEntry& entry, const Teuchos::ParameterEntryValidator* v, const std::string& full) {
+  const auto* range = dynamic_cast<const Teuchos::EnhancedNumberValidator<T>*>(v);
+  if (!range || entry.getAny().type() != typeid(T)) return;
+  const T x = Teuchos::any_cast<T>(entry.getAny());
+  TRIBOS_REQUIRE((!range->hasMin() || x >= range->getMin()) && (!range->hasMax() || x <= range->getMax()),
+                 "parameter \"" << full << "\" = " << x << ": must lie in [" << range->getMin() << ", "
+                                 << range->getMax() << "]");
+}
+
+void checkValidator(const Teuchos::ParameterEntry& entry, const Teuchos::ParameterEntry& valid, const std::string& full) {
+  const auto validator = valid.validator();
+  if (validator.is_null()) return;
+  const auto choices = validator->validStringValues();
+  if (!choices.is_null() && entry.getAny().type() == typeid(std::string)) {
+    const std::string value = Teuchos::any_cast<std::string>(entry.getAny());
+    std::string list;
+    bool found = false;
+    for (const auto& c : *choices) found = found || c == value, list += (list.empty() ? "" : ", ") + c;
+    TRIBOS_REQUIRE(found, "parameter \"" << full << "\" = \"" << value << "\": valid values are " << list);
+  }
+  checkRange<int>(entry, validator.get(), full);
+  checkRange<double>(entry, validator.get(), full);
+}
+
 // Recursive validation with messages naming the full path of the parameter.
 void validateLevel(ParameterList& user, const ParameterList& valid, const std::string& path) {
   for (auto it = user.begin(); it != user.end(); ++it) {
@@ -185,7 +213,10 @@ void validateLevel(ParameterList& user, const ParameterList& valid, const std::s
     TRIBOS_REQUIRE(valid.isParameter(name), "unknown parameter \"" << full << "\"; valid at this level: " << joinNames(valid));
     TRIBOS_REQUIRE(user.isSublist(name) == valid.isSublist(name),
                    "parameter \"" << full << "\" must be " << (valid.isSublist(name) ? "a sublist" : "a value, not a sublist"));
-    if (!valid.isSublist(name)) promoteType(user, name, valid.getEntry(name).getAny(), full);
+    if (!valid.isSublist(name)) {
+      promoteType(user, name, valid.getEntry(name).getAny(), full);
+      checkValidator(user.getEntry(name), valid.getEntry(name), full);
+    }
   }
   user.validateParametersAndSetDefaults(valid, 0);
   for (auto it = valid.begin(); it != valid.end(); ++it) {

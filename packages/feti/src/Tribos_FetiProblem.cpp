@@ -154,8 +154,9 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
   static RCP<Teuchos::ParameterList> pl;
   if (pl.is_null()) {
     pl = Teuchos::parameterList("FETI");
-    pl->set("Local Solver", "CHOLMOD", "sparse direct solver for the regularized subdomain matrices",
-            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("CHOLMOD", "KLU2", "Tacho"))));
+    pl->set("Local Solver", "CHOLMOD",
+            "sparse direct solver for the regularized subdomain matrices: " + localSolvers().documentation(),
+            localSolvers().validator());
     pl->set("Formulation", "TFETI",
             "TFETI (Dirichlet conditions as rows of B, every subdomain floating) or FETI-1 (Dirichlet dofs "
             "eliminated in the subdomains; subdomains touching them keep only the rigid modes they allow)",

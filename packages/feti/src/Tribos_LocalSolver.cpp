@@ -321,13 +321,20 @@ class TachoSolver : public LocalSolver {
 
 }  // namespace
 
-std::vector<std::string> localSolverNames() { return {"CHOLMOD", "KLU2", "Tacho"}; }
-
-RCP<LocalSolver> createLocalSolver(const std::string& name) {
-  if (name == "CHOLMOD") return rcp(new CholmodSolver());
-  if (name == "KLU2") return rcp(new Amesos2Solver(name));
-  if (name == "Tacho") return rcp(new TachoSolver());
-  throw Error("unknown local solver \"" + name + "\"; valid: CHOLMOD, KLU2, Tacho");
+const LocalSolverRegistry& localSolvers() {
+  static const LocalSolverRegistry registry = [] {
+    LocalSolverRegistry r("local solver");
+    r.add("CHOLMOD", [] { return RCP<LocalSolver>(rcp(new CholmodSolver())); },
+          "supernodal Cholesky of SuiteSparse, nested-dissection ordering");
+    r.add("KLU2", [] { return RCP<LocalSolver>(rcp(new Amesos2Solver("KLU2"))); }, "Amesos2's sparse LU");
+    r.add("Tacho", [] { return RCP<LocalSolver>(rcp(new TachoSolver())); }, "Kokkos' multifrontal Cholesky");
+    return r;
+  }();
+  return registry;
 }
+
+std::vector<std::string> localSolverNames() { return localSolvers().names(); }
+
+RCP<LocalSolver> createLocalSolver(const std::string& name) { return localSolvers().create(name); }
 
 }  // namespace Tribos

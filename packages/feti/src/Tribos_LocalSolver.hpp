@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "Tribos_LocalCsr.hpp"
+#include "Tribos_Registry.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
@@ -37,6 +38,9 @@ class LocalSolver {
 };
 
 // "CHOLMOD" | "KLU2" | "Tacho". Unknown names throw, listing the valid ones.
+// The local solvers by name (Tribos_Registry.hpp).
+using LocalSolverRegistry = Registry<LocalSolver>;
+const LocalSolverRegistry& localSolvers();
 RCP<LocalSolver> createLocalSolver(const std::string& name);
 std::vector<std::string> localSolverNames();
 

@@ -1,4 +1,6 @@
-// Tribos_QP_Factory.hpp: QP solvers by name, in the style of Belos' factory.
+// Tribos_QP_Factory.hpp: QP solvers by name, in the style of Belos' factory:
+// one registry (Tribos_Registry.hpp) holds every solver; the factory and the
+// parameter validators that choose a QP solver ask it.
 #pragma once
 
 #include <string>
@@ -7,9 +9,14 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include "Tribos_QP_Solver.hpp"
+#include "Tribos_Registry.hpp"
 
 namespace Tribos {
 namespace QP {
+
+// "MPRGP", "MPGP", "SMALBE": maker(params), params may be null (defaults).
+using QPSolverRegistry = Registry<QPSolver, RCP<Teuchos::ParameterList>>;
+const QPSolverRegistry& qpSolvers();
 
 class QPSolverFactory {
  public:

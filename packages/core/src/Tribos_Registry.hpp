@@ -1,0 +1,99 @@
+// Tribos_Registry.hpp: choice by name, done one way everywhere (Belos'
+// SolverFactory is the model). Each kind of component (QP solvers, local
+// solvers, outer contact algorithms, ...) keeps one registry: makers are
+// registered under a name with a one-line description and optional aliases;
+// a ParameterList validator, the documentation of the parameter and every
+// error message list the registered names, so adding a component is one
+// registration and nothing else.
+#pragma once
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+
+template <class Product, class... Args>
+class Registry {
+ public:
+  using Maker = std::function<RCP<Product>(Args...)>;
+
+  // what: the kind of component, for messages ("local solver").
+  explicit Registry(std::string what) : what_(std::move(what)) {}
+
+  Registry& add(const std::string& name, Maker make, const std::string& description,
+                const std::vector<std::string>& aliases = {}) {
+    TRIBOS_REQUIRE(!has(name), what_ << " \"" << name << "\" is registered twice");
+    entries_.push_back({name, std::move(make), description});
+    for (const auto& a : aliases) aliases_.emplace_back(a, name);
+    return *this;
+  }
+
+  bool has(const std::string& name) const { return find(name) != nullptr; }
+
+  // The registered name that `name` is or stands for; throws naming the choices.
+  const std::string& canonical(const std::string& name) const { return entry(name).name; }
+
+  RCP<Product> create(const std::string& name, Args... args) const {
+    return entry(name).make(std::forward<Args>(args)...);
+  }
+
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& e : entries_) out.push_back(e.name);
+    return out;
+  }
+
+  // "CHOLMOD, KLU2, Tacho"
+  std::string namesText() const {
+    std::string out;
+    for (const auto& e : entries_) out += (out.empty() ? "" : ", ") + e.name;
+    return out;
+  }
+
+  // "CHOLMOD (supernodal Cholesky); KLU2 (...)", for parameter documentation.
+  std::string documentation() const {
+    std::string out;
+    for (const auto& e : entries_) out += (out.empty() ? "" : "; ") + e.name + " (" + e.description + ")";
+    return out;
+  }
+
+  // Accepts the registered names and their aliases.
+  RCP<Teuchos::StringValidator> validator() const {
+    Teuchos::Array<std::string> valid;
+    for (const auto& e : entries_) valid.push_back(e.name);
+    for (const auto& a : aliases_) valid.push_back(a.first);
+    return rcp(new Teuchos::StringValidator(valid));
+  }
+
+ private:
+  struct Entry {
+    std::string name;
+    Maker make;
+    std::string description;
+  };
+  const Entry* find(const std::string& name) const {
+    for (const auto& a : aliases_)
+      if (a.first == name) return find(a.second);
+    for (const auto& e : entries_)
+      if (e.name == name) return &e;
+    return nullptr;
+  }
+  const Entry& entry(const std::string& name) const {
+    const Entry* e = find(name);
+    TRIBOS_REQUIRE(e != nullptr, "unknown " << what_ << " \"" << name << "\"; registered: " << namesText());
+    return *e;
+  }
+
+  std::string what_;
+  std::vector<Entry> entries_;
+  std::vector<std::pair<std::string, std::string>> aliases_;  // alias, name
+};
+
+}  // namespace Tribos
