@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "Tribos_QP_Projection.hpp"
 #include "Tribos_QP_Utils.hpp"
 
 namespace Tribos {
@@ -210,8 +211,7 @@ void kktResiduals(const std::vector<double>& r, const std::vector<double>& u, co
     const double g = mu[k] * std::max(rN, 0.0);
     // r_T is the projection of r_T - c u_T onto the disk of radius g.
     double a = r[3 * k + 1] - c * u[3 * k + 1], b = r[3 * k + 2] - c * u[3 * k + 2];
-    const double n = std::hypot(a, b);
-    if (n > g) a *= (n > 0 ? g / n : 0.0), b *= (n > 0 ? g / n : 0.0);
+    QP::projectDisk(a, b, g);
     fric = std::max(fric, std::hypot(r[3 * k + 1] - a, r[3 * k + 2] - b));
   }
   rep.kktNormal = pen / maxU;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_QP_Projection.hpp"
 
 namespace Tribos {
 namespace Fem {
@@ -30,17 +31,6 @@ double normInf(const std::vector<double>& v) {
   double s = 0;
   for (double x : v) s = std::max(s, std::abs(x));
   return s;
-}
-
-// Projection of a onto the ball of radius r (any dimension; here 3-vectors
-// in the tangent plane).
-std::array<double, 3> projectBall(std::array<double, 3> a, double r) {
-  const double n = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  if (n > r) {
-    const double s = n > 0 ? r / n : 0.0;
-    for (double& v : a) v *= s;
-  }
-  return a;
 }
 
 }  // namespace
@@ -129,7 +119,8 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
       phiT[d] = fixed ? 0.0 : c.tangentialForce[d];
       trial[d] = phiT[d] - (P / U) * s[d];
     }
-    const auto proj = projectBall(trial, g);
+    auto proj = trial;
+    QP::projectBall(proj.data(), 3, g);
     fric = std::max(fric, std::sqrt((phiT[0] - proj[0]) * (phiT[0] - proj[0]) + (phiT[1] - proj[1]) * (phiT[1] - proj[1]) +
                                     (phiT[2] - proj[2]) * (phiT[2] - proj[2])) / P);
   }

@@ -8,6 +8,7 @@
 #include <Tpetra_Vector.hpp>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_QP_Projection.hpp"
 
 namespace Tribos {
 namespace QP {
@@ -122,13 +123,7 @@ SC ConstraintSet::projectScalar(size_t i, SC v) const {
 }
 
 void ConstraintSet::projectCircle(size_t k, SC& v1, SC& v2) const {
-  const SC c1 = circles_[k].c1, c2 = circles_[k].c2;
-  const SC nv = std::hypot(v1 - c1, v2 - c2);
-  if (nv > r_[k]) {  // P(v) = c + (v - c) min(1, r_k/||v - c||)
-    const SC s = r_[k] / nv;
-    v1 = c1 + (v1 - c1) * s;
-    v2 = c2 + (v2 - c2) * s;
-  }
+  projectDisk(v1, v2, r_[k], circles_[k].c1, circles_[k].c2);
 }
 
 void ConstraintSet::project(Vector& x) const {

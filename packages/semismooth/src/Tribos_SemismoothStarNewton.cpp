@@ -12,6 +12,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_LocalSolver.hpp"
+#include "Tribos_QP_Projection.hpp"
 
 namespace Tribos {
 namespace Semismooth {
@@ -180,7 +181,8 @@ SemismoothStarNewton::Approximation SemismoothStarNewton::approximationStep(cons
       }
     const double wt = std::sqrt(wt2);
     const bool stick = freeTangential == 0 || (g > 0 && wt <= a * g);
-    const double shrink = stick ? 0.0 : (g > 0 ? 1.0 - a * g / wt : 1.0);
+    // prox of a g ||.|| on w_tau: w_tau - P_ag(w_tau) (Moreau)
+    const double shrink = stick ? 0.0 : 1.0 - QP::ballFactor(wt, a * g);
     for (int k = 0; k < 2; ++k) {
       const int j = 3 * i + k;
       ap.x[j] = prescribed[j] ? system().xPrescribed[j] : shrink * w[k];
