@@ -12,7 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "Tribos_QP_Projection.hpp"
+#include "Tribos_ContactKKT.hpp"
 #include "Tribos_QP_Utils.hpp"
 
 namespace Tribos {
@@ -190,10 +190,11 @@ class CountingOperator : public Operator {
   mutable long long count_ = 0;
 };
 
-// Tresca-style residuals of (r, u) with g = mu r_N, as checkKKT does for FETI:
-// forces and velocities are compared through c = max|r| / (velocity scale).
-// The velocity scale includes the free velocity q: when every contact is
-// closed and stuck, u is round-off and would not be a scale.
+// The contact KKT residuals of (r, u) (Friction::ContactKKT, as for FETI
+// results) with g = mu r_N, the gap u_N and the slip u_T: forces and
+// velocities are compared through max|r| and a velocity scale that includes
+// the free velocity q (when every contact is closed and stuck, u is
+// round-off and would not be a scale).
 void kktResiduals(const std::vector<double>& r, const std::vector<double>& u, const std::vector<double>& mu,
                   const std::vector<double>& q, SolveReport& rep) {
   // std::max drops a nan, so a non-finite result would look exact here.
@@ -201,22 +202,12 @@ void kktResiduals(const std::vector<double>& r, const std::vector<double>& u, co
     rep.kktNormal = rep.kktComplementarity = rep.kktFriction = std::numeric_limits<double>::quiet_NaN();
     return;
   }
-  const double maxR = std::max(normInf(r), 1e-300), maxU = std::max({normInf(u), normInf(q), 1e-300});
-  const double c = maxR / maxU;
-  double pen = 0, comp = 0, fric = 0;
-  for (size_t k = 0; k < mu.size(); ++k) {
-    const double rN = r[3 * k], uN = u[3 * k];
-    pen = std::max(pen, std::max(-uN, 0.0));
-    comp = std::max(comp, std::abs(std::min(rN, c * uN)));
-    const double g = mu[k] * std::max(rN, 0.0);
-    // r_T is the projection of r_T - c u_T onto the disk of radius g.
-    double a = r[3 * k + 1] - c * u[3 * k + 1], b = r[3 * k + 2] - c * u[3 * k + 2];
-    QP::projectDisk(a, b, g);
-    fric = std::max(fric, std::hypot(r[3 * k + 1] - a, r[3 * k + 2] - b));
-  }
-  rep.kktNormal = pen / maxU;
-  rep.kktComplementarity = comp / maxR;
-  rep.kktFriction = fric / maxR;
+  Friction::ContactKKT kkt(std::max(normInf(r), 1e-300), std::max({normInf(u), normInf(q), 1e-300}));
+  for (size_t k = 0; k < mu.size(); ++k)
+    kkt.add(r[3 * k], u[3 * k], &r[3 * k + 1], &u[3 * k + 1], 2, mu[k] * std::max(r[3 * k], 0.0));
+  rep.kktNormal = kkt.nonpenetration();
+  rep.kktComplementarity = kkt.complementarity();
+  rep.kktFriction = kkt.frictionLaw();
 }
 
 // The friction list with the defaults filled in, and the tolerance the user

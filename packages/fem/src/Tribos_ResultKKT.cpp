@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "Tribos_Error.hpp"
-#include "Tribos_QP_Projection.hpp"
+#include "Tribos_ContactKKT.hpp"
 
 namespace Tribos {
 namespace Fem {
@@ -100,33 +100,26 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
   res.dirichlet = dir / std::max(U, ubarMax);
 
   // Contact node by node (rank-local nodes, then the maximum over ranks).
-  double pen = 0, comp = 0, fric = 0;
+  Friction::ContactKKT kkt(P, U);
   for (const auto& c : contact) {
     const double* un = &u[3 * static_cast<size_t>(c.node)];
-    const double gapLeft = plane.gap - dot(plane.normal, un);  // d - u.n
-    pen = std::max(pen, std::max(-gapLeft, 0.0));
-    comp = std::max(comp, std::abs(std::min(c.normalForce / P, gapLeft / U)));
+    const double unn = dot(plane.normal, un);
     double g = 0;
     if (law.kind == FrictionLaw::Tresca) g = c.slipBound;
     if (law.kind == FrictionLaw::Coulomb) g = law.coefficient * std::max(c.normalForce, 0.0);
     // Slip and friction force in the tangent plane, without the components a
     // Dirichlet condition fixes.
-    std::array<double, 3> s{}, phiT{}, trial{};
-    const double unn = dot(plane.normal, un);
+    double s[3], phiT[3];
     for (int d = 0; d < 3; ++d) {
       const bool fixed = dirichlet.count(3LL * c.node + d) > 0;
       s[d] = fixed ? 0.0 : un[d] - unn * plane.normal[d];
       phiT[d] = fixed ? 0.0 : c.tangentialForce[d];
-      trial[d] = phiT[d] - (P / U) * s[d];
     }
-    auto proj = trial;
-    QP::projectBall(proj.data(), 3, g);
-    fric = std::max(fric, std::sqrt((phiT[0] - proj[0]) * (phiT[0] - proj[0]) + (phiT[1] - proj[1]) * (phiT[1] - proj[1]) +
-                                    (phiT[2] - proj[2]) * (phiT[2] - proj[2])) / P);
+    kkt.add(c.normalForce, plane.gap - unn /* d - u.n */, phiT, s, 3, g);
   }
-  res.nonpenetration = maxOver(pen, comm) / U;
-  res.complementarity = maxOver(comp, comm);
-  res.frictionLaw = maxOver(fric, comm);
+  res.nonpenetration = maxOver(kkt.nonpenetration(), comm);
+  res.complementarity = maxOver(kkt.complementarity(), comm);
+  res.frictionLaw = maxOver(kkt.frictionLaw(), comm);
   return res;
 }
 

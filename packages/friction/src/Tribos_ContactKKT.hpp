@@ -1,0 +1,39 @@
+// Tribos_ContactKKT.hpp: the contact part of the KKT conditions of a
+// solution, evaluated here for every source of contact results (the FETI and
+// semismooth* results through Fem::resultKKT, FCLIB's r and u):
+//   non-penetration  gap >= 0
+//   complementarity  lambda_N >= 0, lambda_N gap = 0
+//   friction law     phi_T = P_g(phi_T - c s)
+// per contact, with the normal force lambda_N, the gap left (d - u.n; for
+// FCLIB the normal velocity u_N), the tangential force phi_T and the slip s
+// (any number of components: 2 in a contact frame, 3 in the tangent plane),
+// the slip bound g (Tresca g, Coulomb F lambda_N^+) and P_g the projection
+// onto the disk of radius g (QP::projectBall). Forces and displacements are
+// compared through a force scale P and a displacement scale U, so every
+// figure is dimensionless:
+//   nonpenetration   max (-gap)^+ / U
+//   complementarity  max |min(lambda_N / P, gap / U)|
+//   friction law     max ||phi_T - P_g(phi_T - (P/U) s)|| / P
+#pragma once
+
+namespace Tribos {
+namespace Friction {
+
+class ContactKKT {
+ public:
+  // P, U > 0: the force and displacement scales.
+  ContactKKT(double forceScale, double displacementScale);
+  // One contact; phiT and slip have dim components (dim <= 3).
+  void add(double lambdaN, double gap, const double* phiT, const double* slip, int dim, double g);
+  // Maxima over the contacts added (local: reduce over ranks where needed).
+  double nonpenetration() const { return nonpenetration_; }
+  double complementarity() const { return complementarity_; }
+  double frictionLaw() const { return frictionLaw_; }
+
+ private:
+  double P_, U_;
+  double nonpenetration_ = 0, complementarity_ = 0, frictionLaw_ = 0;
+};
+
+}  // namespace Friction
+}  // namespace Tribos
