@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "Tribos_Error.hpp"
-#include "Tribos_QP_Utils.hpp"
 
 namespace Tribos {
 namespace Contact {
@@ -37,12 +36,11 @@ class OrthonormalCoarseConstraint : public QP::EqualityConstraint {
   mutable std::vector<double> y_;
 };
 
-// s PFP: the dual Hessian restricted to ker G, scaled. One application of F each.
+// PFP: the dual Hessian restricted to ker G. One application of F each.
 class ProjectedDualOperator : public Operator {
  public:
   explicit ProjectedDualOperator(RCP<const Feti::FetiDual> dual)
       : dual_(dual), Px_(dual->problem().dualMap()), FPx_(dual->problem().dualMap()) {}
-  void setScale(SC s) { scale_ = s; }
   RCP<const Map> getDomainMap() const override { return dual_->problem().dualMap(); }
   RCP<const Map> getRangeMap() const override { return dual_->problem().dualMap(); }
   void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
@@ -51,14 +49,13 @@ class ProjectedDualOperator : public Operator {
       dual_->coarse().project(*X.getVector(j), Px_);
       dual_->F()->apply(Px_, FPx_);
       dual_->coarse().project(FPx_, Px_);
-      Y.getVectorNonConst(j)->update(alpha * scale_, Px_, beta);
+      Y.getVectorNonConst(j)->update(alpha, Px_, beta);
     }
   }
 
  private:
   RCP<const Feti::FetiDual> dual_;
   mutable Vector Px_, FPx_;
-  SC scale_ = 1.0;
 };
 
 double maxOver(double v, const Comm& comm) {
@@ -69,28 +66,20 @@ double maxOver(double v, const Comm& comm) {
 
 }  // namespace
 
-FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction) : dual_(dual) {
+FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction)
+    : scaling_(rcp(new Friction::ScalingTransform(20))), dual_(dual) {
   const Feti::FetiProblem& p = dual->problem();
   const auto& lc = p.contact();
-  // The problem is scaled by s = 1/||PFP|| so that ||A|| = 1: F is of the
-  // order 1/E, and SMALBE compares ||g^P|| (displacement units times s) with
-  // ||G x|| (force units) against one tolerance; with ||A|| = 1 both are forces.
-  // The setup work (power iterations, one F application for b) is not
-  // counted as solver work.
-  auto A = rcp(new ProjectedDualOperator(dual));
+  // The setup work (one F application for b, the power iterations of the
+  // scaling) is not counted as solver work.
   const long long count = dual->F()->applications();
-  long ignored = 0;
-  scale_ = 1.0 / QP::estimateNorm(*A, 20, ignored);
-  A->setScale(scale_);
-  cd_.A = A;
-  // b = s P(h - F lambda~)
+  cd_.A = rcp(new ProjectedDualOperator(dual));
+  // b = P(h - F lambda~)
   Vector r(p.dualMap());
   dual->F()->apply(dual->lambdaTilde(), r);
-  dual->F()->setCount(count);
   r.update(1.0, dual->h(), -1.0);
   auto b = rcp(new Vector(p.dualMap()));
   dual->coarse().project(r, *b);
-  b->scale(scale_);
   // Tolerances refer to b without the gaps d of the contact rows (h = B K+ f - c):
   // the size of the load-driven problem, whether or not contact is active.
   {
@@ -99,7 +88,7 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Fri
     for (LO i : lc.normalRows) rv[i] += cv[i];
     Vector bRef(p.dualMap());
     dual->coarse().project(r, bRef);
-    cd_.referenceNorm = scale_ * bRef.norm2();
+    cd_.referenceNorm = bRef.norm2();
   }
   cd_.b = b;
   cd_.G = rcp(new OrthonormalCoarseConstraint(dual->coarsePtr(), p.comm()));
@@ -129,6 +118,8 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Fri
   if (friction.law == "Tresca")
     for (size_t k = 0; k < nc; ++k) cd_.slipBound[k] = friction.slipBoundTraction * lc.nodalArea[k];
   if (friction.law == "Coulomb") cd_.frictionCoefficient.assign(nc, friction.coefficient);
+  transforms_.add(scaling_).forward(cd_);
+  dual->F()->setCount(count);
   if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact(friction);
 }
 
@@ -223,6 +214,7 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
   const long long n_A0 = dual_->F()->applications();
   sol.status = solver->solve(cd_, *sol.x);
   sol.n_A = dual_->F()->applications() - n_A0;
+  transforms_.back(*sol.x);
   sol.lambda = multipliers(*sol.x);
   if (dual_->coarse().equalityRowsHoldKernel()) {
     sol.u = dual_->recoverPrimal(*sol.lambda);

@@ -14,6 +14,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include "Tribos_ContactDual.hpp"
+#include "Tribos_DualTransform.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_FetiDual.hpp"
 #include "Tribos_ResultKKT.hpp"
@@ -48,7 +49,7 @@ class FetiContactProblem {
   FetiContactSolution solve(const std::string& outerAlgorithm, const Teuchos::ParameterList& solverParams,
                             RCP<Teuchos::FancyOStream> out = Teuchos::null) const;
   // The factor s of the scaled dual problem (s PFP, s P(h - F lambda~)), s = 1/||PFP||.
-  SC scale() const { return scale_; }
+  SC scale() const { return scaling_->scale(); }
 
  private:
   // Local dual rows: equality rows plus the normal and/or tangential rows.
@@ -58,7 +59,9 @@ class FetiContactProblem {
   // Refuses a body that its contact cannot hold (throws naming the motion).
   void checkHeldByContact(const FrictionSpec& friction) const;
 
-  SC scale_ = 1.0;
+  // PFP, P(h - F lambda~) -> s PFP, s P(h - F lambda~) (||A|| = 1).
+  RCP<Friction::ScalingTransform> scaling_;
+  Friction::DualTransformChain transforms_;
   RCP<const Feti::FetiDual> dual_;
   Friction::ContactDual cd_;
 };

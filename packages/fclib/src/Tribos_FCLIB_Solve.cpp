@@ -13,7 +13,7 @@
 #include <stdexcept>
 
 #include "Tribos_ContactKKT.hpp"
-#include "Tribos_QP_Utils.hpp"
+#include "Tribos_DualTransform.hpp"
 
 namespace Tribos {
 namespace FCLIB {
@@ -113,7 +113,7 @@ void DelassusOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETra
     auto y = Y.getVectorNonConst(j);
     auto yv = y->getDataNonConst();
     for (size_t i = 0; i < Wx.size(); ++i)
-      yv[i] = (beta == 0.0 ? 0.0 : beta * yv[i]) + alpha * scale_ * Wx[i];
+      yv[i] = (beta == 0.0 ? 0.0 : beta * yv[i]) + alpha * Wx[i];
   }
 }
 
@@ -282,8 +282,8 @@ SolveReport solveWithZeroW(const std::vector<double>& q, const std::vector<doubl
   return rep;
 }
 
-ContactDualPtr contactDual(const Operator& A, double scale, const std::vector<double>& q,
-                           const std::vector<double>& mu, const RCP<const Map>& map);
+ContactDualPtr contactDual(const Operator& A, const std::vector<double>& q, const std::vector<double>& mu,
+                           const RCP<const Map>& map);
 
 // The common part: W (as op), q, mu -> r, u, status, err, spectrum.
 SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, const std::vector<double>& mu,
@@ -295,21 +295,23 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   const auto t0 = std::chrono::steady_clock::now();
   if (n <= options.denseSpectrumLimit) spectrum(op, n, rep);
   CountingOperator A(op);
-  long powerSteps = 0;
-  rep.normW = QP::estimateNorm(op, 50, powerSteps);
-  rep.scale = 1.0 / rep.normW;
-  op.setScale(rep.scale);
+  const auto cd = contactDual(A, q, mu, map);
+  // s W, -s q with s = 1/||W||; the power steps are not solver work.
+  Friction::ScalingTransform scaling(50);
+  scaling.forward(*cd);
+  const long long n_A0 = A.count();
+  rep.normW = scaling.norm();
+  rep.scale = scaling.scale();
   if (options.verbose)
     std::cout << "FCLIB: " << nc << " contacts, ||W|| ~ " << rep.normW << ", eig(W) in [" << rep.eigMin << ", "
               << rep.eigMax << "], numerical rank " << rep.numericalRank << ", ||q|| " << std::sqrt(std::inner_product(q.begin(), q.end(), q.begin(), 0.0)) << "\n";
-  const auto cd = contactDual(A, rep.scale, q, mu, map);
   if (options.verbose) solver.setOutputStream(Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout)));
   rep.timeSetup = seconds(t0);
   const auto t1 = std::chrono::steady_clock::now();
   Vector x(map);
   rep.status = solver.solve(*cd, x);
   rep.timeSolve = seconds(t1);
-  rep.n_A = A.count();
+  rep.n_A = A.count() - n_A0;
   {
     auto xv = x.getData();
     rep.r.assign(xv.begin(), xv.end());
@@ -328,17 +330,17 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   return rep;
 }
 
-// The Tresca QP of the slip bound g: A = s W, b = -s q, normal row 3k,
+// The Tresca QP of the slip bound g: A = W, b = -q, normal row 3k,
 // tangential rows 3k+1, 3k+2, no equality constraint.
-ContactDualPtr contactDual(const Operator& A, double scale, const std::vector<double>& q,
-                           const std::vector<double>& mu, const RCP<const Map>& map) {
+ContactDualPtr contactDual(const Operator& A, const std::vector<double>& q, const std::vector<double>& mu,
+                           const RCP<const Map>& map) {
   const int nc = static_cast<int>(mu.size());
   auto cd = std::make_shared<Friction::ContactDual>();
   cd->A = Teuchos::rcpFromRef(A);
   auto b = rcp(new Vector(map));
   {
     auto bv = b->getDataNonConst();
-    for (int i = 0; i < 3 * nc; ++i) bv[i] = -scale * q[i];
+    for (int i = 0; i < 3 * nc; ++i) bv[i] = -q[i];
   }
   cd->b = b;
   for (int k = 0; k < nc; ++k) {

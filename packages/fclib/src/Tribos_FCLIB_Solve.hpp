@@ -67,14 +67,12 @@ class MassSolver {
   double factorSeconds_ = 0;
 };
 
-// s W as a Tpetra operator on a serial map of 3nc entries: W a stored sparse
+// W as a Tpetra operator on a serial map of 3nc entries: W a stored sparse
 // matrix (local problem) or H' M^-1 H (global problem).
 class DelassusOperator : public Operator {
  public:
   DelassusOperator(const SparseMatrix& W, const RCP<const Map>& map);
   DelassusOperator(const SparseMatrix& H, std::shared_ptr<const MassSolver> M, const RCP<const Map>& map);
-  void setScale(SC s) { scale_ = s; }
-  SC scale() const { return scale_; }
   RCP<const Map> getDomainMap() const override { return map_; }
   RCP<const Map> getRangeMap() const override { return map_; }
   void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode = Teuchos::NO_TRANS, SC alpha = 1,
@@ -89,7 +87,6 @@ class DelassusOperator : public Operator {
   const SparseMatrix* H_ = nullptr;
   std::shared_ptr<const MassSolver> M_;
   RCP<const Map> map_;
-  SC scale_ = 1.0;
   mutable std::vector<double> x_, y_, z_;
 };
 
