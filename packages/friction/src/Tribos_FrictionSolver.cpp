@@ -10,7 +10,7 @@
 #include "Tribos_BlockGaussSeidel.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_QP.hpp"
-#include "Tribos_QP_AugmentedHessian.hpp"
+#include "Tribos_QP_AugmentedLagrangian.hpp"
 #include "Tribos_Progress.hpp"
 
 namespace Tribos {
@@ -299,28 +299,6 @@ class NoEquality : public QP::EqualityConstraint {
  private:
   RCP<const Map> map_;
 };
-// G'G, only to bound the norm of the augmented Hessian.
-class NormalOperator : public Operator {
- public:
-  NormalOperator(const QP::EqualityConstraint& G, RCP<const Map> xmap) : G_(G), xmap_(xmap), Gx_(G.rangeMap()) {}
-  RCP<const Map> getDomainMap() const override { return xmap_; }
-  RCP<const Map> getRangeMap() const override { return xmap_; }
-  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
-             SC beta = 0) const override {
-    Vector GtGx(xmap_);
-    for (size_t j = 0; j < X.getNumVectors(); ++j) {
-      G_.apply(*X.getVector(j), Gx_);
-      G_.applyTranspose(Gx_, GtGx);
-      Y.getVectorNonConst(j)->update(alpha, GtGx, beta);
-    }
-  }
-
- private:
-  const QP::EqualityConstraint& G_;
-  RCP<const Map> xmap_;
-  mutable Vector Gx_;
-};
-
 // Residual balancing of the penalty (the rule used for ADMM penalties): rho
 // too small leaves G lambda behind the projected gradient, since the
 // multiplier update gains only a factor of about 1 + rho sigma per outer
@@ -367,21 +345,15 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   const auto normalMask = dual.normalBlockMask(), tangentMask = dual.tangentBlockMask();
   // ||A + rho G'G|| <= ||A|| + rho ||G'G||; ||G'G|| by the power method once
   // (1 for the orthonormal FETI constraint), not counted as Hessian work.
-  SC normGtG = 0;
-  if (!dual.G.is_null()) {
-    long notCounted = 0;
-    normGtG = QP::estimateNorm(NormalOperator(*G, dual.map()), 20, notCounted);
-  }
-  Vector mu(G->rangeMap()), Gx(G->rangeMap()), Gtmu(dual.map()), bIn(dual.map()), grad(dual.map()), gP(dual.map());
-  QP::AugmentedHessian H(*dual.A, *G, rho);
+  QP::AugmentedLagrangian al(*dual.A, *G);
+  const SC normGtG = dual.G.is_null() ? 0 : al.normGtG(20);
+  Vector grad(dual.map()), gP(dual.map());
   std::vector<SC> g = dual.coulombSlipBound(x);
-  G->apply(x, Gx);
-  SC normGx = Gx.norm2(), Lprev = 0;
+  SC normGx = al.normGx(x);
   const int maxIter = params_.get<int>("Maximum Iterations");
   for (int l = 1; l <= maxIter; ++l) {
-    G->applyTranspose(mu, Gtmu);
-    bIn.update(1.0, *dual.b, -1.0, Gtmu, 0.0);
-    H.setRho(rho);
+    const Vector& bIn = al.linearTerm(*dual.b);
+    const QP::AugmentedHessian& H = al.hessian(rho);
     // The first blocks start from G x = 0, where M ||G x|| would ask for an
     // exact solve of a problem whose slip bound is still a guess: use eta.
     // Later, SMALBE's M ||G x|| (M shrinks whenever L grows too little) is
@@ -413,10 +385,8 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
       nA_t += stt.n_A;
       if (st.norm_gP <= innerTol) break;
     }
-    G->apply(x, Gx);
-    normGx = Gx.norm2();
-    const SC L = 0.5 * (x.dot(grad) - x.dot(bIn));
-    mu.update(rho, Gx, 1.0);
+    const QP::AugmentedLagrangian::Step step = al.update(x, grad, rho);
+    normGx = step.normGx;
     // Relative to the larger of the two bounds, so that a bound that
     // vanishes (contact lost) gives a change of at most 2, not 1/round-off.
     const SC gNorm = std::max(globalNorm(gNew, comm), globalNorm(g, comm));
@@ -438,8 +408,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
                                : "projected gradient, ||G lambda|| and slip-bound change below tolerance";
       return st;
     }
-    if (l > 1 && L < Lprev + 0.5 * rho * normGx * normGx) M /= beta;
-    Lprev = L;
+    if (l > 1 && step.grewTooLittle) M /= beta;
     if (!dual.G.is_null()) rho = balancing.update(rho, normGx, st.norm_gP);  // rho acts only through G
   }
   st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of Algorithm 2 reached";

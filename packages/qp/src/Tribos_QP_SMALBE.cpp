@@ -10,36 +10,11 @@
 #include <Tpetra_Vector.hpp>
 
 #include "Tribos_Error.hpp"
-#include "Tribos_QP_AugmentedHessian.hpp"
+#include "Tribos_QP_AugmentedLagrangian.hpp"
 #include "Tribos_QP_Factory.hpp"
 
 namespace Tribos {
 namespace QP {
-
-namespace {
-
-// G'G, only to estimate ||G||^2 for alpha_bar of the inner problems.
-class NormalOperator : public Operator {
- public:
-  NormalOperator(const EqualityConstraint& G, RCP<const Map> xmap) : G_(G), xmap_(xmap) {}
-  RCP<const Map> getDomainMap() const override { return xmap_; }
-  RCP<const Map> getRangeMap() const override { return xmap_; }
-  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
-             SC beta = 0) const override {
-    Vector GX(G_.rangeMap()), GtGX(xmap_);
-    for (size_t j = 0; j < X.getNumVectors(); ++j) {
-      G_.apply(*X.getVector(j), GX);
-      G_.applyTranspose(GX, GtGX);
-      Y.getVectorNonConst(j)->update(alpha, GtGX, beta);
-    }
-  }
-
- private:
-  const EqualityConstraint& G_;
-  RCP<const Map> xmap_;
-};
-
-}  // namespace
 
 SMALBE::SMALBE() { setParameters(Teuchos::null); }
 
@@ -129,8 +104,8 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
   Omega.project(x);
 
   const SC normA = hessianNorm_ > 0 ? hessianNorm_ : estimateNorm(A, s_.common.powerIterations, st.n_A);
-  long notCounted = 0;  // G'G is not the Hessian
-  const SC normGtG = estimateNorm(NormalOperator(G, xmap), s_.common.powerIterations, notCounted);
+  AugmentedLagrangian al(A, G);
+  const SC normGtG = al.normGtG(s_.common.powerIterations);
   const SC normB = b.norm2();
   SC rho = s_.rho > 0 ? s_.rho : normA;
   SC M = s_.M > 0 ? s_.M : 100 * normA;
@@ -138,24 +113,20 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
   const SC eta = s_.eta * (normB > 0 ? normB : 1.0);
   const SC tol = toleranceOverride_ >= 0 ? toleranceOverride_ : std::max(s_.common.rtol * normB, s_.common.atol);
 
-  mu_ = Teuchos::rcp(new Vector(G.rangeMap()));
+  mu_ = al.multiplier();
   if (!mu0_.is_null()) Tpetra::deep_copy(*mu_, *mu0_);
-  Vector& mu = *mu_;
-  Vector Gx(G.rangeMap()), Gtmu(xmap), b_in(xmap), gP(xmap);
+  Vector gP(xmap);
   g_ = Teuchos::rcp(new Vector(xmap));
   Vector& g = *g_;
-  G.apply(x, Gx);
-  SC normGx = Gx.norm2();
+  SC normGx = al.normGx(x);
   SC innerTol = innerTolerance(M, normGx, eta, tol);
-  SC Lprev = 0;
   std::vector<SC> GxHistory;
   auto& out = output_.stream();
 
   for (int k = 0; k < s_.maxOuter; ++k) {
     // inner problem: min L(x, mu, rho) = 1/2 x'(A + rho G'G)x - (b - G'mu)'x over Omega
-    G.applyTranspose(mu, Gtmu);
-    b_in.update(1.0, b, -1.0, Gtmu, 0.0);
-    AugmentedHessian H(A, G, rho);
+    const Vector& b_in = al.linearTerm(b);
+    const AugmentedHessian& H = al.hessian(rho);
     inner_->setHessianNorm(normA + rho * normGtG);
     inner_->setTolerance(innerTol);
     const QPStatus ist = inner_->solve(H, b_in, Omega, x);
@@ -173,10 +144,8 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
     }
     Omega.projectedGradient(x, g, gP);
     st.norm_gP = gP.norm2();
-    G.apply(x, Gx);
-    normGx = Gx.norm2();
-    const SC L = 0.5 * (x.dot(g) - x.dot(b_in));  // L(x, mu, rho) = 1/2 x'(g - b_in)
-    mu.update(rho, Gx, 1.0);                        // now g = Ax - b + G'mu
+    const AugmentedLagrangian::Step step = al.update(x, g, rho);
+    normGx = step.normGx;
     st.norm_Gx = normGx;
     st.outer_iterations = k + 1;
     if (output_.wants(Verbosity::Medium))
@@ -192,11 +161,10 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
     // test presumes the inner problem was solved to its tolerance; an inner
     // solver that stopped early (e.g. a fixed number of block Gauss-Seidel
     // sweeps) says nothing about M.
-    if (k > 0 && ist.converged && L < Lprev + 0.5 * rho * normGx * normGx) {
+    if (k > 0 && ist.converged && step.grewTooLittle) {
       if (s_.updateRho) rho *= s_.beta;
       else M /= s_.beta;
     }
-    Lprev = L;
     // ||Gx|| that does not decrease over a window of outer iterations with
     // solved inner problems: strengthen the penalty
     GxHistory.push_back(normGx);
