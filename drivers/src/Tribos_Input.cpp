@@ -418,6 +418,13 @@ Mesh::BoxSpec boxSpec(const ParameterList& params) {
   return spec;
 }
 
+Method method(const ParameterList& params) {
+  const auto& solver = params.sublist("Solver");
+  if (!params.sublist("Contact").get<bool>("Enabled"))
+    return solver.get<std::string>("Type") == "Monolithic" ? Method::Monolithic : Method::FetiLinear;
+  return solver.get<std::string>("Outer Algorithm") == "SemismoothStarNewton" ? Method::Semismooth : Method::FetiContact;
+}
+
 Mesh::DecompositionSpec decompositionSpec(const ParameterList& params) {
   const auto& m = params.sublist("Mesh");
   Mesh::DecompositionSpec dec;

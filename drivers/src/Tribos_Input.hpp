@@ -36,6 +36,11 @@ void validate(Teuchos::ParameterList& params, const std::string& source);
 // Overrides one entry: path "Sublist/.../Key", value as text.
 void applyOverride(Teuchos::ParameterList& params, const std::string& assignment);
 
+// How a validated run is solved; the one place that reads Solver/Type,
+// Contact/Enabled and Solver/Outer Algorithm together.
+enum class Method { Monolithic, FetiLinear, FetiContact, Semismooth };
+Method method(const Teuchos::ParameterList& params);
+
 // Builders from a validated list.
 Mesh::BoxSpec boxSpec(const Teuchos::ParameterList& params);
 Mesh::DecompositionSpec decompositionSpec(const Teuchos::ParameterList& params);

@@ -62,7 +62,7 @@ double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec
   const SubdomainShape s = subdomainShape(spec, dec, S);
   const double d = 3.0 * s.nodes, b = 1.5 * s.surfaceNodes;
   const std::string op = params.sublist("Solver").sublist("FETI").get<std::string>("Dual Operator");
-  const bool contact = params.sublist("Contact").get<bool>("Enabled");
+  const bool contact = Input::method(params) == Input::Method::FetiContact;
   const bool explicitF = op == "Explicit" || (op == "Auto" && contact && b <= Feti::FetiProblem::kAutoExplicitRows);
   return mine * (4000.0 * s.nodes + factorBytes(d) + (explicitF ? 16.0 * b * b : 0.0));
 }
@@ -110,16 +110,14 @@ MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks
   const double cells = cx * cy * cz * (spec.type == Mesh::CellType::Tet4 ? 6.0 : 1.0);
   MemoryEstimate e;
   e.mesh = 80.0 * kMB + 400.0 * nodes + 50.0 * cells;
-  const auto& solver = params.sublist("Solver");
-  const bool semismooth = params.sublist("Contact").get<bool>("Enabled") &&
-                          solver.get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
-  if (semismooth)
+  const Input::Method m = Input::method(params);
+  if (m == Input::Method::Semismooth)
     e.solver = rank == 0 ? 28000.0 * nodes + factorBytes(3.0 * nodes) : 0.0;
-  else if (solver.get<std::string>("Type") == "Monolithic")
+  else if (m == Input::Method::Monolithic)
     e.solver = monolithicBytes(params, nodes, numRanks);
   else
     e.solver = fetiBytes(params, spec, numRanks, rank);
-  if (verify && !params.sublist("Contact").get<bool>("Enabled")) e.solver += monolithicBytes(params, nodes, numRanks);
+  if (verify && (m == Input::Method::Monolithic || m == Input::Method::FetiLinear)) e.solver += monolithicBytes(params, nodes, numRanks);
   return e;
 }
 

@@ -168,9 +168,7 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
 // run is refined by METIS.
 Mesh::DecompositionSpec decompositionFor(const Teuchos::ParameterList& params, int numRanks) {
   auto decomposition = Input::decompositionSpec(params);
-  const bool serialMethod = params.sublist("Contact").get<bool>("Enabled") &&
-                            params.sublist("Solver").get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
-  if (serialMethod && requestedSubdomains(decomposition) < numRanks) {
+  if (Input::method(params) == Input::Method::Semismooth && requestedSubdomains(decomposition) < numRanks) {
     decomposition.partitioner = "METIS";
     decomposition.subdomains = numRanks;
   }
@@ -182,12 +180,13 @@ Mesh::DecompositionSpec decompositionFor(const Teuchos::ParameterList& params, i
 // projected CG's, the semismooth* method's or the monolithic CG's.
 double requestedTolerance(const Teuchos::ParameterList& params) {
   const auto& solver = params.sublist("Solver");
-  if (!params.sublist("Contact").get<bool>("Enabled"))
-    return solver.get<std::string>("Type") == "Monolithic"
-               ? solver.sublist("Monolithic").get<double>("Tolerance")
-               : solver.sublist("FETI").sublist("Projected CG").get<double>("Tolerance");
+  switch (Input::method(params)) {
+    case Input::Method::Monolithic: return solver.sublist("Monolithic").get<double>("Tolerance");
+    case Input::Method::FetiLinear: return solver.sublist("FETI").sublist("Projected CG").get<double>("Tolerance");
+    case Input::Method::Semismooth: return solver.sublist("SemismoothStarNewton").get<double>("Tolerance");
+    case Input::Method::FetiContact: break;
+  }
   const std::string outer = solver.get<std::string>("Outer Algorithm");
-  if (outer == "SemismoothStarNewton") return solver.sublist("SemismoothStarNewton").get<double>("Tolerance");
   if (outer == "Algorithm2") return solver.sublist("Algorithm 2").get<double>("Relative Tolerance");
   const double smalbe = solver.sublist("Algorithm 1").sublist("SMALBE").get<double>("Relative Tolerance");
   return outer == "MSA+Algorithm1" ? std::max(smalbe, solver.sublist("MSA").get<double>("Tolerance")) : smalbe;
@@ -425,10 +424,7 @@ void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& optio
       TRIBOS_REQUIRE(spec.cells[a] % decomposition.grid[a] == 0,
                      "Mesh/Subdomain Grid: " << decomposition.grid[a] << " boxes along " << "xyz"[a]
                                              << " do not divide the " << spec.cells[a] << " cells of the mesh");
-  const bool fetiContact = params.sublist("Contact").get<bool>("Enabled") &&
-                           params.sublist("Solver").get<std::string>("Type") == "FETI" &&
-                           params.sublist("Solver").get<std::string>("Outer Algorithm") != "SemismoothStarNewton";
-  TRIBOS_REQUIRE(options.exportFclib.empty() || fetiContact,
+  TRIBOS_REQUIRE(options.exportFclib.empty() || Input::method(params) == Input::Method::FetiContact,
                  "--export-fclib writes a FETI contact problem; this run is "
                      << (params.sublist("Contact").get<bool>("Enabled") ? "solved by the semismooth* method"
                                                                         : "a linear problem without contact"));
@@ -452,10 +448,10 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   // Faces named by conditions must exist: check before any solve.
   for (const auto& d : loads.dirichlet) disc.mesh.face(d.face);
   for (const auto& t : loads.tractions) disc.mesh.face(t.face);
-  const std::string type = params.sublist("Solver").get<std::string>("Type");
-  const bool semismooth = params.sublist("Contact").get<bool>("Enabled") &&
-                          params.sublist("Solver").get<std::string>("Outer Algorithm") == "SemismoothStarNewton";
-  summary.set("algorithm", semismooth ? std::string("SemismoothStarNewton") : type);
+  const Input::Method method = Input::method(params);
+  const bool semismooth = method == Input::Method::Semismooth;
+  const std::string type = semismooth ? "SemismoothStarNewton" : params.sublist("Solver").get<std::string>("Type");
+  summary.set("algorithm", type);
   summary.set("ranks", comm->getSize());
   summary.set("subdomains", disc.numSubdomains());
   summary.set("element", Mesh::cellTypeName(spec.type));
@@ -471,7 +467,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
                             sol.solverConverged, sol.kkt);
     sol.solveSeconds = seconds(t2);
     if (!sol.solverConverged) sol.solverReason = "semismooth*: maximum Newton iterations";
-  } else if (type == "Monolithic") {
+  } else if (method == Input::Method::Monolithic) {
     sol = solveMonolithic(params, disc, mat, loads, comm, summary);
   } else {
     sol = solveFeti(params, options, disc, mat, loads, comm, summary);
@@ -479,7 +475,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   requireRepresentable(sol.u, sol.kkt, semismooth ? "the semismooth* method" : "the " + type + " solve");
   bool converged = false;
   const std::string stopReason = setResultCheck(params, sol.solverConverged, sol.solverReason, sol.kkt, summary, converged);
-  if (options.verify && params.sublist("Contact").get<bool>("Enabled")) {
+  if (options.verify && (method == Input::Method::FetiContact || semismooth)) {
     summary.set("verify_note", "--verify compares with the monolithic linear solve; it does not apply to contact problems");
   } else if (options.verify) {
     Progress::stage("monolithic reference solve (--verify)");

@@ -15,7 +15,6 @@ class FetiDual {
   explicit FetiDual(RCP<const FetiProblem> problem);
 
   const FetiProblem& problem() const { return *problem_; }
-  RCP<const FetiProblem> problemPtr() const { return problem_; }
   RCP<DualOperator> F() const { return F_; }
   const CoarseSpace& coarse() const { return *coarse_; }
   RCP<const CoarseSpace> coarsePtr() const { return coarse_; }

@@ -25,7 +25,6 @@ class DualOperator : public Operator {
   void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode = Teuchos::NO_TRANS, SC alpha = 1.0,
              SC beta = 0.0) const override;
   long long applications() const { return n_A_; }
-  void resetCount() { n_A_ = 0; }
   void setCount(long long n) { n_A_ = n; }
 
  private:
