@@ -1,20 +1,20 @@
 // Mesh generation, METIS and structured decomposition, rank layout.
-#include <Tpetra_Core.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
 
-#include <cmath>
-#include <iostream>
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <map>
 #include <set>
 
-#include "Tribos_TestSupport.hpp"
 #include "Tribos_Decomposition.hpp"
 #include "Tribos_Mesh.hpp"
 
+namespace {
+
 using namespace Tribos::Mesh;
 
-
-static double cellVolume(const Mesh& m, int c) {
+double cellVolume(const Mesh& m, int c) {
   // Volume from the divergence theorem would need faces; for tets use the
   // determinant, for box hexes the bounding box.
   const int* n = m.cell(c);
@@ -30,14 +30,14 @@ static double cellVolume(const Mesh& m, int c) {
   return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
 }
 
-static void testBox(CellType type) {
+void checkBox(CellType type, Teuchos::FancyOStream& out, bool& success) {
   BoxSpec spec;
   spec.type = type;
   spec.x = {0, 3};
   spec.cells = {6, 2, 3};
   const Mesh m = generateBox(spec);
-  CHECK(m.numNodes() == 7 * 3 * 4, "node count");
-  CHECK(m.numCells() == 36 * (type == CellType::Tet4 ? 6 : 1), "cell count");
+  TEST_EQUALITY(m.numNodes(), 7 * 3 * 4);
+  TEST_EQUALITY(m.numCells(), 36 * (type == CellType::Tet4 ? 6 : 1));
   double vol = 0;
   bool positive = true;
   for (int c = 0; c < m.numCells(); ++c) {
@@ -45,20 +45,20 @@ static void testBox(CellType type) {
     positive = positive && v > 0;
     vol += v;
   }
-  CHECK(positive, "every cell has positive orientation");
-  CHECK(std::abs(vol - 3.0) < 1e-12, "cells tile the box, volume " << vol);
+  TEST_ASSERT(positive);  // every cell has positive orientation
+  TEST_COMPARE(std::abs(vol - 3.0), <, 1e-12);  // the cells tile the box
   // Face areas by facet count: zmin has 6x2 quads (or twice as many triangles).
-  CHECK(m.face("zmin").size() == static_cast<size_t>(12 * (type == CellType::Tet4 ? 2 : 1)), "zmin facets");
-  CHECK(m.faceNodes("xmax").size() == 3 * 4, "xmax nodes");
+  TEST_EQUALITY(m.face("zmin").size(), static_cast<size_t>(12 * (type == CellType::Tet4 ? 2 : 1)));
+  TEST_EQUALITY(m.faceNodes("xmax").size(), static_cast<size_t>(3 * 4));
   for (const auto& f : m.face("zmin"))
-    for (int n : f.nodes) CHECK(std::abs(m.coords[n][2]) < 1e-14, "zmin facet node off the plane");
+    for (int n : f.nodes) TEST_COMPARE(std::abs(m.coords[n][2]), <, 1e-14);  // zmin facet node on the plane
   bool threw = false;
   try {
     m.face("top");
   } catch (const std::exception& e) {
     threw = std::string(e.what()).find("xmin") != std::string::npos;
   }
-  CHECK(threw, "an unknown face name throws and lists the valid names");
+  TEST_ASSERT(threw);  // an unknown face name throws and lists the valid names
   // Conformity: every interior triangle is shared by exactly two tets.
   if (type == CellType::Tet4) {
     std::map<std::array<int, 3>, int> count;
@@ -79,12 +79,14 @@ static void testBox(CellType type) {
     }
     size_t expected = 0;
     for (const auto& name : m.faceNames()) expected += m.face(name).size();
-    CHECK(ok && boundary == expected, "Kuhn split is conforming: " << boundary << " boundary triangles, " << expected
-                                                                 << " on named faces");
+    // The Kuhn split is conforming: no triangle in more than two tets, and
+    // the boundary triangles are those of the named faces.
+    TEST_ASSERT(ok);
+    TEST_EQUALITY(boundary, expected);
   }
 }
 
-static void testPartitions(CellType type) {
+void checkPartitions(CellType type, Teuchos::FancyOStream& out, bool& success) {
   BoxSpec spec;
   spec.type = type;
   spec.x = {0, 3};
@@ -98,12 +100,17 @@ static void testPartitions(CellType type) {
       for (int c : s.cells) ++seen[c];
     bool once = true;
     for (int v : seen) once = once && v == 1;
-    CHECK(once, "METIS partition into " << S << " covers every cell exactly once");
+    out << "METIS partition into " << S << " subdomains\n";
+    TEST_ASSERT(once);  // covers every cell exactly once
     for (const auto& s : subs) {
-      CHECK(!s.cells.empty(), "subdomain " << s.id << " is not empty");
+      TEST_ASSERT(!s.cells.empty());
+      // The local numbering maps back to the cell's nodes (counted, not
+      // asserted one by one: thousands of entries).
+      int wrong = 0;
       for (size_t k = 0; k < s.cells.size(); ++k)
         for (int a = 0; a < m.nodesPerCell(); ++a)
-          CHECK(s.nodes[s.connectivity[k * m.nodesPerCell() + a]] == m.cell(s.cells[k])[a], "local numbering");
+          wrong += s.nodes[s.connectivity[k * m.nodesPerCell() + a]] != m.cell(s.cells[k])[a];
+      TEST_EQUALITY(wrong, 0);
     }
   }
   // The seed brick: three unit cubes.
@@ -112,29 +119,35 @@ static void testPartitions(CellType type) {
   for (const auto& s : subs) {
     double lo = 1e300, hi = -1e300;
     for (int n : s.nodes) lo = std::min(lo, m.coords[n][0]), hi = std::max(hi, m.coords[n][0]);
-    CHECK(std::abs(lo - s.id) < 1e-14 && std::abs(hi - s.id - 1) < 1e-14,
-          "structured subdomain " << s.id << " is the cube [" << s.id << "," << s.id + 1 << "], got [" << lo << "," << hi << "]");
+    // Structured subdomain s is the cube [s, s + 1].
+    out << "structured subdomain " << s.id << ": [" << lo << "," << hi << "]\n";
+    TEST_COMPARE(std::abs(lo - s.id), <, 1e-14);
+    TEST_COMPARE(std::abs(hi - s.id - 1), <, 1e-14);
   }
 }
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
-  testBox(CellType::Tet4);
-  testBox(CellType::Hex8);
-  testPartitions(CellType::Tet4);
-  testPartitions(CellType::Hex8);
-  // Rank layout: contiguous blocks covering all subdomains.
+}  // namespace
+
+TEUCHOS_UNIT_TEST(Box, Tet4) { checkBox(CellType::Tet4, out, success); }
+
+TEUCHOS_UNIT_TEST(Box, Hex8) { checkBox(CellType::Hex8, out, success); }
+
+TEUCHOS_UNIT_TEST(Partition, Tet4) { checkPartitions(CellType::Tet4, out, success); }
+
+TEUCHOS_UNIT_TEST(Partition, Hex8) { checkPartitions(CellType::Hex8, out, success); }
+
+// Rank layout: contiguous blocks covering all subdomains.
+TEUCHOS_UNIT_TEST(RankLayout, ContiguousBlocks) {
   for (int S : {3, 7, 64})
     for (int P : {1, 2, 3}) {
       const auto layout = makeRankLayout(S, P);
       int prev = 0;
       for (int s = 0; s < S; ++s) {
         const int r = layout.owner(s);
-        CHECK(r >= prev && layout.firstSubdomain(r) <= s && s < layout.firstSubdomain(r + 1), "owner of " << s);
+        TEST_COMPARE(r, >=, prev);
+        TEST_COMPARE(layout.firstSubdomain(r), <=, s);
+        TEST_COMPARE(s, <, layout.firstSubdomain(r + 1));
         prev = r;
       }
     }
-  if (Tribos::Test::failures()) std::cerr << Tribos::Test::failures() << " checks failed" << std::endl;
-  else std::cout << "all mesh checks passed" << std::endl;
-  return Tribos::Test::failures() ? 1 : 0;
 }
