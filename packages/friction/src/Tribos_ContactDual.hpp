@@ -13,7 +13,8 @@
 // |x_T - c| <= g_k, none gives no friction constraint. Tresca
 // problems give g; Coulomb problems give the friction coefficients F_k and
 // g_k = F_k (normal force). The algorithms' defaults (rho, M) assume the
-// problem is scaled so that ||A|| is about 1; FetiContactProblem does that.
+// problem is scaled so that ||A|| is about 1: ScalingTransform
+// (Tribos_DualTransform.hpp) does that for FETI and FCLIB problems.
 #pragma once
 
 #include <vector>
