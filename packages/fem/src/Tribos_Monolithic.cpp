@@ -79,80 +79,71 @@ MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const Mater
   }
 }
 
-RCP<const Teuchos::ParameterList> MonolithicSystem::getValidParameters() {
-  static RCP<Teuchos::ParameterList> pl;
-  if (pl.is_null()) {
-    pl = Teuchos::parameterList("Monolithic");
-    pl->set("Linear Solver", "CG+MueLu", "CG+MueLu (iterative, any size) or Direct (Amesos2 KLU2, small problems)",
-            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("CG+MueLu", "Direct"))));
-    pl->set("Tolerance", 1e-10, "relative residual of the CG solve",
-            rcp(new Teuchos::EnhancedNumberValidator<double>(1e-16, 1.0)));
-    pl->set("Maximum Iterations", 2000, "CG iteration limit",
-            rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
-  }
-  return pl;
-}
+namespace {
 
-MonolithicResult MonolithicSystem::solve(const Teuchos::ParameterList& params) const {
-  MonolithicResult res;
-  auto u = rcp(new Vector(map_));
-  const std::string kind = params.get<std::string>("Linear Solver");
-  if (kind == "Direct") {
-    // Amesos2 KLU2 of this Trilinos build returns wrong solutions on
-    // communicators of more than one rank, so the matrix is gathered on rank 0
-    // and factored there on a serial communicator.
-    const GO n = static_cast<GO>(map_->getGlobalNumElements());
-    auto rootMap = rcp(new Map(n, comm_->getRank() == 0 ? n : 0, 0, comm_));
-    Import toRoot(map_, rootMap);
-    auto K0 = Tpetra::importAndFillCompleteCrsMatrix<CrsMatrix>(K_, toRoot, rootMap, rootMap);
+// Amesos2 KLU2 of this Trilinos build returns wrong solutions on
+// communicators of more than one rank, so the matrix is gathered on rank 0
+// and factored there on a serial communicator.
+class DirectSolve : public MonolithicLinearSolver {
+ public:
+  bool solve(const CrsMatrix& K, const Vector& f, const MultiVector&, Vector& u, const Teuchos::ParameterList&,
+             int& iterations) const override {
+    const auto map = K.getRowMap();
+    const auto comm = map->getComm();
+    const GO n = static_cast<GO>(map->getGlobalNumElements());
+    auto rootMap = rcp(new Map(n, comm->getRank() == 0 ? n : 0, 0, comm));
+    Import toRoot(map, rootMap);
+    auto K0 = Tpetra::importAndFillCompleteCrsMatrix<CrsMatrix>(Teuchos::rcpFromRef(K), toRoot, rootMap, rootMap);
     Vector f0(rootMap), u0(rootMap);
-    f0.doImport(*f_, toRoot, Tpetra::INSERT);
-    if (comm_->getRank() == 0) {
-      auto serial = rcp(new Teuchos::SerialComm<int>());
-      auto smap = rcp(new Map(n, 0, serial));
-      auto Ks = rcp(new CrsMatrix(smap, K0->getNodeMaxNumRowEntries()));
-      Teuchos::Array<GO> cols(K0->getNodeMaxNumRowEntries());
-      Teuchos::Array<SC> vals(K0->getNodeMaxNumRowEntries());
-      for (GO i = 0; i < n; ++i) {
-        size_t len = 0;
-        K0->getGlobalRowCopy(i, cols(), vals(), len);
-        Ks->insertGlobalValues(i, cols(0, len), vals(0, len));
-      }
-      Ks->fillComplete();
-      auto fs = rcp(new Vector(smap)), us = rcp(new Vector(smap));
-      { auto src = f0.getData(); auto dst = fs->getDataNonConst(); std::copy(src.begin(), src.end(), dst.begin()); }
-      auto solver = Amesos2::create<CrsMatrix, MultiVector>("KLU2", Ks, us, fs);
-      solver->symbolicFactorization().numericFactorization().solve();
-      { auto src = us->getData(); auto dst = u0.getDataNonConst(); std::copy(src.begin(), src.end(), dst.begin()); }
+    f0.doImport(f, toRoot, Tpetra::INSERT);
+    if (comm->getRank() == 0) solveSerial(*K0, f0, u0, n);
+    u.doExport(u0, toRoot, Tpetra::INSERT);
+    iterations = 0;
+    return true;
+  }
+
+ private:
+  static void solveSerial(const CrsMatrix& K0, const Vector& f0, Vector& u0, GO n) {
+    auto serial = rcp(new Teuchos::SerialComm<int>());
+    auto smap = rcp(new Map(n, 0, serial));
+    auto Ks = rcp(new CrsMatrix(smap, K0.getNodeMaxNumRowEntries()));
+    Teuchos::Array<GO> cols(K0.getNodeMaxNumRowEntries());
+    Teuchos::Array<SC> vals(K0.getNodeMaxNumRowEntries());
+    for (GO i = 0; i < n; ++i) {
+      size_t len = 0;
+      K0.getGlobalRowCopy(i, cols(), vals(), len);
+      Ks->insertGlobalValues(i, cols(0, len), vals(0, len));
     }
-    u->doExport(u0, toRoot, Tpetra::INSERT);
-    res.converged = true;
-  } else {
+    Ks->fillComplete();
+    auto fs = rcp(new Vector(smap)), us = rcp(new Vector(smap));
+    { auto src = f0.getData(); auto dst = fs->getDataNonConst(); std::copy(src.begin(), src.end(), dst.begin()); }
+    auto solver = Amesos2::create<CrsMatrix, MultiVector>("KLU2", Ks, us, fs);
+    solver->symbolicFactorization().numericFactorization().solve();
+    { auto src = us->getData(); auto dst = u0.getDataNonConst(); std::copy(src.begin(), src.end(), dst.begin()); }
+  }
+};
+
+// Belos CG preconditioned by MueLu smoothed aggregation with the rigid-body
+// modes as near null space.
+class CGMueLuSolve : public MonolithicLinearSolver {
+ public:
+  bool solve(const CrsMatrix& K, const Vector& f, const MultiVector& nullspace, Vector& u,
+             const Teuchos::ParameterList& params, int& iterations) const override {
     Teuchos::ParameterList mueluParams;
     mueluParams.set("verbosity", "none");
     mueluParams.set("coarse: max size", 1000);
     mueluParams.set("number of equations", 3);
     // The coarse level is smoothed, not factored: the distributed Amesos2 KLU2
-    // of this Trilinos build is unreliable (see the Direct branch).
+    // of this Trilinos build is unreliable (see DirectSolve).
     mueluParams.set("coarse: type", "RELAXATION");
     mueluParams.sublist("coarse: params").set("relaxation: type", "Symmetric Gauss-Seidel");
     mueluParams.sublist("coarse: params").set("relaxation: sweeps", 4);
-    // Rigid-body modes of the whole body as the near null space.
-    auto nullspace = rcp(new MultiVector(map_, 6));
-    auto coords = rcp(new MultiVector(map_, 3));
-    for (size_t i = 0; i < map_->getNodeNumElements(); ++i) {
-      const auto& x = disc_.mesh.coords[disc_.ownedNodes()[i / 3]];
-      const int c = static_cast<int>(i % 3);
-      nullspace->replaceLocalValue(i, c, 1.0);
-      const double rot[3][3] = {{x[1], -x[0], 0}, {0, -x[2], x[1]}, {x[2], 0, -x[0]}};
-      for (int r = 0; r < 3; ++r) nullspace->replaceLocalValue(i, 3 + r, rot[r][c]);
-      for (int d = 0; d < 3; ++d) coords->replaceLocalValue(i, d, x[d]);
-    }
-    mueluParams.sublist("user data").set("Nullspace", nullspace);
+    mueluParams.sublist("user data").set("Nullspace", Teuchos::rcp_const_cast<MultiVector>(Teuchos::rcpFromRef(nullspace)));
+    auto A = Teuchos::rcp_const_cast<CrsMatrix>(Teuchos::rcpFromRef(K));
     RCP<Operator> M = MueLu::CreateTpetraPreconditioner<SC, LO, GO, Node>(
-        Teuchos::rcp_const_cast<Operator>(Teuchos::rcp_implicit_cast<const Operator>(K_)), mueluParams);
+        Teuchos::rcp_implicit_cast<Operator>(A), mueluParams);
     using Problem = Belos::LinearProblem<SC, MultiVector, Operator>;
-    auto problem = rcp(new Problem(K_, u, f_));
+    auto problem = rcp(new Problem(A, Teuchos::rcpFromRef(u), Teuchos::rcp_const_cast<Vector>(Teuchos::rcpFromRef(f))));
     problem->setLeftPrec(M);
     TRIBOS_REQUIRE(problem->setProblem(), "Belos could not set up the monolithic problem");
     auto belosParams = Teuchos::parameterList();
@@ -161,9 +152,57 @@ MonolithicResult MonolithicSystem::solve(const Teuchos::ParameterList& params) c
     Belos::SolverFactory<SC, MultiVector, Operator> factory;
     auto solver = factory.create("CG", belosParams);
     solver->setProblem(problem);
-    res.converged = solver->solve() == Belos::Converged;
-    res.iterations = solver->getNumIters();
+    const bool converged = solver->solve() == Belos::Converged;
+    iterations = solver->getNumIters();
+    return converged;
   }
+};
+
+}  // namespace
+
+const MonolithicSolverRegistry& monolithicSolvers() {
+  static const MonolithicSolverRegistry registry = [] {
+    MonolithicSolverRegistry r("monolithic linear solver");
+    r.add("CG+MueLu", [] { return RCP<MonolithicLinearSolver>(rcp(new CGMueLuSolve())); },
+          "Belos CG with a MueLu preconditioner, iterative, any size");
+    r.add("Direct", [] { return RCP<MonolithicLinearSolver>(rcp(new DirectSolve())); },
+          "Amesos2 KLU2 on rank 0, small problems");
+    return r;
+  }();
+  return registry;
+}
+
+RCP<const Teuchos::ParameterList> MonolithicSystem::getValidParameters() {
+  static RCP<Teuchos::ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::parameterList("Monolithic");
+    pl->set("Linear Solver", "CG+MueLu", monolithicSolvers().documentation(), monolithicSolvers().validator());
+    pl->set("Tolerance", 1e-10, "relative residual of the CG solve",
+            rcp(new Teuchos::EnhancedNumberValidator<double>(1e-16, 1.0)));
+    pl->set("Maximum Iterations", 2000, "CG iteration limit",
+            rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
+  }
+  return pl;
+}
+
+// Rigid-body modes of the whole body at the owned dofs.
+RCP<MultiVector> MonolithicSystem::nullSpace() const {
+  auto nullspace = rcp(new MultiVector(map_, 6));
+  for (size_t i = 0; i < map_->getNodeNumElements(); ++i) {
+    const auto& x = disc_.mesh.coords[disc_.ownedNodes()[i / 3]];
+    const int c = static_cast<int>(i % 3);
+    nullspace->replaceLocalValue(i, c, 1.0);
+    const double rot[3][3] = {{x[1], -x[0], 0}, {0, -x[2], x[1]}, {x[2], 0, -x[0]}};
+    for (int r = 0; r < 3; ++r) nullspace->replaceLocalValue(i, 3 + r, rot[r][c]);
+  }
+  return nullspace;
+}
+
+MonolithicResult MonolithicSystem::solve(const Teuchos::ParameterList& params) const {
+  MonolithicResult res;
+  auto u = rcp(new Vector(map_));
+  const auto solver = monolithicSolvers().create(params.get<std::string>("Linear Solver"));
+  res.converged = solver->solve(*K_, *f_, *nullSpace(), *u, params, res.iterations);
   Vector r(map_);
   K_->apply(*u, r);
   r.update(1.0, *f_, -1.0);

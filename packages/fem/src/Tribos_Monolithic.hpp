@@ -12,6 +12,7 @@
 #include "Tribos_Discretization.hpp"
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_Loads.hpp"
+#include "Tribos_Registry.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
@@ -24,6 +25,17 @@ struct MonolithicResult {
   bool converged = false;
 };
 
+// One way of solving K u = f (registered by name in monolithicSolvers()).
+// Returns whether it converged; iterations: 0 for a direct solve.
+class MonolithicLinearSolver {
+ public:
+  virtual ~MonolithicLinearSolver() = default;
+  virtual bool solve(const CrsMatrix& K, const Vector& f, const MultiVector& nullSpace, Vector& u,
+                     const Teuchos::ParameterList& params, int& iterations) const = 0;
+};
+using MonolithicSolverRegistry = Registry<MonolithicLinearSolver>;
+const MonolithicSolverRegistry& monolithicSolvers();
+
 class MonolithicSystem {
  public:
   MonolithicSystem(const Mesh::Discretization& disc, const Material& mat, const LoadCase& loads,
@@ -34,6 +46,8 @@ class MonolithicSystem {
   static RCP<const Teuchos::ParameterList> getValidParameters();
 
   RCP<const CrsMatrix> matrix() const { return K_; }
+  // The rigid-body modes at the owned dofs (near null space of K).
+  RCP<MultiVector> nullSpace() const;
   RCP<const Vector> rhs() const { return f_; }
 
  private:
