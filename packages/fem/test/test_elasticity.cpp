@@ -2,28 +2,28 @@
 // kernel of every subdomain. Runs on any number of ranks; results must not
 // depend on it.
 #include <Teuchos_ParameterList.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
 #include <cmath>
-#include <iostream>
 
-#include "Tribos_TestSupport.hpp"
 #include "Tribos_Assembly.hpp"
 #include "Tribos_Discretization.hpp"
 #include "Tribos_Monolithic.hpp"
 
+namespace {
+
 using namespace Tribos;
 using Fem::Point;
 
-
-static Teuchos::ParameterList solverParams(const std::string& kind) {
+Teuchos::ParameterList solverParams(const std::string& kind) {
   Teuchos::ParameterList p = *Fem::MonolithicSystem::getValidParameters();
   p.set("Linear Solver", kind);
   p.set("Tolerance", 1e-13);
   return p;
 }
 
-static Mesh::Discretization makeDisc(Mesh::CellType type, std::array<int, 3> cells, int S, const Comm& comm) {
+Mesh::Discretization makeDisc(Mesh::CellType type, std::array<int, 3> cells, int S, const Comm& comm) {
   Mesh::BoxSpec spec;
   spec.type = type;
   spec.cells = cells;
@@ -33,7 +33,7 @@ static Mesh::Discretization makeDisc(Mesh::CellType type, std::array<int, 3> cel
   return Mesh::Discretization(Mesh::generateBox(spec), spec, dec, comm.getSize(), comm.getRank());
 }
 
-static Fem::LoadCase allFacesDirichlet(std::function<Point(const Point&)> field) {
+Fem::LoadCase allFacesDirichlet(std::function<Point(const Point&)> field) {
   Fem::LoadCase loads;
   for (const char* face : {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}) {
     Fem::DirichletCondition bc;
@@ -46,7 +46,8 @@ static Fem::LoadCase allFacesDirichlet(std::function<Point(const Point&)> field)
 
 // A uniform strain (with a rotation part) imposed on the boundary must be
 // reproduced at every interior node to round-off.
-static void patchTest(Mesh::CellType type, const std::string& solver, const RCP<const Comm>& comm) {
+void patchTest(Mesh::CellType type, const std::string& solver, Teuchos::FancyOStream& out, bool& success) {
+  const auto comm = Tpetra::getDefaultComm();
   const double A[3][3] = {{1e-3, 2e-4, -3e-4}, {-1e-4, 5e-4, 2.5e-4}, {4e-4, -2e-4, -6e-4}};
   const Point b = {1e-3, -2e-3, 5e-4};
   auto exact = [&](const Point& x) {
@@ -66,15 +67,13 @@ static void patchTest(Mesh::CellType type, const std::string& solver, const RCP<
       scale = std::max(scale, std::abs(u[c]));
     }
   }
-  if (comm->getRank() == 0)
-    std::cout << "patch test " << Mesh::cellTypeName(type) << " " << solver << ": max error / max u = " << err / scale
-              << std::endl;
-  CHECK(err / scale < 1e-9, "patch test " << Mesh::cellTypeName(type) << " with " << solver);
+  out << "patch test " << Mesh::cellTypeName(type) << " " << solver << ": max error / max u = " << err / scale << "\n";
+  TEST_COMPARE(err / scale, <, 1e-9);
 }
 
 // u = c (y^2, z^2, x^2) has div u = 0, so -div sigma = -mu Laplace u = -2 mu c (1,1,1):
 // a constant volume force. Errors in L2 and energy norms over local cells.
-static std::pair<double, double> manufacturedErrors(Mesh::CellType type, int n, const RCP<const Comm>& comm) {
+std::pair<double, double> manufacturedErrors(Mesh::CellType type, int n, const RCP<const Comm>& comm) {
   const double c = 1e-3;
   Fem::Material mat{1.0, 0.25};
   auto exact = [&](const Point& x) { return Point{c * x[1] * x[1], c * x[2] * x[2], c * x[0] * x[0]}; };
@@ -124,23 +123,27 @@ static std::pair<double, double> manufacturedErrors(Mesh::CellType type, int n, 
   return {std::sqrt(total[0]), std::sqrt(total[1])};
 }
 
-static void convergenceTest(Mesh::CellType type, const RCP<const Comm>& comm) {
+void convergenceTest(Mesh::CellType type, Teuchos::FancyOStream& out, bool& success) {
+  const auto comm = Tpetra::getDefaultComm();
   std::vector<std::pair<double, double>> e;
   for (int n : {2, 4, 8}) e.push_back(manufacturedErrors(type, n, comm));
   for (size_t k = 1; k < e.size(); ++k) {
     const double rL2 = std::log2(e[k - 1].first / e[k].first), rE = std::log2(e[k - 1].second / e[k].second);
-    if (comm->getRank() == 0)
-      std::cout << Mesh::cellTypeName(type) << " refinement " << k << ": L2 " << e[k].first << " (rate " << rL2
-                << "), energy " << e[k].second << " (rate " << rE << ")" << std::endl;
+    out << Mesh::cellTypeName(type) << " refinement " << k << ": L2 " << e[k].first << " (rate " << rL2
+        << "), energy " << e[k].second << " (rate " << rE << ")\n";
     if (k + 1 == e.size()) {
-      CHECK(rL2 > 1.8 && rL2 < 2.3, Mesh::cellTypeName(type) << " L2 rate " << rL2 << " should be ~2");
-      CHECK(rE > 0.9 && rE < 1.3, Mesh::cellTypeName(type) << " energy rate " << rE << " should be ~1");
+      // L2 rate ~2, energy rate ~1.
+      TEST_COMPARE(rL2, >, 1.8);
+      TEST_COMPARE(rL2, <, 2.3);
+      TEST_COMPARE(rE, >, 0.9);
+      TEST_COMPARE(rE, <, 1.3);
     }
   }
 }
 
 // K_s R_s = 0 and R_s orthonormal (rank 6) for every subdomain of this rank.
-static void kernelTest(Mesh::CellType type, const RCP<const Comm>& comm) {
+void kernelTest(Mesh::CellType type, Teuchos::FancyOStream& out, bool& success) {
+  const auto comm = Tpetra::getDefaultComm();
   auto disc = makeDisc(type, {6, 4, 4}, 5, *comm);
   Fem::Material mat{2.1e11, 0.3};
   for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s) {
@@ -159,22 +162,21 @@ static void kernelTest(Mesh::CellType type, const RCP<const Comm>& comm) {
         orth = std::max(orth, std::abs(dot - (i == j ? 1.0 : 0.0)));
       }
     }
-    CHECK(worst < 1e-13, "subdomain " << s << ": max |K R| / max |K| = " << worst);
-    CHECK(orth < 1e-12, "subdomain " << s << ": R'R - I = " << orth << " (rank 6)");
+    out << "subdomain " << s << ": max |K R| / max |K| = " << worst << ", R'R - I = " << orth << "\n";
+    TEST_COMPARE(worst, <, 1e-13);
+    TEST_COMPARE(orth, <, 1e-12);  // rank 6
   }
 }
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
-  auto comm = Tpetra::getDefaultComm();
-  for (auto type : {Mesh::CellType::Tet4, Mesh::CellType::Hex8}) {
-    patchTest(type, "Direct", comm);
-    patchTest(type, "CG+MueLu", comm);
-    convergenceTest(type, comm);
-    kernelTest(type, comm);
-  }
-  int total = 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, Test::failures(), Teuchos::outArg(total));
-  if (comm->getRank() == 0) std::cout << (total ? "FAILED" : "all elasticity checks passed") << std::endl;
-  return total ? 1 : 0;
-}
+}  // namespace
+
+TEUCHOS_UNIT_TEST(PatchTest, Tet4Direct) { patchTest(Mesh::CellType::Tet4, "Direct", out, success); }
+TEUCHOS_UNIT_TEST(PatchTest, Tet4CGMueLu) { patchTest(Mesh::CellType::Tet4, "CG+MueLu", out, success); }
+TEUCHOS_UNIT_TEST(PatchTest, Hex8Direct) { patchTest(Mesh::CellType::Hex8, "Direct", out, success); }
+TEUCHOS_UNIT_TEST(PatchTest, Hex8CGMueLu) { patchTest(Mesh::CellType::Hex8, "CG+MueLu", out, success); }
+
+TEUCHOS_UNIT_TEST(Convergence, Tet4) { convergenceTest(Mesh::CellType::Tet4, out, success); }
+TEUCHOS_UNIT_TEST(Convergence, Hex8) { convergenceTest(Mesh::CellType::Hex8, out, success); }
+
+TEUCHOS_UNIT_TEST(RigidBodyKernel, Tet4) { kernelTest(Mesh::CellType::Tet4, out, success); }
+TEUCHOS_UNIT_TEST(RigidBodyKernel, Hex8) { kernelTest(Mesh::CellType::Hex8, out, success); }
