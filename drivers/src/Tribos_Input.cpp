@@ -25,6 +25,15 @@ using Teuchos::tuple;
 
 namespace {
 
+const char* const kSemismooth = "SemismoothStarNewton";
+
+// The outer algorithms of friction's registry, then the semismooth* method.
+std::vector<std::string> outerAlgorithms() {
+  auto names = Friction::frictionSolvers().names();
+  names.push_back(kSemismooth);
+  return names;
+}
+
 const Array<std::string> kFaces = tuple<std::string>("xmin", "xmax", "ymin", "ymax", "zmin", "zmax");
 
 RCP<Teuchos::StringValidator> choice(const Array<std::string>& names) {
@@ -114,10 +123,12 @@ RCP<const ParameterList> validParameters() {
   ParameterList& solver = pl->sublist("Solver", false, "solution algorithm");
   solver.set("Type", "Monolithic", "Monolithic (assembled global solve) or FETI",
              choice(tuple<std::string>("Monolithic", "FETI")));
+  Array<std::string> outer;
+  for (const auto& name : outerAlgorithms()) outer.push_back(name);
   solver.set("Outer Algorithm", "Algorithm2",
-             "contact problems: Tresca (Algorithm 1 with the given slip bound; also frictionless), "
-             "MSA+Algorithm1 or Algorithm2 (Coulomb), SemismoothStarNewton (Tresca)",
-             choice(tuple<std::string>("Tresca", "MSA+Algorithm1", "Algorithm2", "SemismoothStarNewton")));
+             "contact problems: " + Friction::frictionSolvers().documentation() + "; " + kSemismooth +
+                 " (Tresca or frictionless by the semismooth* Newton method)",
+             choice(outer));
   solver.set("Result Check Factor", 100.0,
              "converged means every KKT residual of the written result (docs/friction.md) is at most this factor "
              "times the solver's requested tolerance",
@@ -310,13 +321,16 @@ void validate(ParameterList& params, const std::string& source) {
     const auto& solver = params.sublist("Solver");
     if (contact.get<bool>("Enabled")) {
       const std::string law = contact.get<std::string>("Friction Law"), outer = solver.get<std::string>("Outer Algorithm");
-      const bool coulomb = law == "Coulomb";
-      TRIBOS_REQUIRE(solver.get<std::string>("Type") == "FETI" || outer == "SemismoothStarNewton",
-                     "contact problems are solved by FETI (Solver/Type = FETI) or by Solver/Outer Algorithm = SemismoothStarNewton");
-      TRIBOS_REQUIRE(!coulomb || outer == "MSA+Algorithm1" || outer == "Algorithm2",
-                     "Contact/Friction Law = Coulomb needs Solver/Outer Algorithm = MSA+Algorithm1 or Algorithm2, not " << outer);
-      TRIBOS_REQUIRE(coulomb || outer == "Tresca" || outer == "SemismoothStarNewton",
-                     "Contact/Friction Law = " << law << " needs Solver/Outer Algorithm = Tresca or SemismoothStarNewton, not " << outer);
+      TRIBOS_REQUIRE(solver.get<std::string>("Type") == "FETI" || outer == kSemismooth,
+                     "contact problems are solved by FETI (Solver/Type = FETI) or by Solver/Outer Algorithm = " << kSemismooth);
+      // Which algorithms solve which law: the registry's compatibility query.
+      auto solves = [&](const std::string& algorithm) {
+        return algorithm == kSemismooth ? law != "Coulomb" : Friction::frictionSolvers().accepts(algorithm, law);
+      };
+      std::string able;
+      for (const auto& a : outerAlgorithms()) if (solves(a)) able += (able.empty() ? "" : " or ") + a;
+      TRIBOS_REQUIRE(solves(outer), "Contact/Friction Law = " << law << " needs Solver/Outer Algorithm = " << able
+                                                              << ", not " << outer);
     }
     const auto& vf = params.sublist("Boundary Conditions").get<Array<double>>("Volume Force");
     TRIBOS_REQUIRE(vf.size() == 3, "\"Boundary Conditions/Volume Force\" needs 3 components");

@@ -1,10 +1,11 @@
 // Tribos_Registry.hpp: choice by name, done one way everywhere (Belos'
 // SolverFactory is the model). Each kind of component (QP solvers, local
 // solvers, outer contact algorithms, ...) keeps one registry: makers are
-// registered under a name with a one-line description and optional aliases;
-// a ParameterList validator, the documentation of the parameter and every
-// error message list the registered names, so adding a component is one
-// registration and nothing else.
+// registered under a name with a one-line description, the kinds of problem
+// it accepts (a compatibility query, like PERMON's QPSIsQPCompatible) and
+// optional aliases; a ParameterList validator, the documentation of the
+// parameter and every error message list the registered names, so adding a
+// component is one registration and nothing else.
 #pragma once
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
@@ -28,9 +29,9 @@ class Registry {
   explicit Registry(std::string what) : what_(std::move(what)) {}
 
   Registry& add(const std::string& name, Maker make, const std::string& description,
-                const std::vector<std::string>& aliases = {}) {
+                const std::vector<std::string>& accepts = {}, const std::vector<std::string>& aliases = {}) {
     TRIBOS_REQUIRE(!has(name), what_ << " \"" << name << "\" is registered twice");
-    entries_.push_back({name, std::move(make), description});
+    entries_.push_back({name, std::move(make), description, accepts});
     for (const auto& a : aliases) aliases_.emplace_back(a, name);
     return *this;
   }
@@ -47,6 +48,20 @@ class Registry {
   std::vector<std::string> names() const {
     std::vector<std::string> out;
     for (const auto& e : entries_) out.push_back(e.name);
+    return out;
+  }
+
+  // Whether the component `name` accepts a problem of kind `what` (e.g. the
+  // friction law "Coulomb"), and the components that do.
+  bool accepts(const std::string& name, const std::string& what) const {
+    for (const auto& a : entry(name).accepts)
+      if (a == what) return true;
+    return false;
+  }
+  std::vector<std::string> accepting(const std::string& what) const {
+    std::vector<std::string> out;
+    for (const auto& e : entries_)
+      if (accepts(e.name, what)) out.push_back(e.name);
     return out;
   }
 
@@ -77,6 +92,7 @@ class Registry {
     std::string name;
     Maker make;
     std::string description;
+    std::vector<std::string> accepts;
   };
   const Entry* find(const std::string& name) const {
     for (const auto& a : aliases_)

@@ -417,12 +417,24 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
 
 // ---------------------------------------------------------------- factory
 
+const FrictionSolverRegistry& frictionSolvers() {
+  static const FrictionSolverRegistry registry = [] {
+    auto sub = [](const ParameterList& p, const char* n) { return p.isSublist(n) ? p.sublist(n) : ParameterList(n); };
+    FrictionSolverRegistry r("outer algorithm");
+    r.add("Tresca", [=](const ParameterList& p) -> RCP<FrictionSolver> { return rcp(new Algorithm1(sub(p, "Algorithm 1"))); },
+          "Algorithm 1: SMALBE for the given slip bound", {"Frictionless", "Tresca"});
+    r.add("MSA+Algorithm1",
+          [=](const ParameterList& p) -> RCP<FrictionSolver> { return rcp(new MSA(sub(p, "MSA"), sub(p, "Algorithm 1"))); },
+          "the method of successive approximations over Tresca problems", {"Coulomb"});
+    r.add("Algorithm2", [=](const ParameterList& p) -> RCP<FrictionSolver> { return rcp(new Algorithm2(sub(p, "Algorithm 2"))); },
+          "the slip bound updated inside the augmented Lagrangian loop", {"Coulomb"});
+    return r;
+  }();
+  return registry;
+}
+
 RCP<FrictionSolver> FrictionSolverFactory::create(const std::string& name, const ParameterList& params) const {
-  auto sub = [&](const char* n) { return params.isSublist(n) ? params.sublist(n) : ParameterList(n); };
-  if (name == "Tresca") return rcp(new Algorithm1(sub("Algorithm 1")));
-  if (name == "MSA+Algorithm1") return rcp(new MSA(sub("MSA"), sub("Algorithm 1")));
-  if (name == "Algorithm2") return rcp(new Algorithm2(sub("Algorithm 2")));
-  throw Error("Solver/Outer Algorithm: unknown \"" + name + "\"; valid: Tresca, MSA+Algorithm1, Algorithm2");
+  return frictionSolvers().create(name, params);
 }
 
 void FrictionSolverFactory::addValidParameters(ParameterList& solverList) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "Tribos_ContactDual.hpp"
+#include "Tribos_Registry.hpp"
 
 namespace Tribos {
 namespace Friction {
@@ -89,12 +90,17 @@ class Algorithm2 : public FrictionSolver {
 
 // The parameter list an outer algorithm reads: a sublist of the "Solver"
 // list named after the algorithm ("Algorithm 1", "MSA", "Algorithm 2").
+// The outer algorithms by name: "Tresca" (Algorithm 1 with a given slip
+// bound; also frictionless), "MSA+Algorithm1" and "Algorithm2" (Coulomb).
+// Each accepts the friction laws it solves ("Frictionless", "Tresca",
+// "Coulomb"); the maker takes the list with sublists "Algorithm 1", "MSA",
+// "Algorithm 2" (missing ones take defaults).
+using FrictionSolverRegistry = Registry<FrictionSolver, const Teuchos::ParameterList&>;
+const FrictionSolverRegistry& frictionSolvers();
+
 class FrictionSolverFactory {
  public:
-  // name: "Tresca" | "MSA+Algorithm1" | "Algorithm2"; params: the list with
-  // sublists "Algorithm 1", "MSA", "Algorithm 2" (missing ones take defaults).
   RCP<FrictionSolver> create(const std::string& name, const Teuchos::ParameterList& params) const;
-  static std::vector<std::string> supportedNames() { return {"Tresca", "MSA+Algorithm1", "Algorithm2"}; }
   // Valid sublists "Algorithm 1", "MSA", "Algorithm 2" for input validation.
   static void addValidParameters(Teuchos::ParameterList& solverList);
 };
