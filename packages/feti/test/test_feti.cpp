@@ -4,16 +4,18 @@
 // rank 0 alone (split communicator) and compares iteration counts and
 // displacements.
 #include <Teuchos_ParameterList.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 #include <Tpetra_Vector.hpp>
 
 #include <cmath>
-#include <iostream>
 
-#include "Tribos_TestSupport.hpp"
 #include "Tribos_FetiDual.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_ProjectedCG.hpp"
+#include "Tribos_TestSupport.hpp"
+
+namespace {
 
 using namespace Tribos;
 
@@ -32,7 +34,7 @@ struct Case {
   std::string dualOperator = "Implicit";
 };
 
-static Mesh::Discretization makeDisc(const Case& c, const Comm& comm) {
+Mesh::Discretization makeDisc(const Case& c, const Comm& comm) {
   Mesh::BoxSpec spec;
   spec.type = c.type;
   spec.x = {0, 2};
@@ -44,7 +46,7 @@ static Mesh::Discretization makeDisc(const Case& c, const Comm& comm) {
   return Mesh::Discretization(Mesh::generateBox(spec), spec, dec, comm.getSize(), comm.getRank());
 }
 
-static Fem::LoadCase loads() {
+Fem::LoadCase loads() {
   Fem::LoadCase l;
   Fem::DirichletCondition clamp;
   clamp.face = "xmin";
@@ -63,7 +65,7 @@ struct FetiResult {
   double kernelError;
 };
 
-static FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm) {
+FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm, Teuchos::FancyOStream& out, bool& success) {
   auto disc = makeDisc(c, *comm);
   Teuchos::ParameterList p;
   p.set("Gluing", c.gluing);
@@ -84,7 +86,8 @@ static FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm) {
     problem->B()->apply(z2, F2);
     F2.update(-1.0, F1, 1.0);
     const double diff = F2.norm2() / F1.norm2();
-    CHECK(diff < 1e-10, "explicit vs implicit F x: relative difference " << diff);
+    out << "explicit vs implicit F x: relative difference " << diff << "\n";
+    TEST_COMPARE(diff, <, 1e-10);
   }
   // K K+ K = K on every local subdomain (columns of K applied to random-ish vectors).
   double worst = 0;
@@ -108,58 +111,102 @@ static FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm) {
   Feti::ProjectedCG pcg(pcgParams);
   Vector lambda(problem->dualMap());
   const auto st = pcg.solve(dual, lambda);
-  CHECK(st.converged, "PCG converged");
+  TEST_ASSERT(st.converged);  // PCG
   return {problem->nodalDisplacement(*dual.recoverPrimal(lambda)), st.iterations, worst};
 }
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
+// FETI against the monolithic solve, K K+ K = K, and the same problem on
+// rank 0 alone.
+void checkCase(const Case& c, Teuchos::FancyOStream& out, bool& success) {
   auto comm = Tpetra::getDefaultComm();
   auto self = comm->split(comm->getRank() == 0 ? 0 : 1, comm->getRank());
-  const std::vector<Case> cases = {{Mesh::CellType::Tet4, {8, 4, 4}, 6, "Non-redundant"},
-                                   {Mesh::CellType::Hex8, {8, 4, 4}, 6, "Non-redundant"},
-                                   {Mesh::CellType::Hex8, {6, 3, 3}, 4, "Full"},
-                                   {Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal"},
-                                   {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Orthonormal", "Structured", {3, 2, 1}, true},
-                                   {Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal", "METIS", {1, 1, 1}, false, "FETI-1"},
-                                   // Round-off moves this case's count at 1e-8 (27 or 28 steps on 1 or 3 ranks).
-                                   {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, false, "FETI-1"},
-                                   {Mesh::CellType::Tet4, {9, 4, 4}, 6, "Orthonormal", "Structured", {3, 2, 1}, true, "TFETI", "Dirichlet"},
-                                   {Mesh::CellType::Hex8, {8, 4, 4}, 6, "Orthonormal", "METIS", {1, 1, 1}, false, "TFETI", "None"},
-                                   {Mesh::CellType::Tet4, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true},
-                                   {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true},
-                                   {Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal", "METIS", {1, 1, 1}, false, "TFETI", "Lumped", "Explicit"},
-                                   {Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true, "FETI-1", "Dirichlet", "Explicit"}};
-  for (const auto& c : cases) {
-    const std::string name = Mesh::cellTypeName(c.type) + " S=" + std::to_string(c.subdomains) + " " + c.gluing + " " + c.partitioner + " " + c.formulation + " " + c.preconditioner + " " + c.dualOperator;
-    const auto feti = solveFeti(c, comm);
-    auto disc = makeDisc(c, *comm);
-    Fem::MonolithicSystem mono(disc, {2.1e11, 0.3}, loads(), comm);
-    Teuchos::ParameterList mp = *Fem::MonolithicSystem::getValidParameters();
-    mp.set("Linear Solver", "Direct");
-    const auto ref = mono.solve(mp);
-    const double diff = relDiff(feti.u, ref.u);
-    CHECK(diff < (c.sameIterations ? 1e-6 : 1e-8), name << ": FETI vs monolithic relative difference " << diff);
-    CHECK(feti.kernelError < 1e-8, name << ": K K+ K - K relative " << feti.kernelError);
-    // Rank independence: rank 0 alone solves the same problem.
-    std::vector<double> serialU(feti.u.size());
-    int serialIter = 0;
-    if (comm->getRank() == 0) {
-      const auto serial = solveFeti(c, self);
-      serialU = serial.u;
-      serialIter = serial.iterations;
-    }
-    Teuchos::broadcast(*comm, 0, static_cast<int>(serialU.size()), serialU.data());
-    Teuchos::broadcast(*comm, 0, &serialIter);
-    const double rankDiff = relDiff(feti.u, serialU);
-    CHECK(!c.sameIterations || serialIter == feti.iterations, name << ": iterations " << feti.iterations << " on " << comm->getSize()
-                                              << " ranks vs " << serialIter << " on 1");
-    CHECK(rankDiff < 1e-10, name << ": displacements on " << comm->getSize() << " ranks vs 1 differ by " << rankDiff);
-    if (comm->getRank() == 0)
-      std::cout << name << ": PCG iterations " << feti.iterations << ", |u_FETI - u_mono|/|u_mono| = " << diff
-                << ", K K+ K - K: " << feti.kernelError << ", ranks vs 1: " << rankDiff << std::endl;
+  const std::string name = Mesh::cellTypeName(c.type) + " S=" + std::to_string(c.subdomains) + " " + c.gluing + " " + c.partitioner + " " + c.formulation + " " + c.preconditioner + " " + c.dualOperator;
+  out << name << "\n";
+  const auto feti = solveFeti(c, comm, out, success);
+  auto disc = makeDisc(c, *comm);
+  Fem::MonolithicSystem mono(disc, {2.1e11, 0.3}, loads(), comm);
+  Teuchos::ParameterList mp = *Fem::MonolithicSystem::getValidParameters();
+  mp.set("Linear Solver", "Direct");
+  const auto ref = mono.solve(mp);
+  const double diff = relDiff(feti.u, ref.u);
+  out << "PCG iterations " << feti.iterations << ", |u_FETI - u_mono|/|u_mono| = " << diff
+      << ", K K+ K - K: " << feti.kernelError << "\n";
+  TEST_COMPARE(diff, <, (c.sameIterations ? 1e-6 : 1e-8));
+  TEST_COMPARE(feti.kernelError, <, 1e-8);
+  // Rank independence: rank 0 alone solves the same problem.
+  std::vector<double> serialU(feti.u.size());
+  int serialIter = 0;
+  if (comm->getRank() == 0) {
+    const auto serial = solveFeti(c, self, out, success);
+    serialU = serial.u;
+    serialIter = serial.iterations;
   }
-  int total = 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, Test::failures(), Teuchos::outArg(total));
-  return total ? 1 : 0;
+  Teuchos::broadcast(*comm, 0, static_cast<int>(serialU.size()), serialU.data());
+  Teuchos::broadcast(*comm, 0, &serialIter);
+  const double rankDiff = relDiff(feti.u, serialU);
+  out << "iterations " << feti.iterations << " on " << comm->getSize() << " ranks vs " << serialIter
+      << " on 1; displacements differ by " << rankDiff << "\n";
+  if (c.sameIterations) TEST_EQUALITY(feti.iterations, serialIter);
+  TEST_COMPARE(rankDiff, <, 1e-10);
+}
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Tet4NonRedundant) {
+  checkCase({Mesh::CellType::Tet4, {8, 4, 4}, 6, "Non-redundant"}, out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Hex8NonRedundant) {
+  checkCase({Mesh::CellType::Hex8, {8, 4, 4}, 6, "Non-redundant"}, out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Hex8Full) {
+  checkCase({Mesh::CellType::Hex8, {6, 3, 3}, 4, "Full"}, out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Tet4Orthonormal) {
+  checkCase({Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal"}, out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Hex8OrthonormalStructured) {
+  checkCase({Mesh::CellType::Hex8, {9, 4, 4}, 6, "Orthonormal", "Structured", {3, 2, 1}, true}, out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Tet4OrthonormalFeti1) {
+  checkCase({Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal", "METIS", {1, 1, 1}, false, "FETI-1"}, out, success);
+}
+
+// Round-off moves this case's count at 1e-8 (27 or 28 steps on 1 or 3 ranks).
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Hex8NonRedundantStructuredFeti1) {
+  checkCase({Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, false, "FETI-1"}, out,
+            success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Tet4OrthonormalStructuredDirichlet) {
+  checkCase({Mesh::CellType::Tet4, {9, 4, 4}, 6, "Orthonormal", "Structured", {3, 2, 1}, true, "TFETI", "Dirichlet"},
+            out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Hex8OrthonormalNoPreconditioner) {
+  checkCase({Mesh::CellType::Hex8, {8, 4, 4}, 6, "Orthonormal", "METIS", {1, 1, 1}, false, "TFETI", "None"}, out,
+            success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Tet4NonRedundantStructured) {
+  checkCase({Mesh::CellType::Tet4, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true}, out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Hex8NonRedundantStructured) {
+  checkCase({Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true}, out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Tet4OrthonormalExplicit) {
+  checkCase({Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal", "METIS", {1, 1, 1}, false, "TFETI", "Lumped", "Explicit"},
+            out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiVsMonolithic, Hex8NonRedundantStructuredFeti1DirichletExplicit) {
+  checkCase({Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true, "FETI-1", "Dirichlet",
+             "Explicit"},
+            out, success);
 }

@@ -5,7 +5,7 @@
 // trailing block of a factor that orders those dofs last (supernodal on the
 // large matrix, simplicial on the small one), the others solve with unit
 // vectors.
-#include <Tpetra_Core.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
 
 #include <cmath>
 
@@ -14,10 +14,12 @@
 #include "Tribos_LocalSolver.hpp"
 #include "Tribos_TestSupport.hpp"
 
+namespace {
+
 using namespace Tribos;
 
 // Regularized stiffness of the unit cube and the dofs of its faces x = 1 and z = 0.
-static LocalCsr regularizedStiffness(Mesh::CellType type, int cells, std::vector<int>& faceDofs) {
+LocalCsr regularizedStiffness(Mesh::CellType type, int cells, std::vector<int>& faceDofs) {
   Mesh::BoxSpec spec;
   spec.type = type;
   spec.cells = {cells, cells, cells};
@@ -38,7 +40,7 @@ static LocalCsr regularizedStiffness(Mesh::CellType type, int cells, std::vector
   return K;
 }
 
-static void checkSolves(const std::string& label, const LocalCsr& K) {
+void checkSolves(const std::string& label, const LocalCsr& K, Teuchos::FancyOStream& out, bool& success) {
   const int n = K.rows, nrhs = 3;
   std::vector<double> x(static_cast<size_t>(n) * nrhs), b(x.size()), r(n);
   for (size_t i = 0; i < x.size(); ++i) x[i] = std::sin(0.1 * i + 0.3);
@@ -63,14 +65,14 @@ static void checkSolves(const std::string& label, const LocalCsr& K) {
     std::vector<double> y1(n);
     solver->solve(b.data(), y1.data(), 1);
     const double same = Test::relDiff(y1, std::vector<double>(y.begin(), y.begin() + n));
-    std::cout << label << " " << name << ": ||K y - b|| / ||b|| = " << worst << ", single vs block rhs " << same
-              << std::endl;
-    CHECK(worst < 1e-10, label << " " << name << " residual " << worst);
-    CHECK(same < 1e-12, label << " " << name << " single vs block right-hand side " << same);
+    out << label << " " << name << ": ||K y - b|| / ||b|| = " << worst << ", single vs block rhs " << same << "\n";
+    TEST_COMPARE(worst, <, 1e-10);
+    TEST_COMPARE(same, <, 1e-12);
   }
 }
 
-static void checkInverseBlocks(const std::string& label, const LocalCsr& K, const std::vector<int>& b) {
+void checkInverseBlocks(const std::string& label, const LocalCsr& K, const std::vector<int>& b,
+                        Teuchos::FancyOStream& out, bool& success) {
   std::vector<double> reference;
   for (const auto& name : localSolverNames()) {
     auto solver = createLocalSolver(name);
@@ -88,23 +90,33 @@ static void checkInverseBlocks(const std::string& label, const LocalCsr& K, cons
       for (size_t j = 0; j < i; ++j) asym = std::max(asym, std::abs(Z[i * nb + j] - Z[j * nb + i]) / std::abs(Z[i * nb + i]));
     if (reference.empty()) reference = Z;
     const double diff = Test::relDiff(Z, reference);
-    std::cout << label << " " << name << ": (K^-1)_bb of " << nb << " dofs vs " << localSolverNames()[0] << " " << diff
-              << ", asymmetry " << asym << ", solve with b last " << solveErr << std::endl;
-    CHECK(diff < 1e-9, label << " " << name << " inverse block differs by " << diff);
-    CHECK(asym < 1e-9, label << " " << name << " inverse block asymmetry " << asym);
-    CHECK(solveErr < 1e-8, label << " " << name << " solve after factor(K, b): " << solveErr);
+    out << label << " " << name << ": (K^-1)_bb of " << nb << " dofs vs " << localSolverNames()[0] << " " << diff
+        << ", asymmetry " << asym << ", solve with b last " << solveErr << "\n";
+    TEST_COMPARE(diff, <, 1e-9);
+    TEST_COMPARE(asym, <, 1e-9);
+    TEST_COMPARE(solveErr, <, 1e-8);
   }
 }
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
-  for (auto type : {Mesh::CellType::Hex8, Mesh::CellType::Tet4}) {
-    std::vector<int> faceDofs;
-    const auto K = regularizedStiffness(type, 7, faceDofs);  // 512 nodes, 1536 dofs
-    checkSolves(Mesh::cellTypeName(type), K);
-    checkInverseBlocks(Mesh::cellTypeName(type) + " 7^3", K, faceDofs);
-    const auto Ksmall = regularizedStiffness(type, 2, faceDofs);  // CHOLMOD picks a simplicial factor
-    checkInverseBlocks(Mesh::cellTypeName(type) + " 2^3", Ksmall, faceDofs);
-  }
-  return Test::failures() ? 1 : 0;
+// Both sizes of one cell type: 7^3 cells (512 nodes, 1536 dofs) and 2^3
+// (CHOLMOD picks a simplicial factor).
+void checkSolves(Mesh::CellType type, Teuchos::FancyOStream& out, bool& success) {
+  std::vector<int> faceDofs;
+  const auto K = regularizedStiffness(type, 7, faceDofs);
+  checkSolves(Mesh::cellTypeName(type), K, out, success);
 }
+
+void checkInverseBlocks(Mesh::CellType type, int cells, Teuchos::FancyOStream& out, bool& success) {
+  std::vector<int> faceDofs;
+  const auto K = regularizedStiffness(type, cells, faceDofs);
+  checkInverseBlocks(Mesh::cellTypeName(type) + " " + std::to_string(cells) + "^3", K, faceDofs, out, success);
+}
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(LocalSolver, SolvesHex8) { checkSolves(Mesh::CellType::Hex8, out, success); }
+TEUCHOS_UNIT_TEST(LocalSolver, InverseBlockHex8Large) { checkInverseBlocks(Mesh::CellType::Hex8, 7, out, success); }
+TEUCHOS_UNIT_TEST(LocalSolver, InverseBlockHex8Small) { checkInverseBlocks(Mesh::CellType::Hex8, 2, out, success); }
+TEUCHOS_UNIT_TEST(LocalSolver, SolvesTet4) { checkSolves(Mesh::CellType::Tet4, out, success); }
+TEUCHOS_UNIT_TEST(LocalSolver, InverseBlockTet4Large) { checkInverseBlocks(Mesh::CellType::Tet4, 7, out, success); }
+TEUCHOS_UNIT_TEST(LocalSolver, InverseBlockTet4Small) { checkInverseBlocks(Mesh::CellType::Tet4, 2, out, success); }
