@@ -4,19 +4,22 @@
 // F -> 0, large F and a pulled-away body, and rank independence (every run
 // also solves on rank 0 alone).
 #include <Teuchos_ParameterList.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Vector.hpp>
 
 #include <cmath>
-#include <iostream>
+#include <map>
 
-#include "Tribos_TestSupport.hpp"
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_LocalSolver.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_QP.hpp"
+#include "Tribos_TestSupport.hpp"
+
+namespace {
 
 using namespace Tribos;
 
@@ -40,7 +43,7 @@ struct Result {
   double fixedPoint = 0;           // ||F lambda_N - g|| / ||g|| for Coulomb
 };
 
-static Mesh::Discretization makeDisc(const Comm& comm) {
+Mesh::Discretization makeDisc(const Comm& comm) {
   Mesh::BoxSpec spec;
   spec.type = Mesh::CellType::Tet4;
   spec.x = {0, 3};
@@ -50,7 +53,7 @@ static Mesh::Discretization makeDisc(const Comm& comm) {
   return Mesh::Discretization(Mesh::generateBox(spec), spec, dec, comm.getSize(), comm.getRank());
 }
 
-static Fem::LoadCase loads(const Setup& s) {
+Fem::LoadCase loads(const Setup& s) {
   Fem::LoadCase l;
   Fem::DirichletCondition clamp;
   clamp.face = "xmin";
@@ -59,9 +62,9 @@ static Fem::LoadCase loads(const Setup& s) {
   return l;
 }
 
-static const Fem::Material kSteel{21.2e10, 0.277};
+const Fem::Material kSteel{21.2e10, 0.277};
 
-static Teuchos::ParameterList tightSolverParams() {
+Teuchos::ParameterList tightSolverParams() {
   Teuchos::ParameterList p;
   p.sublist("Algorithm 1").sublist("SMALBE").set("Relative Tolerance", 1e-9);
   p.sublist("Algorithm 2").set("Relative Tolerance", 1e-9);
@@ -70,7 +73,7 @@ static Teuchos::ParameterList tightSolverParams() {
   return p;
 }
 
-static Result solve(const Setup& s, const RCP<const Comm>& comm) {
+Result solve(const Setup& s, const RCP<const Comm>& comm) {
   auto disc = makeDisc(*comm);
   Feti::ContactSpec contact;
   contact.enabled = true;
@@ -107,7 +110,8 @@ static Result solve(const Setup& s, const RCP<const Comm>& comm) {
 // Reference without FETI, on rank 0 alone: K (Dirichlet eliminated) factored
 // by CHOLMOD, A = N K^-1 N' restricted to the contact rows (normal, t1, t2
 // per node, dense), solved by MPGP over Lambda_t(g) x Lambda_N, u recovered.
-static std::vector<double> referenceTresca(const Setup& s, const std::vector<double>& g, const RCP<const Comm>& self) {
+std::vector<double> referenceTresca(const Setup& s, const std::vector<double>& g, const RCP<const Comm>& self,
+                                    Teuchos::FancyOStream& out, bool& success) {
   auto disc = makeDisc(*self);
   Fem::MonolithicSystem mono(disc, kSteel, loads(s), self);
   const CrsMatrix& K = *mono.matrix();
@@ -177,7 +181,7 @@ static std::vector<double> referenceTresca(const Setup& s, const std::vector<dou
   QP::MPGP mpgp(params);
   Vector lambda(map);
   const auto st = mpgp.solve(*A, b, Omega, lambda);
-  CHECK(st.converged, "reference MPGP converged");
+  TEST_ASSERT(st.converged);  // the reference MPGP
   std::vector<double> rhs(f);
   auto lv = lambda.getData();
   for (int j = 0; j < m; ++j)
@@ -187,102 +191,137 @@ static std::vector<double> referenceTresca(const Setup& s, const std::vector<dou
   return u;  // on a single rank the dof numbering is 3 node + c
 }
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
+void report(const std::string& name, const Result& r, Teuchos::FancyOStream& out) {
+  out << name << ": outer " << r.status.outer_iterations << ", n_A " << r.status.n_A << ", KKT eq " << r.kkt.equilibrium
+      << " pen " << r.kkt.nonpenetration << " compl " << r.kkt.complementarity << " fric " << r.kkt.frictionLaw
+      << ", active/stick/slip " << r.counts.active << "/" << r.counts.stick << "/" << r.counts.slip << "\n";
+}
+
+void checkKKT(const std::string& name, const Result& r, double tol, Teuchos::FancyOStream& out, bool& success) {
+  out << name << ": " << r.status.reason << "\n";
+  TEST_ASSERT(r.status.converged);
+  TEST_COMPARE(r.kkt.equilibrium, <, tol);
+  TEST_COMPARE(r.kkt.dirichlet, <, tol);
+  TEST_COMPARE(r.kkt.nonpenetration, <, tol);
+  TEST_COMPARE(r.kkt.complementarity, <, tol);
+  TEST_COMPARE(r.kkt.frictionLaw, <, tol);
+}
+
+const Setup frictionless{"Frictionless", 0.0, 0.0, "Tresca"};
+const Setup tresca{"Tresca", 0.0, 2.0e6, "Tresca"};
+const Setup coulombA2{"Coulomb", 0.3, 0.0, "Algorithm2"};
+const Setup coulombMSA{"Coulomb", 0.3, 0.0, "MSA+Algorithm1"};
+
+// The solves several cases compare with, each done once on all ranks.
+const Result& solveOnce(const std::string& key, const Setup& s) {
+  static std::map<std::string, Result> results;
+  auto it = results.find(key);
+  if (it == results.end()) it = results.emplace(key, solve(s, Tpetra::getDefaultComm())).first;
+  return it->second;
+}
+
+// Frictionless and Tresca: KKT to 1e-6 and the FETI-free reference.
+void checkAgainstReference(const Setup& s, const Result& r, Teuchos::FancyOStream& out, bool& success) {
   auto comm = Tpetra::getDefaultComm();
   auto self = comm->split(comm->getRank() == 0 ? 0 : 1, comm->getRank());
   const bool root = comm->getRank() == 0;
-  auto report = [&](const std::string& name, const Result& r) {
-    if (root)
-      std::cout << name << ": outer " << r.status.outer_iterations << ", n_A " << r.status.n_A << ", KKT eq "
-                << r.kkt.equilibrium << " pen " << r.kkt.nonpenetration << " compl " << r.kkt.complementarity
-                << " fric " << r.kkt.frictionLaw << ", active/stick/slip " << r.counts.active << "/" << r.counts.stick
-                << "/" << r.counts.slip << std::endl;
-  };
-  auto kktOk = [&](const std::string& name, const Result& r, double tol) {
-    CHECK(r.status.converged, name << " converged: " << r.status.reason);
-    CHECK(r.kkt.equilibrium < tol, name << " equilibrium " << r.kkt.equilibrium);
-    CHECK(r.kkt.dirichlet < tol, name << " Dirichlet " << r.kkt.dirichlet);
-    CHECK(r.kkt.nonpenetration < tol, name << " non-penetration " << r.kkt.nonpenetration);
-    CHECK(r.kkt.complementarity < tol, name << " complementarity " << r.kkt.complementarity);
-    CHECK(r.kkt.frictionLaw < tol, name << " friction law " << r.kkt.frictionLaw);
-  };
-
-  // Frictionless and Tresca: KKT to 1e-6 and the FETI-free reference.
-  Setup frictionless{"Frictionless", 0.0, 0.0, "Tresca"};
-  Setup tresca{"Tresca", 0.0, 2.0e6, "Tresca"};
-  for (const Setup& s : {frictionless, tresca}) {
-    const auto r = solve(s, comm);
-    report(s.law, r);
-    kktOk(s.law, r, 1e-6);
-    std::vector<double> gByNode(r.u.size() / 3, 0.0);
-    if (s.law == "Tresca") {
-      // Nodal slip bound = traction x nodal area (recomputed here).
-      auto disc = makeDisc(*self);
-      for (const auto& facet : disc.mesh.face("zmin")) {
-        std::vector<Fem::Point> X;
-        for (int nd : facet.nodes) X.push_back(disc.mesh.coords[nd]);
-        const auto w = Fem::facetNodalAreas(X);
-        for (size_t a = 0; a < w.size(); ++a) gByNode[facet.nodes[a]] += s.slipTraction * w[a];
-      }
+  report(s.law, r, out);
+  checkKKT(s.law, r, 1e-6, out, success);
+  std::vector<double> gByNode(r.u.size() / 3, 0.0);
+  if (s.law == "Tresca") {
+    // Nodal slip bound = traction x nodal area (recomputed here).
+    auto disc = makeDisc(*self);
+    for (const auto& facet : disc.mesh.face("zmin")) {
+      std::vector<Fem::Point> X;
+      for (int nd : facet.nodes) X.push_back(disc.mesh.coords[nd]);
+      const auto w = Fem::facetNodalAreas(X);
+      for (size_t a = 0; a < w.size(); ++a) gByNode[facet.nodes[a]] += s.slipTraction * w[a];
     }
-    std::vector<double> ref(r.u.size());
-    if (root) ref = referenceTresca(s, gByNode, self);
-    Teuchos::broadcast(*comm, 0, static_cast<int>(ref.size()), ref.data());
-    const double d = relDiff(r.u, ref);
-    if (root) std::cout << s.law << ": |u_FETI - u_ref| / |u_ref| = " << d << std::endl;
-    CHECK(d < 1e-6, s.law << ": FETI vs reference without FETI " << d);
   }
+  std::vector<double> ref(r.u.size());
+  if (root) ref = referenceTresca(s, gByNode, self, out, success);
+  Teuchos::broadcast(*comm, 0, static_cast<int>(ref.size()), ref.data());
+  const double d = relDiff(r.u, ref);
+  out << s.law << ": |u_FETI - u_ref| / |u_ref| = " << d << "\n";
+  TEST_COMPARE(d, <, 1e-6);  // FETI vs the reference without FETI
+}
 
-  // Coulomb: both outer algorithms, fixed point, agreement.
-  Setup coulombA2{"Coulomb", 0.3, 0.0, "Algorithm2"};
-  Setup coulombMSA{"Coulomb", 0.3, 0.0, "MSA+Algorithm1"};
-  const auto a2 = solve(coulombA2, comm), msa = solve(coulombMSA, comm);
-  report("Coulomb Algorithm2", a2);
-  report("Coulomb MSA+Algorithm1", msa);
-  kktOk("Coulomb Algorithm2", a2, 1e-5);
-  kktOk("Coulomb MSA", msa, 1e-5);
-  CHECK(a2.fixedPoint < 1e-6, "Algorithm 2 fixed point g = F lambda_N: " << a2.fixedPoint);
-  CHECK(msa.fixedPoint < 1e-6, "MSA fixed point g = F lambda_N: " << msa.fixedPoint);
+}  // namespace
+
+TEUCHOS_UNIT_TEST(Reference, Frictionless) {
+  checkAgainstReference(frictionless, solveOnce("frictionless", frictionless), out, success);
+}
+
+TEUCHOS_UNIT_TEST(Reference, Tresca) { checkAgainstReference(tresca, solve(tresca, Tpetra::getDefaultComm()), out, success); }
+
+// Coulomb: both outer algorithms, fixed point, agreement.
+TEUCHOS_UNIT_TEST(Coulomb, Algorithm2AndMSA) {
+  const Result& a2 = solveOnce("coulombA2", coulombA2);
+  const Result msa = solve(coulombMSA, Tpetra::getDefaultComm());
+  report("Coulomb Algorithm2", a2, out);
+  report("Coulomb MSA+Algorithm1", msa, out);
+  checkKKT("Coulomb Algorithm2", a2, 1e-5, out, success);
+  checkKKT("Coulomb MSA", msa, 1e-5, out, success);
+  TEST_COMPARE(a2.fixedPoint, <, 1e-6);   // Algorithm 2: g = F lambda_N
+  TEST_COMPARE(msa.fixedPoint, <, 1e-6);  // MSA: g = F lambda_N
   const double dAlg = relDiff(a2.u, msa.u);
-  if (root) std::cout << "Algorithm2 vs MSA: " << dAlg << std::endl;
-  CHECK(dAlg < 1e-4, "Algorithm 2 and MSA displacements differ by " << dAlg);
-  CHECK(a2.counts.stick > 0 && a2.counts.slip > 0, "F = 0.3 has both stick and slip nodes");
-  // The penalty rho changes the path, not the solution: Algorithm 2 with rho
-  // fixed (no residual balancing) reaches the same displacements.
+  out << "Algorithm2 vs MSA: " << dAlg << "\n";
+  TEST_COMPARE(dAlg, <, 1e-4);
+  // F = 0.3 has both stick and slip nodes.
+  TEST_COMPARE(a2.counts.stick, >, 0);
+  TEST_COMPARE(a2.counts.slip, >, 0);
+}
+
+// The penalty rho changes the path, not the solution: Algorithm 2 with rho
+// fixed (no residual balancing) reaches the same displacements.
+TEUCHOS_UNIT_TEST(Coulomb, FixedPenaltySameSolution) {
+  const Result& a2 = solveOnce("coulombA2", coulombA2);
   Setup fixedRho = coulombA2;
   fixedRho.residualBalancing = 0;
-  const auto a2fixed = solve(fixedRho, comm);
-  kktOk("Coulomb Algorithm2, rho fixed", a2fixed, 1e-5);
+  const auto a2fixed = solve(fixedRho, Tpetra::getDefaultComm());
+  checkKKT("Coulomb Algorithm2, rho fixed", a2fixed, 1e-5, out, success);
   const double dRho = relDiff(a2.u, a2fixed.u);
-  if (root) std::cout << "Algorithm2 balanced vs fixed rho: " << dRho << std::endl;
-  CHECK(dRho < 1e-6, "Algorithm 2 with and without residual balancing differ by " << dRho);
+  out << "Algorithm2 balanced vs fixed rho: " << dRho << "\n";
+  TEST_COMPARE(dRho, <, 1e-6);
+}
 
-  // Limits.
-  const auto r0 = solve(frictionless, comm);
-  const auto tiny = solve(Setup{"Coulomb", 1e-9, 0.0, "Algorithm2"}, comm);
+// F -> 0 gives the frictionless solution (to the solver tolerance).
+TEUCHOS_UNIT_TEST(Limits, SmallCoefficientIsFrictionless) {
+  const Result& r0 = solveOnce("frictionless", frictionless);
+  const auto tiny = solve(Setup{"Coulomb", 1e-9, 0.0, "Algorithm2"}, Tpetra::getDefaultComm());
   const double d0 = relDiff(tiny.u, r0.u);
-  CHECK(d0 < 1e-5, "F -> 0 gives the frictionless solution (to the solver tolerance): " << d0);
-  const auto large = solve(Setup{"Coulomb", 50.0, 0.0, "Algorithm2"}, comm);
-  report("F = 50", large);
-  CHECK(large.counts.active > 0 && large.counts.slip == 0, "large F: every active node sticks (" << large.counts.slip << " slip)");
-  Setup pulled{"Coulomb", 0.3, 0.0, "Algorithm2", +4e7};
-  const auto away = solve(pulled, comm);
-  report("pulled away", away);
-  CHECK(away.counts.active == 0, "pulled-away body has no active contact (" << away.counts.active << ")");
+  out << "F = 1e-9 vs frictionless: " << d0 << "\n";
+  TEST_COMPARE(d0, <, 1e-5);
+}
+
+// Large F: every active node sticks.
+TEUCHOS_UNIT_TEST(Limits, LargeCoefficientSticks) {
+  const auto large = solve(Setup{"Coulomb", 50.0, 0.0, "Algorithm2"}, Tpetra::getDefaultComm());
+  report("F = 50", large, out);
+  TEST_COMPARE(large.counts.active, >, 0);
+  TEST_EQUALITY(large.counts.slip, 0);
+}
+
+// A pulled-away body has no active contact, and the contact forces vanish.
+TEUCHOS_UNIT_TEST(Limits, PulledAwayBody) {
+  const Setup pulled{"Coulomb", 0.3, 0.0, "Algorithm2", +4e7};
+  const auto away = solve(pulled, Tpetra::getDefaultComm());
+  report("pulled away", away, out);
+  TEST_EQUALITY(away.counts.active, 0);
   double maxN = 0;
   for (double v : away.normalForce) maxN = std::max(maxN, std::abs(v));
-  CHECK(maxN == 0.0 || maxN < 1e-8 * 4e7, "pulled-away body: contact forces vanish (" << maxN << ")");
+  TEST_ASSERT(maxN == 0.0 || maxN < 1e-8 * 4e7);
+}
 
-  // Rank independence against rank 0 alone.
+// Rank independence against rank 0 alone.
+TEUCHOS_UNIT_TEST(RankIndependence, CoulombAlgorithm2) {
+  auto comm = Tpetra::getDefaultComm();
+  auto self = comm->split(comm->getRank() == 0 ? 0 : 1, comm->getRank());
+  const Result& a2 = solveOnce("coulombA2", coulombA2);
   std::vector<double> serial(a2.u.size());
-  if (root) serial = solve(coulombA2, self).u;
+  if (comm->getRank() == 0) serial = solve(coulombA2, self).u;
   Teuchos::broadcast(*comm, 0, static_cast<int>(serial.size()), serial.data());
   const double dr = relDiff(a2.u, serial);
-  if (root) std::cout << "Coulomb Algorithm2 on " << comm->getSize() << " ranks vs 1: " << dr << std::endl;
-  CHECK(dr < 1e-6, "Coulomb solution on " << comm->getSize() << " ranks vs 1 differs by " << dr);
-
-  int total = 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, Test::failures(), Teuchos::outArg(total));
-  return total ? 1 : 0;
+  out << "Coulomb Algorithm2 on " << comm->getSize() << " ranks vs 1: " << dr << "\n";
+  TEST_COMPARE(dr, <, 1e-6);
 }
