@@ -136,9 +136,6 @@ class ContactReduction {
   const std::vector<double>& l() const { return l_; }
   const ContactNode& contactNode(int i) const { return sys_.contact[i]; }
   const RotatedSystem& system() const { return sys_; }
-  // Columns t1, t2, n of the frame of contact node i (row-major 3x3: R[a][k]
-  // is component a of frame vector k); x_i = R' u_i.
-  const std::array<double, 9>& frame(int i) const { return sys_.frame[i]; }
 
   // Sx = S x (one K_rr solve). S acts on the free components: prescribed
   // directions of x are ignored (their values are in l) and zero in Sx.

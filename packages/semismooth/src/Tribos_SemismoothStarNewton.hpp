@@ -92,8 +92,6 @@ class SemismoothStarNewton {
   const ContactReduction& reduction() const;
   // The problem in contact frames (frames, prescribed tangential directions).
   const RotatedSystem& system() const { return fullSpace_ ? fullSpace_->system() : reduction_->system(); }
-  // The step lengths a_i of the approximation step.
-  const std::vector<double>& stepSizes() const { return a_; }
 
  private:
   struct Approximation {
