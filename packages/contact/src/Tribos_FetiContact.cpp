@@ -70,9 +70,6 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Fri
     : scaling_(rcp(new Friction::ScalingTransform(20))), dual_(dual) {
   const Feti::FetiProblem& p = dual->problem();
   const auto& lc = p.contact();
-  // The setup work (one F application for b, the power iterations of the
-  // scaling) is not counted as solver work.
-  const long long count = dual->F()->applications();
   cd_.A = rcp(new ProjectedDualOperator(dual));
   // b = P(h - F lambda~)
   Vector r(p.dualMap());
@@ -119,7 +116,6 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Fri
     for (size_t k = 0; k < nc; ++k) cd_.slipBound[k] = friction.slipBoundTraction * lc.nodalArea[k];
   if (friction.law == "Coulomb") cd_.frictionCoefficient.assign(nc, friction.coefficient);
   transforms_.add(scaling_).forward(cd_);
-  dual->F()->setCount(count);
   if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact(friction);
 }
 
@@ -211,6 +207,8 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
   if (!out.is_null()) solver->setOutputStream(out);
   FetiContactSolution sol;
   sol.x = rcp(new Vector(dual_->problem().dualMap()));
+  // n_A: the solver's applications of F only; the setup's (b, the power
+  // iterations of the scaling) and recoverPrimal's fall outside the snapshot.
   const long long n_A0 = dual_->F()->applications();
   sol.status = solver->solve(cd_, *sol.x);
   sol.n_A = dual_->F()->applications() - n_A0;

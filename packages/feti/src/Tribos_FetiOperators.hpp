@@ -24,8 +24,9 @@ class DualOperator : public Operator {
   // Y = alpha F X + beta Y; every column is one Hessian multiplication (n_A).
   void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode = Teuchos::NO_TRANS, SC alpha = 1.0,
              SC beta = 0.0) const override;
+  // Applications since construction; a user's work is the difference of
+  // two snapshots.
   long long applications() const { return n_A_; }
-  void setCount(long long n) { n_A_ = n; }
 
  private:
   RCP<const FetiProblem> problem_;
