@@ -10,18 +10,25 @@
 // Tolerances: equilibrium 1e-6 ||f|| (the stopping rule is 1e-8 ||l|| on the
 // reduced residual); the pointwise conditions 1e-9 relative to the node's
 // scale (they hold by construction of the approximation step up to rounding).
+#include <Teuchos_UnitTestHarness.hpp>
+
+#include <cmath>
+
 #include "SemismoothTestUtils.hpp"
+
+namespace {
 
 using namespace Tribos;
 
-void checkKKT(const Semismooth::MeshContactProblem& pr, const Teuchos::ParameterList& params, bool allZones) {
+void checkKKT(const Semismooth::MeshContactProblem& pr, const Teuchos::ParameterList& params, bool allZones,
+              Teuchos::FancyOStream& out, bool& success) {
   const Semismooth::ContactProblem p =
       Semismooth::buildContactProblem(pr.mesh, pr.material, pr.loads, pr.contactFace, pr.gap, pr.slipBoundTraction);
   Semismooth::SemismoothStarNewton solver(p, params);
-  const Semismooth::SemismoothResult r = solver.solve(&std::cout);
-  SS_CHECK(r.converged, "no convergence");
+  const Semismooth::SemismoothResult r = solver.solve(&out);
+  TEST_ASSERT(r.converged);
   const int n = p.K.rows, m = static_cast<int>(p.contact.size());
-  SS_CHECK(static_cast<int>(r.u.size()) == n, "u has " << r.u.size() << " entries");
+  TEST_EQUALITY(static_cast<int>(r.u.size()), n);
 
   // Equilibrium at the unprescribed dofs.
   std::vector<double> res(n);
@@ -39,10 +46,10 @@ void checkKKT(const Semismooth::MeshContactProblem& pr, const Teuchos::Parameter
     fn += p.f[j] * p.f[j];
     if (!p.dirichlet.count(j)) rn += res[j] * res[j];
   }
-  std::cout << "equilibrium residual " << std::sqrt(rn / fn) << " ||f||\n";
-  SS_CHECK(std::sqrt(rn) <= 1e-6 * std::sqrt(fn), "equilibrium residual " << std::sqrt(rn / fn) << " ||f||");
+  out << "equilibrium residual " << std::sqrt(rn / fn) << " ||f||\n";
+  TEST_COMPARE(std::sqrt(rn), <=, 1e-6 * std::sqrt(fn));
   // Prescribed dofs keep their values.
-  for (const auto& [dof, value] : p.dirichlet) SS_CHECK(r.u[dof] == value, "dof " << dof << " moved");
+  for (const auto& [dof, value] : p.dirichlet) TEST_EQUALITY(r.u[dof], value);
 
   int stick = 0, slip = 0, contact = 0;
   for (int i = 0; i < m; ++i) {
@@ -64,12 +71,12 @@ void checkKKT(const Semismooth::MeshContactProblem& pr, const Teuchos::Parameter
     ltn = std::sqrt(ltn);
     const double uTol = 1e-9 * umax, gTol = 1e-9 * std::max(node.g, 1.0);
     const double lnScale = std::max(std::abs(r.lambdaN[i]), node.g) + 1.0;
-    SS_CHECK(std::abs(ltDotN) <= gTol, "node " << node.node << ": tangential force has a normal part");
-    SS_CHECK(un <= node.d + uTol, "node " << node.node << ": penetration u_n - d = " << un - node.d);
-    SS_CHECK(r.lambdaN[i] >= -1e-9 * lnScale, "node " << node.node << ": lambda_n = " << r.lambdaN[i]);
-    SS_CHECK(std::abs(r.lambdaN[i] * (un - node.d)) <= 1e-9 * lnScale * umax,
-             "node " << node.node << ": complementarity " << r.lambdaN[i] * (un - node.d));
-    SS_CHECK(ltn <= node.g + gTol, "node " << node.node << ": ||lambda_t|| = " << ltn << " > g = " << node.g);
+    out << "node " << node.node << "\n";
+    TEST_COMPARE(std::abs(ltDotN), <=, gTol);                // no normal part in the tangential force
+    TEST_COMPARE(un, <=, node.d + uTol);                     // no penetration
+    TEST_COMPARE(r.lambdaN[i], >=, -1e-9 * lnScale);         // lambda_n >= 0
+    TEST_COMPARE(std::abs(r.lambdaN[i] * (un - node.d)), <=, 1e-9 * lnScale * umax);  // complementarity
+    TEST_COMPARE(ltn, <=, node.g + gTol);                    // ||lambda_t|| <= g
     if (r.lambdaN[i] > 0) ++contact;
     if (utn <= uTol) {
       ++stick;
@@ -77,32 +84,41 @@ void checkKKT(const Semismooth::MeshContactProblem& pr, const Teuchos::Parameter
       ++slip;
       double err = 0;
       for (int c = 0; c < 3; ++c) err = std::max(err, std::abs(lt[c] - node.g * ut[c] / utn));
-      SS_CHECK(err <= 1e-8 * node.g, "node " << node.node << ": slipping with lambda_t != g u_t/||u_t|| (" << err << ")");
+      TEST_COMPARE(err, <=, 1e-8 * node.g);  // slipping: lambda_t = g u_t/||u_t||
     }
-    if (ltn < node.g * (1 - 1e-8)) SS_CHECK(utn <= uTol, "node " << node.node << ": slips below the bound");
+    if (ltn < node.g * (1 - 1e-8)) TEST_COMPARE(utn, <=, uTol);  // no slip below the bound
   }
-  std::cout << "max |u| " << umax << ", gap " << p.contact[0].d << "; contact " << contact << ", no contact " << m - contact << ", stick " << stick << ", slip " << slip
+  out << "max |u| " << umax << ", gap " << p.contact[0].d << "; contact " << contact << ", no contact " << m - contact << ", stick " << stick << ", slip " << slip
             << "\n";
-  if (allZones)
-    SS_CHECK(contact > 0 && contact < m && stick > 0 && slip > 0,
-             "the benchmark must show contact, no contact, stick and slip");
-  else
-    SS_CHECK(contact > 0, "no contact at all");
-  SS_CHECK(contact == r.numContact.back() && stick == r.numStick.back() && slip == r.numSlip.back(),
-           "the solver's counts differ from the ones found here");
+  if (allZones) {
+    // The benchmark shows contact, no contact, stick and slip.
+    TEST_COMPARE(contact, >, 0);
+    TEST_COMPARE(contact, <, m);
+    TEST_COMPARE(stick, >, 0);
+    TEST_COMPARE(slip, >, 0);
+  } else {
+    TEST_COMPARE(contact, >, 0);
+  }
+  // The solver's counts are the ones found here.
+  TEST_EQUALITY(contact, r.numContact.back());
+  TEST_EQUALITY(stick, r.numStick.back());
+  TEST_EQUALITY(slip, r.numSlip.back());
 }
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard scope(&argc, &argv);
-  // The benchmark as given.
+}  // namespace
+
+// The benchmark as given.
+TEUCHOS_UNIT_TEST(KKT, PrismLevel4) {
   Semismooth::MeshContactProblem pr = sstest::prism(4);
-  checkKKT(pr, pr.solverParams, true);
-  // A positive gap (a tenth of the largest contact displacement scale) and
-  // per-node step sizes.
+  checkKKT(pr, pr.solverParams, true, out, success);
+}
+
+// A positive gap (a tenth of the largest contact displacement scale) and
+// per-node step sizes.
+TEUCHOS_UNIT_TEST(KKT, PrismLevel3GapNodalSteps) {
   Semismooth::MeshContactProblem pg = sstest::prism(3);
   pg.gap = 2.5e-4;
   Teuchos::ParameterList nodal = pg.solverParams;
   nodal.set("Step Scaling", "Nodal");
-  checkKKT(pg, nodal, false);
-  return sstest::finish();
+  checkKKT(pg, nodal, false, out, success);
 }

@@ -12,12 +12,13 @@
 //  - The block rotated in space with a symmetry condition u_x = 0 on xmin:
 //    the fixed global x is oblique to the rotated contact normal, refused
 //    naming the node.
-#include "SemismoothTestUtils.hpp"
-
 #include <Teuchos_ParameterList.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
 
+#include <cmath>
 #include <set>
 
+#include "SemismoothTestUtils.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_RigidMotions.hpp"
@@ -47,81 +48,104 @@ std::string join(const std::set<std::string>& s) {
   return out;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard scope(&argc, &argv);
+Mesh::Mesh block() {
   Mesh::BoxSpec spec;
   spec.cells = {4, 4, 4};
   spec.type = Mesh::CellType::Hex8;
-  const Mesh::Mesh mesh = Mesh::generateBox(spec);
-  Fem::Material material;
-  material.E = 1e9;
-  material.nu = 0.3;
+  return Mesh::generateBox(spec);
+}
 
-  // The pressed quarter block: refused by every solver, naming translation z.
+Fem::Material material() {
+  Fem::Material m;
+  m.E = 1e9;
+  m.nu = 0.3;
+  return m;
+}
+
+// The pressed quarter block: refused by every solver, naming translation z.
+void checkPressed(const std::string& solver, Teuchos::FancyOStream& out, bool& success) {
   Fem::LoadCase pressed;
   pressed.dirichlet = {condition("xmin", "x"), condition("ymin", "y")};
   pressed.tractions.push_back({"zmax", {0, 0, -1e7}});
-  for (const std::string solver : {"Sparse Direct", "Reduced CG", "CG+MueLu", "Dense Schur"}) {
-    Teuchos::ParameterList params;
-    if (solver == "Dense Schur") params.set("Dense Schur", true);
-    else params.set("Newton Solver", solver);
-    std::string message;
-    bool otherException = false;
-    try {
-      Semismooth::solveFromMesh(mesh, material, pressed, "zmin", 0.0, 0.0, params, nullptr, Tpetra::getDefaultComm());
-    } catch (const Error& e) {
-      message = e.what();
-    } catch (const std::exception& e) {
-      otherException = true;
-      message = e.what();
-    }
-    std::cout << solver << ": " << message << "\n";
-    SS_CHECK(!otherException, solver << ": not a Tribos::Error: " << message);
-    SS_CHECK(message.find("translation z") != std::string::npos && message.find("FETI") != std::string::npos,
-             solver << ": the message does not name translation z and FETI: " << message);
-    SS_CHECK(message.find("translation x") == std::string::npos && message.find("translation y") == std::string::npos &&
-                 message.find("rotation") == std::string::npos,
-             solver << ": the message names motions that are held: " << message);
+  Teuchos::ParameterList params;
+  if (solver == "Dense Schur") params.set("Dense Schur", true);
+  else params.set("Newton Solver", solver);
+  std::string message;
+  bool otherException = false;
+  try {
+    Semismooth::solveFromMesh(block(), material(), pressed, "zmin", 0.0, 0.0, params, nullptr, Tpetra::getDefaultComm());
+  } catch (const Error& e) {
+    message = e.what();
+  } catch (const std::exception& e) {
+    otherException = true;
+    message = e.what();
   }
+  out << solver << ": " << message << "\n";
+  TEST_ASSERT(!otherException);  // a Tribos::Error
+  // The message names translation z and FETI ...
+  TEST_ASSERT(message.find("translation z") != std::string::npos && message.find("FETI") != std::string::npos);
+  // ... and no motion that is held.
+  TEST_ASSERT(message.find("translation x") == std::string::npos && message.find("translation y") == std::string::npos &&
+              message.find("rotation") == std::string::npos);
+}
 
-  // Which motions other Dirichlet sets leave free.
-  {
-    const std::set<std::string> all{"translation x", "translation y", "translation z",
-                                    "rotation about x", "rotation about y", "rotation about z"};
-    const auto none = freeMotions(mesh, {});
-    SS_CHECK(none == all, "no Dirichlet condition: free " << join(none));
-    const auto bottom = freeMotions(mesh, {condition("zmin", "z")});
-    SS_CHECK(bottom == std::set<std::string>({"translation x", "translation y", "rotation about z"}),
-             "u_z = 0 on zmin: free " << join(bottom));
-    const auto symmetric = freeMotions(mesh, {condition("xmin", "x"), condition("ymin", "y"), condition("zmax", "z", -0.01)});
-    SS_CHECK(symmetric.empty(), "symmetry planes and u_z on zmax: free " << join(symmetric));
-    const auto clamped = freeMotions(mesh, {condition("xmin", "xyz")});
-    SS_CHECK(clamped.empty(), "clamped xmin: free " << join(clamped));
-    const auto planes = freeMotions(mesh, {condition("xmin", "x"), condition("ymin", "y")});
-    SS_CHECK(planes == std::set<std::string>({"translation z"}), "symmetry planes only: free " << join(planes));
-  }
+}  // namespace
 
-  // An oblique prescribed component: the block rotated about the y axis, so
-  // that the contact normal of zmin is no longer -e_z and the global x that
-  // xmin fixes is neither normal nor tangent to it.
-  {
-    Mesh::Mesh rotated = mesh;
-    const double c = std::cos(0.3), s = std::sin(0.3);
-    for (auto& X : rotated.coords) X = {c * X[0] + s * X[2], X[1], -s * X[0] + c * X[2]};
-    Fem::LoadCase loads;
-    loads.dirichlet = {condition("xmin", "x"), condition("ymin", "y"), condition("zmax", "xyz")};
-    std::string message;
-    try {
-      Semismooth::buildContactProblem(rotated, material, loads, "zmin", 0.0, 0.0);
-    } catch (const Error& e) {
-      message = e.what();
-    }
-    std::cout << "oblique: " << message << "\n";
-    SS_CHECK(message.find("contact node") != std::string::npos &&
-                 message.find("neither its normal") != std::string::npos && message.find("on x,") != std::string::npos,
-             "an oblique prescribed component must be refused naming the node: " << message);
+TEUCHOS_UNIT_TEST(PressedBlock, SparseDirect) { checkPressed("Sparse Direct", out, success); }
+TEUCHOS_UNIT_TEST(PressedBlock, ReducedCG) { checkPressed("Reduced CG", out, success); }
+TEUCHOS_UNIT_TEST(PressedBlock, CGMueLu) { checkPressed("CG+MueLu", out, success); }
+TEUCHOS_UNIT_TEST(PressedBlock, DenseSchur) { checkPressed("Dense Schur", out, success); }
+
+// Which motions other Dirichlet sets leave free.
+TEUCHOS_UNIT_TEST(FreeRigidMotions, NoDirichlet) {
+  const std::set<std::string> all{"translation x", "translation y", "translation z",
+                                  "rotation about x", "rotation about y", "rotation about z"};
+  const auto none = freeMotions(block(), {});
+  out << "free: " << join(none) << "\n";
+  TEST_ASSERT(none == all);
+}
+
+TEUCHOS_UNIT_TEST(FreeRigidMotions, BottomZ) {
+  const auto bottom = freeMotions(block(), {condition("zmin", "z")});
+  out << "u_z = 0 on zmin: free " << join(bottom) << "\n";
+  TEST_ASSERT(bottom == std::set<std::string>({"translation x", "translation y", "rotation about z"}));
+}
+
+TEUCHOS_UNIT_TEST(FreeRigidMotions, SymmetryPlanesAndTop) {
+  const auto symmetric =
+      freeMotions(block(), {condition("xmin", "x"), condition("ymin", "y"), condition("zmax", "z", -0.01)});
+  out << "symmetry planes and u_z on zmax: free " << join(symmetric) << "\n";
+  TEST_ASSERT(symmetric.empty());
+}
+
+TEUCHOS_UNIT_TEST(FreeRigidMotions, Clamped) {
+  const auto clamped = freeMotions(block(), {condition("xmin", "xyz")});
+  out << "clamped xmin: free " << join(clamped) << "\n";
+  TEST_ASSERT(clamped.empty());
+}
+
+TEUCHOS_UNIT_TEST(FreeRigidMotions, SymmetryPlanesOnly) {
+  const auto planes = freeMotions(block(), {condition("xmin", "x"), condition("ymin", "y")});
+  out << "symmetry planes only: free " << join(planes) << "\n";
+  TEST_ASSERT(planes == std::set<std::string>({"translation z"}));
+}
+
+// An oblique prescribed component: the block rotated about the y axis, so
+// that the contact normal of zmin is no longer -e_z and the global x that
+// xmin fixes is neither normal nor tangent to it.
+TEUCHOS_UNIT_TEST(ObliqueComponent, RefusedNamingTheNode) {
+  Mesh::Mesh rotated = block();
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  for (auto& X : rotated.coords) X = {c * X[0] + s * X[2], X[1], -s * X[0] + c * X[2]};
+  Fem::LoadCase loads;
+  loads.dirichlet = {condition("xmin", "x"), condition("ymin", "y"), condition("zmax", "xyz")};
+  std::string message;
+  try {
+    Semismooth::buildContactProblem(rotated, material(), loads, "zmin", 0.0, 0.0);
+  } catch (const Error& e) {
+    message = e.what();
   }
-  return sstest::finish();
+  out << "oblique: " << message << "\n";
+  TEST_ASSERT(message.find("contact node") != std::string::npos &&
+              message.find("neither its normal") != std::string::npos && message.find("on x,") != std::string::npos);
 }

@@ -17,12 +17,16 @@
 //      gives resultKKT figures below 1e-6, all of them agree with Sparse
 //      Direct, the symmetry-edge nodes are contact nodes, and the friction
 //      force there has no component along the fixed direction.
-#include "SemismoothTestUtils.hpp"
-#include "Tribos_TestSupport.hpp"
-
 #include <Teuchos_ParameterList.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "SemismoothTestUtils.hpp"
 #include "Tribos_ResultKKT.hpp"
+#include "Tribos_TestSupport.hpp"
 
 using namespace Tribos;
 
@@ -99,8 +103,8 @@ Fem::ResultKKT kkt(const Semismooth::SemismoothResult& r, Fem::FrictionLaw::Kind
   return Fem::resultKKT(r.u, r.Ku, r.f, r.dirichlet, Semismooth::contactPlane(r), fl, forces, *comm);
 }
 
-void printKKT(const std::string& what, const Fem::ResultKKT& k) {
-  std::cout << what << ": KKT equilibrium " << k.equilibrium << ", dirichlet " << k.dirichlet << ", nonpenetration "
+void printKKT(const std::string& what, const Fem::ResultKKT& k, Teuchos::FancyOStream& out) {
+  out << what << ": KKT equilibrium " << k.equilibrium << ", dirichlet " << k.dirichlet << ", nonpenetration "
             << k.nonpenetration << ", complementarity " << k.complementarity << ", friction " << k.frictionLaw << "\n";
 }
 
@@ -134,23 +138,25 @@ Semismooth::SemismoothResult solve(const Block& b, double slipBoundTraction, con
 
 // Every node of zmin is a contact node (the symmetry edges and the corner
 // included), and all of them are in contact.
-void checkContactSet(const Block& b, const Semismooth::SemismoothResult& r, const std::string& what) {
+void checkContactSet(const Block& b, const Semismooth::SemismoothResult& r, const std::string& what,
+                     Teuchos::FancyOStream& out, bool& success) {
   const std::vector<int> face = b.mesh.faceNodes("zmin");
   std::vector<int> nodes = r.contactNodes;
   std::sort(nodes.begin(), nodes.end());
-  SS_CHECK(nodes == face, what << ": " << nodes.size() << " contact nodes for " << face.size() << " nodes of zmin");
+  out << what << ": " << nodes.size() << " contact nodes for " << face.size() << " nodes of zmin\n";
+  TEST_ASSERT(nodes == face);
   const std::vector<int> status = Semismooth::contactStatus(r);
   int edge = 0;
   for (size_t i = 0; i < r.contactNodes.size(); ++i) {
     const auto& X = b.mesh.coords[r.contactNodes[i]];
-    SS_CHECK(status[i] != 0, what << ": node " << r.contactNodes[i] << " is not in contact");
+    TEST_INEQUALITY(status[i], 0);  // in contact
     edge += X[0] == 0 || X[1] == 0;
   }
-  SS_CHECK(edge == 9, what << ": " << edge << " contact nodes on the symmetry planes, expected 9");
+  TEST_EQUALITY(edge, 9);  // contact nodes on the symmetry planes
 }
 
 // (a) the exact uniaxial compression.
-void frictionless(Mesh::CellType type, bool shifted) {
+void frictionless(Mesh::CellType type, bool shifted, Teuchos::FancyOStream& out, bool& success) {
   const Block b = quarterBlock(type, shifted);
   const std::map<int, double> area = nodalAreas(b.mesh);
   const double p = E * strain;
@@ -158,9 +164,9 @@ void frictionless(Mesh::CellType type, bool shifted) {
     const std::string what =
         Mesh::cellTypeName(type) + " frictionless" + (shifted ? " (u_x, u_y given on xmax, ymax)" : "") + ", " + v.name;
     const Semismooth::SemismoothResult r = solve(b, 0.0, v.params);
-    std::cout << what << ": " << r.iterations << " Newton steps, residual " << r.residuals.back() << "\n";
-    SS_CHECK(r.converged, what << ": no convergence");
-    checkContactSet(b, r, what);
+    out << what << ": " << r.iterations << " Newton steps, residual " << r.residuals.back() << "\n";
+    TEST_ASSERT(r.converged);
+    checkContactSet(b, r, what, out, success);
 
     double du = 0;
     for (int node = 0; node < b.mesh.numNodes(); ++node) {
@@ -179,66 +185,69 @@ void frictionless(Mesh::CellType type, bool shifted) {
       const double exactSlip[3] = {nu * strain * X[0], nu * strain * X[1], 0.0};
       for (int c = 0; c < 3; ++c) ds = std::max(ds, std::abs(slip[i][c] - exactSlip[c]));
     }
-    std::cout << what << ": max |u - u_exact| " << du << ", max rel. error of the normal forces " << dn << "\n";
-    SS_CHECK(du <= 1e-8 * strain, what << ": max |u - u_exact| = " << du);
-    SS_CHECK(dn <= 1e-7, what << ": normal force differs from p A_i by " << dn << " relative");
-    SS_CHECK(dt == 0, what << ": frictionless contact with a tangential force " << dt);
+    out << what << ": max |u - u_exact| " << du << ", max rel. error of the normal forces " << dn << "\n";
+    TEST_COMPARE(du, <=, 1e-8 * strain);
+    TEST_COMPARE(dn, <=, 1e-7);  // normal force vs p A_i, relative
+    TEST_EQUALITY(dt, 0.0);      // frictionless contact: no tangential force
     // Without friction a node never sticks; only the corners whose both
     // tangential directions are fixed cannot slide.
-    SS_CHECK(r.numStick.back() == (shifted ? 4 : 1), what << ": " << r.numStick.back() << " sticking nodes without friction");
-    SS_CHECK(ds <= 1e-8 * strain, what << ": slip differs from the exact one by " << ds);
+    TEST_EQUALITY(r.numStick.back(), (shifted ? 4 : 1));
+    TEST_COMPARE(ds, <=, 1e-8 * strain);  // slip vs the exact one
     const Fem::ResultKKT k = kkt(r, Fem::FrictionLaw::Frictionless);
-    printKKT(what, k);
+    printKKT(what, k, out);
     std::string worst;
-    SS_CHECK(k.worst(&worst) < 1e-6, what << ": KKT " << worst << " = " << k.worst());
+    const double worstValue = k.worst(&worst);
+    out << what << ": worst KKT figure " << worst << "\n";
+    TEST_COMPARE(worstValue, <, 1e-6);
   }
 }
 
 // (b) Tresca: no closed form; the KKT conditions of the written result.
-void tresca(Mesh::CellType type, double boundFraction) {
+void tresca(Mesh::CellType type, double boundFraction, Teuchos::FancyOStream& out, bool& success) {
   const Block b = quarterBlock(type);
   const double g = boundFraction * E * strain;
   Semismooth::SemismoothResult reference;
   for (const Variant& v : variants()) {
     const std::string what = Mesh::cellTypeName(type) + " Tresca " + std::to_string(boundFraction) + " p, " + v.name;
     const Semismooth::SemismoothResult r = solve(b, g, v.params);
-    std::cout << what << ": " << r.iterations << " Newton steps, residual " << r.residuals.back() << ", stick "
-              << r.numStick.back() << ", slip " << r.numSlip.back() << "\n";
-    SS_CHECK(r.converged, what << ": no convergence");
-    checkContactSet(b, r, what);
+    out << what << ": " << r.iterations << " Newton steps, residual " << r.residuals.back() << ", stick "
+        << r.numStick.back() << ", slip " << r.numSlip.back() << "\n";
+    TEST_ASSERT(r.converged);
+    checkContactSet(b, r, what, out, success);
     const Fem::ResultKKT k = kkt(r, Fem::FrictionLaw::Tresca);
-    printKKT(what, k);
+    printKKT(what, k, out);
     std::string worst;
-    SS_CHECK(k.worst(&worst) < 1e-6, what << ": KKT " << worst << " = " << k.worst());
+    const double worstValue = k.worst(&worst);
+    out << what << ": worst KKT figure " << worst << "\n";
+    TEST_COMPARE(worstValue, <, 1e-6);
     // The friction force has no part along a direction a symmetry plane
     // fixes, and it reaches the bound on the edges, which slide outwards.
     int edgeSlip = 0;
     for (size_t i = 0; i < r.contactNodes.size(); ++i) {
       const auto& X = b.mesh.coords[r.contactNodes[i]];
-      if (X[0] == 0) SS_CHECK(r.lambdaT[i][0] == 0, what << ": friction along the fixed x at node " << r.contactNodes[i]);
-      if (X[1] == 0) SS_CHECK(r.lambdaT[i][1] == 0, what << ": friction along the fixed y at node " << r.contactNodes[i]);
+      if (X[0] == 0) TEST_EQUALITY(r.lambdaT[i][0], 0.0);  // no friction along the fixed x
+      if (X[1] == 0) TEST_EQUALITY(r.lambdaT[i][1], 0.0);  // no friction along the fixed y
       edgeSlip += (X[0] == 0) != (X[1] == 0) && r.state[i] == Semismooth::NodeState::ContactSlip;
     }
-    if (boundFraction < 0.1) SS_CHECK(edgeSlip == 8, what << ": " << edgeSlip << " of 8 symmetry-edge nodes slide");
+    if (boundFraction < 0.1) TEST_EQUALITY(edgeSlip, 8);  // all 8 symmetry-edge nodes slide
     if (v.name == "Sparse Direct") {
       reference = r;
     } else {
       const double diff = Test::maxRelDiff(r.u, reference.u);
-      std::cout << what << ": u differs from Sparse Direct by " << diff << "\n";
-      SS_CHECK(diff <= 1e-6, what << ": u differs from Sparse Direct by " << diff);
+      out << what << ": u differs from Sparse Direct by " << diff << "\n";
+      TEST_COMPARE(diff, <=, 1e-6);
     }
   }
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard scope(&argc, &argv);
-  for (Mesh::CellType type : {Mesh::CellType::Hex8, Mesh::CellType::Tet4}) {
-    frictionless(type, false);
-    frictionless(type, true);
-    tresca(type, 0.05);
-    tresca(type, 0.3);
-  }
-  return sstest::finish();
-}
+TEUCHOS_UNIT_TEST(Frictionless, Hex8) { frictionless(Mesh::CellType::Hex8, false, out, success); }
+TEUCHOS_UNIT_TEST(Frictionless, Hex8TangentialValuesGiven) { frictionless(Mesh::CellType::Hex8, true, out, success); }
+TEUCHOS_UNIT_TEST(Frictionless, Tet4) { frictionless(Mesh::CellType::Tet4, false, out, success); }
+TEUCHOS_UNIT_TEST(Frictionless, Tet4TangentialValuesGiven) { frictionless(Mesh::CellType::Tet4, true, out, success); }
+
+TEUCHOS_UNIT_TEST(Tresca, Hex8Bound5Percent) { tresca(Mesh::CellType::Hex8, 0.05, out, success); }
+TEUCHOS_UNIT_TEST(Tresca, Hex8Bound30Percent) { tresca(Mesh::CellType::Hex8, 0.3, out, success); }
+TEUCHOS_UNIT_TEST(Tresca, Tet4Bound5Percent) { tresca(Mesh::CellType::Tet4, 0.05, out, success); }
+TEUCHOS_UNIT_TEST(Tresca, Tet4Bound30Percent) { tresca(Mesh::CellType::Tet4, 0.3, out, success); }
