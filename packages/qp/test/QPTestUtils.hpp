@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Import.hpp>
@@ -32,24 +33,6 @@ using Vec = std::vector<double>;
 const double inf = std::numeric_limits<double>::infinity();
 
 // ---------------------------------------------------------------- checks
-struct Checker {
-  explicit Checker(const Comm& comm) : rank(comm.getRank()) {}
-  int failures = 0;
-  int rank = 0;
-  void operator()(bool ok, const std::string& what) {
-    if (!ok) {
-      ++failures;
-      std::cerr << "[rank " << rank << "] FAILED: " << what << std::endl;
-    }
-  }
-  int finish(const Comm& comm) {
-    int total = 0;
-    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, failures, Teuchos::outArg(total));
-    if (rank == 0) std::cout << (total ? "TEST FAILED" : "TEST PASSED") << " (" << total << " failures)" << std::endl;
-    return total ? 1 : 0;
-  }
-};
-
 template <class F>
 bool throwsWith(F f, const std::string& fragment, std::string* msg = nullptr) {
   try {
@@ -445,12 +428,12 @@ inline Run solve(QP::QPSolver& solver, const RCP<const Comm>& comm, const Dense&
 
 // n_A = power iterations + initial gradient + one per CG / proportioning
 // step + two per expansion step (A p, then A x after the projection).
-template <class Check>
-void checkCounts(Check& check, const Run& r, int power, const std::string& name) {
-  check(r.counted == r.st.n_A, name + ": n_A = " + std::to_string(r.st.n_A) + " but A applied " + std::to_string(r.counted));
+void checkCounts(const Run& r, int power, const std::string& name, Teuchos::FancyOStream& out, bool& success) {
+  out << name << ": counts\n";
+  TEST_EQUALITY(r.counted, r.st.n_A);  // n_A is the number of applications of A
   const long expected = power + 1 + r.st.cg_steps + r.st.proportioning_steps + 2L * r.st.expansion_steps;
-  check(r.st.n_A == expected, name + ": n_A = " + std::to_string(r.st.n_A) + ", step accounting gives " + std::to_string(expected));
-  check(r.st.iterations == r.st.cg_steps + r.st.expansion_steps + r.st.proportioning_steps, name + ": step counts add up");
+  TEST_EQUALITY(r.st.n_A, expected);  // the step accounting
+  TEST_EQUALITY(r.st.iterations, r.st.cg_steps + r.st.expansion_steps + r.st.proportioning_steps);  // step counts add up
 }
 
 // max_i |a_i - b_i|

@@ -25,110 +25,120 @@ int countActiveCircles(const SetSpec& s, const Vec& x) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
+// 1. disks only: 6 circles, random radii, some active, some not
+TEUCHOS_UNIT_TEST(MPGP, DisksProjectedGradient) {
   auto comm = Tpetra::getDefaultComm();
-  Checker check(*comm);
-  try {
-    // 1. disks only: 6 circles, random radii, some active, some not
-    for (uint32_t seed = 1; seed <= 3; ++seed) {
-      const int n = 12;
-      Dense A = randomSPD(n, seed);
-      Vec b = randomVec(n, 100 + seed, -0.4, 0.4);
-      SetSpec s{std::string(n, 'C'), {}, {}, randomVec(n / 2, 300 + seed, 0.05, 0.8)};
-      const Vec xref = projectedGradientReference(A, b, s, Vec(n, 0.0));
-      MPGP solver(params(1e-11));
-      Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
-      const std::string name = "disks seed " + std::to_string(seed);
-      check(r.st.converged, name + ": converged (" + r.st.reason + ")");
-      check(maxDiff(r.x, xref) < 1e-8, name + ": |x - x_PG| = " + str(maxDiff(r.x, xref)));
-      check(kktViolation(s, r.x, gradient(A, b, r.x)) < 1e-9, name + ": KKT " + str(kktViolation(s, r.x, gradient(A, b, r.x))));
-      const int active = countActiveCircles(s, xref);
-      check(active > 0 && active < n / 2, name + ": reference has active and inactive disks (" + std::to_string(active) + ")");
-      checkCounts(check, r, 20, name);
-    }
-
-    // 2. mix: disks, lower bounds, boxes, free, fixed, and a disk of radius 0
-    for (uint32_t seed = 7; seed <= 8; ++seed) {
-      const int n = 20;
-      Dense A = randomSPD(n, seed);
-      Vec b = randomVec(n, 100 + seed, -1.5, 1.5);
-      SetSpec s{"CCCCCCCCLLLLBBBBFFXX", randomVec(n, 400 + seed, -0.3, 0.0), randomVec(n, 500 + seed, 0.05, 0.3),
-                randomVec(n / 2, 300 + seed, 0.05, 0.5)};
-      s.r[1] = 0.0;
-      Vec x0(n, 0.0);
-      x0[18] = 0.25;  // fixed components keep their start values
-      x0[19] = -0.5;
-      const Vec xref = projectedGradientReference(A, b, s, x0);
-      MPGP solver(params(1e-11));
-      Run r = solve(solver, comm, A, b, s, x0);
-      const std::string name = "mix seed " + std::to_string(seed);
-      check(r.st.converged, name + ": converged (" + r.st.reason + ")");
-      check(maxDiff(r.x, xref) < 1e-8, name + ": |x - x_PG| = " + str(maxDiff(r.x, xref)));
-      SetSpec sk = s;  // KKT on the non-fixed part: fixed entries carry any gradient
-      check(kktViolation(sk, r.x, gradient(A, b, r.x)) < 1e-9, name + ": KKT");
-      check(r.x[2] == 0 && r.x[3] == 0, name + ": radius 0 keeps the pair at 0");
-      check(r.x[18] == 0.25 && r.x[19] == -0.5, name + ": fixed entries unchanged");
-      checkCounts(check, r, 20, name);
-    }
-
-    // 3. inactive disks: the unconstrained solution, by CG steps only
-    {
-      const int n = 16;
-      Dense A = randomSPD(n, 31);
-      Vec b = randomVec(n, 32, -1, 1);
-      SetSpec s{std::string(n, 'C'), {}, {}, Vec(n / 2, 1e3)};
-      const Vec xref = denseSolve(A, b);
-      MPGP solver(params(1e-12));
-      Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
-      check(r.st.converged && maxDiff(r.x, xref) < 1e-9, "inactive disks: x = A^-1 b, error " + str(maxDiff(r.x, xref)));
-      check(r.st.expansion_steps == 0 && r.st.proportioning_steps == 0, "inactive disks: only CG steps");
-    }
-
-    // 4. infeasible start is projected onto the disks first
-    {
-      const int n = 8;
-      Dense A = randomSPD(n, 41);
-      Vec b = randomVec(n, 42, -1, 1);
-      SetSpec s{"CCCCLLBB", Vec(n, 0.0), Vec(n, 0.5), {0.3, 0.2}};
-      Vec x0 = {3, 4, -0.1, 0.1, -2, 1, 7, -7};
-      Vec px0 = x0;
-      denseProject(s, px0, x0);
-      MPGP zero(params(1e-11, 0));
-      Run r0 = solve(zero, comm, A, b, s, x0);
-      check(maxDiff(r0.x, px0) < 1e-15, "MPGP infeasible start projected, error " + str(maxDiff(r0.x, px0)));
-      check(!r0.st.converged && !r0.st.reason.empty(), "Maximum Iterations = 0: not converged with reason");
-      MPGP solver(params(1e-11));
-      Run r = solve(solver, comm, A, b, s, x0);
-      const Vec xref = projectedGradientReference(A, b, s, x0);
-      check(r.st.converged && maxDiff(r.x, xref) < 1e-8, "MPGP from infeasible start: error " + str(maxDiff(r.x, xref)));
-    }
-
-    // 5. block Gauss-Seidel pieces via fixedOutside
-    {
-      const int n = 16;
-      Dense A = randomSPD(n, 61);
-      Vec b = randomVec(n, 62, -1.5, 1.5);
-      SetSpec s{"CCCCCCCCLLLLLLLL", Vec(n, 0.0), Vec(n, inf), randomVec(n / 2, 63, 0.1, 0.4)};
-      Vec x0 = {0.05, 0, 0, 0.1, -0.1, 0, 0, 0, 0.2, 0, 0.1, 0.3, 0, 0, 0.05, 0.1};
-      std::vector<char> keepDisks(n, 0), keepBounds(n, 0);
-      for (int i = 0; i < n; ++i) (s.kind[i] == 'C' ? keepDisks : keepBounds)[i] = 1;
-      SetSpec sDisks = s, sBounds = s;  // the frozen blocks as fixed entries of the reference
-      for (int i = 0; i < n; ++i) (keepDisks[i] ? sBounds : sDisks).kind[i] = 'X';
-      MPGP mpgp(params(1e-11));
-      Run rd = solve(mpgp, comm, A, b, s, x0, keepDisks);
-      const Vec refD = projectedGradientReference(A, b, sDisks, x0);
-      check(rd.st.converged && maxDiff(rd.x, refD) < 1e-8, "MPGP on the disk block: error " + str(maxDiff(rd.x, refD)));
-      check(maxDiff(Vec(rd.x.begin() + 8, rd.x.end()), Vec(x0.begin() + 8, x0.end())) == 0, "bound block frozen");
-      MPRGP mprgp(params(1e-11));
-      Run rb = solve(mprgp, comm, A, b, s, x0, keepBounds);
-      const Vec refB = projectedGradientReference(A, b, sBounds, x0);
-      check(rb.st.converged && maxDiff(rb.x, refB) < 1e-8, "MPRGP on the bound block: error " + str(maxDiff(rb.x, refB)));
-      check(maxDiff(Vec(rb.x.begin(), rb.x.begin() + 8), Vec(x0.begin(), x0.begin() + 8)) == 0, "disk block frozen");
-      checkCounts(check, rb, 20, "MPRGP bound block");
-    }
-  } catch (const std::exception& e) {
-    check(false, std::string("unexpected exception: ") + e.what());
+  for (uint32_t seed = 1; seed <= 3; ++seed) {
+    const int n = 12;
+    Dense A = randomSPD(n, seed);
+    Vec b = randomVec(n, 100 + seed, -0.4, 0.4);
+    SetSpec s{std::string(n, 'C'), {}, {}, randomVec(n / 2, 300 + seed, 0.05, 0.8)};
+    const Vec xref = projectedGradientReference(A, b, s, Vec(n, 0.0));
+    MPGP solver(params(1e-11));
+    Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
+    const std::string name = "disks seed " + std::to_string(seed);
+    out << name << "\n";
+    TEST_ASSERT(r.st.converged);  // converged
+    TEST_COMPARE(maxDiff(r.x, xref), <, 1e-8);  // |x - x_PG|
+    TEST_COMPARE(kktViolation(s, r.x, gradient(A, b, r.x)), <, 1e-9);  // KKT
+    const int active = countActiveCircles(s, xref);
+    TEST_COMPARE(active, >, 0);
+    TEST_COMPARE(active, <, n / 2);  // reference has active and inactive disks
+    checkCounts(r, 20, name, out, success);
   }
-  return check.finish(*comm);
+}
+
+// 2. mix: disks, lower bounds, boxes, free, fixed, and a disk of radius 0
+TEUCHOS_UNIT_TEST(MPGP, MixedSetsProjectedGradient) {
+  auto comm = Tpetra::getDefaultComm();
+  for (uint32_t seed = 7; seed <= 8; ++seed) {
+    const int n = 20;
+    Dense A = randomSPD(n, seed);
+    Vec b = randomVec(n, 100 + seed, -1.5, 1.5);
+    SetSpec s{"CCCCCCCCLLLLBBBBFFXX", randomVec(n, 400 + seed, -0.3, 0.0), randomVec(n, 500 + seed, 0.05, 0.3),
+              randomVec(n / 2, 300 + seed, 0.05, 0.5)};
+    s.r[1] = 0.0;
+    Vec x0(n, 0.0);
+    x0[18] = 0.25;  // fixed components keep their start values
+    x0[19] = -0.5;
+    const Vec xref = projectedGradientReference(A, b, s, x0);
+    MPGP solver(params(1e-11));
+    Run r = solve(solver, comm, A, b, s, x0);
+    const std::string name = "mix seed " + std::to_string(seed);
+    out << name << "\n";
+    TEST_ASSERT(r.st.converged);  // converged
+    TEST_COMPARE(maxDiff(r.x, xref), <, 1e-8);  // |x - x_PG|
+    SetSpec sk = s;  // KKT on the non-fixed part: fixed entries carry any gradient
+    TEST_COMPARE(kktViolation(sk, r.x, gradient(A, b, r.x)), <, 1e-9);  // KKT
+    TEST_EQUALITY(r.x[2], 0);
+    TEST_EQUALITY(r.x[3], 0);  // radius 0 keeps the pair at 0
+    TEST_EQUALITY(r.x[18], 0.25);
+    TEST_EQUALITY(r.x[19], -0.5);  // fixed entries unchanged
+    checkCounts(r, 20, name, out, success);
+  }
+}
+
+// 3. inactive disks: the unconstrained solution, by CG steps only
+TEUCHOS_UNIT_TEST(MPGP, InactiveDisks) {
+  auto comm = Tpetra::getDefaultComm();
+  const int n = 16;
+  Dense A = randomSPD(n, 31);
+  Vec b = randomVec(n, 32, -1, 1);
+  SetSpec s{std::string(n, 'C'), {}, {}, Vec(n / 2, 1e3)};
+  const Vec xref = denseSolve(A, b);
+  MPGP solver(params(1e-12));
+  Run r = solve(solver, comm, A, b, s, Vec(n, 0.0));
+  TEST_ASSERT(r.st.converged);
+  TEST_COMPARE(maxDiff(r.x, xref), <, 1e-9);  // inactive disks: x = A^-1 b
+  TEST_EQUALITY(r.st.expansion_steps, 0);
+  TEST_EQUALITY(r.st.proportioning_steps, 0);  // inactive disks: only CG steps
+}
+
+// 4. infeasible start is projected onto the disks first
+TEUCHOS_UNIT_TEST(MPGP, InfeasibleStart) {
+  auto comm = Tpetra::getDefaultComm();
+  const int n = 8;
+  Dense A = randomSPD(n, 41);
+  Vec b = randomVec(n, 42, -1, 1);
+  SetSpec s{"CCCCLLBB", Vec(n, 0.0), Vec(n, 0.5), {0.3, 0.2}};
+  Vec x0 = {3, 4, -0.1, 0.1, -2, 1, 7, -7};
+  Vec px0 = x0;
+  denseProject(s, px0, x0);
+  MPGP zero(params(1e-11, 0));
+  Run r0 = solve(zero, comm, A, b, s, x0);
+  TEST_COMPARE(maxDiff(r0.x, px0), <, 1e-15);  // MPGP infeasible start projected
+  TEST_ASSERT(!r0.st.converged);
+  TEST_ASSERT(!r0.st.reason.empty());  // Maximum Iterations = 0: not converged with reason
+  MPGP solver(params(1e-11));
+  Run r = solve(solver, comm, A, b, s, x0);
+  const Vec xref = projectedGradientReference(A, b, s, x0);
+  TEST_ASSERT(r.st.converged);
+  TEST_COMPARE(maxDiff(r.x, xref), <, 1e-8);  // MPGP from infeasible start
+}
+
+// 5. block Gauss-Seidel pieces via fixedOutside
+TEUCHOS_UNIT_TEST(MPGP, FixedOutsideBlocks) {
+  auto comm = Tpetra::getDefaultComm();
+  const int n = 16;
+  Dense A = randomSPD(n, 61);
+  Vec b = randomVec(n, 62, -1.5, 1.5);
+  SetSpec s{"CCCCCCCCLLLLLLLL", Vec(n, 0.0), Vec(n, inf), randomVec(n / 2, 63, 0.1, 0.4)};
+  Vec x0 = {0.05, 0, 0, 0.1, -0.1, 0, 0, 0, 0.2, 0, 0.1, 0.3, 0, 0, 0.05, 0.1};
+  std::vector<char> keepDisks(n, 0), keepBounds(n, 0);
+  for (int i = 0; i < n; ++i) (s.kind[i] == 'C' ? keepDisks : keepBounds)[i] = 1;
+  SetSpec sDisks = s, sBounds = s;  // the frozen blocks as fixed entries of the reference
+  for (int i = 0; i < n; ++i) (keepDisks[i] ? sBounds : sDisks).kind[i] = 'X';
+  MPGP mpgp(params(1e-11));
+  Run rd = solve(mpgp, comm, A, b, s, x0, keepDisks);
+  const Vec refD = projectedGradientReference(A, b, sDisks, x0);
+  TEST_ASSERT(rd.st.converged);
+  TEST_COMPARE(maxDiff(rd.x, refD), <, 1e-8);  // MPGP on the disk block
+  TEST_EQUALITY(maxDiff(Vec(rd.x.begin() + 8, rd.x.end()), Vec(x0.begin() + 8, x0.end())), 0);  // bound block frozen
+  MPRGP mprgp(params(1e-11));
+  Run rb = solve(mprgp, comm, A, b, s, x0, keepBounds);
+  const Vec refB = projectedGradientReference(A, b, sBounds, x0);
+  TEST_ASSERT(rb.st.converged);
+  TEST_COMPARE(maxDiff(rb.x, refB), <, 1e-8);  // MPRGP on the bound block
+  TEST_EQUALITY(maxDiff(Vec(rb.x.begin(), rb.x.begin() + 8), Vec(x0.begin(), x0.begin() + 8)), 0);  // disk block frozen
+  checkCounts(rb, 20, "MPRGP bound block", out, success);
 }

@@ -116,109 +116,107 @@ SmalbeRun solve(SMALBE& solver, const RCP<const Comm>& comm, const Dense& A, con
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
+// 1. bounds + 2 equality rows (explicit G): exact (x, mu) by enumeration
+TEUCHOS_UNIT_TEST(SMALBE, BoundsAndEqualityEnumerated) {
   auto comm = Tpetra::getDefaultComm();
-  Checker check(*comm);
-  try {
-    // 1. bounds + 2 equality rows (explicit G): exact (x, mu) by enumeration
-    for (uint32_t seed = 1; seed <= 3; ++seed) {
-      const int n = 8;
-      Dense A = randomSPD(n, seed);
-      Vec b = randomVec(n, 100 + seed, -1, 1);
-      SetSpec s{"LLLLLLFF", randomVec(n, 200 + seed, -0.3, 0.0), Vec(n, inf), {}};
-      s.lo[6] = s.lo[7] = -inf;
-      std::vector<Vec> G = {randomVec(n, 300 + seed, -1, 1), randomVec(n, 400 + seed, -1, 1)};
-      Vec xref, muref;
-      check(enumerateActiveSets(A, b, s.lo, s.up, G, xref, muref), "enumeration with G found the solution");
-      SMALBE solver(smalbeParams(1e-10, "MPRGP"));
-      SmalbeRun r = solve(solver, comm, A, b, s, G, true, Vec(n, 0.0));
-      const std::string name = "SMALBE bounds seed " + std::to_string(seed);
-      check(r.st.converged, name + ": converged (" + r.st.reason + ")");
-      check(maxDiff(r.x, xref) < 1e-7, name + ": |x - x_enum| = " + str(maxDiff(r.x, xref)));
-      check(maxDiff(r.mu, muref) < 1e-6, name + ": |mu - mu_enum| = " + str(maxDiff(r.mu, muref)));
-      const double kkt = kktViolation(s, r.x, lagrangianGradient(A, b, G, r.x, r.mu));
-      check(kkt < 1e-8, name + ": KKT violation " + str(kkt));
-      check(normGx(G, r.x) < 1e-9, name + ": ||Gx|| = " + str(normGx(G, r.x)));
-      check(r.counted == r.st.n_A, name + ": n_A = " + std::to_string(r.st.n_A) + ", A applied " + std::to_string(r.counted));
-      check(r.st.outer_iterations >= 1, name + ": outer iterations reported");
+  for (uint32_t seed = 1; seed <= 3; ++seed) {
+    const int n = 8;
+    Dense A = randomSPD(n, seed);
+    Vec b = randomVec(n, 100 + seed, -1, 1);
+    SetSpec s{"LLLLLLFF", randomVec(n, 200 + seed, -0.3, 0.0), Vec(n, inf), {}};
+    s.lo[6] = s.lo[7] = -inf;
+    std::vector<Vec> G = {randomVec(n, 300 + seed, -1, 1), randomVec(n, 400 + seed, -1, 1)};
+    Vec xref, muref;
+    TEST_ASSERT(enumerateActiveSets(A, b, s.lo, s.up, G, xref, muref));  // enumeration with G found the solution
+    SMALBE solver(smalbeParams(1e-10, "MPRGP"));
+    SmalbeRun r = solve(solver, comm, A, b, s, G, true, Vec(n, 0.0));
+    const std::string name = "SMALBE bounds seed " + std::to_string(seed);
+    out << name << "\n";
+    TEST_ASSERT(r.st.converged);  // converged
+    TEST_COMPARE(maxDiff(r.x, xref), <, 1e-7);  // |x - x_enum|
+    TEST_COMPARE(maxDiff(r.mu, muref), <, 1e-6);  // |mu - mu_enum|
+    const double kkt = kktViolation(s, r.x, lagrangianGradient(A, b, G, r.x, r.mu));
+    TEST_COMPARE(kkt, <, 1e-8);  // KKT violation
+    TEST_COMPARE(normGx(G, r.x), <, 1e-9);  // ||Gx||
+    TEST_EQUALITY(r.counted, r.st.n_A);  // n_A
+    TEST_COMPARE(r.st.outer_iterations, >=, 1);  // outer iterations reported
 
-      // warm restart from (x, mu) with a plugged-in inner solver: one outer iteration
-      if (seed == 1) {
-        SMALBE warm(smalbeParams(1e-8, "MPRGP"));
-        warm.setInnerSolver(rcp(new MPRGP()));
-        SmalbeRun w = solve(warm, comm, A, b, s, G, true, r.x, &r.mu);
-        check(w.st.converged && w.st.outer_iterations == 1,
-              "warm restart converges in 1 outer iteration (" + std::to_string(w.st.outer_iterations) + ")");
-        check(maxDiff(w.x, xref) < 1e-7, "warm restart keeps the solution");
-      }
+    // warm restart from (x, mu) with a plugged-in inner solver: one outer iteration
+    if (seed == 1) {
+      SMALBE warm(smalbeParams(1e-8, "MPRGP"));
+      warm.setInnerSolver(rcp(new MPRGP()));
+      SmalbeRun w = solve(warm, comm, A, b, s, G, true, r.x, &r.mu);
+      TEST_ASSERT(w.st.converged);
+      TEST_EQUALITY(w.st.outer_iterations, 1);  // warm restart converges in 1 outer iteration
+      TEST_COMPARE(maxDiff(w.x, xref), <, 1e-7);  // warm restart keeps the solution
     }
-
-    // 2. disks + bounds + orthonormal G as a user subclass, MPGP inner: KKT of (x, mu)
-    for (uint32_t seed = 5; seed <= 6; ++seed) {
-      const int n = 16;
-      Dense A = randomSPD(n, seed);
-      Vec b = randomVec(n, 100 + seed, -1, 1);
-      SetSpec s{"CCCCCCCCLLLLFFFF", Vec(n, 0.0), Vec(n, inf), randomVec(n / 2, 500 + seed, 0.05, 0.4)};
-      for (int i = 12; i < 16; ++i) s.lo[i] = -inf;
-      std::vector<Vec> G = {randomVec(n, 600 + seed, -1, 1), randomVec(n, 700 + seed, -1, 1), randomVec(n, 800 + seed, -1, 1)};
-      for (size_t j = 0; j < G.size(); ++j) {  // Gram-Schmidt: G G' = I
-        for (size_t k = 0; k < j; ++k) {
-          const double c = dot(G[j], G[k]);
-          for (int i = 0; i < n; ++i) G[j][i] -= c * G[k][i];
-        }
-        const double nr = std::sqrt(dot(G[j], G[j]));
-        for (double& v : G[j]) v /= nr;
-      }
-      SMALBE solver(smalbeParams(1e-9, "MPGP"));
-      SmalbeRun r = solve(solver, comm, A, b, s, G, false, Vec(n, 0.0));
-      const std::string name = "SMALBE disks seed " + std::to_string(seed);
-      check(r.st.converged, name + ": converged (" + r.st.reason + ")");
-      const double tolAbs = 1e-9 * std::sqrt(dot(b, b));
-      const double kkt = kktViolation(s, r.x, lagrangianGradient(A, b, G, r.x, r.mu), 1e-7);
-      check(kkt < 10 * tolAbs, name + ": KKT violation " + str(kkt));
-      check(normGx(G, r.x) <= tolAbs, name + ": ||Gx|| = " + str(normGx(G, r.x)));
-      check(r.counted == r.st.n_A, name + ": n_A counted exactly");
-      // the same problem by the explicit matrix gives the same solution
-      SMALBE solver2(smalbeParams(1e-9, "MPGP"));
-      SmalbeRun r2 = solve(solver2, comm, A, b, s, G, true, Vec(n, 0.0));
-      check(maxDiff(r.x, r2.x) < 1e-7, name + ": explicit and user G agree, " + str(maxDiff(r.x, r2.x)));
-    }
-
-    // 3. inconsistent: sum x = 0 with x_i >= 1
-    {
-      const int n = 6;
-      Dense A = randomSPD(n, 71);
-      Vec b = randomVec(n, 72, -1, 1);
-      SetSpec s{std::string(n, 'L'), Vec(n, 1.0), Vec(n, inf), {}};
-      std::vector<Vec> G = {Vec(n, 1.0)};
-      SMALBE solver(smalbeParams(1e-8, "MPRGP"));
-      const auto t0 = std::chrono::steady_clock::now();
-      SmalbeRun r = solve(solver, comm, A, b, s, G, true, Vec(n, 1.0));
-      const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      check(!r.st.converged && !r.st.reason.empty(), "inconsistent set: not converged, reason: " + r.st.reason);
-      check(secs < 20, "inconsistent set detected in " + str(secs) + " s");
-      if (comm->getRank() == 0) std::cout << "inconsistent set: " << r.st << "\n";
-    }
-
-    // 4. MPRGP as inner solver with disks: error naming the circles
-    {
-      const int n = 4;
-      SetSpec s{"CCCC", {}, {}, {1.0, 1.0}};
-      SMALBE solver(smalbeParams(1e-8, "MPRGP"));
-      std::string msg;
-      check(throwsWith([&] { solve(solver, comm, randomSPD(n, 2), Vec(n, 1.0), s, {Vec(n, 1.0)}, true, Vec(n, 0.0)); },
-                       "circles", &msg),
-            "SMALBE with MPRGP inner and disks: " + msg);
-      SMALBE noG;
-      auto map = pairMap(n, comm);
-      Vector x(map), bb(map);
-      ConstraintSet Omega(map);
-      check(throwsWith([&] { noG.solve(*toCrs(map, randomSPD(n, 2)), bb, Omega, x); }, "setEqualityConstraint"),
-            "SMALBE without G: error");
-    }
-  } catch (const std::exception& e) {
-    check(false, std::string("unexpected exception: ") + e.what());
   }
-  return check.finish(*comm);
+}
+
+// 2. disks + bounds + orthonormal G as a user subclass, MPGP inner: KKT of (x, mu)
+TEUCHOS_UNIT_TEST(SMALBE, DisksAndUserG) {
+  auto comm = Tpetra::getDefaultComm();
+  for (uint32_t seed = 5; seed <= 6; ++seed) {
+    const int n = 16;
+    Dense A = randomSPD(n, seed);
+    Vec b = randomVec(n, 100 + seed, -1, 1);
+    SetSpec s{"CCCCCCCCLLLLFFFF", Vec(n, 0.0), Vec(n, inf), randomVec(n / 2, 500 + seed, 0.05, 0.4)};
+    for (int i = 12; i < 16; ++i) s.lo[i] = -inf;
+    std::vector<Vec> G = {randomVec(n, 600 + seed, -1, 1), randomVec(n, 700 + seed, -1, 1), randomVec(n, 800 + seed, -1, 1)};
+    for (size_t j = 0; j < G.size(); ++j) {  // Gram-Schmidt: G G' = I
+      for (size_t k = 0; k < j; ++k) {
+        const double c = dot(G[j], G[k]);
+        for (int i = 0; i < n; ++i) G[j][i] -= c * G[k][i];
+      }
+      const double nr = std::sqrt(dot(G[j], G[j]));
+      for (double& v : G[j]) v /= nr;
+    }
+    SMALBE solver(smalbeParams(1e-9, "MPGP"));
+    SmalbeRun r = solve(solver, comm, A, b, s, G, false, Vec(n, 0.0));
+    const std::string name = "SMALBE disks seed " + std::to_string(seed);
+    out << name << "\n";
+    TEST_ASSERT(r.st.converged);  // converged
+    const double tolAbs = 1e-9 * std::sqrt(dot(b, b));
+    const double kkt = kktViolation(s, r.x, lagrangianGradient(A, b, G, r.x, r.mu), 1e-7);
+    TEST_COMPARE(kkt, <, 10 * tolAbs);  // KKT violation
+    TEST_COMPARE(normGx(G, r.x), <=, tolAbs);  // ||Gx||
+    TEST_EQUALITY(r.counted, r.st.n_A);  // n_A counted exactly
+    // the same problem by the explicit matrix gives the same solution
+    SMALBE solver2(smalbeParams(1e-9, "MPGP"));
+    SmalbeRun r2 = solve(solver2, comm, A, b, s, G, true, Vec(n, 0.0));
+    TEST_COMPARE(maxDiff(r.x, r2.x), <, 1e-7);  // explicit and user G agree
+  }
+}
+
+// 3. inconsistent: sum x = 0 with x_i >= 1
+TEUCHOS_UNIT_TEST(SMALBE, InconsistentSet) {
+  auto comm = Tpetra::getDefaultComm();
+  const int n = 6;
+  Dense A = randomSPD(n, 71);
+  Vec b = randomVec(n, 72, -1, 1);
+  SetSpec s{std::string(n, 'L'), Vec(n, 1.0), Vec(n, inf), {}};
+  std::vector<Vec> G = {Vec(n, 1.0)};
+  SMALBE solver(smalbeParams(1e-8, "MPRGP"));
+  const auto t0 = std::chrono::steady_clock::now();
+  SmalbeRun r = solve(solver, comm, A, b, s, G, true, Vec(n, 1.0));
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  TEST_ASSERT(!r.st.converged);
+  TEST_ASSERT(!r.st.reason.empty());  // inconsistent set: not converged, reason
+  TEST_COMPARE(secs, <, 20);  // the inconsistent set is detected within 20 s
+  out << "inconsistent set: " << r.st << "\n";
+}
+
+// 4. MPRGP as inner solver with disks: error naming the circles
+TEUCHOS_UNIT_TEST(SMALBE, Errors) {
+  auto comm = Tpetra::getDefaultComm();
+  const int n = 4;
+  SetSpec s{"CCCC", {}, {}, {1.0, 1.0}};
+  SMALBE solver(smalbeParams(1e-8, "MPRGP"));
+  std::string msg;
+  TEST_ASSERT(throwsWith([&] { solve(solver, comm, randomSPD(n, 2), Vec(n, 1.0), s, {Vec(n, 1.0)}, true, Vec(n, 0.0)); }, "circles", &msg));  // SMALBE with MPRGP inner and disks
+  SMALBE noG;
+  auto map = pairMap(n, comm);
+  Vector x(map), bb(map);
+  ConstraintSet Omega(map);
+  TEST_ASSERT(throwsWith([&] { noG.solve(*toCrs(map, randomSPD(n, 2)), bb, Omega, x); }, "setEqualityConstraint"));  // SMALBE without G
 }
