@@ -36,27 +36,39 @@ class OrthonormalCoarseConstraint : public QP::EqualityConstraint {
   mutable std::vector<double> y_;
 };
 
-// PFP: the dual Hessian restricted to ker G. One application of F each.
-class ProjectedDualOperator : public Operator {
+// P = I - G'(GG')^-1 G, the projector onto ker G of FETI's coarse space.
+class CoarseProjector : public Operator {
  public:
-  explicit ProjectedDualOperator(RCP<const Feti::FetiDual> dual)
-      : dual_(dual), Px_(dual->problem().dualMap()), FPx_(dual->problem().dualMap()) {}
+  explicit CoarseProjector(RCP<const Feti::FetiDual> dual) : dual_(dual), Px_(dual->problem().dualMap()) {}
   RCP<const Map> getDomainMap() const override { return dual_->problem().dualMap(); }
   RCP<const Map> getRangeMap() const override { return dual_->problem().dualMap(); }
   void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
              SC beta = 0) const override {
     for (size_t j = 0; j < X.getNumVectors(); ++j) {
+      if (alpha == 1 && beta == 0) {
+        dual_->coarse().project(*X.getVector(j), *Y.getVectorNonConst(j));
+        continue;
+      }
       dual_->coarse().project(*X.getVector(j), Px_);
-      dual_->F()->apply(Px_, FPx_);
-      dual_->coarse().project(FPx_, Px_);
       Y.getVectorNonConst(j)->update(alpha, Px_, beta);
     }
   }
 
  private:
   RCP<const Feti::FetiDual> dual_;
-  mutable Vector Px_, FPx_;
+  mutable Vector Px_;
 };
+
+// h without the initial gaps d of the contact rows (h = B K+ f - c): the
+// size of the load-driven problem, whether or not contact is active.
+RCP<const Vector> loadPart(const Feti::FetiDual& dual) {
+  const auto& p = dual.problem();
+  auto r = rcp(new Vector(dual.h(), Teuchos::Copy));
+  auto rv = r->getDataNonConst();
+  auto cv = p.c().getData();
+  for (LO i : p.contact().normalRows) rv[i] += cv[i];
+  return r;
+}
 
 double maxOver(double v, const Comm& comm) {
   double out = v;
@@ -68,54 +80,27 @@ double maxOver(double v, const Comm& comm) {
 
 FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction)
     : scaling_(rcp(new Friction::ScalingTransform(20))), dual_(dual) {
-  const Feti::FetiProblem& p = dual->problem();
-  const auto& lc = p.contact();
-  cd_.A = rcp(new ProjectedDualOperator(dual));
-  // b = P(h - F lambda~)
-  Vector r(p.dualMap());
-  dual->F()->apply(dual->lambdaTilde(), r);
-  r.update(1.0, dual->h(), -1.0);
-  auto b = rcp(new Vector(p.dualMap()));
-  dual->coarse().project(r, *b);
-  // Tolerances refer to b without the gaps d of the contact rows (h = B K+ f - c):
-  // the size of the load-driven problem, whether or not contact is active.
-  {
-    auto rv = r.getDataNonConst();
-    auto cv = p.c().getData();
-    for (LO i : lc.normalRows) rv[i] += cv[i];
-    Vector bRef(p.dualMap());
-    dual->coarse().project(r, bRef);
-    cd_.referenceNorm = bRef.norm2();
-  }
-  cd_.b = b;
-  cd_.G = rcp(new OrthonormalCoarseConstraint(dual->coarsePtr(), p.comm()));
+  const auto& lc = dual->problem().contact();
+  // The dual problem as TFETI gives it: min 1/2 lambda'F lambda - lambda'h
+  // s.t. G^ lambda = L^-1 e, lambda_N >= 0, ||lambda_T,k|| <= g_k.
+  cd_.A = dual->F();
+  cd_.b = Teuchos::rcpFromRef(dual->h());
+  cd_.bReference = loadPart(*dual);
+  cd_.G = rcp(new OrthonormalCoarseConstraint(dual->coarsePtr(), dual->problem().comm()));
   cd_.normalRows = lc.normalRows;
   cd_.tangentRows = lc.tangentRows;
   const size_t nc = lc.normalRows.size();
-  // lambda = lambda~ + x: the constraints on lambda become x_N >= -lambda~_N
-  // and ||x_T - c|| <= g with the centre c = -lambda~_T. lambda~ vanishes on
-  // the contact rows when the equality rows hold every rigid motion.
-  auto lt = dual->lambdaTilde().getData();
-  cd_.normalLower.resize(nc);
-  cd_.normalOffset.resize(nc);
-  bool shifted = false;
-  std::vector<SC> center(2 * nc, 0.0);
-  for (size_t k = 0; k < nc; ++k) {
-    cd_.normalOffset[k] = lt[lc.normalRows[k]];
-    cd_.normalLower[k] = -lt[lc.normalRows[k]];
-    for (int j = 0; j < 2; ++j) {
-      const LO t = lc.tangentRows[2 * k + j];
-      if (t >= 0) center[2 * k + j] = -lt[t];
-      shifted = shifted || center[2 * k + j] != 0.0;
-    }
-  }
-  if (shifted) cd_.tangentCenter = center;
+  cd_.normalLower.assign(nc, 0.0);
+  cd_.normalOffset.assign(nc, 0.0);
   cd_.slipBound.assign(nc, 0.0);
   cd_.frictionCoefficient.assign(nc, 0.0);
   if (friction.law == "Tresca")
     for (size_t k = 0; k < nc; ++k) cd_.slipBound[k] = friction.slipBoundTraction * lc.nodalArea[k];
   if (friction.law == "Coulomb") cd_.frictionCoefficient.assign(nc, friction.coefficient);
-  transforms_.add(scaling_).forward(cd_);
+  transforms_.add(rcp(new Friction::HomogenizationTransform(Teuchos::rcpFromRef(dual->lambdaTilde()))))
+      .add(rcp(new Friction::ProjectionTransform(rcp(new CoarseProjector(dual)))))
+      .add(scaling_)
+      .forward(cd_);
   if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact(friction);
 }
 
@@ -195,8 +180,8 @@ void FetiContactProblem::checkHeldByContact(const FrictionSpec& friction) const 
 }
 
 RCP<Vector> FetiContactProblem::multipliers(const Vector& x) const {
-  auto lambda = rcp(new Vector(dual_->lambdaTilde(), Teuchos::Copy));
-  lambda->update(1.0, x, 1.0);
+  auto lambda = rcp(new Vector(x, Teuchos::Copy));
+  transforms_.back(*lambda);
   return lambda;
 }
 
@@ -207,12 +192,12 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
   if (!out.is_null()) solver->setOutputStream(out);
   FetiContactSolution sol;
   sol.x = rcp(new Vector(dual_->problem().dualMap()));
-  // n_A: the solver's applications of F only; the setup's (b, the power
-  // iterations of the scaling) and recoverPrimal's fall outside the snapshot.
+  // n_A: the solver's applications of F only; the setup's (A lambda~ of the
+  // homogenization, the power iterations of the scaling) and recoverPrimal's
+  // fall outside the snapshot.
   const long long n_A0 = dual_->F()->applications();
   sol.status = solver->solve(cd_, *sol.x);
   sol.n_A = dual_->F()->applications() - n_A0;
-  transforms_.back(*sol.x);
   sol.lambda = multipliers(*sol.x);
   if (dual_->coarse().equalityRowsHoldKernel()) {
     sol.u = dual_->recoverPrimal(*sol.lambda);

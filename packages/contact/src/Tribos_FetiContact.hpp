@@ -1,10 +1,15 @@
 // Tribos_FetiContact.hpp: a FETI contact problem as a ContactDual for the
 // friction algorithms, and the checks of its primal-dual solution.
 //
-// With lambda = lambda~ + x, G lambda~ = e and lambda~ supported on equality
-// rows, the dual problem becomes
-//   min 1/2 x'PFPx - x'P(h - F lambda~)  s.t.  G^ x = 0, x_N >= 0, ||x_T,k|| <= g_k
-// (G^ = L^-1 G orthonormal, so SMALBE's penalty rho/2 ||G^x||^2 = rho/2 x'Qx).
+// TFETI's dual problem goes through the transform chain of friction
+// (Tribos_DualTransform.hpp): homogenization with FETI's particular solution
+// lambda~ (lambda = lambda~ + x), the coarse projector P, the scaling s:
+//   min 1/2 x's PFPx - x's P(h - F lambda~)  s.t.  G^ x = 0, x_N >= -lambda~_N,
+//   ||x_T,k + lambda~_T,k|| <= g_k
+// (lambda~ vanishes on the contact rows when the equality rows hold every
+// rigid motion). G^ = L^-1 G (GG' = LL') is the orthonormal constraint of
+// FETI's coarse space, which factors GG' for P and lambda~ anyway: SMALBE's
+// penalty rho/2 ||G^x||^2 = rho/2 x'Qx, Q = I - P.
 #pragma once
 
 #include <string>
@@ -42,7 +47,7 @@ class FetiContactProblem {
   FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction);
   const Friction::ContactDual& contactDual() const { return cd_; }
   const Feti::FetiDual& fetiDual() const { return *dual_; }
-  // lambda = lambda~ + x
+  // lambda = lambda~ + x (the chain's back map)
   RCP<Vector> multipliers(const Vector& x) const;
   // Solves by the outer algorithm named (FrictionSolverFactory) from x = 0,
   // with the sublists "Algorithm 1", "MSA", "Algorithm 2" of solverParams.
@@ -59,7 +64,8 @@ class FetiContactProblem {
   // Refuses a body that its contact cannot hold (throws naming the motion).
   void checkHeldByContact(const FrictionSpec& friction) const;
 
-  // PFP, P(h - F lambda~) -> s PFP, s P(h - F lambda~) (||A|| = 1).
+  // PFP, P(h - F lambda~) -> s PFP, s P(h - F lambda~) (||A|| = 1); the last
+  // of transforms_.
   RCP<Friction::ScalingTransform> scaling_;
   Friction::DualTransformChain transforms_;
   RCP<const Feti::FetiDual> dual_;

@@ -7,7 +7,8 @@
 //
 // The normal contact force of contact k is x_N,k + normalOffset_k; the
 // tangential force is x_T,k - c_k (the centre c_k = -lambda~_T,k is zero
-// unless a particular solution of G lambda = e shifted the problem). A
+// unless a particular solution of G lambda = e shifted the problem:
+// HomogenizationTransform). A
 // contact whose tangential direction is fixed by a Dirichlet condition has
 // -1 for that row: one remaining direction gives the interval
 // |x_T - c| <= g_k, none gives no friction constraint. Tresca
@@ -37,13 +38,14 @@ struct ContactDual {
   std::vector<SC> normalOffset;         // local
   std::vector<SC> slipBound;            // Tresca g_k, local
   std::vector<SC> frictionCoefficient;  // Coulomb F_k, local
-  // The norm that relative tolerances refer to; 0: ||b||. A contact problem
-  // sets the size of b without the initial gaps, which a solution with no
-  // active contact never feels: a large gap must not loosen the solve.
-  SC referenceNorm = 0;
+  // The right-hand side that relative tolerances refer to; null: b. A contact
+  // problem gives b without the initial gaps, which a solution with no
+  // active contact never feels: a large gap must not loosen the solve. The
+  // transforms (Tribos_DualTransform.hpp) map it as they map b.
+  RCP<const Vector> bReference;
 
   RCP<const Map> map() const { return b->getMap(); }
-  SC normB() const { return referenceNorm > 0 ? referenceNorm : b->norm2(); }
+  SC normB() const { return (bReference.is_null() ? b : bReference)->norm2(); }
   int numLocalContacts() const { return static_cast<int>(normalRows.size()); }
 
   // Omega(g): the product set with slip bounds g (local, one per contact).

@@ -27,6 +27,41 @@ class ScaledOperator : public Operator {
   SC s_;
 };
 
+// PAP x = P(A(P x)): one application of A per column.
+class ProjectedOperator : public Operator {
+ public:
+  ProjectedOperator(RCP<const Operator> A, RCP<const Operator> P)
+      : A_(A), P_(P), Px_(A->getDomainMap()), APx_(A->getRangeMap()) {}
+  RCP<const Map> getDomainMap() const override { return A_->getDomainMap(); }
+  RCP<const Map> getRangeMap() const override { return A_->getRangeMap(); }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
+             SC beta = 0) const override {
+    for (size_t j = 0; j < X.getNumVectors(); ++j) {
+      P_->apply(*X.getVector(j), Px_);
+      A_->apply(Px_, APx_);
+      P_->apply(APx_, Px_);
+      Y.getVectorNonConst(j)->update(alpha, Px_, beta);
+    }
+  }
+
+ private:
+  RCP<const Operator> A_, P_;
+  mutable Vector Px_, APx_;
+};
+
+// v - A lambda~, given A lambda~.
+RCP<const Vector> minus(const Vector& v, const Vector& Alambda) {
+  auto out = rcp(new Vector(Alambda, Teuchos::Copy));
+  out->update(1.0, v, -1.0);
+  return out;
+}
+
+RCP<const Vector> applied(const Operator& P, const Vector& v) {
+  auto out = rcp(new Vector(P.getRangeMap()));
+  P.apply(v, *out);
+  return out;
+}
+
 }  // namespace
 
 DualTransformChain& DualTransformChain::add(RCP<DualTransform> t) {
@@ -43,6 +78,45 @@ void DualTransformChain::back(Vector& x) const {
   for (auto t = transforms_.rbegin(); t != transforms_.rend(); ++t) (*t)->back(x);
 }
 
+HomogenizationTransform::HomogenizationTransform(RCP<const Vector> lambdaTilde) : lambdaTilde_(lambdaTilde) {
+  TRIBOS_REQUIRE(!lambdaTilde_.is_null(), "HomogenizationTransform: the particular solution is null");
+}
+
+void HomogenizationTransform::forward(ContactDual& dual) {
+  TRIBOS_REQUIRE(!dual.A.is_null() && !dual.b.is_null(), "HomogenizationTransform: the problem has no A or no b");
+  Vector Alambda(dual.map());
+  dual.A->apply(*lambdaTilde_, Alambda);
+  if (!dual.bReference.is_null()) dual.bReference = minus(*dual.bReference, Alambda);
+  dual.b = minus(*dual.b, Alambda);
+  auto lt = lambdaTilde_->getData();
+  const int nc = dual.numLocalContacts();
+  std::vector<SC> center = dual.tangentCenter;
+  center.resize(2 * nc, 0.0);
+  bool shifted = false;
+  for (int k = 0; k < nc; ++k) {
+    dual.normalLower[k] -= lt[dual.normalRows[k]];
+    dual.normalOffset[k] += lt[dual.normalRows[k]];
+    for (int j = 0; j < 2; ++j) {
+      const LO t = dual.tangentRows[2 * k + j];
+      if (t >= 0) center[2 * k + j] -= lt[t];
+      shifted = shifted || center[2 * k + j] != 0.0;
+    }
+  }
+  // An empty centre list means all zero (the common case: lambda~ lives on
+  // equality rows); keep it empty then.
+  if (shifted) dual.tangentCenter = center;
+}
+
+void HomogenizationTransform::back(Vector& x) const { x.update(1.0, *lambdaTilde_, 1.0); }
+
+void ProjectionTransform::forward(ContactDual& dual) {
+  TRIBOS_REQUIRE(!dual.A.is_null() && !dual.b.is_null(), "ProjectionTransform: the problem has no A or no b");
+  TRIBOS_REQUIRE(!P_.is_null(), "ProjectionTransform: the projector is null");
+  dual.A = rcp(new ProjectedOperator(dual.A, P_));
+  dual.b = applied(*P_, *dual.b);
+  if (!dual.bReference.is_null()) dual.bReference = applied(*P_, *dual.bReference);
+}
+
 void ScalingTransform::forward(ContactDual& dual) {
   TRIBOS_REQUIRE(!dual.A.is_null() && !dual.b.is_null(), "ScalingTransform: the problem has no A or no b");
   long ignored = 0;
@@ -52,7 +126,11 @@ void ScalingTransform::forward(ContactDual& dual) {
   auto b = rcp(new Vector(*dual.b, Teuchos::Copy));
   b->scale(scale_);
   dual.b = b;
-  dual.referenceNorm *= scale_;
+  if (!dual.bReference.is_null()) {
+    auto r = rcp(new Vector(*dual.bReference, Teuchos::Copy));
+    r->scale(scale_);
+    dual.bReference = r;
+  }
 }
 
 }  // namespace Friction

@@ -4,8 +4,14 @@
 // the problem given to forward. A chain applies its transforms forward in
 // the order they were added and back in the reverse order, so FETI contact,
 // FCLIB and any user of ContactDual prepare their problem by the same code:
-//   Scaling  A <- s A, b <- s b with s = 1/||A||, so that ||A|| = 1, as the
-//            defaults of rho and M assume; x unchanged.
+//   Homogenization  lambda = lambda~ + x with G lambda~ = e: G x = 0, bounds
+//                   and disk centres shifted, b <- b - A lambda~; x <- x + lambda~.
+//   Projection      A <- PAP, b <- Pb with P the orthogonal projector onto
+//                   ker G (after homogenization); x unchanged.
+//   Scaling         A <- s A, b <- s b with s = 1/||A||, so that ||A|| = 1, as
+//                   the defaults of rho and M assume; x unchanged.
+// Each maps bReference as it maps b, so relative tolerances keep referring
+// to the same part of the right-hand side.
 #pragma once
 
 #include <vector>
@@ -34,7 +40,41 @@ class DualTransformChain {
   std::vector<RCP<DualTransform>> transforms_;
 };
 
-// A <- s A, b <- s b, referenceNorm <- s referenceNorm, s = 1/||A|| from
+// lambda = lambda~ + x for the problem whose equality constraint reads
+// G lambda = e, with lambda~ a particular solution (G lambda~ = e; ContactDual
+// has no e: lambda~ carries it). The transformed problem
+//   min 1/2 x'Ax - x'(b - A lambda~)  s.t.  G x = 0,
+//   x_N,k >= l_k - lambda~_N,k,  ||x_T,k - (c_k - lambda~_T,k)|| <= g_k
+// has the normal force x_N,k + (normalOffset_k + lambda~_N,k). forward costs
+// one application of A (the caller's to count or not). A lambda~ that
+// vanishes on the contact rows leaves bounds and centres as they are.
+class HomogenizationTransform : public DualTransform {
+ public:
+  explicit HomogenizationTransform(RCP<const Vector> lambdaTilde);
+  void forward(ContactDual& dual) override;
+  void back(Vector& x) const override;  // x <- x + lambda~
+
+ private:
+  RCP<const Vector> lambdaTilde_;
+};
+
+// A <- PAP, b <- Pb, bReference <- P bReference with P the orthogonal
+// projector onto ker G (PERMON: enforcing the equality by a projector). For
+// x in ker G, x'Ax = x'PAPx and b'x = (Pb)'x, so a homogenized problem does
+// not change; PAP is what FETI's projected Hessian is, and its spectrum on
+// ker G is what the solvers' rates see. Each application of PAP costs one of
+// A. back is the identity.
+class ProjectionTransform : public DualTransform {
+ public:
+  explicit ProjectionTransform(RCP<const Operator> P) : P_(P) {}
+  void forward(ContactDual& dual) override;
+  void back(Vector&) const override {}
+
+ private:
+  RCP<const Operator> P_;
+};
+
+// A <- s A, b <- s b, bReference <- s bReference, s = 1/||A|| from
 // powerSteps power iterations on A (their applications of A are the
 // caller's to count or not). The minimizer does not change: back is the
 // identity. F of FETI is of the order 1/E: without the scaling SMALBE
