@@ -1,5 +1,6 @@
 // The cone projection and the natural-map error on problems with a known
 // exact solution (one contact in stick, one in slip, one separated).
+#include <Teuchos_UnitTestHarness.hpp>
 #include <cmath>
 #include <iomanip>
 #include <random>
@@ -25,7 +26,7 @@ bool inPolarCone(const Vec3& y, double mu, double tol) {
 
 // Moreau: x = P(x) + (x - P(x)) with P(x) in K, x - P(x) in the polar cone and
 // the two orthogonal; these characterize the Euclidean projection onto K.
-void checkProjection() {
+void checkProjection(Teuchos::FancyOStream& out, bool& success) {
   std::mt19937 gen(7);
   std::normal_distribution<double> g;
   int count = 0;
@@ -35,20 +36,20 @@ void checkProjection() {
       const Vec3 p = projectOntoCoulombCone(x, mu);
       const Vec3 d = minus(x, p);
       const double tol = 1e-14 * (1.0 + norm(x));
-      FCLIB_CHECK(inCone(p, mu, tol), "mu " << mu);
-      FCLIB_CHECK(inPolarCone(d, mu, tol), "mu " << mu);
-      FCLIB_CHECK(std::abs(dot(p, d)) <= tol * (1.0 + norm(x)), "mu " << mu);
+      out << "mu " << mu << ", x " << x[0] << " " << x[1] << " " << x[2] << "\n";
+      TEST_ASSERT(inCone(p, mu, tol));
+      TEST_ASSERT(inPolarCone(d, mu, tol));
+      TEST_COMPARE(std::abs(dot(p, d)), <=, tol * (1.0 + norm(x)));  // Moreau: p orthogonal to x - p
       const Vec3 pp = projectOntoCoulombCone(p, mu);
-      FCLIB_CHECK(norm(minus(pp, p)) <= 4e-16 * (1.0 + norm(p)),
-                  "not idempotent, mu " << mu << " diff " << norm(minus(pp, p)));
+      TEST_COMPARE(norm(minus(pp, p)), <=, 4e-16 * (1.0 + norm(p)));  // idempotent
       ++count;
     }
   }
   // Exact cases: interior point unchanged bitwise, polar point to 0.
   const Vec3 inside = {1.0, 0.1, -0.2};
-  FCLIB_CHECK(projectOntoCoulombCone(inside, 0.5) == inside, "interior point moved");
-  FCLIB_CHECK(projectOntoCoulombCone({-1.0, 0.1, 0.1}, 0.5) == (Vec3{0, 0, 0}), "polar point");
-  FCLIB_CHECK(projectOntoCoulombCone({2.0, 3.0, 4.0}, 0.0) == (Vec3{2.0, 0, 0}), "mu = 0");
+  TEST_ASSERT(projectOntoCoulombCone(inside, 0.5) == inside);  // an interior point stays
+  TEST_ASSERT(projectOntoCoulombCone({-1.0, 0.1, 0.1}, 0.5) == (Vec3{0, 0, 0}));  // a polar point goes to 0
+  TEST_ASSERT(projectOntoCoulombCone({2.0, 3.0, 4.0}, 0.0) == (Vec3{2.0, 0, 0}));  // mu = 0
   std::cout << "projection: " << count << " random points checked" << std::endl;
 }
 
@@ -94,7 +95,7 @@ SparseMatrix randomSPD(int n, std::mt19937& gen) {
   return SparseMatrix::fromTriplets(n, n, row, col, val, "randomSPD");
 }
 
-void checkLocalExactSolution() {
+void checkLocalExactSolution(Teuchos::FancyOStream& out, bool& success) {
   std::mt19937 gen(11);
   const ExactContacts e = buildExactContacts();
   LocalProblem P;
@@ -110,22 +111,21 @@ void checkLocalExactSolution() {
   const NaturalMapError exact = naturalMapError(P, e.r);
   std::cout << std::scientific << std::setprecision(3) << "local exact: err/||q|| = "
             << exact.relativeToQ << ", err/max = " << exact.relativeToMax << std::endl;
-  FCLIB_CHECK(exact.relativeToQ <= 1e-14, exact.relativeToQ);
-  FCLIB_CHECK(exact.relativeToMax <= 1e-14, exact.relativeToMax);
+  TEST_COMPARE(exact.relativeToQ, <=, 1e-14);
+  TEST_COMPARE(exact.relativeToMax, <=, 1e-14);
 
   // Each perturbation breaks the conditions at one contact.
   for (std::size_t k = 0; k < e.r.size(); ++k) {
     std::vector<double> r = e.r;
     r[k] += 1e-3;
     const NaturalMapError perturbed = naturalMapError(P, r);
-    FCLIB_CHECK(perturbed.relativeToQ > 1e-6,
-                "perturbing r[" << k << "] gives err " << perturbed.relativeToQ);
+    TEST_COMPARE(perturbed.relativeToQ, >, 1e-6);  // perturbing r[
   }
   std::vector<double> zero(e.r.size(), 0.0);
-  FCLIB_CHECK(naturalMapError(P, zero).relativeToQ > 1e-3, "r = 0 is not a solution");
+  TEST_COMPARE(naturalMapError(P, zero).relativeToQ, >, 1e-3);  // r = 0 is not a solution
 }
 
-void checkGlobalExactSolution() {
+void checkGlobalExactSolution(Teuchos::FancyOStream& out, bool& success) {
   std::mt19937 gen(13);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   const ExactContacts e = buildExactContacts();
@@ -162,22 +162,19 @@ void checkGlobalExactSolution() {
   const NaturalMapError exact = naturalMapError(P, e.r, solve);
   std::cout << "global exact: err/||q|| = " << exact.relativeToQ
             << ", err/max = " << exact.relativeToMax << std::endl;
-  FCLIB_CHECK(exact.relativeToQ <= 1e-13, exact.relativeToQ);
+  TEST_COMPARE(exact.relativeToQ, <=, 1e-13);
   const GlobalReduction red = reduceGlobal(P, e.r, solve);
   double dv = 0.0;
   for (int i = 0; i < ndof; ++i) dv = std::max(dv, std::abs(red.v[i] - v[i]));
-  FCLIB_CHECK(dv <= 1e-12, "recovered v differs by " << dv);
+  TEST_COMPARE(dv, <=, 1e-12);  // recovered v differs
 
   std::vector<double> r = e.r;
   r[4] *= 1.01;  // slip force pushed outside the cone
-  FCLIB_CHECK(naturalMapError(P, r, solve).relativeToQ > 1e-6, "perturbed global");
+  TEST_COMPARE(naturalMapError(P, r, solve).relativeToQ, >, 1e-6);  // perturbed global
 }
 
 }  // namespace
 
-int main() {
-  checkProjection();
-  checkLocalExactSolution();
-  checkGlobalExactSolution();
-  return fclib_test::finish("fclib_test_accuracy");
-}
+TEUCHOS_UNIT_TEST(Accuracy, Projection) { checkProjection(out, success); }
+TEUCHOS_UNIT_TEST(Accuracy, LocalExactSolution) { checkLocalExactSolution(out, success); }
+TEUCHOS_UNIT_TEST(Accuracy, GlobalExactSolution) { checkGlobalExactSolution(out, success); }

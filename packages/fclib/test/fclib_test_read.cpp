@@ -1,6 +1,7 @@
 // Reads every shipped FCLIB sample and checks dimensions and structural facts.
 // No MPI_Init: the serial HDF5 calls of the MPI-flavoured library work without
 // it (the default file-access property list uses the sec2 driver).
+#include <Teuchos_UnitTestHarness.hpp>
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -21,41 +22,47 @@ bool frictionCoefficientsValid(const std::vector<double>& mu) {
   return std::all_of(mu.begin(), mu.end(), [](double x) { return x >= 0.0 && std::isfinite(x); });
 }
 
-void checkLocal(const Sample& s) {
+void checkLocal(const Sample& s, Teuchos::FancyOStream& out, bool& success) {
   const std::string path = fclib_test::samplePath(s);
   const LocalProblem P = readLocal(path);
-  FCLIB_CHECK(P.spacedim == 3, s.name << " spacedim " << P.spacedim);
-  FCLIB_CHECK(P.numberOfContacts() == s.contacts, s.name << " contacts " << P.numberOfContacts());
-  FCLIB_CHECK(P.W.m == 3 * s.contacts && P.W.n == 3 * s.contacts, s.name);
-  FCLIB_CHECK(P.q.size() == 3u * s.contacts, s.name);
-  FCLIB_CHECK(frictionCoefficientsValid(P.mu), s.name);
-  FCLIB_CHECK(allFinite(P.W.val) && allFinite(P.q), s.name);
+  TEST_EQUALITY(P.spacedim, 3);  // spacedim
+  TEST_EQUALITY(P.numberOfContacts(), s.contacts);  // contacts
+  TEST_EQUALITY(P.W.m, 3 * s.contacts);
+  TEST_EQUALITY(P.W.n, 3 * s.contacts);
+  TEST_EQUALITY(P.q.size(), 3u * s.contacts);
+  TEST_ASSERT(frictionCoefficientsValid(P.mu));
+  TEST_ASSERT(allFinite(P.W.val));
+  TEST_ASSERT(allFinite(P.q));
   // W = H' M^{-1} H is symmetric positive semi-definite up to rounding.
   const double asym = P.W.asymmetry(), scale = P.W.maxAbs();
   std::cout << std::setprecision(3) << s.name << ": local, " << P.numberOfContacts()
             << " contacts, W " << P.W.m << " x " << P.W.n << " nnz " << P.W.nnz()
             << ", max|W - W'| = " << asym << " (relative " << asym / scale << ")" << std::endl;
-  FCLIB_CHECK(asym <= 1e-8 * scale, s.name << " W asymmetry " << asym);
+  TEST_COMPARE(asym, <=, 1e-8 * scale);  // W asymmetry
   // Diagonal of a PSD matrix is non-negative.
   for (int r = 0; r < P.W.m; ++r)
     for (int k = P.W.rowptr[r]; k < P.W.rowptr[r + 1]; ++k)
-      if (P.W.col[k] == r) FCLIB_CHECK(P.W.val[k] >= 0.0, s.name << " W(" << r << "," << r << ")");
-  FCLIB_CHECK(!P.V && !P.R && !P.s, s.name);
+      if (P.W.col[k] == r) TEST_COMPARE(P.W.val[k], >=, 0.0);  // W
+  TEST_ASSERT(!P.V);
+  TEST_ASSERT(!P.R);
+  TEST_ASSERT(!P.s);
 }
 
-void checkGlobal(const Sample& s) {
+void checkGlobal(const Sample& s, Teuchos::FancyOStream& out, bool& success) {
   const std::string path = fclib_test::samplePath(s);
   const GlobalProblem P = readGlobal(path);
-  FCLIB_CHECK(P.spacedim == 3, s.name << " spacedim " << P.spacedim);
-  FCLIB_CHECK(P.numberOfContacts() == s.contacts, s.name << " contacts " << P.numberOfContacts());
+  TEST_EQUALITY(P.spacedim, 3);  // spacedim
+  TEST_EQUALITY(P.numberOfContacts(), s.contacts);  // contacts
   // Orientation: H is ndof x 3nc (M v = H r + f, u = H' v + w).
-  FCLIB_CHECK(P.H.m == P.M.n && P.H.n == 3 * s.contacts,
-              s.name << " H " << P.H.m << " x " << P.H.n << ", M " << P.M.m);
-  FCLIB_CHECK(P.f.size() == static_cast<std::size_t>(P.M.m), s.name);
-  FCLIB_CHECK(P.w.size() == 3u * s.contacts, s.name);
-  FCLIB_CHECK(frictionCoefficientsValid(P.mu), s.name);
-  FCLIB_CHECK(allFinite(P.M.val) && allFinite(P.H.val) && allFinite(P.f) && allFinite(P.w),
-              s.name);
+  TEST_EQUALITY(P.H.m, P.M.n);
+  TEST_EQUALITY(P.H.n, 3 * s.contacts);  // H
+  TEST_ASSERT(P.f.size() == static_cast<std::size_t>(P.M.m));
+  TEST_EQUALITY(P.w.size(), 3u * s.contacts);
+  TEST_ASSERT(frictionCoefficientsValid(P.mu));
+  TEST_ASSERT(allFinite(P.M.val));
+  TEST_ASSERT(allFinite(P.H.val));
+  TEST_ASSERT(allFinite(P.f));
+  TEST_ASSERT(allFinite(P.w));
   const double asym = P.M.asymmetry(), scale = P.M.maxAbs();
   std::cout << std::setprecision(3) << s.name << ": global, " << P.numberOfContacts()
             << " contacts, M " << P.M.m << " x " << P.M.n << " nnz " << P.M.nnz() << ", H "
@@ -63,59 +70,55 @@ void checkGlobal(const Sample& s) {
             << " (relative " << asym / scale << ")" << std::endl;
   // The LMGC exports of M are symmetric only to about 1.5e-7 relative (their
   // values look rounded to single precision); Box_Stacks' diagonal M is exact.
-  FCLIB_CHECK(asym <= 1e-6 * scale, s.name << " M asymmetry " << asym);
+  TEST_COMPARE(asym, <=, 1e-6 * scale);  // M asymmetry
   // Every contact is seen by some degree of freedom: no empty column of H.
   std::vector<int> columnCount(P.H.n, 0);
   for (int c : P.H.col) ++columnCount[c];
-  for (int c = 0; c < P.H.n; ++c) FCLIB_CHECK(columnCount[c] > 0, s.name << " H column " << c);
+  for (int c = 0; c < P.H.n; ++c) TEST_COMPARE(columnCount[c], >, 0);  // H column
 }
 
-void checkSolutionAndGuesses(const Sample& s) {
+void checkSolutionAndGuesses(const Sample& s, Teuchos::FancyOStream& out, bool& success) {
   const std::string path = fclib_test::samplePath(s);
   const auto solution = readSolution(path);
   const auto guesses = readGuesses(path);
   std::cout << "  solution: " << (solution ? "yes" : "no") << ", guesses: " << guesses.size()
             << std::endl;
-  if (solution) FCLIB_CHECK(solution->r.size() == 3u * s.contacts, s.name);
-  for (const Solution& g : guesses) FCLIB_CHECK(g.r.size() == 3u * s.contacts, s.name);
+  if (solution) TEST_EQUALITY(solution->r.size(), 3u * s.contacts);
+  for (const Solution& g : guesses) TEST_EQUALITY(g.r.size(), 3u * s.contacts);
 }
 
-void checkErrorMessages() {
+void checkErrorMessages(Teuchos::FancyOStream& out, bool& success) {
   const std::string missing = fclib_test::sampleDir() + "/no_such_file.hdf5";
   try {
     readLocal(missing);
-    FCLIB_CHECK(false, "reading a missing file did not throw");
+    TEST_ASSERT(false);  // reading a missing file did not throw
   } catch (const std::runtime_error& e) {
-    FCLIB_CHECK(std::string(e.what()).find(missing) != std::string::npos, e.what());
+    TEST_INEQUALITY(std::string(e.what()).find(missing), std::string::npos);
   }
   // A global file read as local names the missing group.
   const std::string global = fclib_test::samplePath(fclib_test::samples()[2]);
   try {
     readLocal(global);
-    FCLIB_CHECK(false, "reading a global file as local did not throw");
+    TEST_ASSERT(false);  // reading a global file as local did not throw
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
     std::cout << "expected error: " << what << std::endl;
-    FCLIB_CHECK(what.find("fclib_local") != std::string::npos && what.find(global) != std::string::npos,
-                what);
+    TEST_INEQUALITY(what.find("fclib_local"), std::string::npos);
+    TEST_INEQUALITY(what.find(global), std::string::npos);
   }
+}
+
+void checkSample(const Sample& s, Teuchos::FancyOStream& out, bool& success) {
+  const ProblemKind kind = problemKind(fclib_test::samplePath(s));
+  TEST_ASSERT(kind == s.kind);  // the sample's kind
+  if (kind == ProblemKind::Local) checkLocal(s, out, success); else checkGlobal(s, out, success);
+  checkSolutionAndGuesses(s, out, success);
+  const Info info = readInfo(fclib_test::samplePath(s));
+  out << "  title \"" << info.title << "\"\n";
 }
 
 }  // namespace
 
-int main() {
-  for (const Sample& s : fclib_test::samples()) {
-    try {
-      const ProblemKind kind = problemKind(fclib_test::samplePath(s));
-      FCLIB_CHECK(kind == s.kind, s.name << " kind");
-      if (kind == ProblemKind::Local) checkLocal(s); else checkGlobal(s);
-      checkSolutionAndGuesses(s);
-      const Info info = readInfo(fclib_test::samplePath(s));
-      std::cout << "  title \"" << info.title << "\"" << std::endl;
-    } catch (const std::exception& e) {
-      FCLIB_CHECK(false, s.name << ": " << e.what());
-    }
-  }
-  checkErrorMessages();
-  return fclib_test::finish("fclib_test_read");
-}
+FCLIB_SAMPLE_CASES(Read, checkSample)
+
+TEUCHOS_UNIT_TEST(Read, ErrorMessages) { checkErrorMessages(out, success); }

@@ -1,6 +1,7 @@
 // Write-then-read of every shipped sample must reproduce the data bit for bit,
 // with matrices stored as compressed rows and as triplets. Also checks that a
 // failed write leaves an existing file untouched.
+#include <Teuchos_UnitTestHarness.hpp>
 #include <cstdio>
 #include <fstream>
 #include <sys/stat.h>
@@ -48,90 +49,77 @@ bool same(const GlobalProblem& a, const GlobalProblem& b) {
 const char* storageName(Storage s) { return s == Storage::CompressedRows ? "csr" : "triplets"; }
 
 template <typename Problem, typename Reader, typename Writer>
-void roundTrip(const Sample& s, Storage storage, Reader read, Writer write) {
+void roundTrip(const Sample& s, Storage storage, Reader read, Writer write, Teuchos::FancyOStream& out, bool& success) {
   const std::string in = fclib_test::samplePath(s);
-  const std::string out = fclib_test::scratchPath("roundtrip", storageName(storage) + s.name);
+  const std::string path = fclib_test::scratchPath("roundtrip", storageName(storage) + s.name);
   const Problem P = read(in);
   const Info info = readInfo(in);
   const std::optional<Solution> solution = readSolution(in);
   const std::vector<Solution> guesses = readGuesses(in);
 
-  write(out, P, info, solution ? &*solution : nullptr, guesses, storage);
+  write(path, P, info, solution ? &*solution : nullptr, guesses, storage);
 
-  FCLIB_CHECK(problemKind(out) == s.kind, s.name);
-  FCLIB_CHECK(same(P, read(out)), s.name << " problem differs after " << storageName(storage));
-  FCLIB_CHECK(sameInfo(info, readInfo(out)), s.name << " info");
-  const std::optional<Solution> solution2 = readSolution(out);
-  FCLIB_CHECK(solution.has_value() == solution2.has_value() &&
-                  (!solution || sameSolution(*solution, *solution2)),
-              s.name << " solution");
-  const std::vector<Solution> guesses2 = readGuesses(out);
-  FCLIB_CHECK(guesses.size() == guesses2.size(), s.name << " number of guesses");
+  TEST_ASSERT(problemKind(path) == s.kind);
+  TEST_ASSERT(same(P, read(path)));  // problem differs after
+  TEST_ASSERT(sameInfo(info, readInfo(path)));  // info
+  const std::optional<Solution> solution2 = readSolution(path);
+  TEST_ASSERT(solution.has_value() == solution2.has_value() && (!solution || sameSolution(*solution, *solution2)));  // solution
+  const std::vector<Solution> guesses2 = readGuesses(path);
+  TEST_EQUALITY(guesses.size(), guesses2.size());  // number of guesses
   for (std::size_t k = 0; k < std::min(guesses.size(), guesses2.size()); ++k)
-    FCLIB_CHECK(sameSolution(guesses[k], guesses2[k]), s.name << " guess " << k + 1);
-  std::ifstream tmp(temporaryPath(out));
-  FCLIB_CHECK(!tmp.good(), "temporary file left behind: " << temporaryPath(out));
-  std::remove(out.c_str());
+    TEST_ASSERT(sameSolution(guesses[k], guesses2[k]));  // guess
+  std::ifstream tmp(temporaryPath(path));
+  TEST_ASSERT(!tmp.good());  // temporary file left behind
+  std::remove(path.c_str());
   std::cout << s.name << ": round trip (" << storageName(storage) << ") done" << std::endl;
 }
 
-void roundTripSample(const Sample& s) {
+void roundTripSample(const Sample& s, Teuchos::FancyOStream& out, bool& success) {
   for (Storage storage : {Storage::CompressedRows, Storage::Triplets}) {
     if (s.kind == ProblemKind::Local)
-      roundTrip<LocalProblem>(s, storage, readLocal, writeLocal);
+      roundTrip<LocalProblem>(s, storage, readLocal, writeLocal, out, success);
     else
-      roundTrip<GlobalProblem>(s, storage, readGlobal, writeGlobal);
+      roundTrip<GlobalProblem>(s, storage, readGlobal, writeGlobal, out, success);
   }
 }
 
 // A write that fails (dimension error, or the temporary file cannot be
 // created) must leave the file already at the target path intact.
-void failedWriteKeepsOldFile() {
+void failedWriteKeepsOldFile(Teuchos::FancyOStream& out, bool& success) {
   const Sample s = fclib_test::samples()[0];
   const LocalProblem P = readLocal(fclib_test::samplePath(s));
-  const std::string out = fclib_test::scratchPath("roundtrip", "failed_write.hdf5");
-  writeLocal(out, P, Info{"good", "", ""});
+  const std::string path = fclib_test::scratchPath("roundtrip", "failed_write.hdf5");
+  writeLocal(path, P, Info{"good", "", ""});
 
   LocalProblem bad = P;
   bad.q.pop_back();
   try {
-    writeLocal(out, bad, Info{"bad", "", ""});
-    FCLIB_CHECK(false, "writing a q of the wrong size did not throw");
+    writeLocal(path, bad, Info{"bad", "", ""});
+    TEST_ASSERT(false);  // writing a q of the wrong size did not throw
   } catch (const std::runtime_error& e) {
     std::cout << "expected error: " << e.what() << std::endl;
-    FCLIB_CHECK(std::string(e.what()).find("q") != std::string::npos, e.what());
+    TEST_INEQUALITY(std::string(e.what()).find("q"), std::string::npos);
   }
-  FCLIB_CHECK(readInfo(out).title == "good", "old file damaged by a rejected write");
+  TEST_EQUALITY(readInfo(path).title, "good");  // old file damaged by a rejected write
 
   // Block the temporary file with a directory so that HDF5 cannot create it.
-  const std::string tmp = temporaryPath(out);
+  const std::string tmp = temporaryPath(path);
   ::mkdir(tmp.c_str(), 0700);
   try {
-    writeLocal(out, P, Info{"replaced", "", ""});
-    FCLIB_CHECK(false, "writing over a blocked temporary did not throw");
+    writeLocal(path, P, Info{"replaced", "", ""});
+    TEST_ASSERT(false);  // writing over a blocked temporary did not throw
   } catch (const std::runtime_error& e) {
     std::cout << "expected error: " << e.what() << std::endl;
   }
   ::rmdir(tmp.c_str());
-  FCLIB_CHECK(readInfo(out).title == "good", "old file damaged by a failed write");
-  FCLIB_CHECK(same(P, readLocal(out)), "old file content changed");
-  std::remove(out.c_str());
+  TEST_EQUALITY(readInfo(path).title, "good");  // old file damaged by a failed write
+  TEST_ASSERT(same(P, readLocal(path)));  // old file content changed
+  std::remove(path.c_str());
 }
 
 }  // namespace
 
-int main() {
-  for (const Sample& s : fclib_test::samples()) {
-    try {
-      roundTripSample(s);
-    } catch (const std::exception& e) {
-      FCLIB_CHECK(false, s.name << ": " << e.what());
-    }
-  }
-  try {
-    failedWriteKeepsOldFile();
-  } catch (const std::exception& e) {
-    FCLIB_CHECK(false, e.what());
-  }
-  return fclib_test::finish("fclib_test_roundtrip");
-}
+
+FCLIB_SAMPLE_CASES(RoundTrip, roundTripSample)
+
+TEUCHOS_UNIT_TEST(RoundTrip, FailedWriteKeepsOldFile) { failedWriteKeepsOldFile(out, success); }

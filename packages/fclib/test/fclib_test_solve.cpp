@@ -3,6 +3,7 @@
 // factorization of M), judged by the natural-map error err = ||phi||/||q||:
 // each method must stop on its own convergence test with err <= 1e-8, also
 // where W is singular (local_problem_test and PerioBox: rank 72 of 144 / 180).
+#include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
 #include <cstdio>
@@ -20,55 +21,52 @@ struct Case {
   int rank;  // numerical rank of W (3 nc when nonsingular)
 };
 
+// One row of the table per case, under a header printed once.
+void solveCase(const Case& c, Teuchos::FancyOStream& out, bool& success) {
+  static const bool header = [] {
+    std::printf("%-44s %-15s %4s %6s %7s %8s %10s %10s %9s %s\n", "file", "method", "nc", "outer", "n_A", "time", "err",
+                "err/max", "rank(W)", "reason");
+    return true;
+  }();
+  (void)header;
+  auto comm = Tpetra::getDefaultComm();
+  const std::string path = fclib_test::sampleDir() + "/" + c.file;
+  FCLIB::SolveOptions opt;
+  opt.algorithm = c.algorithm;
+  opt.verbose = std::getenv("FCLIB_VERBOSE") != nullptr;
+  FCLIB::SolveReport rep;
+  int nc = 0;
+  if (FCLIB::problemKind(path) == FCLIB::ProblemKind::Local) {
+    const auto p = FCLIB::readLocal(path);
+    nc = p.numberOfContacts();
+    rep = FCLIB::solve(p, opt, comm);
+  } else {
+    const auto p = FCLIB::readGlobal(path);
+    nc = p.numberOfContacts();
+    rep = FCLIB::solve(p, opt, comm);
+  }
+  const int outer = c.algorithm == "Algorithm2" ? rep.status.outer_iterations : rep.status.msa_iterations;
+  std::printf("%-44s %-15s %4d %6d %7lld %8.3f %10.2e %10.2e %4d/%-4d %s\n", c.file.c_str(), c.algorithm.c_str(), nc,
+              outer, rep.n_A, rep.timeSolve, rep.err.relativeToQ, rep.err.relativeToMax, rep.numericalRank, 3 * nc,
+              rep.status.reason.c_str());
+  TEST_ASSERT(rep.spectrumKnown);
+  TEST_EQUALITY(rep.numericalRank, c.rank);  // numerical rank of W
+  TEST_EQUALITY((rep.numericalRank < 3 * nc), !rep.note.empty());  // singular W is reported in the note
+  TEST_ASSERT(rep.status.converged);
+  // ... and the result check passes: what tribos_fclib reports as converged.
+  TEST_ASSERT(rep.converged);
+  TEST_COMPARE(rep.err.relativeToQ, <=, 1e-8);
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
-  auto comm = Tpetra::getDefaultComm();
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  const std::vector<Case> cases = {
-      {"local_problem_test.hdf5", "Algorithm2", 72},
-      {"local_problem_test.hdf5", "MSA+Algorithm1", 72},
-      {"LMGC_100_PR_PerioBox-i00361-60-03000.hdf5", "Algorithm2", 72},
-      {"LMGC_100_PR_PerioBox-i00361-60-03000.hdf5", "MSA+Algorithm1", 72},
-      {"LMGC_GFC3D_CubeH8.hdf5", "Algorithm2", 3},
-      {"LMGC_GFC3D_CubeH8.hdf5", "MSA+Algorithm1", 3},
-      {"LMGC_GlobalFrictionContactProblem00046.hdf5", "Algorithm2", 27},
-      {"LMGC_GlobalFrictionContactProblem00046.hdf5", "MSA+Algorithm1", 27},
-      {"Box_Stacks-i0122-82-5.hdf5", "Algorithm2", 175},
-      {"Box_Stacks-i0122-82-5.hdf5", "MSA+Algorithm1", 175},
-  };
-  const char* only = argc > 1 ? argv[1] : nullptr;
-  std::printf("%-44s %-15s %4s %6s %7s %8s %10s %10s %9s %s\n", "file", "method", "nc", "outer", "n_A", "time", "err",
-              "err/max", "rank(W)", "reason");
-  for (const auto& c : cases) {
-    if (only && c.file.find(only) == std::string::npos) continue;
-    const std::string path = fclib_test::sampleDir() + "/" + c.file;
-    FCLIB::SolveOptions opt;
-    opt.algorithm = c.algorithm;
-    opt.verbose = std::getenv("FCLIB_VERBOSE") != nullptr;
-    FCLIB::SolveReport rep;
-    int nc = 0;
-    if (FCLIB::problemKind(path) == FCLIB::ProblemKind::Local) {
-      const auto p = FCLIB::readLocal(path);
-      nc = p.numberOfContacts();
-      rep = FCLIB::solve(p, opt, comm);
-    } else {
-      const auto p = FCLIB::readGlobal(path);
-      nc = p.numberOfContacts();
-      rep = FCLIB::solve(p, opt, comm);
-    }
-    const int outer = c.algorithm == "Algorithm2" ? rep.status.outer_iterations : rep.status.msa_iterations;
-    std::printf("%-44s %-15s %4d %6d %7lld %8.3f %10.2e %10.2e %4d/%-4d %s\n", c.file.c_str(), c.algorithm.c_str(), nc,
-                outer, rep.n_A, rep.timeSolve, rep.err.relativeToQ, rep.err.relativeToMax, rep.numericalRank, 3 * nc,
-                rep.status.reason.c_str());
-    FCLIB_CHECK(rep.spectrumKnown && rep.numericalRank == c.rank,
-                c.file << ": numerical rank of W " << rep.numericalRank << ", expected " << c.rank);
-    FCLIB_CHECK((rep.numericalRank < 3 * nc) == !rep.note.empty(), c.file << ": singular W is reported in the note");
-    FCLIB_CHECK(rep.status.converged, c.file << " " << c.algorithm << ": not converged (" << rep.status.reason << ")");
-    // ... and the result check passes: what tribos_fclib reports as converged.
-    FCLIB_CHECK(rep.converged, c.file << " " << c.algorithm << ": result check failed (" << rep.stopReason << ")");
-    FCLIB_CHECK(rep.err.relativeToQ <= 1e-8, c.file << " " << c.algorithm << ": err " << rep.err.relativeToQ);
-  }
-  return fclib_test::finish("fclib_test_solve");
-}
+TEUCHOS_UNIT_TEST(Solve, LocalProblemTestAlgorithm2) { solveCase({"local_problem_test.hdf5", "Algorithm2", 72}, out, success); }
+TEUCHOS_UNIT_TEST(Solve, LocalProblemTestMSAAlgorithm1) { solveCase({"local_problem_test.hdf5", "MSA+Algorithm1", 72}, out, success); }
+TEUCHOS_UNIT_TEST(Solve, PerioBoxAlgorithm2) { solveCase({"LMGC_100_PR_PerioBox-i00361-60-03000.hdf5", "Algorithm2", 72}, out, success); }
+TEUCHOS_UNIT_TEST(Solve, PerioBoxMSAAlgorithm1) { solveCase({"LMGC_100_PR_PerioBox-i00361-60-03000.hdf5", "MSA+Algorithm1", 72}, out, success); }
+TEUCHOS_UNIT_TEST(Solve, CubeH8Algorithm2) { solveCase({"LMGC_GFC3D_CubeH8.hdf5", "Algorithm2", 3}, out, success); }
+TEUCHOS_UNIT_TEST(Solve, CubeH8MSAAlgorithm1) { solveCase({"LMGC_GFC3D_CubeH8.hdf5", "MSA+Algorithm1", 3}, out, success); }
+TEUCHOS_UNIT_TEST(Solve, GlobalFrictionContact00046Algorithm2) { solveCase({"LMGC_GlobalFrictionContactProblem00046.hdf5", "Algorithm2", 27}, out, success); }
+TEUCHOS_UNIT_TEST(Solve, GlobalFrictionContact00046MSAAlgorithm1) { solveCase({"LMGC_GlobalFrictionContactProblem00046.hdf5", "MSA+Algorithm1", 27}, out, success); }
+TEUCHOS_UNIT_TEST(Solve, BoxStacksAlgorithm2) { solveCase({"Box_Stacks-i0122-82-5.hdf5", "Algorithm2", 175}, out, success); }
+TEUCHOS_UNIT_TEST(Solve, BoxStacksMSAAlgorithm1) { solveCase({"Box_Stacks-i0122-82-5.hdf5", "MSA+Algorithm1", 175}, out, success); }

@@ -1,5 +1,6 @@
 // SparseMatrix conversions and products, the compressed-column path of the
 // reader (no sample uses it), and the error message for a missing dataset.
+#include <Teuchos_UnitTestHarness.hpp>
 #include <hdf5.h>
 
 #include <cstdio>
@@ -23,7 +24,7 @@ SparseMatrix fromCSCExample() {
                                {1, 4, 6, 5, 3, 2}, "csc");
 }
 
-void checkConversions() {
+void checkConversions(Teuchos::FancyOStream& out, bool& success) {
   const SparseMatrix csr =
       SparseMatrix::fromCSR(kRows, kCols, {0, 2, 3, 5, 6}, {2, 0, 2, 1, 0, 1},
                             {2, 1, 3, 5, 4, 6}, "csr");  // unsorted rows on purpose
@@ -31,9 +32,9 @@ void checkConversions() {
   // Triplets in scrambled order, with (2,0) split into 1 + 3.
   const SparseMatrix tri = SparseMatrix::fromTriplets(
       kRows, kCols, {3, 2, 0, 1, 2, 0, 2}, {1, 0, 2, 2, 1, 0, 0}, {6, 1, 2, 3, 5, 1, 3}, "tri");
-  FCLIB_CHECK(bitwiseEqual(csr, csc), "CSR and CSC differ");
-  FCLIB_CHECK(bitwiseEqual(csr, tri), "CSR and triplets differ");
-  FCLIB_CHECK(csr.nnz() == 6, csr.nnz());
+  TEST_ASSERT(bitwiseEqual(csr, csc));  // CSR and CSC differ
+  TEST_ASSERT(bitwiseEqual(csr, tri));  // CSR and triplets differ
+  TEST_EQUALITY(csr.nnz(), 6);
 
   const std::vector<double> x = {1, -2, 3}, y = {1, 2, -1, 0.5};
   std::vector<double> Ax, Aty;
@@ -42,32 +43,32 @@ void checkConversions() {
   for (int i = 0; i < kRows; ++i) {
     double s = 0;
     for (int j = 0; j < kCols; ++j) s += kDense[i][j] * x[j];
-    FCLIB_CHECK(Ax[i] == s, "A x row " << i);
+    TEST_EQUALITY(Ax[i], s);  // A x row
   }
   for (int j = 0; j < kCols; ++j) {
     double s = 0;
     for (int i = 0; i < kRows; ++i) s += kDense[i][j] * y[i];
-    FCLIB_CHECK(Aty[j] == s, "A' y column " << j);
+    TEST_EQUALITY(Aty[j], s);  // A' y column
   }
 }
 
 template <typename F>
-void expectThrow(F f, const std::string& what) {
+void expectThrow(F f, const std::string& what, Teuchos::FancyOStream& out, bool& success) {
   try {
     f();
-    FCLIB_CHECK(false, "no exception: " << what);
+    TEST_ASSERT(false);  // no exception
   } catch (const std::runtime_error& e) {
     std::cout << "expected error: " << e.what() << std::endl;
   }
 }
 
-void checkValidation() {
+void checkValidation(Teuchos::FancyOStream& out, bool& success) {
   expectThrow([] { SparseMatrix::fromTriplets(2, 2, {0, 2}, {0, 0}, {1, 1}, "row out of range"); },
-              "row out of range");
+              "row out of range", out, success);
   expectThrow([] { SparseMatrix::fromCSR(2, 2, {0, 2, 1}, {0, 1}, {1, 1}, "bad pointers"); },
-              "decreasing pointers");
+              "decreasing pointers", out, success);
   expectThrow([] { SparseMatrix::fromCSC(2, 2, {0, 1, 3}, {0, 1}, {1, 1}, "short"); },
-              "pointers past the data");
+              "pointers past the data", out, success);
 }
 
 void writeInt(hid_t g, const char* name, int v) {
@@ -122,31 +123,27 @@ void writeHandMadeGlobal(const std::string& path, bool withW) {
   H5Fclose(file);
 }
 
-void checkCompressedColumnFile() {
+void checkCompressedColumnFile(Teuchos::FancyOStream& out, bool& success) {
   const std::string path = fclib_test::scratchPath("sparse", "csc.hdf5");
   writeHandMadeGlobal(path, true);
   const GlobalProblem P = readGlobal(path);
-  FCLIB_CHECK(bitwiseEqual(P.H, fromCSCExample()), "H read from a CSC file");
-  FCLIB_CHECK(readInfo(path).title.empty(), "missing info is empty");
+  TEST_ASSERT(bitwiseEqual(P.H, fromCSCExample()));  // H read from a CSC file
+  TEST_ASSERT(readInfo(path).title.empty());  // missing info is empty
 
   writeHandMadeGlobal(path, false);
   try {
     readGlobal(path);
-    FCLIB_CHECK(false, "missing w not detected");
+    TEST_ASSERT(false);  // missing w not detected
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
     std::cout << "expected error: " << what << std::endl;
-    FCLIB_CHECK(what == "FCLIB file " + path + ": group /fclib_global/vectors has no dataset w",
-                what);
+    TEST_EQUALITY(what, "FCLIB file " + path + ": group /fclib_global/vectors has no dataset w");
   }
   std::remove(path.c_str());
 }
 
 }  // namespace
 
-int main() {
-  checkConversions();
-  checkValidation();
-  checkCompressedColumnFile();
-  return fclib_test::finish("fclib_test_sparse");
-}
+TEUCHOS_UNIT_TEST(SparseMatrix, Conversions) { checkConversions(out, success); }
+TEUCHOS_UNIT_TEST(SparseMatrix, Validation) { checkValidation(out, success); }
+TEUCHOS_UNIT_TEST(SparseMatrix, CompressedColumnFile) { checkCompressedColumnFile(out, success); }

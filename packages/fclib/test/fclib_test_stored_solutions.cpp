@@ -1,6 +1,7 @@
 // The natural-map error of the solutions (and guesses) stored in the shipped
 // samples. They are known to be loose, so only finiteness is asserted; the
 // values are printed for reference.
+#include <Teuchos_UnitTestHarness.hpp>
 #include <cmath>
 #include <iomanip>
 
@@ -19,16 +20,17 @@ double maxAbsDifference(const std::vector<double>& a, const std::vector<double>&
   return d;
 }
 
-void report(const std::string& label, const NaturalMapError& e) {
+void report(const std::string& label, const NaturalMapError& e, Teuchos::FancyOStream& out, bool& success) {
   std::cout << std::scientific << std::setprecision(3) << "  " << label
             << ": err/||q|| = " << e.relativeToQ << ", err/max(||q||,||r||,||u||) = "
             << e.relativeToMax << " (||phi|| = " << e.absolute << ", ||q|| = " << e.normQ
             << ", ||r|| = " << e.normR << ", ||u|| = " << e.normU << ")" << std::endl;
   if (e.normR == 0.0) std::cout << "    (the stored r is identically zero)" << std::endl;
-  FCLIB_CHECK(std::isfinite(e.relativeToQ) && std::isfinite(e.relativeToMax), label);
+  TEST_ASSERT(std::isfinite(e.relativeToQ));
+  TEST_ASSERT(std::isfinite(e.relativeToMax));
 }
 
-void checkLocal(const Sample& s) {
+void checkLocal(const Sample& s, Teuchos::FancyOStream& out, bool& success) {
   const std::string path = fclib_test::samplePath(s);
   const LocalProblem P = readLocal(path);
   std::cout << s.name << " (local)" << std::endl;
@@ -47,7 +49,7 @@ void checkLocal(const Sample& s) {
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const Solution& c = candidates[k];
     if (c.r.empty()) continue;
-    report(labels[k], naturalMapError(P, c.r));
+    report(labels[k], naturalMapError(P, c.r), out, success);
     if (!c.u.empty()) {
       // How far the stored u is from W r + q (the measure uses the latter).
       std::vector<double> u;
@@ -60,7 +62,7 @@ void checkLocal(const Sample& s) {
   }
 }
 
-void checkGlobal(const Sample& s) {
+void checkGlobal(const Sample& s, Teuchos::FancyOStream& out, bool& success) {
   const std::string path = fclib_test::samplePath(s);
   const GlobalProblem P = readGlobal(path);
   std::cout << s.name << " (global)" << std::endl;
@@ -76,7 +78,7 @@ void checkGlobal(const Sample& s) {
   };
   auto evaluate = [&](const std::string& label, const Solution& c) {
     if (c.r.empty()) return;
-    report(label, naturalMapError(P, c.r, solve));
+    report(label, naturalMapError(P, c.r, solve), out, success);
     const GlobalReduction red = reduceGlobal(P, c.r, solve);
     if (!c.v.empty())
       std::cout << "    max |v_stored - M^-1(H r + f)| = " << maxAbsDifference(red.v, c.v)
@@ -103,15 +105,11 @@ void checkGlobal(const Sample& s) {
     evaluate("guess " + std::to_string(k + 1), guesses[k]);
 }
 
+void checkSample(const Sample& s, Teuchos::FancyOStream& out, bool& success) {
+  if (s.kind == ProblemKind::Local) checkLocal(s, out, success); else checkGlobal(s, out, success);
+}
+
 }  // namespace
 
-int main() {
-  for (const Sample& s : fclib_test::samples()) {
-    try {
-      if (s.kind == ProblemKind::Local) checkLocal(s); else checkGlobal(s);
-    } catch (const std::exception& e) {
-      FCLIB_CHECK(false, s.name << ": " << e.what());
-    }
-  }
-  return fclib_test::finish("fclib_test_stored_solutions");
-}
+
+FCLIB_SAMPLE_CASES(StoredSolution, checkSample)

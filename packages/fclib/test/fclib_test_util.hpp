@@ -1,7 +1,9 @@
-// fclib_test_util.hpp: small helpers shared by the FCLIB tests: a check macro
-// that counts failures, the location of the sample files, and a dense
-// Cholesky factorization used as the M^{-1} of the small global samples.
+// fclib_test_util.hpp: small helpers shared by the FCLIB tests: the location
+// of the sample files, a unit test case per sample, and a dense Cholesky
+// factorization used as the M^{-1} of the small global samples.
 #pragma once
+
+#include <Teuchos_UnitTestHarness.hpp>
 
 #include <cmath>
 #include <cstdlib>
@@ -13,29 +15,6 @@
 #include "Tribos_FCLIB.hpp"
 
 namespace fclib_test {
-
-inline int& failures() {
-  static int count = 0;
-  return count;
-}
-
-#define FCLIB_CHECK(cond, msg)                                                   \
-  do {                                                                           \
-    if (!(cond)) {                                                               \
-      ++fclib_test::failures();                                                  \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": FAILED " #cond ": " << msg \
-                << std::endl;                                                    \
-    }                                                                            \
-  } while (0)
-
-inline int finish(const char* name) {
-  if (failures() == 0) {
-    std::cout << name << ": all checks passed" << std::endl;
-    return 0;
-  }
-  std::cerr << name << ": " << failures() << " check(s) failed" << std::endl;
-  return 1;
-}
 
 // Directory of the sample files: test/data of this package, compiled in so
 // that the tests need no environment and run from any clone.
@@ -58,6 +37,15 @@ inline std::vector<Sample> samples() {
 }
 
 inline std::string samplePath(const Sample& s) { return sampleDir() + "/" + s.name; }
+
+// One TEUCHOS_UNIT_TEST(GROUP, <sample>) per shipped sample, each calling
+// CHECK(sample, out, success).
+#define FCLIB_SAMPLE_CASES(GROUP, CHECK)                                                   \
+  TEUCHOS_UNIT_TEST(GROUP, LocalProblemTest) { CHECK(fclib_test::samples()[0], out, success); } \
+  TEUCHOS_UNIT_TEST(GROUP, PerioBox) { CHECK(fclib_test::samples()[1], out, success); }         \
+  TEUCHOS_UNIT_TEST(GROUP, CubeH8) { CHECK(fclib_test::samples()[2], out, success); }           \
+  TEUCHOS_UNIT_TEST(GROUP, GlobalFrictionContact00046) { CHECK(fclib_test::samples()[3], out, success); } \
+  TEUCHOS_UNIT_TEST(GROUP, BoxStacks) { CHECK(fclib_test::samples()[4], out, success); }
 
 // A scratch path in the build tree (tests run there), unique per test.
 inline std::string scratchPath(const std::string& test, const std::string& name) {

@@ -8,6 +8,7 @@
 //   ignored with a note by readSolutionLeniently;
 // - output path checks and atomic text writes.
 // Corrupted files read through the driver: fclib_test_driver.py.
+#include <Teuchos_UnitTestHarness.hpp>
 #include <hdf5.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -42,14 +43,13 @@ bool exists(const std::string& path) {
 }
 
 // Runs f, which must throw std::runtime_error with 'fragment' in its message.
-void expectError(const std::string& label, const std::function<void()>& f, const std::string& fragment) {
+void expectError(const std::string& label, const std::function<void()>& f, const std::string& fragment, Teuchos::FancyOStream& out, bool& success) {
   try {
     f();
-    FCLIB_CHECK(false, label << ": no error, expected one with \"" << fragment << "\"");
+    TEST_ASSERT(false);  // no error, expected one naming the fragment
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
-    FCLIB_CHECK(what.find(fragment) != std::string::npos,
-                label << ": message \"" << what << "\" lacks \"" << fragment << "\"");
+    TEST_INEQUALITY(what.find(fragment), std::string::npos);  // the message names the fragment
   }
 }
 
@@ -97,28 +97,31 @@ std::vector<Corruption<GlobalProblem>> globalCorruptions() {
 // Each corruption is refused by validate, by solve (before any work: the
 // message is validate's) and by the writer, which leaves nothing behind.
 template <typename Problem, typename Writer>
-void checkCorruptions(const Problem& valid, const std::vector<Corruption<Problem>>& cases, Writer write) {
-  const std::string out = fclib_test::scratchPath("validate", "refused.hdf5");
-  std::remove(out.c_str());
+void checkCorruptions(const Problem& valid, const std::vector<Corruption<Problem>>& cases, Writer write, Teuchos::FancyOStream& out, bool& success) {
+  const std::string path = fclib_test::scratchPath("validate", "refused.hdf5");
+  std::remove(path.c_str());
   for (const auto& c : cases) {
     Problem P = valid;
     c.apply(P);
-    expectError(c.label + " (validate)", [&] { validate(P, "test"); }, "test: " + c.fragment);
-    expectError(c.label + " (solve)", [&] { solve(P, SolveOptions(), serialComm()); }, "FCLIB solve: " + c.fragment);
-    expectError(c.label + " (write)", [&] { write(out, P, Info{}, nullptr, {}, Storage::CompressedRows); },
-                c.fragment);
-    FCLIB_CHECK(!exists(out) && !exists(temporaryPath(out)), c.label << ": a refused write left a file");
+    expectError(c.label + " (validate)", [&] { validate(P, "test"); }, "test: " + c.fragment, out, success);
+    expectError(c.label + " (solve)", [&] { solve(P, SolveOptions(), serialComm()); }, "FCLIB solve: " + c.fragment, out, success);
+    expectError(c.label + " (write)", [&] { write(path, P, Info{}, nullptr, {}, Storage::CompressedRows); },
+                c.fragment, out, success);
+    TEST_ASSERT(!exists(path));
+    TEST_ASSERT(!exists(temporaryPath(path)));  // a refused write left a file
   }
   std::cout << cases.size() << " corruptions refused" << std::endl;
 }
 
 // No contacts: r and u are empty, and a global problem still has v = M^-1 f.
-void checkZeroContacts(const GlobalProblem& global) {
+void checkZeroContacts(const GlobalProblem& global, Teuchos::FancyOStream& out, bool& success) {
   LocalProblem L;
   L.W = SparseMatrix::fromTriplets(0, 0, {}, {}, {}, "empty W");
   const SolveReport lr = solve(L, SolveOptions(), serialComm());
-  FCLIB_CHECK(lr.converged && lr.r.empty() && lr.u.empty() && lr.err.absolute == 0.0,
-              "zero contacts (local): " << lr.stopReason);
+  TEST_ASSERT(lr.converged);
+  TEST_ASSERT(lr.r.empty());
+  TEST_ASSERT(lr.u.empty());
+  TEST_EQUALITY(lr.err.absolute, 0.0);  // zero contacts (local)
   GlobalProblem G = global;
   G.mu.clear();
   G.w.clear();
@@ -130,27 +133,31 @@ void checkZeroContacts(const GlobalProblem& global) {
   for (std::size_t i = 0; i < Mv.size(); ++i) residual += std::pow(Mv[i] - G.f[i], 2), norm += G.f[i] * G.f[i];
   const double rel = std::sqrt(residual / norm);
   std::cout << "zero contacts (global): ||M v - f|| / ||f|| = " << rel << std::endl;
-  FCLIB_CHECK(gr.converged && gr.r.empty() && gr.u.empty(), "zero contacts (global): " << gr.stopReason);
-  FCLIB_CHECK(gr.v.size() == G.f.size() && rel < 1e-10, "zero contacts (global): v = M^-1 f, residual " << rel);
+  TEST_ASSERT(gr.converged);
+  TEST_ASSERT(gr.r.empty());
+  TEST_ASSERT(gr.u.empty());  // zero contacts (global)
+  TEST_EQUALITY(gr.v.size(), G.f.size());
+  TEST_COMPARE(rel, <, 1e-10);  // zero contacts (global): v = M^-1 f
 }
 
 // W = 0 with contacts: u = q whatever r. A separating q (q_N > 0, q_T = 0)
 // is solved by r = 0; a penetrating one (q_N < 0) has no solution at all.
-void checkZeroW(const LocalProblem& valid) {
+void checkZeroW(const LocalProblem& valid, Teuchos::FancyOStream& out, bool& success) {
   LocalProblem P = valid;
   std::fill(P.W.val.begin(), P.W.val.end(), 0.0);
   for (int k = 0; k < P.numberOfContacts(); ++k) P.q[3 * k] = 1.0, P.q[3 * k + 1] = P.q[3 * k + 2] = 0.0;
   const SolveReport ok = solve(P, SolveOptions(), serialComm());
-  FCLIB_CHECK(ok.converged && ok.err.absolute == 0.0, "W = 0, separating q: " << ok.stopReason);
+  TEST_ASSERT(ok.converged);
+  TEST_EQUALITY(ok.err.absolute, 0.0);  // W = 0, separating q
   P.q[0] = -1.0;
   const SolveReport bad = solve(P, SolveOptions(), serialComm());
-  FCLIB_CHECK(!bad.converged && bad.stopReason.find("natural-map error") != std::string::npos,
-              "W = 0, penetrating q must not converge: " << bad.stopReason);
+  TEST_ASSERT(!bad.converged);
+  TEST_INEQUALITY(bad.stopReason.find("natural-map error"), std::string::npos);  // W = 0, penetrating q must not converge
 }
 
 // judgeResult: converged only with the solver's test, finite values and
 // every figure within the limit.
-void checkJudgement() {
+void checkJudgement(Teuchos::FancyOStream& out, bool& success) {
   SolveReport base;
   base.status.converged = true;
   base.r = {1.0, 0.0, 0.0};
@@ -159,7 +166,7 @@ void checkJudgement() {
   base.tolerance = 1e-12;
   SolveReport rep = base;
   judgeResult(rep);
-  FCLIB_CHECK(rep.converged, "a clean report converges: " << rep.stopReason);
+  TEST_ASSERT(rep.converged);  // a clean report converges
   const std::vector<std::pair<std::string, std::function<void(SolveReport&)>>> spoilers = {
       {"the solver did not converge", [](SolveReport& r) { r.status.converged = false; }},
       {"non-finite", [](SolveReport& r) { r.u[1] = kNaN; }},
@@ -173,33 +180,34 @@ void checkJudgement() {
     SolveReport r = base;
     spoil(r);
     judgeResult(r);
-    FCLIB_CHECK(!r.converged && r.stopReason.find(fragment) != std::string::npos,
-                "expected not converged with \"" << fragment << "\", got " << r.converged << " " << r.stopReason);
+    TEST_ASSERT(!r.converged);
+    TEST_INEQUALITY(r.stopReason.find(fragment), std::string::npos);  // not converged, the reason naming the fragment
   }
 }
 
 // A relative error against an infinite scale is nan, never 0.
-void checkNonFiniteAccuracy() {
+void checkNonFiniteAccuracy(Teuchos::FancyOStream& out, bool& success) {
   const NaturalMapError e = naturalMapError({0, 0, 0}, {kInf, 0, 0}, {0.3}, {kInf, 0, 0});
-  FCLIB_CHECK(std::isnan(e.relativeToQ) && std::isnan(e.relativeToMax),
-              "err with inf q: " << e.relativeToQ << " " << e.relativeToMax);
+  TEST_ASSERT(std::isnan(e.relativeToQ));
+  TEST_ASSERT(std::isnan(e.relativeToMax));  // err with inf q
 }
 
 // A solve stopped early reports solver_converged false and converged false.
-void checkNotConverged(const LocalProblem& P) {
+void checkNotConverged(const LocalProblem& P, Teuchos::FancyOStream& out, bool& success) {
   SolveOptions options;
   options.solverParams.sublist("Algorithm 2").set("Maximum Iterations", 1);
   const SolveReport rep = solve(P, options, serialComm());
-  FCLIB_CHECK(!rep.status.converged && !rep.converged, "one Algorithm 2 iteration converged: " << rep.stopReason);
+  TEST_ASSERT(!rep.status.converged);
+  TEST_ASSERT(!rep.converged);  // one Algorithm 2 iteration converged
   SolveOptions strict;
   strict.solverParams.set("Result Check Factor", 0.5);
-  expectError("Result Check Factor < 1", [&] { solve(P, strict, serialComm()); }, "Result Check Factor");
+  expectError("Result Check Factor < 1", [&] { solve(P, strict, serialComm()); }, "Result Check Factor", out, success);
 }
 
 void copyFile(const std::string& from, const std::string& to) {
   std::ifstream in(from, std::ios::binary);
-  std::ofstream out(to, std::ios::binary | std::ios::trunc);
-  out << in.rdbuf();
+  std::ofstream copy(to, std::ios::binary | std::ios::trunc);
+  copy << in.rdbuf();
 }
 
 // A copy of a sample whose /solution/u has 10 entries instead of 144.
@@ -219,61 +227,65 @@ std::string fileWithShortStoredU(const std::string& sample) {
   return path;
 }
 
-void checkStoredSolutionOfWrongSize(const std::string& sample) {
+void checkStoredSolutionOfWrongSize(const std::string& sample, Teuchos::FancyOStream& out, bool& success) {
   const std::string path = fileWithShortStoredU(sample);
-  FCLIB_CHECK(readLocal(path).numberOfContacts() == 48, "the problem itself reads");
+  TEST_EQUALITY(readLocal(path).numberOfContacts(), 48);  // the problem itself reads
   expectError("strict readSolution", [&] { readSolution(path); },
-              "/solution/u has 10 entries, expected 144");
+              "/solution/u has 10 entries, expected 144", out, success);
   std::vector<std::string> notes;
   const auto s = readSolutionLeniently(path, notes);
-  FCLIB_CHECK(s && s->u.empty() && s->r.size() == 144, "lenient: u dropped, r kept");
-  FCLIB_CHECK(notes.size() == 1 && notes[0].find("/solution/u has 10 entries") != std::string::npos &&
-                  notes[0].find("ignored") != std::string::npos,
-              "lenient: one note naming /solution/u, got " << notes.size());
+  TEST_ASSERT(s.has_value());
+  TEST_ASSERT(s->u.empty());
+  TEST_EQUALITY(s->r.size(), 144u);  // lenient: u dropped, r kept
+  TEST_EQUALITY(notes.size(), 1u);
+  TEST_INEQUALITY(notes[0].find("/solution/u has 10 entries"), std::string::npos);
+  TEST_INEQUALITY(notes[0].find("ignored"), std::string::npos);  // lenient: one note naming /solution/u
   std::remove(path.c_str());
 }
 
-void checkOutputPaths() {
+void checkOutputPaths(Teuchos::FancyOStream& out, bool& success) {
   const std::string dir = fclib_test::scratchPath("validate", "dir");
   ::mkdir(dir.c_str(), 0700);
   expectError("missing directory", [] { checkOutputPath("no/such/dir/out.json", "--summary"); },
-              "--summary: directory no/such/dir of no/such/dir/out.json does not exist");
-  expectError("a directory", [&] { checkOutputPath(dir, "--write-solution"); }, "is a directory");
-  expectError("trailing slash", [] { checkOutputPath("newdir/", "--summary"); }, "is a directory");
-  expectError("empty", [] { checkOutputPath("", "--summary"); }, "empty file name");
+              "--summary: directory no/such/dir of no/such/dir/out.json does not exist", out, success);
+  expectError("a directory", [&] { checkOutputPath(dir, "--write-solution"); }, "is a directory", out, success);
+  expectError("trailing slash", [] { checkOutputPath("newdir/", "--summary"); }, "is a directory", out, success);
+  expectError("empty", [] { checkOutputPath("", "--summary"); }, "empty file name", out, success);
   checkOutputPath(dir + "/out.json", "--summary");  // must not throw
-  FCLIB_CHECK(sameFile(dir + "/../" + dir + "/x", dir + "/x"), "same file through ..");
-  FCLIB_CHECK(!sameFile(dir + "/x", dir + "/y"), "different names");
+  TEST_ASSERT(sameFile(dir + "/../" + dir + "/x", dir + "/x"));  // same file through ..
+  TEST_ASSERT(!sameFile(dir + "/x", dir + "/y"));  // different names
   // Renaming onto a directory fails: the temporary must go, the target stay.
-  expectError("write onto a directory", [&] { writeTextAtomically(dir, "text"); }, "cannot rename");
-  FCLIB_CHECK(!exists(temporaryPath(dir)), "temporary left after a failed write");
+  expectError("write onto a directory", [&] { writeTextAtomically(dir, "text"); }, "cannot rename", out, success);
+  TEST_ASSERT(!exists(temporaryPath(dir)));  // temporary left after a failed write
   writeTextAtomically(dir + "/out.json", "{}\n");
-  FCLIB_CHECK(exists(dir + "/out.json") && !exists(temporaryPath(dir + "/out.json")), "atomic text write");
+  TEST_ASSERT(exists(dir + "/out.json"));
+  TEST_ASSERT(!exists(temporaryPath(dir + "/out.json")));  // atomic text write
   std::remove((dir + "/out.json").c_str());
   ::rmdir(dir.c_str());
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);  // Kokkos, for the Tpetra vectors of solve()
-  const auto samples = fclib_test::samples();
-  const std::string localPath = fclib_test::samplePath(samples[0]);   // local_problem_test, 48 contacts
-  const std::string globalPath = fclib_test::samplePath(samples[3]);  // LMGC ...00046, 9 contacts, 162 dofs
-  try {
-    const LocalProblem local = readLocal(localPath);
-    const GlobalProblem global = readGlobal(globalPath);
-    checkCorruptions(local, localCorruptions(), writeLocal);
-    checkCorruptions(global, globalCorruptions(), writeGlobal);
-    checkZeroContacts(global);
-    checkZeroW(local);
-    checkJudgement();
-    checkNonFiniteAccuracy();
-    checkNotConverged(local);
-    checkStoredSolutionOfWrongSize(localPath);
-    checkOutputPaths();
-  } catch (const std::exception& e) {
-    FCLIB_CHECK(false, e.what());
-  }
-  return fclib_test::finish("fclib_test_validate");
+const std::string& localPath() {
+  static const std::string path = fclib_test::samplePath(fclib_test::samples()[0]);  // local_problem_test, 48 contacts
+  return path;
 }
+
+const std::string& globalPath() {
+  static const std::string path = fclib_test::samplePath(fclib_test::samples()[3]);  // LMGC ...00046, 9 contacts, 162 dofs
+  return path;
+}
+
+TEUCHOS_UNIT_TEST(Validate, LocalCorruptions) {
+  checkCorruptions(readLocal(localPath()), localCorruptions(), writeLocal, out, success);
+}
+TEUCHOS_UNIT_TEST(Validate, GlobalCorruptions) {
+  checkCorruptions(readGlobal(globalPath()), globalCorruptions(), writeGlobal, out, success);
+}
+TEUCHOS_UNIT_TEST(Validate, ZeroContacts) { checkZeroContacts(readGlobal(globalPath()), out, success); }
+TEUCHOS_UNIT_TEST(Validate, ZeroW) { checkZeroW(readLocal(localPath()), out, success); }
+TEUCHOS_UNIT_TEST(Validate, Judgement) { checkJudgement(out, success); }
+TEUCHOS_UNIT_TEST(Validate, NonFiniteAccuracy) { checkNonFiniteAccuracy(out, success); }
+TEUCHOS_UNIT_TEST(Validate, NotConverged) { checkNotConverged(readLocal(localPath()), out, success); }
+TEUCHOS_UNIT_TEST(Validate, StoredSolutionOfWrongSize) { checkStoredSolutionOfWrongSize(localPath(), out, success); }
+TEUCHOS_UNIT_TEST(Validate, OutputPaths) { checkOutputPaths(out, success); }
