@@ -303,6 +303,17 @@ void validateOutput(const ParameterList& out) {
   TRIBOS_REQUIRE(!out.get<std::string>("Directory").empty(), "\"Output/Directory\" is empty");
 }
 
+// The outer algorithm checks its own parameters (e.g. Algorithm 2's Residual
+// Balancing) when it is made; made here, before any work, its message gets
+// the path of its list in the input file.
+void checkOuterAlgorithm(const std::string& outer, const ParameterList& solver) {
+  try {
+    Friction::FrictionSolverFactory().create(outer, solver);
+  } catch (const Error& e) {
+    throw Error("Solver/" + std::string(e.what()));
+  }
+}
+
 }  // namespace
 
 void validate(ParameterList& params, const std::string& source) {
@@ -331,6 +342,7 @@ void validate(ParameterList& params, const std::string& source) {
       for (const auto& a : outerAlgorithms()) if (solves(a)) able += (able.empty() ? "" : " or ") + a;
       TRIBOS_REQUIRE(solves(outer), "Contact/Friction Law = " << law << " needs Solver/Outer Algorithm = " << able
                                                               << ", not " << outer);
+      if (outer != kSemismooth) checkOuterAlgorithm(outer, solver);
     }
     const auto& vf = params.sublist("Boundary Conditions").get<Array<double>>("Volume Force");
     TRIBOS_REQUIRE(vf.size() == 3, "\"Boundary Conditions/Volume Force\" needs 3 components");

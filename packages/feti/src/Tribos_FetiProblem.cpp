@@ -36,7 +36,7 @@ std::array<double, 3> faceNormal(const std::string& face) {
       {"xmin", {-1, 0, 0}}, {"xmax", {1, 0, 0}}, {"ymin", {0, -1, 0}},
       {"ymax", {0, 1, 0}},  {"zmin", {0, 0, -1}}, {"zmax", {0, 0, 1}}};
   auto it = normals.find(face);
-  TRIBOS_REQUIRE(it != normals.end(), "Contact/Face: unknown face \"" << face << "\"; valid: xmin, xmax, ymin, ymax, zmin, zmax");
+  TRIBOS_REQUIRE(it != normals.end(), "contact face \"" << face << "\" unknown; valid: xmin, xmax, ymin, ymax, zmin, zmax");
   return it->second;
 }
 

@@ -282,8 +282,8 @@ Algorithm2::Algorithm2(const ParameterList& params) : params_(params) {
   params_.validateParametersAndSetDefaults(*validParameters());
   const double ratio = params_.get<double>("Residual Balancing");
   if (ratio > 0 && ratio < 1)
-    throw Error("Solver/Algorithm 2/Residual Balancing = " + std::to_string(ratio) +
-                ": must be 0 (rho fixed) or at least 1 (otherwise both residuals could ask for opposite changes)");
+    throw Error("Algorithm 2: Residual Balancing = " + std::to_string(ratio) +
+                " must be 0 (rho fixed) or at least 1 (otherwise both residuals could ask for opposite changes)");
 }
 
 namespace {

@@ -13,7 +13,7 @@ namespace Mesh {
 std::vector<int> partitionMetis(const Mesh& mesh, int numSubdomains) {
   const int ne = mesh.numCells();
   TRIBOS_REQUIRE(numSubdomains >= 1 && numSubdomains <= ne,
-                 "Mesh/Subdomains: need 1 <= subdomains <= cells (" << ne << "), got " << numSubdomains);
+                 "METIS partition: need 1 <= subdomains <= cells (" << ne << "), got " << numSubdomains);
   std::vector<int> part(ne, 0);
   if (numSubdomains == 1) return part;
   const int npc = mesh.nodesPerCell();
@@ -37,7 +37,7 @@ std::vector<int> partitionMetis(const Mesh& mesh, int numSubdomains) {
 std::vector<int> partitionStructured(const Mesh& mesh, const BoxSpec& spec, const std::array<int, 3>& split) {
   for (int a = 0; a < 3; ++a)
     TRIBOS_REQUIRE(split[a] >= 1 && spec.cells[a] % split[a] == 0,
-                   "Mesh/Subdomain Grid: " << split[a] << " boxes along axis " << "xyz"[a]
+                   "structured partition: " << split[a] << " boxes along axis " << "xyz"[a]
                                            << " must divide the " << spec.cells[a] << " cells");
   const std::array<std::array<double, 2>, 3> range = {spec.x, spec.y, spec.z};
   std::vector<int> part(mesh.numCells());

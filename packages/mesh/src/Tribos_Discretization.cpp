@@ -15,7 +15,7 @@ Discretization::Discretization(Mesh m, const BoxSpec& s, const DecompositionSpec
     cellPart = partitionMetis(mesh, dec.subdomains);
     S = dec.subdomains;
   } else {
-    throw Error("Mesh/Partitioner: unknown \"" + dec.partitioner + "\"; valid: Structured, METIS");
+    throw Error("partitioner \"" + dec.partitioner + "\" unknown; valid: Structured, METIS");
   }
   subdomains = extractSubdomains(mesh, cellPart, S);
   layout = makeRankLayout(S, numRanks);

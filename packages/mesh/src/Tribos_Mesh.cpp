@@ -15,7 +15,7 @@ std::string cellTypeName(CellType type) { return type == CellType::Tet4 ? "Tet4"
 CellType cellTypeFromName(const std::string& name) {
   if (name == "Tet4") return CellType::Tet4;
   if (name == "Hex8") return CellType::Hex8;
-  throw Error("Mesh/Element: unknown element \"" + name + "\"; valid: Tet4, Hex8");
+  throw Error("element \"" + name + "\" unknown; valid: Tet4, Hex8");
 }
 
 const std::vector<Facet>& Mesh::face(const std::string& name) const {
@@ -90,7 +90,7 @@ void collectBoundaryFaces(Mesh& mesh, const BoxSpec& spec) {
 Mesh generateBox(const BoxSpec& spec) {
   const int nx = spec.cells[0], ny = spec.cells[1], nz = spec.cells[2];
   TRIBOS_REQUIRE(nx > 0 && ny > 0 && nz > 0,
-                 "Mesh/Cells: need at least one cell per axis, got " << nx << "x" << ny << "x" << nz);
+                 "box cells: need at least one cell per axis, got " << nx << "x" << ny << "x" << nz);
   TRIBOS_REQUIRE(spec.x[1] > spec.x[0] && spec.y[1] > spec.y[0] && spec.z[1] > spec.z[0],
                  "Mesh: box ranges must be increasing intervals");
   Mesh mesh;
@@ -134,10 +134,10 @@ Mesh generateBox(const BoxSpec& spec) {
 }
 
 std::array<int, 3> prismLevelCells(int L) {
-  TRIBOS_REQUIRE(L >= 1, "Mesh/Level: the prism level must be >= 1, got " << L);
+  TRIBOS_REQUIRE(L >= 1, "the prism level must be >= 1, got " << L);
   const double nx = std::ceil(std::pow(2.0, (L + 4) / 2.0) - 1e-12);
   const double ny = std::ceil(std::pow(2.0, (L + 2) / 2.0) - 1e-12);
-  TRIBOS_REQUIRE(nx <= kMaxCellsPerAxis, "Mesh/Level: the prism level " << L << " gives " << nx << " cells along x; at most "
+  TRIBOS_REQUIRE(nx <= kMaxCellsPerAxis, "the prism level " << L << " gives " << nx << " cells along x; at most "
                                                                         << kMaxCellsPerAxis << " are allowed");
   return {static_cast<int>(nx), static_cast<int>(ny), static_cast<int>(ny)};
 }
