@@ -1,19 +1,12 @@
-// Tribos_TestSupport.hpp: what the test programs share: a CHECK that counts
-// failures instead of stopping at the first, and relative differences.
+// Tribos_TestSupport.hpp: what the test programs share: relative differences.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
-#include <iostream>
 #include <vector>
 
 namespace Tribos {
 namespace Test {
-
-inline int& failures() {
-  static int count = 0;
-  return count;
-}
 
 // ||a - b|| / ||b|| (2-norms).
 inline double relDiff(const std::vector<double>& a, const std::vector<double>& b) {
@@ -31,11 +24,3 @@ inline double maxRelDiff(const std::vector<double>& a, const std::vector<double>
 
 }  // namespace Test
 }  // namespace Tribos
-
-#define CHECK(cond, msg)                                              \
-  do {                                                                \
-    if (!(cond)) {                                                    \
-      std::cerr << "FAILED: " << msg << " (" #cond ")" << std::endl; \
-      ++::Tribos::Test::failures();                                   \
-    }                                                                 \
-  } while (0)

@@ -1,13 +1,12 @@
 // IoTestSupport.hpp: what the io tests share: a scratch directory per test
-// run, a small distributed mesh with fields, file helpers, and the collective
-// verdict (a test passes only if it passes on every rank).
+// case, a small distributed mesh with fields, and file helpers.
 #pragma once
 
 #include <dirent.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
 
 #include <cstdlib>
 #include <fstream>
@@ -18,7 +17,6 @@
 #include "Tribos_Discretization.hpp"
 #include "Tribos_FileSystem.hpp"
 #include "Tribos_ResultWriter.hpp"
-#include "Tribos_TestSupport.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
@@ -49,6 +47,25 @@ inline void removeTree(const std::string& path) {
   }
   ::rmdir(path.c_str());
 }
+
+// A scratch directory for one test case, removed by rank 0 once every rank is
+// done with it (declare it before the objects that use it).
+class ScratchDirectory {
+ public:
+  ScratchDirectory(const RCP<const Comm>& comm, const std::string& tag)
+      : comm_(comm), path_(scratchDirectory(*comm, tag)) {}
+  ~ScratchDirectory() {
+    comm_->barrier();
+    if (comm_->getRank() == 0 && !path_.empty()) removeTree(path_);
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  RCP<const Comm> comm_;
+  std::string path_;
+};
 
 inline bool exists(const std::string& path) {
   struct stat st;
@@ -101,14 +118,6 @@ inline std::vector<double> displacementOf(const Mesh::Discretization& disc) {
   for (int n = 0; n < disc.mesh.numNodes(); ++n)
     for (int d = 0; d < 3; ++d) u.push_back((d + 1) * disc.mesh.coords[n][d] + 10.0 * n);
   return u;
-}
-
-// Collective: the number of failed checks over all ranks; prints the verdict on rank 0.
-inline int verdict(const Comm& comm, const std::string& name) {
-  int mine = failures(), all = 0;
-  Teuchos::reduceAll<int, int>(comm, Teuchos::REDUCE_SUM, mine, Teuchos::outArg(all));
-  if (comm.getRank() == 0) std::cout << name << ": " << (all == 0 ? "passed" : "FAILED") << std::endl;
-  return all == 0 ? 0 : 1;
 }
 
 }  // namespace Test

@@ -3,12 +3,16 @@
 // machine lets us mount one, on a tmpfs too small for it (ENOSPC). Every rank
 // must throw Tribos::RunFailure with the same one-line message, no temporary
 // may remain, the previous result set must be intact, and nothing may hang.
-// With --exit-status the program behaves like a driver instead: it prints the
-// message once and exits with status 3 on every rank (disk_full_exit.sh
-// checks that from outside: status, one message, no core, no hang).
+// Each case writes to its own scratch directory. With --exit-status the
+// program behaves like a driver instead: it prints the message once and
+// exits with status 3 on every rank (disk_full_exit.sh checks that from
+// outside: status, one message, no core, no hang).
 #include <sys/mount.h>
 #include <sys/resource.h>
 
+#include <Teuchos_GlobalMPISession.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
+#include <Teuchos_UnitTestRepository.hpp>
 #include <Tpetra_Core.hpp>
 
 #include <cerrno>
@@ -83,44 +87,38 @@ void writeOldSet(const std::string& dir, const Comm& comm) {
 
 // Every rank failed with RunFailure, with rank 0's message, one line naming
 // the file and a reason; no temporary left; the old set untouched.
-void checkFailure(const Outcome& out, const std::string& dir, const std::string& label, const RCP<const Comm>& comm) {
-  CHECK(out.runFailure, label << ": RunFailure expected, got " << (out.committed ? "success" : out.message));
-  const std::string rootMessage = IO::broadcastFromRoot(*comm, out.message);
-  CHECK(out.message == rootMessage, label << ": rank " << comm->getRank() << " has another message: " << out.message);
-  CHECK(out.message.find('\n') == std::string::npos, label << ": message of one line: " << out.message);
-  CHECK(contains(out.message, "solution.h5"), label << ": message names the file: " << out.message);
-  CHECK(contains(out.message, "File too large") || contains(out.message, "No space left"),
-        label << ": message gives the reason: " << out.message);
+void checkFailure(const Outcome& result, const std::string& dir, const RCP<const Comm>& comm, Teuchos::FancyOStream& out,
+                  bool& success) {
+  out << "message: " << (result.committed ? "committed" : result.message) << "\n";
+  TEST_ASSERT(result.runFailure);
+  const std::string rootMessage = IO::broadcastFromRoot(*comm, result.message);
+  TEST_EQUALITY(result.message, rootMessage);               // the same on every rank
+  TEST_EQUALITY(result.message.find('\n'), std::string::npos);  // one line
+  TEST_ASSERT(contains(result.message, "solution.h5"));       // names the file
+  TEST_ASSERT(contains(result.message, "File too large") || contains(result.message, "No space left"));  // the reason
   if (comm->getRank() == 0) {
-    std::cout << "  " << label << ": " << out.message << std::endl;
-    CHECK(temporariesIn(dir).empty(), label << ": temporaries left: " << temporariesIn(dir).front());
-    for (const std::string& f : kSet) CHECK(readFile(dir + "/" + f) == "old " + f, label << ": old " << f << " changed");
+    const auto left = temporariesIn(dir);
+    for (const std::string& f : left) out << "temporary left: " << f << "\n";
+    TEST_ASSERT(left.empty());
+    for (const std::string& f : kSet) TEST_EQUALITY(readFile(dir + "/" + f), "old " + f);  // the old set unchanged
   }
 }
 
-void fileSizeLimitCases(const std::string& base, const Mesh::Discretization& disc, const RCP<const Comm>& comm) {
-  IO::OutputDirectory dir(base + "/limit", comm);
-  // From the first metadata block to most of the data.
-  // (Only with the space reserved: without, HDF5 1.10 cannot close a file
-  // whose metadata lies beyond the limit, and crashes in MPI_Finalize.)
-  for (rlim_t kib : {1, 4, 16, 64, 160, 240}) {
-    writeOldSet(dir.path(), *comm);
-    Outcome out;
-    {
-      FileSizeLimit limit(kib * 1024);
-      out = writeResult(dir, disc, true, comm);
-    }
-    checkFailure(out, dir.path(), "limit " + std::to_string(kib) + " KiB", comm);
-  }
-  // A limit the result fits under changes nothing.
+// From the first metadata block to most of the data.
+// (Only with the space reserved: without, HDF5 1.10 cannot close a file
+// whose metadata lies beyond the limit, and crashes in MPI_Finalize.)
+void fileSizeLimitCase(rlim_t kib, Teuchos::FancyOStream& out, bool& success) {
+  const auto comm = Tpetra::getDefaultComm();
+  ScratchDirectory scratch(comm, "disk_full");
+  const auto disc = boxDiscretization(12, 12, 12, *comm);
+  IO::OutputDirectory dir(scratch.path() + "/limit", comm);
   writeOldSet(dir.path(), *comm);
-  Outcome out;
+  Outcome result;
   {
-    FileSizeLimit limit(64 << 20);
-    out = writeResult(dir, disc, true, comm);
+    FileSizeLimit limit(kib * 1024);
+    result = writeResult(dir, disc, true, comm);
   }
-  CHECK(out.committed, "limit 64 MiB: committed: " << out.message);
-  if (comm->getRank() == 0) CHECK(readFile(dir.path() + "/summary.json") == "{\"converged\": true}\n", "new summary");
+  checkFailure(result, dir.path(), comm, out, success);
 }
 
 // Mounts a tmpfs of `size` at path (rank 0); "" or why not.
@@ -138,63 +136,86 @@ std::string mountSmallDisk(const std::string& path, const std::string& size, con
 // data writes fail (only at 96k: a failure of HDF5 1.10's metadata writes
 // hangs or crashes inside HDF5, which the reservation exists to prevent).
 // Skipped where mounting is not allowed.
-void smallDiskCases(const std::string& base, const Mesh::Discretization& disc, const RCP<const Comm>& comm) {
-  for (const std::string size : {"96k", "24k"}) {
-    const std::string mountPoint = base + "/tmpfs" + size;
-    const std::string error = mountSmallDisk(mountPoint, size, *comm);
-    if (!error.empty()) {
-      if (comm->getRank() == 0) std::cout << "  small disk: skipped, cannot mount a tmpfs (" << error << ")" << std::endl;
-      return;
-    }
-    {
-      IO::OutputDirectory dir(mountPoint + "/out", comm);
-      for (bool reserve : {true, false}) {
-        if (!reserve && size != "96k") continue;
-        writeOldSet(dir.path(), *comm);
-        checkFailure(writeResult(dir, disc, reserve, comm), dir.path(),
-                     "tmpfs " + size + (reserve ? ", reserved" : ", not reserved"), comm);
-      }
-    }
-    comm->barrier();
-    if (comm->getRank() == 0) ::umount2(mountPoint.c_str(), MNT_DETACH);
+void smallDiskCase(const std::string& size, bool reserve, Teuchos::FancyOStream& out, bool& success) {
+  const auto comm = Tpetra::getDefaultComm();
+  ScratchDirectory scratch(comm, "disk_full");
+  const auto disc = boxDiscretization(12, 12, 12, *comm);
+  const std::string mountPoint = scratch.path() + "/tmpfs" + size;
+  const std::string error = mountSmallDisk(mountPoint, size, *comm);
+  if (!error.empty()) {
+    out << "skipped, cannot mount a tmpfs (" << error << ")\n";
+    return;
   }
+  {
+    IO::OutputDirectory dir(mountPoint + "/out", comm);
+    writeOldSet(dir.path(), *comm);
+    checkFailure(writeResult(dir, disc, reserve, comm), dir.path(), comm, out, success);
+  }
+  comm->barrier();
+  if (comm->getRank() == 0) ::umount2(mountPoint.c_str(), MNT_DETACH);
 }
 
 // Like a driver: one message on rank 0, exit status 3 on every rank.
-int exitStatusCase(const std::string& base, const Mesh::Discretization& disc, const RCP<const Comm>& comm) {
-  IO::OutputDirectory dir(base + "/exit", comm);
-  Outcome out;
+int exitStatusCase(const RCP<const Comm>& comm) {
+  ScratchDirectory scratch(comm, "disk_full");
+  const auto disc = boxDiscretization(12, 12, 12, *comm);
+  IO::OutputDirectory dir(scratch.path() + "/exit", comm);
+  Outcome result;
   {
     FileSizeLimit limit(16 * 1024);
-    out = writeResult(dir, disc, true, comm);
+    result = writeResult(dir, disc, true, comm);
   }
-  if (out.committed) return 0;
-  if (comm->getRank() == 0) std::cerr << "io_test_disk_full: error: " << out.message << std::endl;
+  if (result.committed) return 0;
+  if (comm->getRank() == 0) std::cerr << "io_test_disk_full: error: " << result.message << std::endl;
   const bool clean = IO::broadcastFromRoot(*comm, static_cast<long>(temporariesIn(dir.path()).empty())) != 0;
   if (!clean && comm->getRank() == 0) std::cout << "FAILED: temporaries left in " << dir.path() << std::endl;
-  return out.runFailure && clean ? 3 : 1;
+  return result.runFailure && clean ? 3 : 1;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
+TEUCHOS_UNIT_TEST(FileSizeLimit, Limit1KiB) { fileSizeLimitCase(1, out, success); }
+TEUCHOS_UNIT_TEST(FileSizeLimit, Limit4KiB) { fileSizeLimitCase(4, out, success); }
+TEUCHOS_UNIT_TEST(FileSizeLimit, Limit16KiB) { fileSizeLimitCase(16, out, success); }
+TEUCHOS_UNIT_TEST(FileSizeLimit, Limit64KiB) { fileSizeLimitCase(64, out, success); }
+TEUCHOS_UNIT_TEST(FileSizeLimit, Limit160KiB) { fileSizeLimitCase(160, out, success); }
+TEUCHOS_UNIT_TEST(FileSizeLimit, Limit240KiB) { fileSizeLimitCase(240, out, success); }
+
+// A limit the result fits under changes nothing.
+TEUCHOS_UNIT_TEST(FileSizeLimit, ResultFitsUnderLimit) {
+  const auto comm = Tpetra::getDefaultComm();
+  ScratchDirectory scratch(comm, "disk_full");
+  const auto disc = boxDiscretization(12, 12, 12, *comm);
+  IO::OutputDirectory dir(scratch.path() + "/limit", comm);
+  writeOldSet(dir.path(), *comm);
+  Outcome result;
+  {
+    FileSizeLimit limit(64 << 20);
+    result = writeResult(dir, disc, true, comm);
+  }
+  out << "message: " << result.message << "\n";
+  TEST_ASSERT(result.committed);
+  if (comm->getRank() == 0) TEST_EQUALITY(readFile(dir.path() + "/summary.json"), "{\"converged\": true}\n");
+}
+
+TEUCHOS_UNIT_TEST(SmallDisk, Tmpfs96kReserved) { smallDiskCase("96k", true, out, success); }
+TEUCHOS_UNIT_TEST(SmallDisk, Tmpfs96kNotReserved) { smallDiskCase("96k", false, out, success); }
+TEUCHOS_UNIT_TEST(SmallDisk, Tmpfs24kReserved) { smallDiskCase("24k", true, out, success); }
+
+int main(int argc, char* argv[]) {
+  Teuchos::GlobalMPISession mpi(&argc, &argv);
+  Tpetra::ScopeGuard tpetra(&argc, &argv);
   // Only a test program may do this, never the library: with SIGXFSZ ignored,
   // a write beyond the file size limit fails with EFBIG instead of killing us.
   std::signal(SIGXFSZ, SIG_IGN);
-  auto comm = Tpetra::getDefaultComm();
+  const auto comm = Tpetra::getDefaultComm();
   comm->barrier();  // MPI's own shared-memory files exist before any limit
-  const std::string base = scratchDirectory(*comm, "disk_full");
-  const auto disc = boxDiscretization(12, 12, 12, *comm);
-  int status = 0;
   if (argc > 1 && std::string(argv[1]) == "--exit-status") {
-    status = exitStatusCase(base, disc, comm);
-  } else {
-    fileSizeLimitCases(base, disc, comm);
-    smallDiskCases(base, disc, comm);
-    status = verdict(*comm, "io_test_disk_full");
+    const int status = exitStatusCase(comm);
+    comm->barrier();
+    return status;
   }
-  comm->barrier();
-  if (comm->getRank() == 0) removeTree(base);
-  return status;
+  // A check that fails on one rank fails the test on every rank.
+  Teuchos::UnitTestRepository::setGloballyReduceTestResult(true);
+  return Teuchos::UnitTestRepository::runUnitTestsFromMain(argc, argv);
 }

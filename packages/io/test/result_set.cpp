@@ -5,9 +5,10 @@
 // writeFileAtomically: replaced or untouched, never a temporary left.
 #include <sys/stat.h>
 
+#include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
-#include <iostream>
+#include <algorithm>
 #include <stdexcept>
 
 #include "IoTestSupport.hpp"
@@ -29,14 +30,17 @@ void writeSet(const IO::OutputDirectory& dir, const std::string& tag, const RCP<
   files.commit();
 }
 
-void checkSet(const std::string& dir, const std::string& tag, const std::string& label, const Comm& comm) {
+void checkSet(const std::string& dir, const std::string& tag, const Comm& comm, Teuchos::FancyOStream& out,
+              bool& success) {
   if (comm.getRank() != 0) return;
-  for (const std::string& f : kSet) CHECK(readFile(dir + "/" + f) == tag + " " + f, label << ": " << f << " is " << tag);
-  CHECK(temporariesIn(dir).empty(), label << ": no temporaries");
+  for (const std::string& f : kSet) TEST_EQUALITY(readFile(dir + "/" + f), tag + " " + f);
+  TEST_ASSERT(temporariesIn(dir).empty());
 }
 
+// f throws E on every rank with the same message; what() of rank 0.
 template <class E, class F>
-std::string expectCollective(const std::string& label, const Comm& comm, F&& f) {
+std::string expectCollective(const std::string& label, const Comm& comm, Teuchos::FancyOStream& out, bool& success,
+                             F&& f) {
   std::string message;
   bool thrown = false;
   try {
@@ -44,121 +48,138 @@ std::string expectCollective(const std::string& label, const Comm& comm, F&& f) 
   } catch (const E& e) {
     thrown = true, message = e.what();
   }
-  CHECK(thrown, label << ": thrown on every rank");
-  CHECK(message == IO::broadcastFromRoot(comm, message), label << ": the same message on every rank");
-  if (comm.getRank() == 0) std::cout << "  " << label << ": " << message << std::endl;
+  out << label << ": " << message << "\n";
+  TEST_ASSERT(thrown);
+  TEST_EQUALITY(message, IO::broadcastFromRoot(comm, message));  // the same message on every rank
   return message;
 }
 
-void replaced(const IO::OutputDirectory& dir, const RCP<const Comm>& comm) {
+// A directory holding the committed set v2, as the cases below start from.
+struct WithSet {
+  WithSet(const RCP<const Comm>& comm, const std::string& tag) : scratch(comm, tag), dir(scratch.path() + "/out", comm) {
+    writeSet(dir, "v1", comm);
+    writeSet(dir, "v2", comm);
+  }
+  ScratchDirectory scratch;
+  IO::OutputDirectory dir;
+};
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(ResultSet, NewSetReplacesOld) {
+  const auto comm = Tpetra::getDefaultComm();
+  ScratchDirectory scratch(comm, "result_set");
+  IO::OutputDirectory dir(scratch.path() + "/out", comm);
   writeSet(dir, "v1", comm);
-  checkSet(dir.path(), "v1", "first set", *comm);
+  checkSet(dir.path(), "v1", *comm, out, success);
   writeSet(dir, "v2", comm);
-  checkSet(dir.path(), "v2", "second set", *comm);
-  if (comm->getRank() == 0) CHECK(exists(dir.path() + "/.tribos.lock"), "the lock stays");
+  checkSet(dir.path(), "v2", *comm, out, success);
+  if (comm->getRank() == 0) TEST_ASSERT(exists(dir.path() + "/.tribos.lock"));  // the lock stays
 }
 
 // An exception between writing and commit (a solver failure, a write error).
-void failureBeforeCommit(const IO::OutputDirectory& dir, const RCP<const Comm>& comm) {
+TEUCHOS_UNIT_TEST(ResultSet, FailureBeforeCommitKeepsOldSet) {
+  const auto comm = Tpetra::getDefaultComm();
+  WithSet set(comm, "result_set");
+  const IO::OutputDirectory& dir = set.dir;
   bool caught = false;
   try {
     IO::ResultSet files(dir, comm);
     IO::writeTextFile(files.add("solution.h5"), "v3 solution.h5", comm);
     IO::writeTextFile(files.add("solution.xmf"), "v3 solution.xmf", comm);
     files.add("summary.json");
-    if (comm->getRank() == 0) CHECK(temporariesIn(dir.path()).size() == 2, "two temporaries written");
+    if (comm->getRank() == 0) TEST_EQUALITY(temporariesIn(dir.path()).size(), size_t(2));  // two temporaries written
     throw std::runtime_error("the run failed");
   } catch (const std::runtime_error&) {
     caught = true;
   }
-  CHECK(caught, "exception passed through");
-  checkSet(dir.path(), "v2", "failure before commit", *comm);
+  TEST_ASSERT(caught);  // the exception passed through
+  checkSet(dir.path(), "v2", *comm, out, success);
 }
 
-void missingFile(const IO::OutputDirectory& dir, const RCP<const Comm>& comm) {
-  const std::string m = expectCollective<RunFailure>("summary never written", *comm, [&] {
+TEUCHOS_UNIT_TEST(ResultSet, MissingFileChangesNothing) {
+  const auto comm = Tpetra::getDefaultComm();
+  WithSet set(comm, "result_set");
+  const IO::OutputDirectory& dir = set.dir;
+  const std::string m = expectCollective<RunFailure>("summary never written", *comm, out, success, [&] {
     IO::ResultSet files(dir, comm);
     IO::writeTextFile(files.add("solution.h5"), "v3 solution.h5", comm);
     IO::writeTextFile(files.add("solution.xmf"), "v3 solution.xmf", comm);
     files.add("summary.json");
     files.commit();
   });
-  CHECK(contains(m, "summary.json was not written"), "names the missing file: " << m);
-  checkSet(dir.path(), "v2", "missing file", *comm);
+  TEST_ASSERT(contains(m, "summary.json was not written"));
+  checkSet(dir.path(), "v2", *comm, out, success);
 }
 
 // The old solution.xmf cannot be removed (a directory is in its place): the
 // commit stops after removing the old summary, so the directory holds no
 // complete set, and says so.
-void failureHalfWay(const IO::OutputDirectory& dir, const RCP<const Comm>& comm) {
+TEUCHOS_UNIT_TEST(ResultSet, FailureHalfWayRemovesOldSummaryFirst) {
+  const auto comm = Tpetra::getDefaultComm();
+  WithSet set(comm, "result_set");
+  const IO::OutputDirectory& dir = set.dir;
   if (comm->getRank() == 0) {
     ::unlink((dir.path() + "/solution.xmf").c_str());
     ::mkdir((dir.path() + "/solution.xmf").c_str(), 0755);
     writePlainFile(dir.path() + "/solution.xmf/keep", "x");
   }
   comm->barrier();
-  const std::string m = expectCollective<RunFailure>("old file cannot be removed", *comm, [&] { writeSet(dir, "v4", comm); });
-  CHECK(contains(m, "solution.xmf"), "names the file: " << m);
+  const std::string m = expectCollective<RunFailure>("old file cannot be removed", *comm, out, success,
+                                                     [&] { writeSet(dir, "v4", comm); });
+  TEST_ASSERT(contains(m, "solution.xmf"));
   if (comm->getRank() == 0) {
-    CHECK(!exists(dir.path() + "/summary.json"), "the old summary went first");
-    CHECK(readFile(dir.path() + "/solution.h5") == "v2 solution.h5", "files after it untouched");
-    CHECK(temporariesIn(dir.path()).empty(), "no temporaries after a failed commit");
+    TEST_ASSERT(!exists(dir.path() + "/summary.json"));                        // the old summary went first
+    TEST_EQUALITY(readFile(dir.path() + "/solution.h5"), "v2 solution.h5");  // files after it untouched
+    TEST_ASSERT(temporariesIn(dir.path()).empty());
     removeTree(dir.path() + "/solution.xmf");
   }
   comm->barrier();
-  writeSet(dir, "v5", comm);
-  checkSet(dir.path(), "v5", "after repair", *comm);
+  writeSet(dir, "v5", comm);  // after repair
+  checkSet(dir.path(), "v5", *comm, out, success);
 }
 
-void names(const IO::OutputDirectory& dir, const RCP<const Comm>& comm) {
-  IO::ResultSet files(dir, comm);
-  expectCollective<CollectiveError>("name with a directory", *comm, [&] { files.add("sub/solution.h5"); });
+TEUCHOS_UNIT_TEST(ResultSet, BadNamesRefused) {
+  const auto comm = Tpetra::getDefaultComm();
+  WithSet set(comm, "result_set");
+  IO::ResultSet files(set.dir, comm);
+  expectCollective<CollectiveError>("name with a directory", *comm, out, success, [&] { files.add("sub/solution.h5"); });
   files.add("solution.h5");
-  expectCollective<CollectiveError>("name added twice", *comm, [&] { files.add("solution.h5"); });
+  expectCollective<CollectiveError>("name added twice", *comm, out, success, [&] { files.add("solution.h5"); });
 }
 
-void atomicFiles(const std::string& base, const RCP<const Comm>& comm) {
-  const std::string path = base + "/summary.json";
-  if (comm->getRank() == 0) {
-    IO::writeFileAtomically(path, "one");
-    IO::writeFileAtomically(path, "two");
-    CHECK(readFile(path) == "two", "replaced");
-    bool thrown = false;
-    try {
-      IO::writeFileAtomically(base + "/missing/summary.json", "three");
-    } catch (const RunFailure& e) {
-      thrown = contains(e.what(), "No such file or directory");
-    }
-    CHECK(thrown, "a file that cannot be written: RunFailure with the cause");
+TEUCHOS_UNIT_TEST(WriteFileAtomically, OneRank) {
+  const auto comm = Tpetra::getDefaultComm();
+  ScratchDirectory scratch(comm, "result_set");
+  const std::string base = scratch.path(), path = base + "/summary.json";
+  if (comm->getRank() != 0) return;
+  IO::writeFileAtomically(path, "one");
+  IO::writeFileAtomically(path, "two");
+  TEST_EQUALITY(readFile(path), "two");  // replaced
+  bool thrown = false;
+  try {
+    IO::writeFileAtomically(base + "/missing/summary.json", "three");
+  } catch (const RunFailure& e) {
+    out << e.what() << "\n";
+    thrown = contains(e.what(), "No such file or directory");
   }
+  TEST_ASSERT(thrown);  // a file that cannot be written: RunFailure with the cause
+}
+
+TEUCHOS_UNIT_TEST(WriteFileAtomically, Collective) {
+  const auto comm = Tpetra::getDefaultComm();
+  ScratchDirectory scratch(comm, "result_set");
+  const std::string base = scratch.path(), path = base + "/summary.json";
+  if (comm->getRank() == 0) IO::writeFileAtomically(path, "three");
+  comm->barrier();
   IO::writeFileAtomically(path, "four", comm);
-  if (comm->getRank() == 0) CHECK(readFile(path) == "four", "collective: replaced");
-  expectCollective<RunFailure>("collective write to a missing directory", *comm, [&] {
+  if (comm->getRank() == 0) TEST_EQUALITY(readFile(path), "four");  // replaced
+  expectCollective<RunFailure>("collective write to a missing directory", *comm, out, success, [&] {
     IO::writeFileAtomically(base + "/missing/summary.json", "five", comm);
   });
   if (comm->getRank() == 0) {
     const auto names = listDirectory(base);
-    CHECK(std::count_if(names.begin(), names.end(), [](const std::string& n) { return contains(n, ".tmp"); }) == 0,
-          "no temporary beside the file");
+    // no temporary beside the file
+    TEST_EQUALITY(std::count_if(names.begin(), names.end(), [](const std::string& n) { return contains(n, ".tmp"); }), 0);
   }
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
-  auto comm = Tpetra::getDefaultComm();
-  const std::string base = scratchDirectory(*comm, "result_set");
-  {
-    IO::OutputDirectory dir(base + "/out", comm);
-    replaced(dir, comm);
-    failureBeforeCommit(dir, comm);
-    missingFile(dir, comm);
-    failureHalfWay(dir, comm);
-    names(dir, comm);
-  }
-  atomicFiles(base, comm);
-  comm->barrier();
-  if (comm->getRank() == 0) removeTree(base);
-  return verdict(*comm, "io_test_result_set");
 }

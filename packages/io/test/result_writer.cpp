@@ -7,9 +7,10 @@
 #include <hdf5.h>
 #include <sys/stat.h>
 
+#include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
-#include <iostream>
+#include <algorithm>
 #include <map>
 #include <regex>
 
@@ -126,117 +127,35 @@ Result makeResult(const Mesh::Discretization& disc, const Comm& comm) {
   return r;
 }
 
-void checkMeshData(const H5Reader& h5, const Mesh::Discretization& disc, const Expected& order) {
-  const long long N = disc.mesh.numNodes(), C = disc.mesh.numCells(), npc = disc.mesh.nodesPerCell();
-  CHECK((h5.shape("/mesh/geometry") == std::vector<long long>{N, 3}), "geometry shape");
-  CHECK((h5.shape("/mesh/topology") == std::vector<long long>{C, npc}), "topology shape");
-  CHECK((h5.shape("/nodes/displacement") == std::vector<long long>{N, 3}), "displacement shape");
-  CHECK((h5.shape("/nodes/temperature") == std::vector<long long>{N, 1}), "temperature shape");
-  CHECK((h5.shape("/cells/cell_id") == std::vector<long long>{C, 1}), "cell_id shape");
-  const auto xyz = h5.read<double>("/mesh/geometry"), u = h5.read<double>("/nodes/displacement"),
-             t = h5.read<double>("/nodes/temperature"), id = h5.read<double>("/cells/cell_id");
-  const auto topo = h5.read<long long>("/mesh/topology");
-  const auto uExact = displacementOf(disc);
-  bool nodesOk = xyz.size() == size_t(3 * N) && u.size() == size_t(3 * N) && t.size() == size_t(N);
-  for (long long i = 0; nodesOk && i < N; ++i) {
-    const int n = order.nodeAt[i];
-    nodesOk = t[i] == 100 + n;
-    for (int d = 0; d < 3; ++d) nodesOk = nodesOk && xyz[3 * i + d] == disc.mesh.coords[n][d] && u[3 * i + d] == uExact[3 * n + d];
-  }
-  CHECK(nodesOk, "geometry, displacement and temperature in the output numbering");
-  bool cellsOk = topo.size() == size_t(C * npc) && id.size() == size_t(C) && order.cellAt.size() == size_t(C);
-  for (long long i = 0; cellsOk && i < C; ++i) {
-    const int c = order.cellAt[i];
-    cellsOk = id[i] == c;
-    for (int k = 0; k < npc; ++k) cellsOk = cellsOk && order.nodeAt[topo[npc * i + k]] == disc.mesh.cell(c)[k];
-  }
-  CHECK(cellsOk, "topology and cell_id in the output numbering");
-}
-
-void checkPointSets(const H5Reader& h5, int numRanks) {
-  for (const char* f : {"/points/empty/geometry", "/points/empty/normal_force", "/points/empty/slip"})
-    CHECK(h5.has(f), "empty point set dataset " << f << " exists");
-  CHECK((h5.shape("/points/empty/geometry") == std::vector<long long>{0, 3}), "empty geometry is 0 x 3");
-  CHECK((h5.shape("/points/empty/normal_force") == std::vector<long long>{0, 1}), "empty normal_force is 0 x 1");
-  CHECK((h5.shape("/points/empty/slip") == std::vector<long long>{0, 3}), "empty slip is 0 x 3");
-
-  CHECK((h5.shape("/points/root_only/geometry") == std::vector<long long>{4, 3}), "root_only geometry is 4 x 3");
-  const auto g = h5.read<double>("/points/root_only/geometry"), nf = h5.read<double>("/points/root_only/normal_force"),
-             slip = h5.read<double>("/points/root_only/slip");
-  bool ok = g.size() == 12 && nf.size() == 4 && slip.size() == 12;
-  for (int k = 0; ok && k < 4; ++k) {
-    ok = g[3 * k] == k && g[3 * k + 1] == 0.5 && g[3 * k + 2] == 1.0 && nf[k] == 10.0 * k;
-    for (int d = 1; d <= 3; ++d) ok = ok && slip[3 * k + d - 1] == d * k;
-  }
-  CHECK(ok, "root_only values");
-
-  const long long total = numRanks * (numRanks + 1) / 2;
-  CHECK((h5.shape("/points/every_rank/geometry") == std::vector<long long>{total, 3}), "every_rank geometry shape");
-  const auto eg = h5.read<double>("/points/every_rank/geometry"), owner = h5.read<double>("/points/every_rank/owner");
-  ok = eg.size() == size_t(3 * total) && owner.size() == size_t(total);
-  for (int r = 0, i = 0; ok && r < numRanks; ++r)
-    for (int j = 0; ok && j <= r; ++j, ++i) ok = eg[3 * i] == r && eg[3 * i + 1] == j && owner[i] == r;
-  CHECK(ok, "every_rank blocks in rank order");
-}
-
-void checkAttributes(const H5Reader& h5) {
-  CHECK(h5.text("stop_reason") == "converged\twithin tolerance", "stop_reason attribute: " << h5.text("stop_reason"));
-  CHECK(h5.text("problem") == "brick", "problem attribute");
-  CHECK(h5.text("note") == "", "empty text attribute");
-  CHECK(h5.number("converged") == 1.0, "converged attribute");
-  CHECK(h5.number("solver_converged") == 0.0, "solver_converged attribute");
-}
-
-// Every DataItem of the index names solution.h5 and an existing dataset of
-// the shape the index gives; one grid per point set, the empty one with 0 points.
-void checkIndex(const std::string& xmf, const H5Reader& h5) {
-  const std::regex item("<DataItem Dimensions=\"([0-9]+) ([0-9]+)\"[^>]*>([^:<]+):([^<]+)</DataItem>");
-  int items = 0;
-  for (std::sregex_iterator m(xmf.begin(), xmf.end(), item), end; m != end; ++m, ++items) {
-    const std::string file = (*m)[3], dataset = (*m)[4];
-    const std::vector<long long> dims = {std::stoll((*m)[1]), std::stoll((*m)[2])};
-    CHECK(file == "solution.h5", "index names " << file);
-    CHECK(h5.has(dataset), "index names dataset " << dataset << " which exists");
-    CHECK(h5.shape(dataset) == dims, "index gives the shape of " << dataset);
-  }
-  CHECK(items == 5 + 3 + 3 + 2, "number of DataItems: " << items);
-  CHECK(std::count(xmf.begin(), xmf.end(), '\n') > 10 && contains(xmf, "</Xdmf>"), "index complete");
-  for (const char* grid : {"body", "empty", "root_only", "every_rank"})
-    CHECK(contains(xmf, std::string("<Grid Name=\"") + grid + "\""), "grid " << grid);
-  CHECK(contains(xmf, "TopologyType=\"Polyvertex\" NumberOfElements=\"0\""), "empty grid of 0 points");
-}
-
-void writeAndReadBack(const std::string& base, const RCP<const Comm>& comm) {
-  const auto disc = boxDiscretization(6, 2, 2, *comm);
-  const Result r = makeResult(disc, *comm);
-  IO::OutputDirectory dir(base + "/out", comm);
-  {
+// A result of the 6 x 2 x 2 box written and committed to a scratch directory.
+struct Written {
+  explicit Written(const RCP<const Comm>& comm)
+      : scratch(comm, "result_writer"), disc(boxDiscretization(6, 2, 2, *comm)), dir(scratch.path() + "/out", comm) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // the checks report what they find
+    const Result r = makeResult(disc, *comm);
     IO::ResultSet files(dir, comm);
     const std::string h5 = files.add("solution.h5"), xmf = files.add("solution.xmf");
     IO::ResultWriter(disc, comm).write(h5, "solution.h5", xmf, displacementOf(disc), r.nodeFields, r.cellFields, r.points,
                                        r.attributes);
     files.commit();
   }
-  if (comm->getRank() != 0) return;
-  CHECK(temporariesIn(dir.path()).empty(), "no temporaries after commit");
-  const std::string h5Path = dir.path() + "/solution.h5";
-  H5Reader h5(h5Path);
-  CHECK(h5.id >= 0, "the h5 file opens");
-  if (h5.id < 0) return;
-  checkMeshData(h5, disc, outputOrder(disc, comm->getSize()));
-  checkPointSets(h5, comm->getSize());
-  checkAttributes(h5);
-  checkIndex(readFile(dir.path() + "/solution.xmf"), h5);
-  // Space reserved before the data is not left at the end of the file.
-  struct stat st;
-  const long long data = 8LL * (disc.mesh.numNodes() * 7 + disc.mesh.numCells() * 9 + 4 * 7 + 6 * comm->getSize());
-  CHECK(::stat(h5Path.c_str(), &st) == 0 && st.st_size < data + 48 * 1024,
-        "file size " << st.st_size << " for " << data << " bytes of data");
+  std::string h5Path() const { return dir.path() + "/solution.h5"; }
+  ScratchDirectory scratch;
+  Mesh::Discretization disc;
+  IO::OutputDirectory dir;
+};
+
+// Rank 0: no temporaries left after the commit, and the file opens.
+bool opens(const Written& w, const H5Reader& h5, Teuchos::FancyOStream& out, bool& success) {
+  TEST_ASSERT(temporariesIn(w.dir.path()).empty());  // no temporaries after commit
+  TEST_COMPARE(h5.id, >=, 0);                        // the h5 file opens
+  return h5.id >= 0;
 }
 
 // Every rank throws exception type E (and the same message); what() of rank 0.
 template <class E, class F>
-std::string expectCollective(const std::string& label, const Comm& comm, F&& f) {
+std::string expectCollective(const std::string& label, const Comm& comm, Teuchos::FancyOStream& out, bool& success,
+                             F&& f) {
   std::string message, kind = "nothing";
   try {
     f();
@@ -245,68 +164,232 @@ std::string expectCollective(const std::string& label, const Comm& comm, F&& f) 
   } catch (const std::exception& e) {
     message = e.what(), kind = "another exception";
   }
-  CHECK(kind == "expected", label << ": got " << kind << " " << message);
-  CHECK(message == IO::broadcastFromRoot(comm, message), label << ": the same message on every rank");
-  CHECK(message.find('\n') == std::string::npos, label << ": one line");
-  if (comm.getRank() == 0) std::cout << "  " << label << ": " << message << std::endl;
+  out << label << ": " << message << "\n";
+  TEST_EQUALITY(kind, "expected");
+  TEST_EQUALITY(message, IO::broadcastFromRoot(comm, message));  // the same message on every rank
+  TEST_EQUALITY(message.find('\n'), std::string::npos);          // one line
   return message;
 }
 
-void failures(const std::string& base, const RCP<const Comm>& comm) {
-  const auto disc = boxDiscretization(6, 2, 2, *comm);
-  IO::OutputDirectory dir(base + "/fail", comm);
-  const std::vector<double> u = displacementOf(disc);
-  const bool root = comm->getRank() == 0, last = comm->getRank() == comm->getSize() - 1;
-  const std::string h5 = dir.temporary("solution.h5"), xmf = dir.temporary("solution.xmf");
-  IO::ResultWriter writer(disc, comm);
-
-  // A field of the wrong size on the last rank only: refused before any file exists.
-  std::vector<IO::Field> bad = {IO::Field{"temperature", 1, std::vector<double>(disc.ownedNodes().size() + last, 0.0)}};
-  std::string m = expectCollective<CollectiveError>("wrong field size", *comm, [&] {
-    writer.write(h5, "solution.h5", xmf, u, bad, {});
-  });
-  CHECK(contains(m, "temperature"), "the message names the field");
-  if (root) CHECK(!exists(h5) && !exists(xmf), "nothing written for wrong arguments");
-
-  if (comm->getSize() > 1) {
-    std::vector<IO::Field> named = {IO::Field{last ? "heat" : "temperature", 1,
-                                              std::vector<double>(disc.ownedNodes().size(), 0.0)}};
-    expectCollective<CollectiveError>("names differ between ranks", *comm, [&] {
-      writer.write(h5, "solution.h5", xmf, u, named, {});
-    });
-    if (root) CHECK(!exists(h5), "nothing written for differing names");
+// Writing to temporaries of a scratch output directory, nothing committed.
+struct Failing {
+  explicit Failing(const RCP<const Comm>& comm)
+      : scratch(comm, "result_writer"),
+        disc(boxDiscretization(6, 2, 2, *comm)),
+        dir(scratch.path() + "/fail", comm),
+        u(displacementOf(disc)),
+        root(comm->getRank() == 0),
+        last(comm->getRank() == comm->getSize() - 1),
+        h5(dir.temporary("solution.h5")),
+        xmf(dir.temporary("solution.xmf")),
+        writer(disc, comm) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   }
-
-  // A file that cannot be created, with and without the reservation before it.
-  for (bool reserve : {true, false}) {
-    writer.reserveSpace(reserve);
-    m = expectCollective<RunFailure>(std::string("missing directory") + (reserve ? "" : ", not reserved"), *comm, [&] {
-      writer.write(dir.path() + "/missing/solution.h5", "solution.h5", xmf, u, {}, {});
-    });
-    CHECK(contains(m, "solution.h5") && contains(m, "uch file or directory"), "message names file and reason: " << m);
-    if (!reserve) CHECK(contains(m, "H5Fcreate"), "message names the call: " << m);
-  }
-  writer.reserveSpace(true);
-
-  // An index that cannot be written: the HDF5 file goes too.
-  m = expectCollective<RunFailure>("index not writable", *comm, [&] {
-    writer.write(h5, "solution.h5", dir.path() + "/missing/solution.xmf", u, {}, {});
-  });
-  CHECK(contains(m, "XDMF"), "message says it is the index: " << m);
-  if (root) CHECK(!exists(h5), "the HDF5 file of a failed index is removed");
-  if (root) CHECK(temporariesIn(dir.path()).empty(), "no temporaries after failures");
-}
+  ScratchDirectory scratch;
+  Mesh::Discretization disc;
+  IO::OutputDirectory dir;
+  std::vector<double> u;
+  bool root, last;
+  std::string h5, xmf;
+  IO::ResultWriter writer;
+};
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  Tpetra::ScopeGuard guard(&argc, &argv);
-  auto comm = Tpetra::getDefaultComm();
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // the checks report what they find
-  const std::string base = scratchDirectory(*comm, "result_writer");
-  writeAndReadBack(base, comm);
-  failures(base, comm);
-  comm->barrier();
-  if (comm->getRank() == 0) removeTree(base);
-  return verdict(*comm, "io_test_result_writer");
+TEUCHOS_UNIT_TEST(ResultWriter, MeshAndFieldsInOutputNumbering) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Written w(comm);
+  if (comm->getRank() != 0) return;
+  const H5Reader h5(w.h5Path());
+  if (!opens(w, h5, out, success)) return;
+  const auto& disc = w.disc;
+  const Expected order = outputOrder(disc, comm->getSize());
+  const long long N = disc.mesh.numNodes(), C = disc.mesh.numCells(), npc = disc.mesh.nodesPerCell();
+  TEST_ASSERT((h5.shape("/mesh/geometry") == std::vector<long long>{N, 3}));
+  TEST_ASSERT((h5.shape("/mesh/topology") == std::vector<long long>{C, npc}));
+  TEST_ASSERT((h5.shape("/nodes/displacement") == std::vector<long long>{N, 3}));
+  TEST_ASSERT((h5.shape("/nodes/temperature") == std::vector<long long>{N, 1}));
+  TEST_ASSERT((h5.shape("/cells/cell_id") == std::vector<long long>{C, 1}));
+  const auto xyz = h5.read<double>("/mesh/geometry"), u = h5.read<double>("/nodes/displacement"),
+             t = h5.read<double>("/nodes/temperature"), id = h5.read<double>("/cells/cell_id");
+  const auto topo = h5.read<long long>("/mesh/topology");
+  const auto uExact = displacementOf(disc);
+  TEST_EQUALITY(xyz.size(), size_t(3 * N));
+  TEST_EQUALITY(u.size(), size_t(3 * N));
+  TEST_EQUALITY(t.size(), size_t(N));
+  bool nodesOk = xyz.size() == size_t(3 * N) && u.size() == size_t(3 * N) && t.size() == size_t(N);
+  for (long long i = 0; nodesOk && i < N; ++i) {
+    const int n = order.nodeAt[i];
+    nodesOk = t[i] == 100 + n;
+    for (int d = 0; d < 3; ++d) nodesOk = nodesOk && xyz[3 * i + d] == disc.mesh.coords[n][d] && u[3 * i + d] == uExact[3 * n + d];
+  }
+  TEST_ASSERT(nodesOk);  // geometry, displacement and temperature in the output numbering
+  TEST_EQUALITY(topo.size(), size_t(C * npc));
+  TEST_EQUALITY(id.size(), size_t(C));
+  TEST_EQUALITY(order.cellAt.size(), size_t(C));
+  bool cellsOk = topo.size() == size_t(C * npc) && id.size() == size_t(C) && order.cellAt.size() == size_t(C);
+  for (long long i = 0; cellsOk && i < C; ++i) {
+    const int c = order.cellAt[i];
+    cellsOk = id[i] == c;
+    for (int k = 0; k < npc; ++k) cellsOk = cellsOk && order.nodeAt[topo[npc * i + k]] == disc.mesh.cell(c)[k];
+  }
+  TEST_ASSERT(cellsOk);  // topology and cell_id in the output numbering
+}
+
+// Point sets empty on every rank, on all but rank 0, and with r + 1 points on rank r.
+TEUCHOS_UNIT_TEST(ResultWriter, PointSets) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Written w(comm);
+  if (comm->getRank() != 0) return;
+  const H5Reader h5(w.h5Path());
+  if (!opens(w, h5, out, success)) return;
+  const int numRanks = comm->getSize();
+  for (const char* f : {"/points/empty/geometry", "/points/empty/normal_force", "/points/empty/slip"}) {
+    out << "empty point set dataset " << f << "\n";
+    TEST_ASSERT(h5.has(f));
+  }
+  TEST_ASSERT((h5.shape("/points/empty/geometry") == std::vector<long long>{0, 3}));
+  TEST_ASSERT((h5.shape("/points/empty/normal_force") == std::vector<long long>{0, 1}));
+  TEST_ASSERT((h5.shape("/points/empty/slip") == std::vector<long long>{0, 3}));
+
+  TEST_ASSERT((h5.shape("/points/root_only/geometry") == std::vector<long long>{4, 3}));
+  const auto g = h5.read<double>("/points/root_only/geometry"), nf = h5.read<double>("/points/root_only/normal_force"),
+             slip = h5.read<double>("/points/root_only/slip");
+  TEST_EQUALITY(g.size(), size_t(12));
+  TEST_EQUALITY(nf.size(), size_t(4));
+  TEST_EQUALITY(slip.size(), size_t(12));
+  bool ok = g.size() == 12 && nf.size() == 4 && slip.size() == 12;
+  for (int k = 0; ok && k < 4; ++k) {
+    ok = g[3 * k] == k && g[3 * k + 1] == 0.5 && g[3 * k + 2] == 1.0 && nf[k] == 10.0 * k;
+    for (int d = 1; d <= 3; ++d) ok = ok && slip[3 * k + d - 1] == d * k;
+  }
+  TEST_ASSERT(ok);  // root_only values
+
+  const long long total = numRanks * (numRanks + 1) / 2;
+  TEST_ASSERT((h5.shape("/points/every_rank/geometry") == std::vector<long long>{total, 3}));
+  const auto eg = h5.read<double>("/points/every_rank/geometry"), owner = h5.read<double>("/points/every_rank/owner");
+  TEST_EQUALITY(eg.size(), size_t(3 * total));
+  TEST_EQUALITY(owner.size(), size_t(total));
+  ok = eg.size() == size_t(3 * total) && owner.size() == size_t(total);
+  for (int r = 0, i = 0; ok && r < numRanks; ++r)
+    for (int j = 0; ok && j <= r; ++j, ++i) ok = eg[3 * i] == r && eg[3 * i + 1] == j && owner[i] == r;
+  TEST_ASSERT(ok);  // every_rank blocks in rank order
+}
+
+TEUCHOS_UNIT_TEST(ResultWriter, RootAttributes) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Written w(comm);
+  if (comm->getRank() != 0) return;
+  const H5Reader h5(w.h5Path());
+  if (!opens(w, h5, out, success)) return;
+  TEST_EQUALITY(h5.text("stop_reason"), "converged\twithin tolerance");
+  TEST_EQUALITY(h5.text("problem"), "brick");
+  TEST_EQUALITY(h5.text("note"), "");
+  TEST_EQUALITY(h5.number("converged"), 1.0);
+  TEST_EQUALITY(h5.number("solver_converged"), 0.0);
+}
+
+// Every DataItem of the index names solution.h5 and an existing dataset of
+// the shape the index gives; one grid per point set, the empty one with 0 points.
+TEUCHOS_UNIT_TEST(ResultWriter, XdmfIndex) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Written w(comm);
+  if (comm->getRank() != 0) return;
+  const H5Reader h5(w.h5Path());
+  if (!opens(w, h5, out, success)) return;
+  const std::string xmf = readFile(w.dir.path() + "/solution.xmf");
+  const std::regex item("<DataItem Dimensions=\"([0-9]+) ([0-9]+)\"[^>]*>([^:<]+):([^<]+)</DataItem>");
+  int items = 0;
+  for (std::sregex_iterator m(xmf.begin(), xmf.end(), item), end; m != end; ++m, ++items) {
+    const std::string file = (*m)[3], dataset = (*m)[4];
+    const std::vector<long long> dims = {std::stoll((*m)[1]), std::stoll((*m)[2])};
+    out << "DataItem " << file << ":" << dataset << "\n";
+    TEST_EQUALITY(file, "solution.h5");
+    TEST_ASSERT(h5.has(dataset));
+    TEST_ASSERT(h5.shape(dataset) == dims);
+  }
+  TEST_EQUALITY(items, 5 + 3 + 3 + 2);  // number of DataItems
+  TEST_COMPARE(std::count(xmf.begin(), xmf.end(), '\n'), >, 10);  // index complete
+  TEST_ASSERT(contains(xmf, "</Xdmf>"));
+  for (const char* grid : {"body", "empty", "root_only", "every_rank"}) {
+    out << "grid " << grid << "\n";
+    TEST_ASSERT(contains(xmf, std::string("<Grid Name=\"") + grid + "\""));
+  }
+  TEST_ASSERT(contains(xmf, "TopologyType=\"Polyvertex\" NumberOfElements=\"0\""));  // empty grid of 0 points
+}
+
+// Space reserved before the data is not left at the end of the file.
+TEUCHOS_UNIT_TEST(ResultWriter, NoReservedSpaceLeft) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Written w(comm);
+  if (comm->getRank() != 0) return;
+  const H5Reader h5(w.h5Path());
+  if (!opens(w, h5, out, success)) return;
+  const auto& disc = w.disc;
+  struct stat st = {};
+  const long long data = 8LL * (disc.mesh.numNodes() * 7 + disc.mesh.numCells() * 9 + 4 * 7 + 6 * comm->getSize());
+  TEST_EQUALITY(::stat(w.h5Path().c_str(), &st), 0);
+  out << "file size " << st.st_size << " for " << data << " bytes of data\n";
+  TEST_COMPARE(st.st_size, <, data + 48 * 1024);
+}
+
+// A field of the wrong size on the last rank only: refused before any file exists.
+TEUCHOS_UNIT_TEST(ResultWriterFailure, WrongFieldSize) {
+  const auto comm = Tpetra::getDefaultComm();
+  Failing f(comm);
+  std::vector<IO::Field> bad = {IO::Field{"temperature", 1, std::vector<double>(f.disc.ownedNodes().size() + f.last, 0.0)}};
+  const std::string m = expectCollective<CollectiveError>("wrong field size", *comm, out, success, [&] {
+    f.writer.write(f.h5, "solution.h5", f.xmf, f.u, bad, {});
+  });
+  TEST_ASSERT(contains(m, "temperature"));  // the message names the field
+  if (f.root) {
+    TEST_ASSERT(!exists(f.h5));  // nothing written for wrong arguments
+    TEST_ASSERT(!exists(f.xmf));
+  }
+}
+
+TEUCHOS_UNIT_TEST(ResultWriterFailure, NamesDifferBetweenRanks) {
+  const auto comm = Tpetra::getDefaultComm();
+  if (comm->getSize() == 1) {
+    out << "skipped on one rank\n";
+    return;
+  }
+  Failing f(comm);
+  std::vector<IO::Field> named = {IO::Field{f.last ? "heat" : "temperature", 1,
+                                            std::vector<double>(f.disc.ownedNodes().size(), 0.0)}};
+  expectCollective<CollectiveError>("names differ between ranks", *comm, out, success, [&] {
+    f.writer.write(f.h5, "solution.h5", f.xmf, f.u, named, {});
+  });
+  if (f.root) TEST_ASSERT(!exists(f.h5));  // nothing written for differing names
+}
+
+// A file that cannot be created, with and without the reservation before it.
+TEUCHOS_UNIT_TEST(ResultWriterFailure, FileCannotBeCreated) {
+  const auto comm = Tpetra::getDefaultComm();
+  Failing f(comm);
+  for (bool reserve : {true, false}) {
+    f.writer.reserveSpace(reserve);
+    const std::string m = expectCollective<RunFailure>(std::string("missing directory") + (reserve ? "" : ", not reserved"),
+                                                       *comm, out, success, [&] {
+      f.writer.write(f.dir.path() + "/missing/solution.h5", "solution.h5", f.xmf, f.u, {}, {});
+    });
+    TEST_ASSERT(contains(m, "solution.h5"));  // names the file
+    TEST_ASSERT(contains(m, "uch file or directory"));  // and the reason
+    if (!reserve) TEST_ASSERT(contains(m, "H5Fcreate"));  // and the call
+  }
+}
+
+// An index that cannot be written: the HDF5 file goes too.
+TEUCHOS_UNIT_TEST(ResultWriterFailure, IndexNotWritable) {
+  const auto comm = Tpetra::getDefaultComm();
+  Failing f(comm);
+  f.writer.reserveSpace(true);
+  const std::string m = expectCollective<RunFailure>("index not writable", *comm, out, success, [&] {
+    f.writer.write(f.h5, "solution.h5", f.dir.path() + "/missing/solution.xmf", f.u, {}, {});
+  });
+  TEST_ASSERT(contains(m, "XDMF"));  // the message says it is the index
+  if (f.root) {
+    TEST_ASSERT(!exists(f.h5));  // the HDF5 file of a failed index is removed
+    TEST_ASSERT(temporariesIn(f.dir.path()).empty());
+  }
 }
