@@ -14,6 +14,7 @@
 
 #include "Tribos_FCLIB_Files.hpp"
 #include "Tribos_QuietHdf5Errors.hpp"
+#include "Tribos_Error.hpp"
 
 namespace Tribos {
 namespace FCLIB {
@@ -57,7 +58,7 @@ struct Location {
   std::string group;
 
   [[noreturn]] void fail(const std::string& why) const {
-    throw std::runtime_error("FCLIB file " + file + ": " + why);
+    throw Error("FCLIB file " + file + ": " + why);
   }
   Location child(const std::string& name) const { return {file, path(name)}; }
   std::string path(const std::string& name) const { return group + "/" + name; }
@@ -84,7 +85,7 @@ Handle openDataset(hid_t loc, const Location& where, const std::string& name) {
 
 // A directory or an empty file is named as such rather than as "not HDF5".
 Handle openFileForReading(const std::string& path) {
-  auto fail = [&](const std::string& why) { throw std::runtime_error("FCLIB file " + path + ": " + why); };
+  auto fail = [&](const std::string& why) { throw Error("FCLIB file " + path + ": " + why); };
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) fail(std::string("cannot open for reading: ") + std::strerror(errno));
   if (S_ISDIR(st.st_mode)) fail("is a directory, expected an HDF5 file");
@@ -427,14 +428,14 @@ void writeAtomically(const std::string& path, Body body) {
   try {
     {
       hid_t id = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-      if (id < 0) throw std::runtime_error("FCLIB file " + path + ": cannot create " + tmp);
+      if (id < 0) throw Error("FCLIB file " + path + ": cannot create " + tmp);
       Handle file(id, H5Fclose);
       body(file.get(), Location{path, ""});
       if (H5Fflush(file.get(), H5F_SCOPE_LOCAL) < 0)
-        throw std::runtime_error("FCLIB file " + path + ": cannot flush " + tmp);
+        throw Error("FCLIB file " + path + ": cannot flush " + tmp);
     }
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      throw std::runtime_error("FCLIB file " + path + ": cannot rename " + tmp + " onto it");
+      throw Error("FCLIB file " + path + ": cannot rename " + tmp + " onto it");
   } catch (...) {
     std::remove(tmp.c_str());
     throw;
@@ -451,7 +452,7 @@ class Checker {
       : context_(std::move(context)), group_(std::move(group)) {}
 
   [[noreturn]] void fail(const std::string& why) const {
-    throw std::runtime_error(context_ + ": " + why);
+    throw Error(context_ + ": " + why);
   }
   std::string name(const std::string& dataset) const { return group_ + "/" + dataset; }
 
@@ -606,7 +607,7 @@ ProblemKind problemKind(const std::string& path) {
   Handle file = openFileForReading(path);
   if (hasLink(file.get(), kLocalGroup)) return ProblemKind::Local;
   if (hasLink(file.get(), kGlobalGroup)) return ProblemKind::Global;
-  throw std::runtime_error("FCLIB file " + path + ": has neither group /fclib_local nor " +
+  throw Error("FCLIB file " + path + ": has neither group /fclib_local nor " +
                            "group /fclib_global");
 }
 

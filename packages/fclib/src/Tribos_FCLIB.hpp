@@ -23,7 +23,7 @@
 // with r in the Coulomb cone and the De Saxce complementarity (see
 // Tribos_FCLIB_Accuracy.hpp).
 //
-// All errors throw std::runtime_error naming the file and the dataset, e.g.
+// All errors throw Tribos::Error naming the file and the dataset, e.g.
 //   FCLIB file X.hdf5: /fclib_local/vectors/q[17] is not finite (inf)
 //
 // A problem is validated when it is read, before anything uses it: every
@@ -118,7 +118,7 @@ void writeGlobal(const std::string& path, const GlobalProblem& problem, const In
 
 // The checks of the readers on a problem in memory (built by hand, exported,
 // about to be solved or written): sizes, canonical CSR structure, finite
-// values, mu >= 0. Throws std::runtime_error "context: /fclib_local/W is ...",
+// values, mu >= 0. Throws Tribos::Error "context: /fclib_local/W is ...",
 // naming the dataset the offending value belongs to.
 void validate(const LocalProblem& problem, const std::string& context);
 void validate(const GlobalProblem& problem, const std::string& context);

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "Tribos_Error.hpp"
+
 namespace Tribos {
 namespace FCLIB {
 
@@ -42,7 +44,7 @@ NaturalMapError naturalMapError(const std::vector<double>& r, const std::vector<
                                 const std::vector<double>& mu, const std::vector<double>& q) {
   const std::size_t m = 3 * mu.size();
   if (r.size() != m || u.size() != m || q.size() != m)
-    throw std::runtime_error("naturalMapError: r, u, q have " + std::to_string(r.size()) + ", " +
+    throw Error("naturalMapError: r, u, q have " + std::to_string(r.size()) + ", " +
                              std::to_string(u.size()) + ", " + std::to_string(q.size()) +
                              " entries, expected 3 x " + std::to_string(mu.size()) +
                              " contacts");
@@ -71,7 +73,7 @@ NaturalMapError naturalMapError(const std::vector<double>& r, const std::vector<
 
 NaturalMapError naturalMapError(const LocalProblem& problem, const std::vector<double>& r) {
   if (problem.spacedim != 3)
-    throw std::runtime_error("naturalMapError: only spacedim = 3 is supported");
+    throw Error("naturalMapError: only spacedim = 3 is supported");
   std::vector<double> u;
   problem.W.multiply(r, u);
   for (std::size_t k = 0; k < u.size(); ++k) u[k] += problem.q[k];
@@ -81,7 +83,7 @@ NaturalMapError naturalMapError(const LocalProblem& problem, const std::vector<d
 GlobalReduction reduceGlobal(const GlobalProblem& problem, const std::vector<double>& r,
                              const SolveM& solveM) {
   if (problem.G)
-    throw std::runtime_error("reduceGlobal: problems with equality constraints G are not "
+    throw Error("reduceGlobal: problems with equality constraints G are not "
                              "supported");
   GlobalReduction out;
   // v = M^{-1}(H r + f)
@@ -102,7 +104,7 @@ GlobalReduction reduceGlobal(const GlobalProblem& problem, const std::vector<dou
 NaturalMapError naturalMapError(const GlobalProblem& problem, const std::vector<double>& r,
                                 const SolveM& solveM) {
   if (problem.spacedim != 3)
-    throw std::runtime_error("naturalMapError: only spacedim = 3 is supported");
+    throw Error("naturalMapError: only spacedim = 3 is supported");
   const GlobalReduction red = reduceGlobal(problem, r, solveM);
   return naturalMapError(r, red.u, problem.mu, red.q);
 }

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "Tribos_Error.hpp"
+
 namespace Tribos {
 namespace FCLIB {
 
@@ -42,7 +44,7 @@ std::string temporaryPath(const std::string& path) {
 }
 
 void checkOutputPath(const std::string& path, const std::string& what) {
-  auto fail = [&](const std::string& why) { throw std::runtime_error(what + ": " + why); };
+  auto fail = [&](const std::string& why) { throw Error(what + ": " + why); };
   if (path.empty()) fail("empty file name");
   struct stat st;
   if (path.back() == '/' || (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)))
@@ -66,12 +68,12 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
   const std::string tmp = temporaryPath(path);
   try {
     std::ofstream os(tmp, std::ios::binary | std::ios::trunc);
-    if (!os) throw std::runtime_error("cannot create " + tmp);
+    if (!os) throw Error("cannot create " + tmp);
     os << text;
     os.close();
-    if (!os) throw std::runtime_error("cannot write " + tmp);
+    if (!os) throw Error("cannot write " + tmp);
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      throw std::runtime_error("cannot rename " + tmp + " onto " + path);
+      throw Error("cannot rename " + tmp + " onto " + path);
   } catch (...) {
     std::remove(tmp.c_str());
     throw;

@@ -12,7 +12,7 @@ namespace FCLIB {
 // never share, truncate or remove each other's temporary.
 std::string temporaryPath(const std::string& path);
 
-// Throws std::runtime_error (the message starts with 'what', e.g. "--summary")
+// Throws Tribos::Error (the message starts with 'what', e.g. "--summary")
 // unless a file can be written at 'path' by temporary + rename: the path is
 // not empty, does not name a directory, and its directory exists and is
 // writable. Meant to run before a long computation, so that a mistyped output

@@ -14,6 +14,7 @@
 
 #include "Tribos_ContactKKT.hpp"
 #include "Tribos_DualTransform.hpp"
+#include "Tribos_Error.hpp"
 
 namespace Tribos {
 namespace FCLIB {
@@ -52,7 +53,7 @@ void fillDefaults(Teuchos::ParameterList& given, const Teuchos::ParameterList& d
 // ---------------------------------------------------------------- MassSolver
 
 MassSolver::MassSolver(const SparseMatrix& M, const std::string& name) {
-  if (M.m != M.n) throw std::runtime_error("MassSolver: M is not square");
+  if (M.m != M.n) throw Error("MassSolver: M is not square");
   if (M.m == 0) return;  // no degrees of freedom: nothing to factor, v is empty
   LocalCsr A;
   A.rows = M.m;
@@ -65,7 +66,7 @@ MassSolver::MassSolver(const SparseMatrix& M, const std::string& name) {
   try {
     solver_->factor(A);
   } catch (const std::exception& e) {
-    throw std::runtime_error("FCLIB solve: the " + name + " factorization of M (" +
+    throw Error("FCLIB solve: the " + name + " factorization of M (" +
                              std::to_string(M.m) + " x " + std::to_string(M.n) +
                              ") failed; M must be nonsingular" +
                              (name == "KLU2" ? "" : " (and SPD for " + name + ")") + ": " + e.what());
@@ -234,7 +235,7 @@ ResultLimit resultLimit(const Teuchos::ParameterList& params, const SolveOptions
   const double factor = params.isParameter("Result Check Factor") ? params.get<double>("Result Check Factor")
                                                                    : options.resultCheckFactor;
   if (!(factor >= 1.0) || !std::isfinite(factor))
-    throw std::runtime_error("FCLIB solve: Result Check Factor = " + std::to_string(factor) + ", expected >= 1");
+    throw Error("FCLIB solve: Result Check Factor = " + std::to_string(factor) + ", expected >= 1");
   const double tolerance = requestedTolerance(params, options.algorithm);
   return {tolerance, factor * tolerance};
 }
@@ -358,7 +359,7 @@ ContactDualPtr contactDual(const Operator& A, const std::vector<double>& q, cons
 
 RCP<const Map> serialMap(int n, const RCP<const Comm>& comm) {
   if (comm->getSize() != 1)
-    throw std::runtime_error("FCLIB solve: use a communicator of one rank (got " + std::to_string(comm->getSize()) + ")");
+    throw Error("FCLIB solve: use a communicator of one rank (got " + std::to_string(comm->getSize()) + ")");
   return rcp(new Map(static_cast<Tpetra::global_size_t>(n), 0, comm));
 }
 
@@ -409,8 +410,8 @@ void judgeResult(SolveReport& rep) {
 SolveReport solve(const LocalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm) {
   validate(problem, kContext);
   if (problem.V || problem.R || problem.s)
-    throw std::runtime_error("FCLIB solve: mixed local problems (V, R, s) are not supported");
-  if (problem.spacedim != 3) throw std::runtime_error("FCLIB solve: only spacedim = 3 is supported");
+    throw Error("FCLIB solve: mixed local problems (V, R, s) are not supported");
+  if (problem.spacedim != 3) throw Error("FCLIB solve: only spacedim = 3 is supported");
   const Setup s = setup(options);
   const auto map = serialMap(3 * problem.numberOfContacts(), serialComm);
   SolveReport rep;
@@ -426,8 +427,8 @@ SolveReport solve(const LocalProblem& problem, const SolveOptions& options, cons
 
 SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm) {
   validate(problem, kContext);
-  if (problem.G) throw std::runtime_error("FCLIB solve: global problems with equality constraints G are not supported");
-  if (problem.spacedim != 3) throw std::runtime_error("FCLIB solve: only spacedim = 3 is supported");
+  if (problem.G) throw Error("FCLIB solve: global problems with equality constraints G are not supported");
+  if (problem.spacedim != 3) throw Error("FCLIB solve: only spacedim = 3 is supported");
   const Setup s = setup(options);
   const auto map = serialMap(3 * problem.numberOfContacts(), serialComm);
   const auto t0 = std::chrono::steady_clock::now();

@@ -7,13 +7,15 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "Tribos_Error.hpp"
+
 namespace Tribos {
 namespace FCLIB {
 
 namespace {
 
 [[noreturn]] void fail(const std::string& what, const std::string& why) {
-  throw std::runtime_error(what + ": " + why);
+  throw Error(what + ": " + why);
 }
 
 // m + 1 row pointers must fit in an int, as FCLIB stores them in int32.
@@ -56,7 +58,7 @@ void checkIndices(const std::vector<int>& idx, std::size_t count, int bound,
 
 void SparseMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
   if (x.size() != static_cast<std::size_t>(n))
-    throw std::runtime_error("SparseMatrix::multiply: x has " + std::to_string(x.size()) +
+    throw Error("SparseMatrix::multiply: x has " + std::to_string(x.size()) +
                              " entries, matrix has " + std::to_string(n) + " columns");
   y.assign(m, 0.0);
   for (int r = 0; r < m; ++r) {
@@ -68,7 +70,7 @@ void SparseMatrix::multiply(const std::vector<double>& x, std::vector<double>& y
 
 void SparseMatrix::multiplyTranspose(const std::vector<double>& x, std::vector<double>& y) const {
   if (x.size() != static_cast<std::size_t>(m))
-    throw std::runtime_error("SparseMatrix::multiplyTranspose: x has " +
+    throw Error("SparseMatrix::multiplyTranspose: x has " +
                              std::to_string(x.size()) + " entries, matrix has " +
                              std::to_string(m) + " rows");
   y.assign(n, 0.0);
@@ -157,7 +159,7 @@ void SparseMatrix::toTriplets(std::vector<int>& row, std::vector<int>& column) c
 }
 
 double SparseMatrix::asymmetry() const {
-  if (m != n) throw std::runtime_error("SparseMatrix::asymmetry: matrix is not square");
+  if (m != n) throw Error("SparseMatrix::asymmetry: matrix is not square");
   // Look up A_ji by binary search in the (sorted) row j; a missing entry is 0.
   auto entry = [this](int r, int c) {
     auto first = col.begin() + rowptr[r], last = col.begin() + rowptr[r + 1];

@@ -27,7 +27,7 @@ struct SparseMatrix {
   void multiplyTranspose(const std::vector<double>& x, std::vector<double>& y) const;
 
   // Builders from the three FCLIB storages. They validate the index arrays
-  // and throw std::runtime_error (with 'what' as context) when inconsistent.
+  // and throw Tribos::Error (with 'what' as context) when inconsistent.
   static SparseMatrix fromCSR(int m, int n, const std::vector<int>& rowptr,
                               const std::vector<int>& col,
                               const std::vector<double>& val, const std::string& what);
