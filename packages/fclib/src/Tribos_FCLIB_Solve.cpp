@@ -297,12 +297,14 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   if (n <= options.denseSpectrumLimit) spectrum(op, n, rep);
   CountingOperator A(op);
   const auto cd = contactDual(A, q, mu, map);
-  // s W, -s q with s = 1/||W||; the power steps are not solver work.
-  Friction::ScalingTransform scaling(50);
-  scaling.forward(*cd);
+  // s W, -s q with s = 1/||W||; the power steps are not solver work. The
+  // local problem has no equality constraint: the scaling is the whole chain.
+  auto scaling = rcp(new Friction::ScalingTransform(50));
+  Friction::DualTransformChain transforms;
+  transforms.add(scaling).forward(*cd);
   const long long n_A0 = A.count();
-  rep.normW = scaling.norm();
-  rep.scale = scaling.scale();
+  rep.normW = scaling->norm();
+  rep.scale = scaling->scale();
   if (options.verbose)
     std::cout << "FCLIB: " << nc << " contacts, ||W|| ~ " << rep.normW << ", eig(W) in [" << rep.eigMin << ", "
               << rep.eigMax << "], numerical rank " << rep.numericalRank << ", ||q|| " << std::sqrt(std::inner_product(q.begin(), q.end(), q.begin(), 0.0)) << "\n";
@@ -313,6 +315,7 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   rep.status = solver.solve(*cd, x);
   rep.timeSolve = seconds(t1);
   rep.n_A = A.count() - n_A0;
+  transforms.back(x);
   {
     auto xv = x.getData();
     rep.r.assign(xv.begin(), xv.end());
