@@ -64,8 +64,11 @@ class Progress {
     flushStage(s);
   }
 
-  // One iteration of the current stage, e.g. "outer 3: residual 1.2e-05, n_A 140".
-  static void iteration(const std::string& what) {
+  // One iteration of the current stage: text() gives the line, e.g.
+  // "outer 3: residual 1.2e-05, n_A 140". It is called only when the line
+  // is printed, so solver loops pay no formatting when nothing is shown.
+  template <class Text>
+  static void iteration(Text&& text) {
     State& s = state();
     std::lock_guard<std::mutex> lock(s.mutex);
     if (!s.out) return;
@@ -73,7 +76,14 @@ class Progress {
     if (t < kDelay || t - s.lastIteration < kInterval) return;
     flushStage(s);
     s.lastIteration = t;
-    print(s, "  " + what);
+    print(s, "  " + std::string(text()));
+  }
+
+  // 1.234e-05, for progress lines.
+  static std::string sci(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3e", v);
+    return buf;
   }
 
   static std::string currentStage() {

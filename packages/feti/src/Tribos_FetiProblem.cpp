@@ -381,7 +381,7 @@ void FetiProblem::factorSubdomains() {
   KplusBB_.assign(systems_.size(), {});
   Progress::stage("factorization of " + std::to_string(systems_.size()) + " subdomain matrices");
   for (size_t k = 0; k < systems_.size(); ++k) {
-    Progress::iteration("subdomain " + std::to_string(k + 1) + " of " + std::to_string(systems_.size()));
+    Progress::iteration([&] { return "subdomain " + std::to_string(k + 1) + " of " + std::to_string(systems_.size()); });
     const auto& sys = systems_[k];
     LocalCsr Kreg = sys.K;
     const int n = sys.numDofs();

@@ -133,8 +133,9 @@ PCGStatus ProjectedCG::solve(const FetiDual& dual, Vector& lambda) const {
     wy = wyNew;
     ++st.iterations;
     st.relativeResidual = w.norm2() / norm0;
-    Progress::iteration("projected CG " + std::to_string(st.iterations) + ": relative residual " +
-                        std::to_string(st.relativeResidual));
+    Progress::iteration([&] {
+      return "projected CG " + std::to_string(st.iterations) + ": relative residual " + Progress::sci(st.relativeResidual);
+    });
     if (!out_.is_null()) *out_ << "PCG " << st.iterations << "  ||Pg||/||Ph|| = " << st.relativeResidual << "\n";
   }
   st.converged = st.relativeResidual <= tol_;

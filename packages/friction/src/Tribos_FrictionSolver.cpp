@@ -4,7 +4,6 @@
 #include <Tpetra_Vector.hpp>
 
 #include <cmath>
-#include <cstdio>
 #include <iomanip>
 
 #include "Tribos_BlockGaussSeidel.hpp"
@@ -19,13 +18,6 @@ namespace Friction {
 using Teuchos::ParameterList;
 
 namespace {
-
-// 1.234e-05, for progress lines.
-std::string sci(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3e", v);
-  return buf;
-}
 
 template <class T>
 RCP<Teuchos::EnhancedNumberValidator<T>> range(T lo, T hi) {
@@ -209,8 +201,10 @@ FrictionStatus MSA::solve(const ContactDual& dual, Vector& x) {
     if (!out_.is_null())
       *out_ << "MSA " << std::setw(3) << l << "  ||g(l+1) - g(l)||/||g(l+1)|| = " << std::scientific << std::setprecision(3)
             << st.slip_bound_change << "  SMALBE outer " << s.outer_iterations << "  n_A " << s.n_A << "\n";
-    Progress::iteration("MSA " + std::to_string(l) + ": slip-bound change " + sci(st.slip_bound_change) + ", n_A " +
-                        std::to_string(st.n_A));
+    Progress::iteration([&] {
+      return "MSA " + std::to_string(l) + ": slip-bound change " + Progress::sci(st.slip_bound_change) + ", n_A " +
+             std::to_string(st.n_A);
+    });
     if (!s.converged) {
       st.reason = "Tresca step " + std::to_string(l) + " did not converge: " + s.reason;
       return st;
@@ -399,8 +393,11 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
       *out_ << "Algorithm 2 " << std::setw(3) << l << "  tol " << std::scientific << std::setprecision(3) << tol
             << "  ||g^P|| " << st.norm_gP << "  ||G lambda|| " << normGx << "  dg " << st.slip_bound_change << "  rho " << rho
             << "  M " << M << "  n_A " << nA_c << "+" << nA_t << "\n";
-    Progress::iteration("Algorithm 2 outer " + std::to_string(l) + ": ||g^P|| " + sci(st.norm_gP) + ", ||G lambda|| " +
-                        sci(normGx) + ", slip-bound change " + sci(st.slip_bound_change) + ", tolerance " + sci(tol));
+    Progress::iteration([&] {
+      return "Algorithm 2 outer " + std::to_string(l) + ": ||g^P|| " + Progress::sci(st.norm_gP) + ", ||G lambda|| " +
+             Progress::sci(normGx) + ", slip-bound change " + Progress::sci(st.slip_bound_change) + ", tolerance " +
+             Progress::sci(tol);
+    });
     g = gNew;
     if (st.norm_gP <= tol && normGx <= tol && (slipTol == 0 || st.slip_bound_change <= slipTol)) {
       st.converged = true;

@@ -337,7 +337,7 @@ void SemismoothStarNewton::solveReduced(SemismoothResult& res, Approximation& ap
     for (int j = 0; j < nc; ++j) r[j] = Sxh[j] - l[j] + ap.y[j];
     const double rel = norm2(r) / scale;
     record(res, ap, rel, k, log);
-    Progress::iteration("Newton " + std::to_string(k) + ": relative residual " + std::to_string(rel));
+    Progress::iteration([&] { return "Newton " + std::to_string(k) + ": relative residual " + Progress::sci(rel); });
     if (rel <= tol) {
       res.converged = true;
       break;
