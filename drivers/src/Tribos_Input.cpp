@@ -314,6 +314,14 @@ void checkOuterAlgorithm(const std::string& outer, const ParameterList& solver) 
   }
 }
 
+void checkSemismooth(const ParameterList& list) {
+  try {
+    Semismooth::SemismoothStarNewton::checkParameters(list);
+  } catch (const Error& e) {
+    throw Error(std::string("Solver/") + kSemismooth + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 void validate(ParameterList& params, const std::string& source) {
@@ -343,6 +351,7 @@ void validate(ParameterList& params, const std::string& source) {
       TRIBOS_REQUIRE(solves(outer), "Contact/Friction Law = " << law << " needs Solver/Outer Algorithm = " << able
                                                               << ", not " << outer);
       if (outer != kSemismooth) checkOuterAlgorithm(outer, solver);
+      else checkSemismooth(solver.sublist(kSemismooth));
     }
     const auto& vf = params.sublist("Boundary Conditions").get<Array<double>>("Volume Force");
     TRIBOS_REQUIRE(vf.size() == 3, "\"Boundary Conditions/Volume Force\" needs 3 components");
@@ -492,6 +501,30 @@ Fem::LoadCase loadCase(const ParameterList& params) {
   const auto& vf = bc.get<Array<double>>("Volume Force");
   loads.volumeForce = {vf[0], vf[1], vf[2]};
   return loads;
+}
+
+PlaneContact planeContact(const ParameterList& params) {
+  const auto& contact = params.sublist("Contact");
+  PlaneContact pc;
+  pc.face = contact.get<std::string>("Face");
+  pc.gap = contact.get<double>("Gap");
+  // Frictionless: slip bound 0 whatever Slip Bound Traction says.
+  pc.slipBoundTraction =
+      contact.get<std::string>("Friction Law") == "Frictionless" ? 0.0 : contact.get<double>("Slip Bound Traction");
+  return pc;
+}
+
+Semismooth::MeshContactProblem semismoothProblem(const ParameterList& params) {
+  Semismooth::MeshContactProblem pr;
+  pr.mesh = Mesh::generateBox(boxSpec(params));
+  pr.material = material(params);
+  pr.loads = loadCase(params);
+  const PlaneContact pc = planeContact(params);
+  pr.contactFace = pc.face;
+  pr.gap = pc.gap;
+  pr.slipBoundTraction = pc.slipBoundTraction;
+  pr.solverParams = params.sublist("Solver").sublist(kSemismooth);
+  return pr;
 }
 
 }  // namespace Input

@@ -13,6 +13,7 @@
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_Monolithic.hpp"
+#include "Tribos_SemismoothStarNewton.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
@@ -46,6 +47,17 @@ Mesh::BoxSpec boxSpec(const Teuchos::ParameterList& params);
 Mesh::DecompositionSpec decompositionSpec(const Teuchos::ParameterList& params);
 Fem::Material material(const Teuchos::ParameterList& params);
 Fem::LoadCase loadCase(const Teuchos::ParameterList& params);
+
+// The rigid-plane contact of the semismooth* method: Contact/Face, Gap and
+// the slip bound per unit area (Slip Bound Traction; 0 when frictionless).
+struct PlaneContact {
+  std::string face;
+  double gap = 0.0, slipBoundTraction = 0.0;
+};
+PlaneContact planeContact(const Teuchos::ParameterList& params);
+// The whole semismooth* problem of a validated list, on the box mesh of
+// boxSpec(params): what the prism benchmark and tests solve.
+Semismooth::MeshContactProblem semismoothProblem(const Teuchos::ParameterList& params);
 
 }  // namespace Input
 }  // namespace Tribos

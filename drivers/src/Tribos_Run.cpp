@@ -79,10 +79,8 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
                                     const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
                                     IO::Summary& summary, Contact::ContactNodeResults& nodes, bool& converged,
                                     Fem::ResultKKT& kkt) {
-  const auto& contact = params.sublist("Contact");
-  const std::string law = contact.get<std::string>("Friction Law");
-  // Frictionless: slip bound 0 whatever Slip Bound Traction says.
-  const double slipTraction = law == "Frictionless" ? 0.0 : contact.get<double>("Slip Bound Traction");
+  const std::string law = params.sublist("Contact").get<std::string>("Friction Law");
+  const Input::PlaneContact contact = Input::planeContact(params);
   // Every rank refuses a body the Dirichlet conditions do not hold, before
   // rank 0 starts (the method eliminates them and factors K_rr).
   Fem::requireRigidMotionsHeld(disc.mesh.coords, Fem::constrainedDofs(disc.mesh, loads.dirichlet), "semismooth*",
@@ -93,12 +91,11 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
   // "CG+MueLu" spreads its CG solves over all ranks (each rank holds the
   // whole problem); the factorizing Newton solvers run on rank 0 alone.
   const auto& ssParams = params.sublist("Solver").sublist("SemismoothStarNewton");
-  const bool distributed = ssParams.isParameter("Newton Solver") &&
-                           ssParams.get<std::string>("Newton Solver") == "CG+MueLu";
+  const bool distributed = Semismooth::newtonSolvers().create(ssParams.get<std::string>("Newton Solver"))->space ==
+                           Semismooth::NewtonSolverKind::FullSpace;
   Semismooth::SemismoothResult r;
   if (comm.getRank() == 0 || distributed)
-    r = Semismooth::solveFromMesh(disc.mesh, mat, loads, contact.get<std::string>("Face"), contact.get<double>("Gap"),
-                                  slipTraction, ssParams, verbose && comm.getRank() == 0 ? &std::cout : nullptr,
+    r = Semismooth::solveFromMesh(disc.mesh, mat, loads, contact.face, contact.gap, contact.slipBoundTraction, ssParams, verbose && comm.getRank() == 0 ? &std::cout : nullptr,
                                   distributed ? Teuchos::rcpFromRef(comm) : RCP<const Comm>());
   std::vector<Fem::ContactNodeForce> forces;
   Fem::RigidPlane plane;

@@ -20,6 +20,13 @@
 
 namespace Tribos {
 
+// "CHOLMOD, KLU2, Tacho"
+inline std::string joinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 template <class Product, class... Args>
 class Registry {
  public:
@@ -65,12 +72,7 @@ class Registry {
     return out;
   }
 
-  // "CHOLMOD, KLU2, Tacho"
-  std::string namesText() const {
-    std::string out;
-    for (const auto& e : entries_) out += (out.empty() ? "" : ", ") + e.name;
-    return out;
-  }
+  std::string namesText() const { return joinNames(names()); }
 
   // "CHOLMOD (supernodal Cholesky); KLU2 (...)", for parameter documentation.
   std::string documentation() const {

@@ -246,14 +246,11 @@ std::vector<double> rigidBodyModes(const std::vector<Point>& X) {
     for (int d = 0; d < 3; ++d) c[d] += p[d] / n;
   std::vector<double> R(m * 6, 0.0);
   for (size_t a = 0; a < n; ++a) {
-    const double x = X[a][0] - c[0], y = X[a][1] - c[1], z = X[a][2] - c[2];
-    for (int d = 0; d < 3; ++d) R[d * m + 3 * a + d] = 1.0;
-    R[3 * m + 3 * a] = y;     // (y, -x, 0)
-    R[3 * m + 3 * a + 1] = -x;
-    R[4 * m + 3 * a + 1] = -z;  // (0, -z, y)
-    R[4 * m + 3 * a + 2] = y;
-    R[5 * m + 3 * a] = z;     // (z, 0, -x)
-    R[5 * m + 3 * a + 2] = -x;
+    const Point r{X[a][0] - c[0], X[a][1] - c[1], X[a][2] - c[2]};
+    for (int k = 0; k < 6; ++k) {
+      const Point mode = rigidBodyMode(k, r);
+      for (int d = 0; d < 3; ++d) R[k * m + 3 * a + d] = mode[d];
+    }
   }
   // Two passes of modified Gram-Schmidt make the columns orthonormal to round-off.
   for (int pass = 0; pass < 2; ++pass)

@@ -55,8 +55,33 @@ std::vector<double> facetNodalAreas(const std::vector<Point>& X);
 // Consistent nodal forces of a constant volume force b on a cell.
 std::vector<double> cellVolumeForces(Mesh::CellType type, const std::vector<Point>& X, const Point& b);
 
-// Rigid-body modes of a set of points: 3 translations and the rotations
-// (y,-x,0), (0,-z,y), (z,0,-x), orthonormalized (modified Gram-Schmidt twice).
+// The rigid motions at a point r (relative to a centre), written once for
+// every kernel basis in Tribos (FETI's R, MueLu's null spaces, the check of
+// the motions Dirichlet conditions hold):
+//   rotation about axis b: e_b x r;
+//   rigidBodyMode(k, r), k = 0..5: translations e_x, e_y, e_z, then the
+//   rotations (y,-x,0), (0,-z,y), (z,0,-x) = -e_z x r, e_x x r, e_y x r.
+inline Point rotation(int b, const Point& r) {
+  Point w{0, 0, 0};
+  w[(b + 1) % 3] = -r[(b + 2) % 3];
+  w[(b + 2) % 3] = r[(b + 1) % 3];
+  return w;
+}
+inline Point rigidBodyMode(int k, const Point& r) {
+  if (k < 3) {
+    Point t{0, 0, 0};
+    t[k] = 1.0;
+    return t;
+  }
+  static constexpr int axis[3] = {2, 0, 1}, sign[3] = {-1, 1, 1};
+  Point w = rotation(axis[k - 3], r);
+  if (sign[k - 3] < 0)
+    for (double& v : w) v = -v;
+  return w;
+}
+
+// Rigid-body modes of a set of points about their centroid, the six of
+// rigidBodyMode() orthonormalized (modified Gram-Schmidt twice).
 // Column-major, 3*n x 6.
 std::vector<double> rigidBodyModes(const std::vector<Point>& X);
 

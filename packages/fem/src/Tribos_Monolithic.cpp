@@ -190,10 +190,7 @@ RCP<MultiVector> MonolithicSystem::nullSpace() const {
   auto nullspace = rcp(new MultiVector(map_, 6));
   for (size_t i = 0; i < map_->getNodeNumElements(); ++i) {
     const auto& x = disc_.mesh.coords[disc_.ownedNodes()[i / 3]];
-    const int c = static_cast<int>(i % 3);
-    nullspace->replaceLocalValue(i, c, 1.0);
-    const double rot[3][3] = {{x[1], -x[0], 0}, {0, -x[2], x[1]}, {x[2], 0, -x[0]}};
-    for (int r = 0; r < 3; ++r) nullspace->replaceLocalValue(i, 3 + r, rot[r][c]);
+    for (int k = 0; k < 6; ++k) nullspace->replaceLocalValue(i, k, rigidBodyMode(k, x)[i % 3]);
   }
   return nullspace;
 }

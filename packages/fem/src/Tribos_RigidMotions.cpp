@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "Tribos_Elasticity.hpp"
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -109,13 +110,12 @@ std::vector<std::string> freeRigidMotions(const std::vector<std::array<double, 3
     TRIBOS_REQUIRE(dof >= 0 && static_cast<size_t>(dof / 3) < N, "rigid motions: Dirichlet dof " << dof << " out of range");
     const auto& X = coords[dof / 3];
     const int a = static_cast<int>(dof % 3);
-    const double r[3] = {(X[0] - c[0]) / L, (X[1] - c[1]) / L, (X[2] - c[2]) / L};
+    const Point r{(X[0] - c[0]) / L, (X[1] - c[1]) / L, (X[2] - c[2]) / L};
+    // Columns: translation along axis b, then rotation about axis b (e_b x r),
+    // so that the rotational part of a motion is its axis.
     double row[6] = {0, 0, 0, 0, 0, 0};
     row[a] = 1;
-    for (int b = 0; b < 3; ++b) {  // component a of e_b x r
-      const int b1 = (b + 1) % 3, b2 = (b + 2) % 3;
-      row[3 + b] = a == b1 ? -r[b2] : (a == b2 ? r[b1] : 0.0);
-    }
+    for (int b = 0; b < 3; ++b) row[3 + b] = rotation(b, r)[a];
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j) M[6 * i + j] += row[i] * row[j];
   }

@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "Tribos_Elasticity.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_MueLuCG.hpp"
 
@@ -108,11 +109,11 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
   for (int i = 0; i < sys_.m; ++i) R[sys_.contact[i].node] = &sys_.frame[i];
   for (int node = 0; node < N; ++node) {
     const auto& x = problem.coords[node];
-    const double modes[6][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {x[1], -x[0], 0}, {0, -x[2], x[1]}, {x[2], 0, -x[0]}};
     for (int k = 0; k < 6; ++k)
       for (int b = 0; b < 3; ++b) {
-        double v = modes[k][b];
-        if (R[node]) v = (*R[node])[b] * modes[k][0] + (*R[node])[3 + b] * modes[k][1] + (*R[node])[6 + b] * modes[k][2];
+        const Fem::Point mode = Fem::rigidBodyMode(k, x);
+        double v = mode[b];
+        if (R[node]) v = (*R[node])[b] * mode[0] + (*R[node])[3 + b] * mode[1] + (*R[node])[6 + b] * mode[2];
         if (sys_.freeOfDof[3 * node + b] < 0) v = 0;
         if (3 * node + b >= firstDof_ && 3 * node + b < endDof_) nullspace->replaceGlobalValue(3 * node + b, k, v);
       }

@@ -48,6 +48,26 @@ bool sticks(NodeState s) { return s == NodeState::NoContactStick || s == NodeSta
 
 }  // namespace
 
+const NewtonSolverRegistry& newtonSolvers() {
+  using Kind = NewtonSolverKind;
+  static const NewtonSolverRegistry registry = [] {
+    NewtonSolverRegistry r("semismooth* Newton solver");
+    r.add("Sparse Direct", [] { return rcp(new Kind{Kind::Reduced, Kind::Factorization}); },
+          "factor the Newton matrix in the full primal space each step, the method of the paper",
+          {"Dense Schur"});
+    r.add("Reduced CG", [] { return rcp(new Kind{Kind::Reduced, Kind::ConjugateGradients}); },
+          "conjugate gradients on (S_FF + G_FF) dx_F = b_F, S applied by K_rr solves, Jacobi-preconditioned with "
+          "diag(K_cc + G): no factorization per step",
+          {"Dense Schur"});
+    r.add("CG+MueLu", [] { return rcp(new Kind{Kind::FullSpace, Kind::ConjugateGradients}); },
+          "no factorization at all: a full-space iterate u with (K u - f)_r = 0 gives S x - l = (K u - f)_c, Newton "
+          "steps are full-space solves by Belos CG preconditioned with MueLu (inexact Newton), K_rr solves "
+          "(equilibrium corrections) likewise; needs the node coordinates");
+    return r;
+  }();
+  return registry;
+}
+
 RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
   using Teuchos::tuple;
   auto pl = rcp(new Teuchos::ParameterList("SemismoothStarNewton"));
@@ -67,14 +87,7 @@ RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
   pl->set("Step Size Factor", 10.0,
           "multiplies a; larger a lets the multiplier y rather than x decide stick/slip and contact, which avoids "
           "cycling of the stick/slip sets (1 cycles on the prism at level 2; 10 gives 6-7 iterations)", rcp(new Teuchos::EnhancedNumberValidator<double>(1e-12, 1e12)));
-  pl->set("Newton Solver", "Sparse Direct",
-          "Sparse Direct: factor the Newton matrix in the full primal space each step (the method of the paper); "
-          "Reduced CG: conjugate gradients on (S_FF + G_FF) dx_F = b_F, S applied by K_rr solves, Jacobi-preconditioned "
-          "with diag(K_cc + G) (no factorization per step); "
-          "CG+MueLu: no factorization at all: a full-space iterate u with (K u - f)_r = 0 gives S x - l = (K u - f)_c, "
-          "Newton steps are full-space solves by Belos CG preconditioned with MueLu (inexact Newton), K_rr solves "
-          "(equilibrium corrections) likewise; needs the node coordinates",
-          rcp(new Teuchos::StringValidator(tuple<std::string>("Sparse Direct", "Reduced CG", "CG+MueLu"))));
+  pl->set("Newton Solver", "Sparse Direct", newtonSolvers().documentation(), newtonSolvers().validator());
   pl->set("CG Tolerance", 1e-12, "Reduced CG: relative residual", rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1.0)));
   pl->set("CG Maximum Iterations", 2000, "Reduced CG and CG+MueLu: iteration limit of one CG solve",
           rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
@@ -102,12 +115,21 @@ RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
   return pl;
 }
 
+void SemismoothStarNewton::checkParameters(const Teuchos::ParameterList& params) {
+  Teuchos::ParameterList p(params);
+  p.validateParametersAndSetDefaults(*getValidParameters());
+  const std::string solver = newtonSolvers().canonical(p.get<std::string>("Newton Solver"));
+  TRIBOS_REQUIRE(!p.get<bool>("Dense Schur") || newtonSolvers().accepts(solver, "Dense Schur"),
+                 "\"Dense Schur\" = true needs S, which \"Newton Solver\" = " << solver << " does not form ("
+                 << joinNames(newtonSolvers().accepting("Dense Schur")) << " do)");
+}
+
 SemismoothStarNewton::SemismoothStarNewton(const ContactProblem& problem, const Teuchos::ParameterList& params)
     : params_(params), contact_(problem.contact), numNodes_(problem.numNodes()) {
   params_.validateParametersAndSetDefaults(*getValidParameters());
-  if (params_.get<std::string>("Newton Solver") == "CG+MueLu") {
-    TRIBOS_REQUIRE(!params_.get<bool>("Dense Schur"),
-                   "semismooth*: \"Dense Schur\" = true needs S and cannot be combined with \"Newton Solver\" = CG+MueLu");
+  checkParameters(params_);
+  newtonSolver_ = *newtonSolvers().create(params_.get<std::string>("Newton Solver"));
+  if (newtonSolver_.space == NewtonSolverKind::FullSpace) {
     fullSpace_ = std::make_unique<FullSpaceNewton>(problem, params_);
   } else {
     reduction_ = std::make_unique<ContactReduction>(problem, params_.get<std::string>("Local Solver"));
@@ -230,7 +252,7 @@ void SemismoothStarNewton::newtonStep(const Approximation& ap, const std::vector
   linearization(ap, freeComp, G);
   std::vector<double> rhs(nc);
   for (int j = 0; j < nc; ++j) rhs[j] = -residual[j];
-  if (denseS_.empty() && params_.get<std::string>("Newton Solver") == "Reduced CG")
+  if (denseS_.empty() && newtonSolver_.step == NewtonSolverKind::ConjugateGradients)
     return reducedCG(freeComp, G, rhs, dx, Sdx);
   if (denseS_.empty()) return reduction_->newtonSolve(freeComp, G, rhs, dx, Sdx);
 

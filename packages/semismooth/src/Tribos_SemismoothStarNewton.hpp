@@ -21,6 +21,7 @@
 #include "Tribos_FullSpaceNewton.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_Mesh.hpp"
+#include "Tribos_Registry.hpp"
 #include "Tribos_ResultKKT.hpp"
 
 namespace Tribos {
@@ -71,6 +72,18 @@ struct SemismoothResult {
   double preconditionerSeconds = 0;
 };
 
+// How a Newton step is solved: in the reduced space of the contact dofs
+// (S applied by K_rr solves) or in the full primal space, by a
+// factorization or by conjugate gradients. The registry's names are the
+// values of "Newton Solver"; those that accept "Dense Schur" can work with
+// a dense S (then the Newton systems are solved densely).
+struct NewtonSolverKind {
+  enum Space { Reduced, FullSpace } space;
+  enum Step { Factorization, ConjugateGradients } step;
+};
+using NewtonSolverRegistry = Registry<NewtonSolverKind>;
+const NewtonSolverRegistry& newtonSolvers();
+
 class SemismoothStarNewton {
  public:
   // Reduces the problem (factors K_rr; forms S densely if "Dense Schur"), or
@@ -84,6 +97,9 @@ class SemismoothStarNewton {
   // "CG Maximum Iterations", "MueLu Smoother", "MueLu Reuse",
   // "Equilibrium Tolerance", "Forcing Term Maximum".
   static RCP<const Teuchos::ParameterList> getValidParameters();
+  // Validates params and the compatibility of its choices (before any work;
+  // the constructor calls it too). Messages name the parameters of this list.
+  static void checkParameters(const Teuchos::ParameterList& params);
 
   // Runs the iteration from x = 0; log (optional) gets one line per iteration.
   SemismoothResult solve(std::ostream* log = nullptr);
@@ -113,6 +129,7 @@ class SemismoothStarNewton {
                   std::vector<double>& Sdx);
 
   Teuchos::ParameterList params_;
+  NewtonSolverKind newtonSolver_{NewtonSolverKind::Reduced, NewtonSolverKind::Factorization};
   std::unique_ptr<ContactReduction> reduction_;  // all solvers but "CG+MueLu"
   std::unique_ptr<FullSpaceNewton> fullSpace_;   // "CG+MueLu"
   std::vector<ContactNode> contact_;
@@ -142,6 +159,18 @@ std::vector<int> contactStatus(const SemismoothResult& result);
 // The rigid plane of the contact (the common normal of the contact nodes and
 // their gap); throws when the contact nodes do not share one plane.
 Fem::RigidPlane contactPlane(const SemismoothResult& result);
+
+// A body on a rigid plane, as solveFromMesh() takes it: the mesh, material
+// and loads, the contact face with its gap and the Tresca slip bound per
+// unit area (0: frictionless), and the list "SemismoothStarNewton".
+struct MeshContactProblem {
+  Mesh::Mesh mesh;
+  Fem::Material material;
+  Fem::LoadCase loads;
+  std::string contactFace = "zmin";
+  double gap = 0.0, slipBoundTraction = 0.0;
+  Teuchos::ParameterList solverParams;
+};
 
 // Assembles K and f of the whole mesh, takes the contact face on a rigid
 // plane at distance gap (outward area-weighted facet normals), nodal slip

@@ -18,10 +18,10 @@
 #include <cmath>
 #include <set>
 
-#include "SemismoothTestUtils.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_RigidMotions.hpp"
+#include "Tribos_SemismoothStarNewton.hpp"
 
 using namespace Tribos;
 

@@ -24,8 +24,8 @@
 #include <cmath>
 #include <map>
 
-#include "SemismoothTestUtils.hpp"
 #include "Tribos_ResultKKT.hpp"
+#include "Tribos_SemismoothStarNewton.hpp"
 #include "Tribos_TestSupport.hpp"
 
 using namespace Tribos;

@@ -5,7 +5,7 @@
 // steps fall towards 0 in the last iterations.
 #include <Teuchos_UnitTestHarness.hpp>
 
-#include "SemismoothTestUtils.hpp"
+#include "PrismProblem.hpp"
 
 namespace {
 

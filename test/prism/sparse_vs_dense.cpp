@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "SemismoothTestUtils.hpp"
+#include "PrismProblem.hpp"
 #include "Tribos_TestSupport.hpp"
 
 namespace {

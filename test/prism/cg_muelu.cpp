@@ -14,7 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "SemismoothTestUtils.hpp"
+#include "PrismProblem.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_TestSupport.hpp"
 

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "Tribos_Error.hpp"
-#include "Tribos_SemismoothInput.hpp"
+#include "Tribos_Input.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
 
 namespace {
@@ -76,7 +76,8 @@ int main(int argc, char** argv) {
               << "level    nodes  assembly(s)  reduction(s)  contact nodes  solver(s)  iters"
                  "   contact  stick  slip  Newton-factor(s)  CG steps  setup(s)  total(s)\n";
     for (int L = Lmin; L <= Lmax; ++L) {
-      Semismooth::MeshContactProblem pr = Semismooth::readMeshContactProblem(input, L);
+      Semismooth::MeshContactProblem pr =
+          Input::semismoothProblem(*Input::read(input, {"Mesh/Level=" + std::to_string(L)}));
       if (!newtonSolver.empty()) pr.solverParams.set("Newton Solver", newtonSolver);
       for (const auto& [name, value] : extra) setParameter(pr.solverParams, name, value);
       const auto start = std::chrono::steady_clock::now();

@@ -14,7 +14,7 @@
 
 #include <cmath>
 
-#include "SemismoothTestUtils.hpp"
+#include "PrismProblem.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "SemismoothTestUtils.hpp"
+#include "PrismProblem.hpp"
 
 namespace {
 

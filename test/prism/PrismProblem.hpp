@@ -1,13 +1,12 @@
-// SemismoothTestUtils.hpp: the prism problem of input/prism_tresca.xml at a
-// given level.
+// PrismProblem.hpp: the semismooth* prism of input/prism_tresca.xml at a
+// given level, read and validated by the driver's reader (the one reader of
+// the input schema).
 #pragma once
-
-#include <Tpetra_Core.hpp>
 
 #include <cstdlib>
 #include <string>
 
-#include "Tribos_SemismoothInput.hpp"
+#include "Tribos_Input.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
 
 namespace sstest {
@@ -18,7 +17,8 @@ inline std::string prismInput() {
 }
 
 inline Tribos::Semismooth::MeshContactProblem prism(int level) {
-  return Tribos::Semismooth::readMeshContactProblem(prismInput(), level);
+  using namespace Tribos;
+  return Input::semismoothProblem(*Input::read(prismInput(), {"Mesh/Level=" + std::to_string(level)}));
 }
 
 }  // namespace sstest

@@ -1,0 +1,13 @@
+// prism_test_main.cpp: runs every TEUCHOS_UNIT_TEST of the semismooth* prism tests
+// (--group-name=... or --test-name=... select some).
+#include <Teuchos_GlobalMPISession.hpp>
+#include <Teuchos_UnitTestRepository.hpp>
+#include <Tpetra_Core.hpp>
+
+int main(int argc, char* argv[]) {
+  Teuchos::GlobalMPISession mpi(&argc, &argv);
+  Tpetra::ScopeGuard tpetra(&argc, &argv);
+  // A check that fails on one rank fails the test on every rank.
+  Teuchos::UnitTestRepository::setGloballyReduceTestResult(true);
+  return Teuchos::UnitTestRepository::runUnitTestsFromMain(argc, argv);
+}
