@@ -185,6 +185,12 @@ RCP<Vector> FetiContactProblem::multipliers(const Vector& x) const {
   return lambda;
 }
 
+RCP<const Teuchos::ParameterList> FetiContactProblem::getValidParameters() {
+  auto pl = Teuchos::parameterList("Solver");
+  Friction::FrictionSolverFactory::addValidParameters(*pl);
+  return pl;
+}
+
 FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
                                               const Teuchos::ParameterList& solverParams,
                                               RCP<Teuchos::FancyOStream> out) const {

@@ -53,6 +53,9 @@ class FetiContactProblem {
   // with the sublists "Algorithm 1", "MSA", "Algorithm 2" of solverParams.
   FetiContactSolution solve(const std::string& outerAlgorithm, const Teuchos::ParameterList& solverParams,
                             RCP<Teuchos::FancyOStream> out = Teuchos::null) const;
+  // The solverParams solve() accepts: the outer algorithms' sublists with
+  // their defaults and documentation (FrictionSolverFactory::addValidParameters).
+  static RCP<const Teuchos::ParameterList> getValidParameters();
   // The factor s of the scaled dual problem (s PFP, s P(h - F lambda~)), s = 1/||PFP||.
   SC scale() const { return scaling_->scale(); }
 

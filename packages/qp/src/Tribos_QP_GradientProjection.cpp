@@ -14,10 +14,14 @@ namespace QP {
 
 GradientProjectionSolver::GradientProjectionSolver(std::string name) : name_(std::move(name)) {}
 
-RCP<const Teuchos::ParameterList> GradientProjectionSolver::getValidParameters() const {
-  auto pl = Teuchos::rcp(new Teuchos::ParameterList(name_));
+RCP<const Teuchos::ParameterList> GradientProjectionSolver::validParameters(const std::string& name) {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList(name));
   addCommonParameters(*pl, CommonParameters());
   return pl;
+}
+
+RCP<const Teuchos::ParameterList> GradientProjectionSolver::getValidParameters() const {
+  return validParameters(name_);
 }
 
 void GradientProjectionSolver::setParameters(RCP<Teuchos::ParameterList> params) {

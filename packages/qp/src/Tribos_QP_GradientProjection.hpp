@@ -26,6 +26,8 @@ class GradientProjectionSolver : public QPSolver {
 
  protected:
   explicit GradientProjectionSolver(std::string name);
+  // The valid parameters of the solver `name` (MPRGP and MPGP share them).
+  static RCP<const Teuchos::ParameterList> validParameters(const std::string& name);
 
   // Check that this algorithm handles Omega (MPRGP refuses circles).
   virtual void checkSet(const ConstraintSet& Omega) const = 0;

@@ -15,6 +15,9 @@ class MPGP : public GradientProjectionSolver {
  public:
   MPGP();
   explicit MPGP(RCP<Teuchos::ParameterList> params);
+  // The parameters setParameters() accepts, without a solver (the static
+  // twin of getValidParameters(), as in friction's outer algorithms).
+  static RCP<const Teuchos::ParameterList> validParameters() { return GradientProjectionSolver::validParameters("MPGP"); }
 
  protected:
   void checkSet(const ConstraintSet&) const override {}

@@ -13,6 +13,9 @@ class MPRGP : public GradientProjectionSolver {
  public:
   MPRGP();
   explicit MPRGP(RCP<Teuchos::ParameterList> params);
+  // The parameters setParameters() accepts, without a solver (the static
+  // twin of getValidParameters(), as in friction's outer algorithms).
+  static RCP<const Teuchos::ParameterList> validParameters() { return GradientProjectionSolver::validParameters("MPRGP"); }
 
  protected:
   void checkSet(const ConstraintSet& Omega) const override;

@@ -20,7 +20,7 @@ SMALBE::SMALBE() { setParameters(Teuchos::null); }
 
 SMALBE::SMALBE(RCP<Teuchos::ParameterList> params) { setParameters(params); }
 
-RCP<const Teuchos::ParameterList> SMALBE::getValidParameters() const {
+RCP<const Teuchos::ParameterList> SMALBE::validParameters() {
   using Teuchos::rcp;
   auto pl = rcp(new Teuchos::ParameterList("SMALBE"));
   CommonParameters d;

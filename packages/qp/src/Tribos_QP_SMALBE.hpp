@@ -30,7 +30,9 @@ class SMALBE : public QPSolver {
   QPStatus solve(const Operator& A, const Vector& b, const ConstraintSet& Omega, Vector& x) override;
   void setTolerance(SC atol) override { toleranceOverride_ = atol; }
   void setHessianNorm(SC normA) override { hessianNorm_ = normA; }
-  RCP<const Teuchos::ParameterList> getValidParameters() const override;
+  RCP<const Teuchos::ParameterList> getValidParameters() const override { return validParameters(); }
+  // The same without a solver (as in friction's outer algorithms).
+  static RCP<const Teuchos::ParameterList> validParameters();
   void setParameters(RCP<Teuchos::ParameterList> params) override;
   void setOutputStream(RCP<Teuchos::FancyOStream> out) override;
   RCP<const Vector> gradient() const override { return g_; }
