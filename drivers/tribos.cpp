@@ -2,6 +2,7 @@
 //   mpirun -np N tribos input/FILE.xml [--output DIR] [--summary FILE.json]
 //                      [--set "Sublist/Key=value" ...] [--verify] [--verbose] [--quiet]
 //                      [--max-memory SIZE] [--export-fclib FILE.hdf5]
+//   tribos --print-parameters [input/FILE.xml] [--set "Sublist/Key=value" ...]
 // Exit codes (docs/exit_codes.md): 0 converged; 1 bad input or a problem
 // refused before any work, nothing written; 2 not converged, the result is
 // written and marked so; 3 the run failed (output not writable, disk full,
@@ -21,6 +22,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_Input.hpp"
+#include "Tribos_InputXml.hpp"
 #include "Tribos_MemoryEstimate.hpp"
 #include "Tribos_Progress.hpp"
 #include "Tribos_ResultWriter.hpp"
@@ -30,6 +32,7 @@ namespace {
 
 const char* kUsage =
     "usage: tribos INPUT.xml [options]\n"
+    "       tribos --print-parameters [INPUT.xml] [--set ...]\n"
     "  --output DIR            result directory (default: Output/Directory of the input)\n"
     "  --summary FILE.json     also write the run summary to FILE.json (it is always printed on stdout)\n"
     "  --set \"Sublist/Key=value\"  override one input parameter (repeatable), e.g. --set \"Mesh/Level=8\"\n"
@@ -38,6 +41,8 @@ const char* kUsage =
     "  --quiet                 no progress lines on stderr\n"
     "  --max-memory SIZE       refuse a run estimated to need more than SIZE (e.g. 4G) on one machine\n"
     "  --export-fclib FILE     write the FETI contact problem and its solution as an FCLIB file\n"
+    "  --print-parameters      print the parameters as an XML input file, every default filled and\n"
+    "                          documented (of INPUT.xml and --set when given), and exit; nothing is solved\n"
     "  --help                  this text\n"
     "exit codes: 0 converged, 1 bad input (nothing written), 2 not converged (result written, marked),\n"
     "            3 run failure: output, memory or numerical breakdown (no result written)\n";
@@ -48,7 +53,7 @@ struct Args {
   std::string input;
   std::vector<std::string> overrides;
   Tribos::RunOptions options;
-  bool help = false, quiet = false;
+  bool help = false, quiet = false, printParameters = false;
 };
 
 Args parse(int argc, char** argv) {
@@ -69,6 +74,7 @@ Args parse(int argc, char** argv) {
     else if (s == "--quiet") a.quiet = true;
     else if (s == "--max-memory") a.options.maxMemory = Tribos::parseMemorySize(next("--max-memory"), "--max-memory");
     else if (s == "--export-fclib") a.options.exportFclib = next("--export-fclib");
+    else if (s == "--print-parameters") a.printParameters = true;
     else if (s == "--help" || s == "-h") a.help = true;
     else if (!s.empty() && s[0] == '-') throw Tribos::Error("unknown option " + s + "\n" + kUsage);
     else {
@@ -76,7 +82,7 @@ Args parse(int argc, char** argv) {
       a.input = s;
     }
   }
-  TRIBOS_REQUIRE(a.help || !a.input.empty(), "no input file given\n" << kUsage);
+  TRIBOS_REQUIRE(a.help || a.printParameters || !a.input.empty(), "no input file given\n" << kUsage);
   a.options.inputName = a.input;
   return a;
 }
@@ -149,6 +155,14 @@ int main(int argc, char** argv) {
     args = parse(argc, argv);
     if (args.help) {
       if (root) std::cout << kUsage;
+      return kConverged;
+    }
+    if (args.printParameters) {
+      // The effective list the run would use, as a file it accepts again;
+      // no rank check, no output directory: no work at all.
+      const auto effective = args.input.empty() ? Tribos::Input::defaults(args.overrides)
+                                                : Tribos::Input::read(args.input, args.overrides);
+      if (root) std::cout << Tribos::Input::toXml(*effective) << std::flush;
       return kConverged;
     }
     params = Tribos::Input::read(args.input, args.overrides);

@@ -27,6 +27,7 @@ import signal
 import subprocess
 import sys
 import time
+import xml.etree.ElementTree
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 INPUT = os.path.join(os.path.dirname(HERE), "input", "brick_coulomb_F03.xml")
@@ -45,13 +46,13 @@ def command(mpi, tribos, np_, out, *sets, name="run"):
 
 
 def check_sets(out):
-    """Every summary in out comes with the h5 and xmf of the same run."""
+    """Every summary in out comes with the h5, xmf and parameters of the same run."""
     import h5py
     for summary in glob.glob(os.path.join(out, "*.json")):
         base = summary[:-5]
         with open(summary) as f:
             s = json.load(f)
-        for ext in (".h5", ".xmf"):
+        for ext in (".h5", ".xmf", ".parameters.xml"):
             if not os.path.exists(base + ext):
                 fail("%s without its %s" % (summary, ext))
         with h5py.File(base + ".h5", "r") as h5:
@@ -63,6 +64,10 @@ def check_sets(out):
                 for ref in re.findall(r">[^<>:]+\.h5:(/[^<]+)<", f.read()):
                     if ref not in h5:
                         fail("the xmf names %s, which the h5 of %s lacks" % (ref, s["problem"]))
+        root = xml.etree.ElementTree.parse(base + ".parameters.xml").getroot()
+        names = [p.get("value") for p in root.findall("Parameter") if p.get("name") == "Problem Name"]
+        if names != [s["problem"]]:
+            fail("%s and its parameters come from different runs (%s, %s)" % (summary, s["problem"], names))
 
 
 def temporaries(out):

@@ -16,6 +16,7 @@
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_ProjectedCG.hpp"
 #include "Tribos_Input.hpp"
+#include "Tribos_InputXml.hpp"
 #include "Tribos_MemoryEstimate.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_OutputDirectory.hpp"
@@ -385,7 +386,9 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
 }
 
 // The result files: Base Name .h5 (with the verdict as root attributes),
-// .xmf and .json (the summary, written last: a set without it is incomplete).
+// .xmf, .parameters.xml (the effective parameters, defaults filled and the
+// directory the run wrote to: the run again) and .json (the summary, written
+// last: a set without it is incomplete).
 void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory& dir, const Mesh::Discretization& disc,
                  const Fem::Material& mat, const Solution& sol, bool converged, const std::string& stopReason,
                  IO::Summary& summary,
@@ -394,8 +397,10 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   Progress::stage("writing results");
   const std::string base = params.sublist("Output").get<std::string>("Base Name");
   summary.set("output", dir.path() + "/" + base + ".xmf");
+  summary.set("parameters", dir.path() + "/" + base + ".parameters.xml");
   IO::ResultSet files(dir, comm);
-  const std::string h5 = files.add(base + ".h5"), xmf = files.add(base + ".xmf"), json = files.add(base + ".json");
+  const std::string h5 = files.add(base + ".h5"), xmf = files.add(base + ".xmf"),
+                    xml = files.add(base + ".parameters.xml"), json = files.add(base + ".json");
   std::vector<IO::PointSet> points;
   if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.contactNodes));
   IO::ResultAttributes attributes;
@@ -403,6 +408,9 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   attributes.text = {{"problem", params.get<std::string>("Problem Name")},
                      {"stop_reason", stopReason}};
   IO::ResultWriter(disc, comm).write(h5, base + ".h5", xmf, sol.u, {}, cellFields(disc, mat, sol.u), points, attributes);
+  Teuchos::ParameterList effective = params;
+  effective.sublist("Output").set("Directory", dir.path());
+  IO::writeTextFile(xml, Input::toXml(effective), comm);
   IO::writeTextFile(json, summary.toJson() + "\n", comm);
   files.commit();
 }
