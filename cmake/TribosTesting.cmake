@@ -7,13 +7,18 @@ if(_tribos_uid STREQUAL "0")
   list(APPEND TRIBOS_MPIEXEC_FLAGS --allow-run-as-root)
 endif()
 
+# What test programs share (test/support: Tribos_TestSupport.hpp): on the
+# include path of every test, never installed with the public headers.
+add_library(tribos_test_support INTERFACE)
+target_include_directories(tribos_test_support INTERFACE ${PROJECT_SOURCE_DIR}/test/support)
+
 function(tribos_add_test)
   cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;RANKS;LABELS;ARGS" ${ARGN})
   if(NOT T_RANKS)
     set(T_RANKS 1)
   endif()
   add_executable(${T_NAME} ${T_SOURCES})
-  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS})
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} tribos_test_support)
   foreach(np IN LISTS T_RANKS)
     add_test(NAME ${T_NAME}_np${np}
       COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${np} ${TRIBOS_MPIEXEC_FLAGS}
