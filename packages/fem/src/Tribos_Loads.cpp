@@ -31,5 +31,16 @@ std::map<long long, double> constrainedDofs(const Mesh::Mesh& mesh, const std::v
   return dofs;
 }
 
+std::vector<double> faceNodalAreas(const Mesh::Mesh& mesh, const std::string& face) {
+  std::vector<double> area(mesh.numNodes(), 0.0);
+  for (const auto& facet : mesh.face(face)) {
+    std::vector<Point> X;
+    for (int n : facet.nodes) X.push_back(mesh.coords[n]);
+    const auto w = facetNodalAreas(X);
+    for (size_t a = 0; a < facet.nodes.size(); ++a) area[facet.nodes[a]] += w[a];
+  }
+  return area;
+}
+
 }  // namespace Fem
 }  // namespace Tribos

@@ -38,5 +38,10 @@ struct LoadCase {
 // both constrain a dof; conflicting values are an error naming both faces.
 std::map<long long, double> constrainedDofs(const Mesh::Mesh& mesh, const std::vector<DirichletCondition>& bcs);
 
+// The area of a face attached to every mesh node (the integral of its shape
+// function over the face; 0 off the face): a traction bound times it is the
+// node's slip bound.
+std::vector<double> faceNodalAreas(const Mesh::Mesh& mesh, const std::string& face);
+
 }  // namespace Fem
 }  // namespace Tribos

@@ -242,13 +242,12 @@ std::vector<double> CoarseSpace::globalMotion(int j) const {
     // u_j at the subdomain's dofs; its amplitudes R_s'u_j (R_s orthonormal).
     std::vector<double> u(static_cast<size_t>(n), 0.0);
     for (size_t a = 0; a < sys.nodes.size(); ++a) {
-      std::array<double, 3> x;
+      Fem::Point x;
       for (int c = 0; c < 3; ++c) x[c] = mesh.coords[sys.nodes[a]][c] - 0.5 * (lo[c] + hi[c]);
-      double* ua = &u[3 * a];
-      if (j < 3) ua[j] = 1.0;
-      if (j == 3) ua[1] = -x[2], ua[2] = x[1];  // e_x cross x
-      if (j == 4) ua[0] = x[2], ua[2] = -x[0];
-      if (j == 5) ua[0] = -x[1], ua[1] = x[0];
+      Fem::Point motion{0, 0, 0};  // translation along axis j, or rotation about axis j - 3
+      if (j < 3) motion[j] = 1.0;
+      else motion = Fem::rotation(j - 3, x);
+      for (int c = 0; c < 3; ++c) u[3 * a + c] = motion[c];
     }
     for (int b = 0; b < r; ++b) {
       double s = 0;

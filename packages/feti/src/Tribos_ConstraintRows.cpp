@@ -1,0 +1,203 @@
+#include "Tribos_ConstraintRows.hpp"
+
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Feti {
+
+namespace {
+
+// Whether the unit direction dir of a contact row at a node lies in the span
+// of the node's Dirichlet-fixed components (then the row would repeat the
+// Dirichlet rows). A direction partly fixed has no meaning as a contact or
+// friction direction: refused, naming the node.
+bool fixedDirection(const std::array<double, 3>& dir, const std::array<bool, 3>& fixed, int node) {
+  double inFixed = 0;
+  for (int c = 0; c < 3; ++c)
+    if (fixed[c]) inFixed += dir[c] * dir[c];
+  TRIBOS_REQUIRE(inFixed < 1e-12 || inFixed > 1 - 1e-12,
+                 "contact node " << node << ": its Dirichlet components fix part of the contact direction ("
+                                 << dir[0] << ", " << dir[1] << ", " << dir[2]
+                                 << "); a contact node may fix its normal or tangential components, not an oblique mix");
+  return inFixed > 0.5;
+}
+
+}  // namespace
+
+// Outward unit normal of a face of the box.
+std::array<double, 3> faceNormal(const std::string& face) {
+  static const std::map<std::string, std::array<double, 3>> normals = {
+      {"xmin", {-1, 0, 0}}, {"xmax", {1, 0, 0}}, {"ymin", {0, -1, 0}},
+      {"ymax", {0, 1, 0}},  {"zmin", {0, 0, -1}}, {"zmax", {0, 0, 1}}};
+  auto it = normals.find(face);
+  TRIBOS_REQUIRE(it != normals.end(), "contact face \"" << face << "\" unknown; valid: xmin, xmax, ymin, ymax, zmin, zmax");
+  return it->second;
+}
+
+// Two unit tangents completing n to a right-handed orthonormal frame (n, t1, t2).
+void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::array<double, 3>& t2) {
+  const std::array<double, 3> e = std::abs(n[0]) < 0.9 ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
+  t1 = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+  const double s = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+  for (double& v : t1) v /= s;
+  t2 = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+}
+
+std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const std::map<long long, double>& bc,
+                                        const ContactSpec& contact, const std::string& gluing,
+                                        bool eliminateDirichlet) {
+  const Mesh::Mesh& mesh = disc.mesh;
+  // Subdomain copies of every node, ascending.
+  std::vector<std::vector<int>> copies(mesh.numNodes());
+  for (const auto& sd : disc.subdomains)
+    for (int n : sd.nodes) copies[n].push_back(sd.id);
+  std::vector<DualRow> rows;
+  const bool orthonormal = gluing == "Orthonormal", full = gluing == "Full";
+  for (int n = 0; n < mesh.numNodes(); ++n) {
+    const auto& cp = copies[n];
+    const int k = static_cast<int>(cp.size());
+    for (int c = 0; c < 3; ++c) {
+      DualRow r{DualRow::Gluing};
+      r.node = n;
+      r.dir[c] = 1.0;
+      auto dirichlet = bc.find(3LL * n + c);
+      if (dirichlet != bc.end() && eliminateDirichlet) continue;  // eliminated in every copy
+      if (dirichlet != bc.end()) {
+        // Orthonormal: u = value on every copy (k orthonormal rows, no gluing
+        // needed); otherwise on the first copy, the copies being glued.
+        r.kind = DualRow::Dirichlet;
+        r.c = dirichlet->second;
+        for (int i = 0; i < (orthonormal ? k : 1); ++i) {
+          r.copies = {{cp[i], 1.0}};
+          rows.push_back(r);
+        }
+        if (orthonormal) continue;
+        r.kind = DualRow::Gluing;
+        r.c = 0.0;
+      }
+      if (orthonormal) {
+        // Helmert rows: an orthonormal basis of {w in R^k : sum w = 0}.
+        for (int j = 1; j < k; ++j) {
+          const double s = 1.0 / std::sqrt(static_cast<double>(j) * (j + 1));
+          r.copies.clear();
+          for (int i = 0; i < j; ++i) r.copies.emplace_back(cp[i], s);
+          r.copies.emplace_back(cp[j], -j * s);
+          rows.push_back(r);
+        }
+        continue;
+      }
+      for (int i = 0; i + 1 < k; ++i)
+        for (int j = i + 1; j < (full ? k : i + 2); ++j) {
+          r.copies = {{cp[i], 1.0}, {cp[j], -1.0}};
+          rows.push_back(r);
+        }
+    }
+  }
+  if (contact.enabled) {
+    const auto n = faceNormal(contact.face);
+    std::array<double, 3> t1, t2;
+    tangents(n, t1, t2);
+    // A Dirichlet condition on the normal component takes the node out of
+    // the contact set; one on a tangential component removes only that
+    // friction direction (a symmetry plane through the contact face).
+    for (int node : mesh.faceNodes(contact.face)) {
+      std::array<bool, 3> fixed{};
+      for (int c = 0; c < 3; ++c) fixed[c] = bc.count(3LL * node + c) > 0;
+      if (fixedDirection(n, fixed, node)) continue;
+      DualRow r{DualRow::Normal};
+      r.node = node;
+      r.copies = {{copies[node].front(), 1.0}};
+      r.dir = n;
+      r.c = contact.gap;
+      rows.push_back(r);
+      r.c = 0;
+      if (!fixedDirection(t1, fixed, node)) {
+        r.kind = DualRow::Tangent1;
+        r.dir = t1;
+        rows.push_back(r);
+      }
+      if (!fixedDirection(t2, fixed, node)) {
+        r.kind = DualRow::Tangent2;
+        r.dir = t2;
+        rows.push_back(r);
+      }
+    }
+  }
+  for (auto& r : rows) r.owner = disc.layout.owner(r.copies.front().first);
+  // Per rank: equality rows, normal rows, tangential pairs.
+  auto group = [](const DualRow& r) { return r.kind == DualRow::Normal ? 1 : (r.kind >= DualRow::Tangent1 ? 2 : 0); };
+  std::stable_sort(rows.begin(), rows.end(), [&](const DualRow& a, const DualRow& b) {
+    return a.owner != b.owner ? a.owner < b.owner : group(a) < group(b);
+  });
+  return rows;
+}
+
+DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<const Map>& primalMap,
+                                    const std::function<GO(int, int)>& primalDof,
+                                    const std::array<double, 3>& contactNormal, double contactGap,
+                                    const std::function<double(int)>& contactArea) {
+  const RCP<const Comm>& comm = primalMap->getComm();
+  const int me = comm->getRank();
+  DualConstraints dc;
+  GO first = 0;
+  size_t mine = 0;
+  for (const auto& r : rows) {
+    if (r.owner < me) ++first;
+    if (r.owner == me) ++mine;
+  }
+  dc.dualMap = rcp(new Map(static_cast<Tpetra::global_size_t>(rows.size()), mine, 0, comm));
+  size_t maxCopies = 1;
+  for (const auto& r : rows) maxCopies = std::max(maxCopies, r.copies.size());
+  dc.B = rcp(new CrsMatrix(dc.dualMap, 3 * maxCopies));
+  dc.c = rcp(new Vector(dc.dualMap));
+  auto cv = dc.c->getDataNonConst();
+  GO gid = first;
+  for (const auto& r : rows) {
+    if (r.owner != me) continue;
+    std::vector<GO> cols;
+    std::vector<SC> vals;
+    for (const auto& [s, weight] : r.copies) {
+      const GO base = primalDof(s, r.node);
+      for (int c = 0; c < 3; ++c)
+        if (r.dir[c] != 0.0) cols.push_back(base + c), vals.push_back(weight * r.dir[c]);
+    }
+    dc.B->insertGlobalValues(gid, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const SC>(vals));
+    cv[gid - first] = r.c;
+    dc.isEquality.push_back(r.kind == DualRow::Gluing || r.kind == DualRow::Dirichlet);
+    ++gid;
+  }
+  dc.B->fillComplete(primalMap, dc.dualMap);
+  if (!contactArea) return dc;
+  LocalContact& lc = dc.contact;
+  lc.normal = contactNormal;
+  lc.gap = contactGap;
+  tangents(lc.normal, lc.t1, lc.t2);
+
+  // Rows of one node are on one rank: the normal row, then its tangential
+  // rows (t1, t2; a direction fixed by a Dirichlet condition has none: -1).
+  std::map<int, size_t> contactIndex;  // mesh node -> local contact number
+  LO lid = 0;
+  for (const auto& r : rows) {
+    if (r.owner != me) continue;
+    if (r.kind == DualRow::Normal) {
+      contactIndex[r.node] = lc.nodes.size();
+      lc.normalRows.push_back(lid);
+      lc.nodes.push_back(r.node);
+      lc.nodalArea.push_back(contactArea(r.node));
+      lc.tangentRows.insert(lc.tangentRows.end(), {-1, -1});
+    } else if (r.kind == DualRow::Tangent1 || r.kind == DualRow::Tangent2) {
+      lc.tangentRows[2 * contactIndex.at(r.node) + (r.kind == DualRow::Tangent2)] = lid;
+    }
+    ++lid;
+  }
+  return dc;
+}
+
+}  // namespace Feti
+}  // namespace Tribos

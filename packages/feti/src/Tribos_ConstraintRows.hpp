@@ -1,0 +1,87 @@
+// Tribos_ConstraintRows.hpp: the rows of FETI's constraint matrix
+//   B = [B_E; B_N; B_T],  B_E u = c_E (gluing, Dirichlet),  B_N u <= c_N (contact),
+// B_T the tangential rows of the contact nodes (friction).
+// A row is described once, on every rank, by the copies of the node it
+// touches; meshConstraintRows() derives them from a decomposed mesh,
+// assembleConstraints() makes this rank's part of B and c from any list of
+// rows (a mesh's or an application's).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "Tribos_Discretization.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace Feti {
+
+// Contact of one face with a rigid plane: u . n <= gap at every node of the
+// face (n the outward normal of the face), two tangents per node.
+struct ContactSpec {
+  bool enabled = false;
+  std::string face = "zmin";
+  double gap = 0.0;
+};
+
+// One row of B, described on every rank (cheap) so numbering is global.
+struct DualRow {
+  enum Kind { Gluing, Dirichlet, Normal, Tangent1, Tangent2 } kind;
+  int node = -1;            // mesh node
+  // Copies of the node the row touches: (subdomain, weight); the row's entry
+  // at dof c of that copy is weight * dir[c]. Ascending subdomains.
+  std::vector<std::pair<int, double>> copies;
+  std::array<double, 3> dir{0, 0, 0};  // direction on the 3 dofs (unit vector for gluing and Dirichlet)
+  double c = 0.0;           // right-hand side
+  int owner = 0;            // rank
+};
+
+// The contact structure of this rank's dual dofs (local indices).
+struct LocalContact {
+  std::vector<LO> normalRows;       // lambda_I rows, one per local contact node
+  std::vector<LO> tangentRows;      // 2 per contact node: t1, t2 (-1: direction fixed by a Dirichlet condition)
+  std::vector<int> nodes;           // mesh node of each local contact node
+  std::vector<double> nodalArea;    // contact-face area attached to the node
+  std::array<double, 3> normal{0, 0, 0}, t1{0, 0, 0}, t2{0, 0, 0};
+  double gap = 0.0;                 // u . normal <= gap
+};
+
+// This rank's part of the constraints: B (rows of this rank, columns the
+// primal dofs), c, which rows are equalities, and the contact structure.
+struct DualConstraints {
+  RCP<const Map> dualMap;
+  RCP<CrsMatrix> B;
+  RCP<Vector> c;
+  std::vector<char> isEquality;
+  LocalContact contact;
+};
+
+// The rows of a decomposed mesh: gluing of the subdomain copies of every node
+// ("Orthonormal", "Non-redundant" or "Full"), the Dirichlet conditions
+// (none when eliminateDirichlet: FETI-1 eliminates them in the subdomains)
+// and the contact of one face with a rigid plane (normal and tangential rows
+// of every face node whose directions no Dirichlet condition fixes).
+// Sorted per owning rank: equality rows, normal rows, tangential rows.
+std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const std::map<long long, double>& dirichlet,
+                                        const ContactSpec& contact, const std::string& gluing,
+                                        bool eliminateDirichlet);
+
+// This rank's part of B and c. primalDof(s, node): the global primal dof of
+// the x component of node's copy in subdomain s. contactArea(node): the
+// contact area attached to a contact node (for traction slip bounds).
+// Collective over the primal map's communicator.
+DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<const Map>& primalMap,
+                                    const std::function<GO(int, int)>& primalDof,
+                                    const std::array<double, 3>& contactNormal, double contactGap,
+                                    const std::function<double(int)>& contactArea);
+
+// Outward unit normal of a face of the box ("xmin", ..., "zmax").
+std::array<double, 3> faceNormal(const std::string& face);
+// Two unit tangents completing n to a right-handed orthonormal frame (n, t1, t2).
+void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::array<double, 3>& t2);
+
+}  // namespace Feti
+}  // namespace Tribos

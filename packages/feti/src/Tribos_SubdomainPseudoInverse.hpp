@@ -1,0 +1,61 @@
+// Tribos_SubdomainPseudoInverse.hpp: K+ of the floating subdomains, the
+// one solve FETI's dual operator F = B K+ B' needs.
+//
+// Per subdomain K_reg = K + rho sum_{i in I} e_i e_i' (I: the fixing dofs of
+// R, rho = max |diag K|) is factored; K+ = (I - RR') K_reg^-1 (I - RR') is a
+// symmetric generalized inverse of K (K K+ K = K, docs/feti.md). Optionally
+// the block (K+)_bb on the dofs b that B touches is formed densely once, so
+// that B K+ B' is one packed symmetric product per subdomain.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "Tribos_Assembly.hpp"
+#include "Tribos_LocalSolver.hpp"
+#include "Tribos_Types.hpp"
+
+namespace Tribos {
+namespace Feti {
+
+class SubdomainPseudoInverse {
+ public:
+  // systems: this rank's subdomains (K, R; kept by reference); boundary[k]:
+  // the dofs of subdomain k that B touches (ascending); subdomains with at
+  // most denseRowLimit of them get a dense block (K+)_bb (-1: none).
+  // Factors every subdomain (collective only through the progress display).
+  SubdomainPseudoInverse(const std::vector<Fem::SubdomainSystem>& systems, std::vector<std::vector<int>> boundary,
+                         const std::string& localSolver, long denseRowLimit);
+
+  // z = K+ p on this rank's subdomains.
+  void apply(const Vector& p, Vector& z) const;
+  // z = K+ p as F = B K+ B' needs it: p = B'x lives on the boundary dofs and
+  // only those entries of z are computed where a dense block exists (the
+  // others are left as they are).
+  void applyOnBoundary(const Vector& p, Vector& z) const;
+
+  // True when some local subdomain has a dense block (K+)_bb.
+  bool hasDenseBlocks() const;
+  double factorSeconds() const { return factorSeconds_; }
+  double memoryMb() const;
+
+ private:
+  void applySubdomain(size_t k, const double* p, double* z) const;
+  void formDenseBlock(size_t k);
+
+  const std::vector<Fem::SubdomainSystem>& systems_;
+  std::vector<std::vector<int>> boundary_;
+  std::vector<RCP<LocalSolver>> Kreg_;           // factors of K_reg
+  std::vector<std::vector<double>> KplusBB_;     // packed lower triangle of (K+)_bb, or empty
+  mutable std::vector<double> work_, workB_;
+  double factorSeconds_ = 0;
+};
+
+// The r rows of R (n x r, column-major; r = 6 in TFETI) chosen by greedy complete pivoting:
+// R_I is then nonsingular and well conditioned, so adding rho to those
+// diagonal entries of K makes it nonsingular and its inverse a generalized
+// inverse of K (K K_reg^-1 K = K, see docs/feti.md).
+std::vector<int> fixingDofs(const std::vector<double>& R, int n);
+
+}  // namespace Feti
+}  // namespace Tribos
