@@ -6,7 +6,7 @@
 #   program runs (tribos --print-parameters).
 # MODE=example: configures SOURCE in a fresh BINARY against PREFIX alone,
 #   checks that Tribos was found there, builds it and runs BINARY/EXAMPLE on
-#   RANKS ranks; it must exit 0.
+#   RANKS ranks with the arguments ARGS (a list); it must exit 0.
 cmake_minimum_required(VERSION 3.18)
 separate_arguments(MPIEXEC_FLAGS UNIX_COMMAND "${MPIEXEC_FLAGS}")
 
@@ -72,7 +72,7 @@ elseif(MODE STREQUAL "example")
     message(FATAL_ERROR "${EXAMPLE} found Tribos in ${tribos_dir}, not in ${PREFIX}")
   endif()
   run("build ${EXAMPLE}" "${CMAKE_COMMAND}" --build "${BINARY}" -j 2)
-  run("run ${EXAMPLE}" ${MPIEXEC} ${MPIEXEC_NUMPROC_FLAG} ${RANKS} ${MPIEXEC_FLAGS} "${BINARY}/${EXAMPLE}")
+  run("run ${EXAMPLE}" ${MPIEXEC} ${MPIEXEC_NUMPROC_FLAG} ${RANKS} ${MPIEXEC_FLAGS} "${BINARY}/${EXAMPLE}" ${ARGS})
 
 else()
   message(FATAL_ERROR "run_installed.cmake: MODE must be install or example")
