@@ -21,7 +21,9 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_FCLIB.hpp"
 #include "Tribos_FCLIB_Accuracy.hpp"
-#include "Tribos_FCLIB_Files.hpp"
+#include "Tribos_FileSystem.hpp"
+#include "Tribos_OutputDirectory.hpp"
+#include "Tribos_ResultWriter.hpp"
 #include "Tribos_FCLIB_Solve.hpp"
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_Summary.hpp"
@@ -81,15 +83,15 @@ Args parse(int argc, char** argv) {
 // Output paths are checked before anything is read or solved, so that a
 // mistyped directory fails at once, not after a long solve; and no output
 // may replace the input or the other output.
-void checkOutputs(const Args& a) {
+void checkOutputs(const Args& a, const RCP<const Comm>& comm) {
   const std::vector<std::pair<std::string, std::string>> outputs = {{"--summary", a.summary},
                                                                     {"--write-solution", a.writeSolution}};
   for (const auto& [flag, path] : outputs) {
     if (path.empty()) continue;
-    FCLIB::checkOutputPath(path, flag);
-    TRIBOS_REQUIRE(!FCLIB::sameFile(path, a.input), flag << ": " << path << " is the input file");
+    IO::requireWritableFile(path, flag, comm);
+    TRIBOS_REQUIRE(!IO::sameFile(path, a.input), flag << ": " << path << " is the input file");
   }
-  TRIBOS_REQUIRE(a.summary.empty() || a.writeSolution.empty() || !FCLIB::sameFile(a.summary, a.writeSolution),
+  TRIBOS_REQUIRE(a.summary.empty() || a.writeSolution.empty() || !IO::sameFile(a.summary, a.writeSolution),
                  "--summary and --write-solution name the same file " << a.summary);
 }
 
@@ -282,10 +284,10 @@ int main(int argc, char** argv) {
   if (rank == 0) {
     try {
       const Args args = parse(argc, argv);
-      checkOutputs(args);
+      checkOutputs(args, self);
       const Outcome outcome = run(args, self);
       const std::string json = outcome.summary.toJson() + "\n";
-      if (!args.summary.empty()) FCLIB::writeTextAtomically(args.summary, json);
+      if (!args.summary.empty()) IO::writeFileAtomically(args.summary, json);
       std::cout << json;
       status = outcome.converged ? kConverged : kNotConverged;
     } catch (const std::exception& e) {

@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "Tribos_FCLIB_Files.hpp"
+#include "Tribos_FileSystem.hpp"
 #include "Tribos_QuietHdf5Errors.hpp"
 #include "Tribos_Error.hpp"
 
@@ -418,12 +418,12 @@ void writeSolutionAndGuesses(hid_t file, const Location& root, const Solution* s
     writeSolutionGroup(group.get(), where, std::to_string(k + 1), guesses[k]);
 }
 
-// Runs 'body' on a fresh HDF5 file at temporaryPath(path) and renames it onto
+// Runs 'body' on a fresh HDF5 file at IO::temporaryPathFor(path) and renames it onto
 // path only after the file is closed without error; on failure the temporary
 // file is removed and whatever was at path is left untouched.
 template <typename Body>
 void writeAtomically(const std::string& path, Body body) {
-  const std::string tmp = temporaryPath(path);
+  const std::string tmp = IO::temporaryPathFor(path);
   QuietHdf5Errors quiet;
   try {
     {

@@ -23,7 +23,7 @@
 #include <limits>
 
 #include "Tribos_FCLIB.hpp"
-#include "Tribos_FCLIB_Files.hpp"
+#include "Tribos_FileSystem.hpp"
 #include "Tribos_FCLIB_Solve.hpp"
 #include "fclib_test_util.hpp"
 
@@ -108,7 +108,7 @@ void checkCorruptions(const Problem& valid, const std::vector<Corruption<Problem
     expectError(c.label + " (write)", [&] { write(path, P, Info{}, nullptr, {}, Storage::CompressedRows); },
                 c.fragment, out, success);
     TEST_ASSERT(!exists(path));
-    TEST_ASSERT(!exists(temporaryPath(path)));  // a refused write left a file
+    TEST_ASSERT(!exists(Tribos::IO::temporaryPathFor(path)));  // a refused write left a file
   }
   std::cout << cases.size() << " corruptions refused" << std::endl;
 }
@@ -243,27 +243,6 @@ void checkStoredSolutionOfWrongSize(const std::string& sample, Teuchos::FancyOSt
   std::remove(path.c_str());
 }
 
-void checkOutputPaths(Teuchos::FancyOStream& out, bool& success) {
-  const std::string dir = fclib_test::scratchPath("validate", "dir");
-  ::mkdir(dir.c_str(), 0700);
-  expectError("missing directory", [] { checkOutputPath("no/such/dir/out.json", "--summary"); },
-              "--summary: directory no/such/dir of no/such/dir/out.json does not exist", out, success);
-  expectError("a directory", [&] { checkOutputPath(dir, "--write-solution"); }, "is a directory", out, success);
-  expectError("trailing slash", [] { checkOutputPath("newdir/", "--summary"); }, "is a directory", out, success);
-  expectError("empty", [] { checkOutputPath("", "--summary"); }, "empty file name", out, success);
-  checkOutputPath(dir + "/out.json", "--summary");  // must not throw
-  TEST_ASSERT(sameFile(dir + "/../" + dir + "/x", dir + "/x"));  // same file through ..
-  TEST_ASSERT(!sameFile(dir + "/x", dir + "/y"));  // different names
-  // Renaming onto a directory fails: the temporary must go, the target stay.
-  expectError("write onto a directory", [&] { writeTextAtomically(dir, "text"); }, "cannot rename", out, success);
-  TEST_ASSERT(!exists(temporaryPath(dir)));  // temporary left after a failed write
-  writeTextAtomically(dir + "/out.json", "{}\n");
-  TEST_ASSERT(exists(dir + "/out.json"));
-  TEST_ASSERT(!exists(temporaryPath(dir + "/out.json")));  // atomic text write
-  std::remove((dir + "/out.json").c_str());
-  ::rmdir(dir.c_str());
-}
-
 }  // namespace
 
 const std::string& localPath() {
@@ -288,4 +267,3 @@ TEUCHOS_UNIT_TEST(Validate, Judgement) { checkJudgement(out, success); }
 TEUCHOS_UNIT_TEST(Validate, NonFiniteAccuracy) { checkNonFiniteAccuracy(out, success); }
 TEUCHOS_UNIT_TEST(Validate, NotConverged) { checkNotConverged(readLocal(localPath()), out, success); }
 TEUCHOS_UNIT_TEST(Validate, StoredSolutionOfWrongSize) { checkStoredSolutionOfWrongSize(localPath(), out, success); }
-TEUCHOS_UNIT_TEST(Validate, OutputPaths) { checkOutputPaths(out, success); }

@@ -1,11 +1,14 @@
 #include "Tribos_FileSystem.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <Teuchos_CommHelpers.hpp>
 
 #include <cctype>
+#include <climits>
+#include <cstdlib>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -122,6 +125,24 @@ long broadcastFromRoot(const Comm& comm, long value) {
   long long v = value;
   Teuchos::broadcast<int, long long>(comm, 0, Teuchos::outArg(v));
   return static_cast<long>(v);
+}
+
+std::string temporaryPathFor(const std::string& path) {
+  return temporaryName(directoryOf(path), fileNameOf(path), static_cast<long>(::getpid()));
+}
+
+bool sameFile(const std::string& a, const std::string& b) {
+  struct stat sa, sb;
+  const bool hasA = ::stat(a.c_str(), &sa) == 0, hasB = ::stat(b.c_str(), &sb) == 0;
+  if (hasA && hasB) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  if (hasA || hasB) return false;
+  // Neither exists: compare the resolved directories (links, "..") and names.
+  auto resolved = [](const std::string& path) {
+    char buffer[PATH_MAX];
+    const std::string dir = directoryOf(path);
+    return std::string(::realpath(dir.c_str(), buffer) ? buffer : dir.c_str()) + "/" + fileNameOf(path);
+  };
+  return resolved(a) == resolved(b);
 }
 
 }  // namespace IO

@@ -19,6 +19,12 @@ std::string systemReason(int errnoValue);
 // isTemporaryName() recognises, so a later run can remove it.
 std::string temporaryName(const std::string& dir, const std::string& name, long pid);
 bool isTemporaryName(const std::string& fileName);
+// The temporary of this process for a file about to be written at path, in
+// the same directory (so that the rename onto path is atomic).
+std::string temporaryPathFor(const std::string& path);
+// True when both paths name the same file: the same device and inode when
+// both exist, else the same name in the same (resolved) directory.
+bool sameFile(const std::string& a, const std::string& b);
 
 // The directory part of a path ("." when it has none) and the last component.
 std::string directoryOf(const std::string& path);

@@ -561,7 +561,7 @@ void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, c
 }
 
 void writeFileAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = temporaryName(directoryOf(path), fileNameOf(path), static_cast<long>(::getpid()));
+  const std::string tmp = temporaryPathFor(path);
   std::string error = writeWholeFile(tmp, text);
   if (error.empty()) error = renameFile(tmp, path);
   if (!error.empty()) {

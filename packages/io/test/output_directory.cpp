@@ -19,7 +19,9 @@
 
 #include "IoTestSupport.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_FileSystem.hpp"
 #include "Tribos_OutputDirectory.hpp"
+#include "Tribos_ResultWriter.hpp"
 
 using namespace Tribos;
 using namespace Tribos::Test;
@@ -312,4 +314,20 @@ TEUCHOS_UNIT_TEST(RequireWritableFile, FileAsDirectoryRefused) {
     IO::requireWritableFile(base + "/plainfile/summary.json", "--summary", comm);
   });
   TEST_ASSERT(contains(m, "not a directory"));
+}
+
+// Two names of one file (through "..") are the same file, two names in one
+// directory are not; the temporary of a path is in its directory.
+TEUCHOS_UNIT_TEST(FileSystem, SameFileAndTemporaryPath) {
+  const auto self = rcp(new Teuchos::SerialComm<int>());  // names only: every rank its own scratch
+  ScratchDirectory scratch(self, "samefile");
+  const std::string base = scratch.path();
+  ::mkdir((base + "/d").c_str(), 0700);
+  TEST_ASSERT(IO::sameFile(base + "/d/../d/x", base + "/d/x"));  // neither exists
+  TEST_ASSERT(!IO::sameFile(base + "/d/x", base + "/d/y"));
+  IO::writeFileAtomically(base + "/d/x", "x\n");
+  TEST_ASSERT(IO::sameFile(base + "/d/../d/x", base + "/d/x"));  // both exist
+  TEST_ASSERT(!IO::sameFile(base + "/d/x", base + "/d/y"));      // one exists
+  TEST_EQUALITY(IO::directoryOf(IO::temporaryPathFor(base + "/d/x")), base + "/d");
+  TEST_ASSERT(IO::isTemporaryName(IO::fileNameOf(IO::temporaryPathFor(base + "/d/x"))));
 }
