@@ -83,9 +83,9 @@ SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain&
       for (size_t a = 0; a < facet.nodes.size(); ++a)
         for (int d = 0; d < 3; ++d) sys.f[3 * sub.localNode(facet.nodes[a]) + d] += fe[3 * a + d];
     }
-  std::vector<Point> X(nl);
-  for (int n = 0; n < nl; ++n) X[n] = mesh.coords[sub.nodes[n]];
-  sys.R = rigidBodyModes(X);
+  sys.coords.resize(nl);
+  for (int n = 0; n < nl; ++n) sys.coords[n] = mesh.coords[sub.nodes[n]];
+  sys.R = rigidBodyModes(sys.coords);
   return sys;
 }
 

@@ -20,6 +20,7 @@ struct SubdomainSystem {
   LocalCsr K;                 // 3n x 3n, symmetric positive semidefinite
   std::vector<double> f;      // tractions and volume forces of the subdomain's own cells
   std::vector<double> R;      // 3n x 6, column-major, orthonormal columns spanning ker K
+  std::vector<Point> coords;  // node coordinates (local node order)
   int numDofs() const { return 3 * static_cast<int>(nodes.size()); }
 };
 

@@ -239,6 +239,25 @@ std::vector<double> cellVolumeForces(Mesh::CellType type, const std::vector<Poin
   return f;
 }
 
+void orthonormalizeColumns(std::vector<double>& R, size_t m, int k, const std::string& degenerate) {
+  // Two passes of modified Gram-Schmidt make the columns orthonormal to round-off.
+  for (int pass = 0; pass < 2; ++pass)
+    for (int j = 0; j < k; ++j) {
+      double* rj = &R[j * m];
+      for (int i = 0; i < j; ++i) {
+        const double* ri = &R[i * m];
+        double dot = 0;
+        for (size_t a = 0; a < m; ++a) dot += ri[a] * rj[a];
+        for (size_t a = 0; a < m; ++a) rj[a] -= dot * ri[a];
+      }
+      double nrm = 0;
+      for (size_t a = 0; a < m; ++a) nrm += rj[a] * rj[a];
+      nrm = std::sqrt(nrm);
+      TRIBOS_REQUIRE(nrm > 1e-12, degenerate);
+      for (size_t a = 0; a < m; ++a) rj[a] /= nrm;
+    }
+}
+
 std::vector<double> rigidBodyModes(const std::vector<Point>& X) {
   const size_t n = X.size(), m = 3 * n;
   Point c{};
@@ -252,22 +271,7 @@ std::vector<double> rigidBodyModes(const std::vector<Point>& X) {
       for (int d = 0; d < 3; ++d) R[k * m + 3 * a + d] = mode[d];
     }
   }
-  // Two passes of modified Gram-Schmidt make the columns orthonormal to round-off.
-  for (int pass = 0; pass < 2; ++pass)
-    for (int j = 0; j < 6; ++j) {
-      double* rj = &R[j * m];
-      for (int i = 0; i < j; ++i) {
-        const double* ri = &R[i * m];
-        double dot = 0;
-        for (size_t k = 0; k < m; ++k) dot += ri[k] * rj[k];
-        for (size_t k = 0; k < m; ++k) rj[k] -= dot * ri[k];
-      }
-      double nrm = 0;
-      for (size_t k = 0; k < m; ++k) nrm += rj[k] * rj[k];
-      nrm = std::sqrt(nrm);
-      TRIBOS_REQUIRE(nrm > 1e-12, "rigid-body modes are degenerate (fewer than 3 non-collinear points)");
-      for (size_t k = 0; k < m; ++k) rj[k] /= nrm;
-    }
+  orthonormalizeColumns(R, m, 6, "rigid-body modes are degenerate (fewer than 3 non-collinear points)");
   return R;
 }
 

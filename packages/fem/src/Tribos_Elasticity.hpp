@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "Tribos_Mesh.hpp"
@@ -79,6 +80,11 @@ inline Point rigidBodyMode(int k, const Point& r) {
     for (double& v : w) v = -v;
   return w;
 }
+
+// Makes the k columns of R (m x k, column-major) orthonormal (modified
+// Gram-Schmidt twice); throws Tribos::Error(degenerate) when they are
+// linearly dependent.
+void orthonormalizeColumns(std::vector<double>& R, size_t m, int k, const std::string& degenerate);
 
 // Rigid-body modes of a set of points about their centroid, the six of
 // rigidBodyMode() orthonormalized (modified Gram-Schmidt twice).

@@ -53,6 +53,7 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
                                         const ContactSpec& contact, const std::string& gluing,
                                         bool eliminateDirichlet) {
   const Mesh::Mesh& mesh = disc.mesh;
+  auto copyOf = [&](int s, int node, double weight) { return RowCopy{s, disc.subdomains[s].localNode(node), weight}; };
   // Subdomain copies of every node, ascending.
   std::vector<std::vector<int>> copies(mesh.numNodes());
   for (const auto& sd : disc.subdomains)
@@ -74,7 +75,7 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
         r.kind = DualRow::Dirichlet;
         r.c = dirichlet->second;
         for (int i = 0; i < (orthonormal ? k : 1); ++i) {
-          r.copies = {{cp[i], 1.0}};
+          r.copies = {copyOf(cp[i], n, 1.0)};
           rows.push_back(r);
         }
         if (orthonormal) continue;
@@ -86,15 +87,15 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
         for (int j = 1; j < k; ++j) {
           const double s = 1.0 / std::sqrt(static_cast<double>(j) * (j + 1));
           r.copies.clear();
-          for (int i = 0; i < j; ++i) r.copies.emplace_back(cp[i], s);
-          r.copies.emplace_back(cp[j], -j * s);
+          for (int i = 0; i < j; ++i) r.copies.push_back(copyOf(cp[i], n, s));
+          r.copies.push_back(copyOf(cp[j], n, -j * s));
           rows.push_back(r);
         }
         continue;
       }
       for (int i = 0; i + 1 < k; ++i)
         for (int j = i + 1; j < (full ? k : i + 2); ++j) {
-          r.copies = {{cp[i], 1.0}, {cp[j], -1.0}};
+          r.copies = {copyOf(cp[i], n, 1.0), copyOf(cp[j], n, -1.0)};
           rows.push_back(r);
         }
     }
@@ -112,7 +113,7 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
       if (fixedDirection(n, fixed, node)) continue;
       DualRow r{DualRow::Normal};
       r.node = node;
-      r.copies = {{copies[node].front(), 1.0}};
+      r.copies = {copyOf(copies[node].front(), node, 1.0)};
       r.dir = n;
       r.c = contact.gap;
       rows.push_back(r);
@@ -129,19 +130,20 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
       }
     }
   }
-  for (auto& r : rows) r.owner = disc.layout.owner(r.copies.front().first);
-  // Per rank: equality rows, normal rows, tangential pairs.
+  return rows;
+}
+
+void distributeRows(std::vector<DualRow>& rows, const std::vector<int>& owner) {
+  for (auto& r : rows) r.owner = owner.at(r.copies.front().subdomain);
   auto group = [](const DualRow& r) { return r.kind == DualRow::Normal ? 1 : (r.kind >= DualRow::Tangent1 ? 2 : 0); };
   std::stable_sort(rows.begin(), rows.end(), [&](const DualRow& a, const DualRow& b) {
     return a.owner != b.owner ? a.owner < b.owner : group(a) < group(b);
   });
-  return rows;
 }
 
 DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<const Map>& primalMap,
-                                    const std::function<GO(int, int)>& primalDof,
-                                    const std::array<double, 3>& contactNormal, double contactGap,
-                                    const std::function<double(int)>& contactArea) {
+                                    const std::vector<GO>& primalOffsets, const std::array<double, 3>& contactNormal,
+                                    double contactGap, const std::function<double(int)>& contactArea) {
   const RCP<const Comm>& comm = primalMap->getComm();
   const int me = comm->getRank();
   DualConstraints dc;
@@ -162,10 +164,10 @@ DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<
     if (r.owner != me) continue;
     std::vector<GO> cols;
     std::vector<SC> vals;
-    for (const auto& [s, weight] : r.copies) {
-      const GO base = primalDof(s, r.node);
+    for (const auto& copy : r.copies) {
+      const GO base = primalOffsets[copy.subdomain] + 3 * static_cast<GO>(copy.localNode);
       for (int c = 0; c < 3; ++c)
-        if (r.dir[c] != 0.0) cols.push_back(base + c), vals.push_back(weight * r.dir[c]);
+        if (r.dir[c] != 0.0) cols.push_back(base + c), vals.push_back(copy.weight * r.dir[c]);
     }
     dc.B->insertGlobalValues(gid, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const SC>(vals));
     cv[gid - first] = r.c;

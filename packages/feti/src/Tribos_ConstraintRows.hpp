@@ -27,16 +27,25 @@ struct ContactSpec {
   double gap = 0.0;
 };
 
+// The copy of a node in one subdomain that a row touches: the row's entry
+// at dof c of that copy (local dof 3 localNode + c) is weight * dir[c].
+struct RowCopy {
+  int subdomain = -1;
+  int localNode = -1;
+  double weight = 1.0;
+};
+
 // One row of B, described on every rank (cheap) so numbering is global.
+// Kinds: equality rows (Gluing, Dirichlet: B_E u = c), the contact row of a
+// node (Normal: u.dir <= c, c the gap) and its tangential rows (Tangent1,
+// Tangent2: friction directions, c = 0).
 struct DualRow {
   enum Kind { Gluing, Dirichlet, Normal, Tangent1, Tangent2 } kind;
-  int node = -1;            // mesh node
-  // Copies of the node the row touches: (subdomain, weight); the row's entry
-  // at dof c of that copy is weight * dir[c]. Ascending subdomains.
-  std::vector<std::pair<int, double>> copies;
+  int node = -1;            // global node number (the mesh node)
+  std::vector<RowCopy> copies;  // ascending subdomains
   std::array<double, 3> dir{0, 0, 0};  // direction on the 3 dofs (unit vector for gluing and Dirichlet)
   double c = 0.0;           // right-hand side
-  int owner = 0;            // rank
+  int owner = 0;            // rank: the owner of the first copy's subdomain (FetiProblem sets it)
 };
 
 // The contact structure of this rank's dual dofs (local indices).
@@ -64,19 +73,23 @@ struct DualConstraints {
 // (none when eliminateDirichlet: FETI-1 eliminates them in the subdomains)
 // and the contact of one face with a rigid plane (normal and tangential rows
 // of every face node whose directions no Dirichlet condition fixes).
-// Sorted per owning rank: equality rows, normal rows, tangential rows.
 std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const std::map<long long, double>& dirichlet,
                                         const ContactSpec& contact, const std::string& gluing,
                                         bool eliminateDirichlet);
 
-// This rank's part of B and c. primalDof(s, node): the global primal dof of
-// the x component of node's copy in subdomain s. contactArea(node): the
-// contact area attached to a contact node (for traction slip bounds).
-// Collective over the primal map's communicator.
+// Sets every row's owner (owner[s]: the rank of subdomain s) and orders the
+// rows per rank: equality rows, normal rows, tangential rows (so that every
+// friction disk lives on one rank).
+void distributeRows(std::vector<DualRow>& rows, const std::vector<int>& owner);
+
+// This rank's part of B and c; primalOffsets[s]: the first global primal dof
+// of subdomain s. The contact rows lie on the plane (contactNormal,
+// contactGap); contactArea(node): the contact area of a contact node (for
+// traction slip bounds). Rows ordered by distributeRows(). Collective over
+// the primal map's communicator.
 DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<const Map>& primalMap,
-                                    const std::function<GO(int, int)>& primalDof,
-                                    const std::array<double, 3>& contactNormal, double contactGap,
-                                    const std::function<double(int)>& contactArea);
+                                    const std::vector<GO>& primalOffsets, const std::array<double, 3>& contactNormal,
+                                    double contactGap, const std::function<double(int)>& contactArea);
 
 // Outward unit normal of a face of the box ("xmin", ..., "zmax").
 std::array<double, 3> faceNormal(const std::string& face);

@@ -231,10 +231,14 @@ double dotv(const std::vector<double>& a, const std::vector<double>& b) {
 }  // namespace
 
 std::vector<double> CoarseSpace::globalMotion(int j) const {
-  const auto& mesh = problem_->discretization().mesh;
-  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-  for (const auto& x : mesh.coords)
-    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], x[c]), hi[c] = std::max(hi[c], x[c]);
+  // Rotations about the centre of the bounding box of all subdomains.
+  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{1e300, 1e300, 1e300};  // hi holds -max
+  for (int k = 0; k < problem_->numLocalSubdomains(); ++k)
+    for (const auto& x : problem_->subdomain(k).coords)
+      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], x[c]), hi[c] = std::min(hi[c], -x[c]);
+  MPI_Allreduce(MPI_IN_PLACE, lo.data(), 3, MPI_DOUBLE, MPI_MIN, rawComm(*problem_->comm()));
+  MPI_Allreduce(MPI_IN_PLACE, hi.data(), 3, MPI_DOUBLE, MPI_MIN, rawComm(*problem_->comm()));
+  for (double& v : hi) v = -v;
   std::vector<double> alpha(static_cast<size_t>(n_), 0.0);
   for (int k = 0; k < problem_->numLocalSubdomains(); ++k) {
     const auto& sys = problem_->subdomain(k);
@@ -243,7 +247,7 @@ std::vector<double> CoarseSpace::globalMotion(int j) const {
     std::vector<double> u(static_cast<size_t>(n), 0.0);
     for (size_t a = 0; a < sys.nodes.size(); ++a) {
       Fem::Point x;
-      for (int c = 0; c < 3; ++c) x[c] = mesh.coords[sys.nodes[a]][c] - 0.5 * (lo[c] + hi[c]);
+      for (int c = 0; c < 3; ++c) x[c] = sys.coords[a][c] - 0.5 * (lo[c] + hi[c]);
       Fem::Point motion{0, 0, 0};  // translation along axis j, or rotation about axis j - 3
       if (j < 3) motion[j] = 1.0;
       else motion = Fem::rotation(j - 3, x);

@@ -79,6 +79,127 @@ void eliminateDirichlet(Fem::SubdomainSystem& sys, const std::map<long long, dou
   sys.R = R;  // orthonormal: R N with N orthonormal
 }
 
+// Where the subdomains live and their primal numbering, from every rank's
+// list of its subdomains. Subdomain ids must be 0..S-1, each rank holding an
+// ascending contiguous range, ranks in order (the primal numbering is
+// subdomain after subdomain and each rank owns a contiguous block of it).
+struct Numbering {
+  std::vector<int> owner;         // rank of each subdomain
+  std::vector<GO> primalOffsets;  // size S + 1
+  int numNodes = 0;               // 1 + the largest global node number
+};
+
+Numbering subdomainNumbering(const std::vector<Fem::SubdomainSystem>& systems, const Comm& comm) {
+  long local = static_cast<long>(systems.size()), S = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, local, Teuchos::outArg(S));
+  TRIBOS_REQUIRE(S > 0, "FetiProblem: no subdomains on any rank");
+  std::vector<long> rankPlus1(S, 0), dofs(S, 0), count(S, 0);
+  int maxNode = -1;
+  for (size_t k = 0; k < systems.size(); ++k) {
+    const auto& sys = systems[k];
+    TRIBOS_REQUIRE(sys.id >= 0 && sys.id < S, "FetiProblem: subdomain id " << sys.id << " on rank " << comm.getRank()
+                                                  << " is outside 0.." << S - 1 << " (" << S << " subdomains in all)");
+    TRIBOS_REQUIRE(k == 0 || sys.id == systems[k - 1].id + 1,
+                   "FetiProblem: rank " << comm.getRank() << " holds subdomains " << systems[k - 1].id << " and "
+                                        << sys.id << ": a rank's subdomains must be consecutive and ascending");
+    rankPlus1[sys.id] = comm.getRank() + 1;
+    dofs[sys.id] = sys.numDofs();
+    count[sys.id] = 1;
+    for (int n : sys.nodes) maxNode = std::max(maxNode, n);
+  }
+  std::vector<long> sum(S);
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(S), count.data(), sum.data());
+  for (long s = 0; s < S; ++s)
+    TRIBOS_REQUIRE(sum[s] == 1, "FetiProblem: subdomain " << s << " is given by " << sum[s] << " ranks (must be one)");
+  Numbering out;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(S), rankPlus1.data(), sum.data());
+  out.owner.resize(S);
+  for (long s = 0; s < S; ++s) {
+    out.owner[s] = static_cast<int>(sum[s] - 1);
+    TRIBOS_REQUIRE(s == 0 || out.owner[s] >= out.owner[s - 1],
+                   "FetiProblem: subdomain " << s << " is on rank " << out.owner[s] << " but subdomain " << s - 1
+                                             << " on rank " << out.owner[s - 1] << ": ranks must hold ascending ranges");
+  }
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(S), dofs.data(), sum.data());
+  out.primalOffsets.assign(S + 1, 0);
+  for (long s = 0; s < S; ++s) out.primalOffsets[s + 1] = out.primalOffsets[s] + sum[s];
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, maxNode, Teuchos::outArg(out.numNodes));
+  ++out.numNodes;
+  return out;
+}
+
+bool allFinite(const std::vector<double>& v) {
+  for (double x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+// An application's subdomain: sizes agree, values are finite, R (built from
+// the coordinates when empty) is orthonormal and spans a kernel of K.
+void checkSubdomain(Fem::SubdomainSystem& sys) {
+  const int n = sys.numDofs();
+  const std::string name = "FetiProblem: subdomain " + std::to_string(sys.id);
+  TRIBOS_REQUIRE(n > 0, name << " has no nodes");
+  TRIBOS_REQUIRE(sys.K.rows == n && static_cast<int>(sys.K.rowptr.size()) == n + 1,
+                 name << ": K has " << sys.K.rows << " rows, expected 3 x " << sys.nodes.size() << " nodes = " << n);
+  for (int c : sys.K.col) TRIBOS_REQUIRE(c >= 0 && c < n, name << ": K has a column index " << c << " outside 0.." << n - 1);
+  TRIBOS_REQUIRE(static_cast<int>(sys.f.size()) == n, name << ": f has " << sys.f.size() << " entries, expected " << n);
+  TRIBOS_REQUIRE(sys.coords.size() == sys.nodes.size(),
+                 name << ": " << sys.coords.size() << " coordinates for " << sys.nodes.size() << " nodes");
+  for (int node : sys.nodes) TRIBOS_REQUIRE(node >= 0, name << ": negative global node number " << node);
+  TRIBOS_REQUIRE(allFinite(sys.K.val) && allFinite(sys.f), name << ": K or f has a value that is not finite");
+  if (sys.R.empty()) sys.R = Fem::rigidBodyModes(sys.coords);
+  TRIBOS_REQUIRE(sys.R.size() % n == 0 && sys.R.size() / n <= 6,
+                 name << ": R has " << sys.R.size() << " entries, expected 3 x nodes x (at most 6) kernel vectors");
+  const int r = static_cast<int>(sys.R.size() / n);
+  Fem::orthonormalizeColumns(sys.R, n, r, name + ": the columns of R are linearly dependent");
+  // Every floating subdomain is regularized at its fixing dofs: a kernel
+  // vector of K missing from R would leave K_reg singular, a column of R
+  // outside the kernel would make K+ wrong. ||K r|| <= 1e-8 max|K_ii| (||r|| = 1).
+  std::vector<double> Kr(n);
+  const double scale = sys.K.maxAbsDiagonal();
+  for (int j = 0; j < r; ++j) {
+    sys.K.multiply(&sys.R[static_cast<size_t>(j) * n], Kr.data());
+    double norm = 0;
+    for (double v : Kr) norm += v * v;
+    TRIBOS_REQUIRE(std::sqrt(norm) <= 1e-8 * scale,
+                   name << ": column " << j << " of R is not in the kernel of K (||K r|| = " << std::sqrt(norm)
+                        << ", max |K_ii| = " << scale << "); give the rigid-body modes of the subdomain, or its "
+                        << "coordinates and an empty R");
+  }
+}
+
+// An application's rows: copies name existing subdomain nodes, numbers are
+// finite, and the tangential rows of a node go with its normal row.
+void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOffsets) {
+  const int S = static_cast<int>(primalOffsets.size()) - 1;
+  std::map<int, int> normalSubdomain;  // node -> subdomain of its normal row
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    const std::string name = "FetiProblem: row " + std::to_string(i) + " (node " + std::to_string(r.node) + ")";
+    TRIBOS_REQUIRE(!r.copies.empty(), name << " touches no subdomain");
+    TRIBOS_REQUIRE(std::isfinite(r.c) && std::isfinite(r.dir[0]) && std::isfinite(r.dir[1]) && std::isfinite(r.dir[2]),
+                   name << ": its direction or right-hand side is not finite");
+    TRIBOS_REQUIRE(r.dir[0] != 0 || r.dir[1] != 0 || r.dir[2] != 0, name << ": its direction is zero");
+    for (const auto& c : r.copies) {
+      TRIBOS_REQUIRE(c.subdomain >= 0 && c.subdomain < S, name << ": subdomain " << c.subdomain << " does not exist");
+      const GO nodes = (primalOffsets[c.subdomain + 1] - primalOffsets[c.subdomain]) / 3;
+      TRIBOS_REQUIRE(c.localNode >= 0 && c.localNode < nodes,
+                     name << ": subdomain " << c.subdomain << " has no local node " << c.localNode << " (it has " << nodes << ")");
+      TRIBOS_REQUIRE(std::isfinite(c.weight) && c.weight != 0, name << ": weight " << c.weight);
+    }
+    if (r.kind == DualRow::Normal) normalSubdomain[r.node] = r.copies.front().subdomain;
+  }
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    if (r.kind != DualRow::Tangent1 && r.kind != DualRow::Tangent2) continue;
+    const auto it = normalSubdomain.find(r.node);
+    TRIBOS_REQUIRE(it != normalSubdomain.end() && it->second == r.copies.front().subdomain,
+                   "FetiProblem: tangential row " << i << " of node " << r.node
+                                                  << " has no normal row of that node on the same subdomain");
+  }
+}
+
 }  // namespace
 
 RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
@@ -111,28 +232,59 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
 
 FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& mat, const Fem::LoadCase& loads,
                          const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm)
-    : disc_(disc), comm_(comm) {
+    : disc_(&disc), comm_(comm) {
   Teuchos::ParameterList p(params);
   p.validateParametersAndSetDefaults(*getValidParameters(), 0);
-  localSolverName_ = p.get<std::string>("Local Solver");
-  const int S = disc.numSubdomains();
-  primalOffsets_.assign(S + 1, 0);
-  for (int s = 0; s < S; ++s) primalOffsets_[s + 1] = primalOffsets_[s] + 3 * static_cast<GO>(disc.subdomains[s].nodes.size());
   const bool feti1 = p.get<std::string>("Formulation") == "FETI-1";
-  dirichlet_ = Fem::constrainedDofs(disc.mesh, loads.dirichlet);
-  const auto& bc = dirichlet_;
+  FetiConstraints fc;
+  fc.dirichlet = Fem::constrainedDofs(disc.mesh, loads.dirichlet);
   for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s) {
     systems_.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, loads));
-    if (feti1) eliminateDirichlet(systems_.back(), bc);
+    if (feti1) eliminateDirichlet(systems_.back(), fc.dirichlet);
   }
+  fc.rows = meshConstraintRows(disc, fc.dirichlet, contact, p.get<std::string>("Gluing"), feti1);
+  if (contact.enabled) {
+    fc.contactNormal = faceNormal(contact.face);
+    fc.contactGap = contact.gap;
+    const std::vector<double> area = Fem::faceNodalAreas(disc.mesh, contact.face);
+    for (int node : disc.mesh.faceNodes(contact.face)) fc.contactArea[node] = area[node];
+  }
+  setup(std::move(fc), p);
+}
+
+FetiProblem::FetiProblem(std::vector<Fem::SubdomainSystem> localSubdomains, FetiConstraints constraints,
+                         const Teuchos::ParameterList& params, const RCP<const Comm>& comm)
+    : comm_(comm), systems_(std::move(localSubdomains)) {
+  Teuchos::ParameterList p(params);
+  p.validateParametersAndSetDefaults(*getValidParameters(), 0);
+  TRIBOS_REQUIRE(p.get<std::string>("Formulation") == "TFETI",
+                 "Formulation = " << p.get<std::string>("Formulation") << ": subdomains given by an application are "
+                                  "solved by TFETI (Dirichlet conditions as rows of B)");
+  for (auto& sys : systems_) checkSubdomain(sys);
+  setup(std::move(constraints), p);
+}
+
+const Mesh::Discretization& FetiProblem::discretization() const {
+  TRIBOS_REQUIRE(disc_ != nullptr, "FetiProblem: the problem was given as assembled subdomains, not as a mesh");
+  return *disc_;
+}
+
+void FetiProblem::setup(FetiConstraints fc, const Teuchos::ParameterList& p) {
+  localSolverName_ = p.get<std::string>("Local Solver");
+  dirichlet_ = std::move(fc.dirichlet);
+  const Numbering numbering = subdomainNumbering(systems_, *comm_);
+  const int S = static_cast<int>(numbering.owner.size());
+  primalOffsets_ = numbering.primalOffsets;
+  numNodes_ = numbering.numNodes;
   // Kernel dimensions of all subdomains (6 in TFETI), replicated.
   std::vector<int> dims(S, 0), all(S, 0);
-  for (const auto& sys : systems_) dims[sys.id] = sys.numDofs() > 0 ? static_cast<int>(sys.R.size() / sys.numDofs()) : 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, S, dims.data(), all.data());
+  for (const auto& sys : systems_) dims[sys.id] = kernelDim(sys);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, S, dims.data(), all.data());
   kernelOffsets_.assign(S + 1, 0);
   for (int s = 0; s < S; ++s) kernelOffsets_[s + 1] = kernelOffsets_[s] + all[s];
-  const GO first = primalOffsets_[disc.firstLocalSubdomain()], last = primalOffsets_[disc.endLocalSubdomain()];
-  primalMap_ = rcp(new Map(static_cast<Tpetra::global_size_t>(primalOffsets_[S]), static_cast<size_t>(last - first), 0, comm));
+  const GO first = systems_.empty() ? 0 : primalOffsets_[systems_.front().id];
+  const GO last = systems_.empty() ? 0 : primalOffsets_[systems_.back().id + 1];
+  primalMap_ = rcp(new Map(static_cast<Tpetra::global_size_t>(primalOffsets_[S]), static_cast<size_t>(last - first), 0, comm_));
   f_ = rcp(new Vector(primalMap_));
   {
     auto fv = f_->getDataNonConst();
@@ -140,27 +292,27 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& 
     for (const auto& sys : systems_)
       for (double v : sys.f) fv[k++] = v;
   }
-  const auto rows = meshConstraintRows(disc, dirichlet_, contact, p.get<std::string>("Gluing"), feti1);
-  auto primalDof = [&](int s, int node) {
-    return primalOffsets_[s] + 3 * static_cast<GO>(disc.subdomains[s].localNode(node));
-  };
+  checkRows(fc.rows, primalOffsets_);
+  distributeRows(fc.rows, numbering.owner);
+  bool contact = false;
+  for (const auto& r : fc.rows) contact = contact || r.kind == DualRow::Normal;
   std::function<double(int)> contactArea;
-  std::vector<double> area;
-  if (contact.enabled) {
-    area = Fem::faceNodalAreas(disc.mesh, contact.face);
-    contactArea = [&](int node) { return area[node]; };
+  if (contact) {
+    contactArea = [&fc](int node) {
+      const auto it = fc.contactArea.find(node);
+      return it == fc.contactArea.end() ? 1.0 : it->second;
+    };
   }
-  constraints_ = assembleConstraints(rows, primalMap_, primalDof,
-                                     contact.enabled ? faceNormal(contact.face) : std::array<double, 3>{0, 0, 0},
-                                     contact.gap, contactArea);
+  constraints_ = assembleConstraints(fc.rows, primalMap_, primalOffsets_, fc.contactNormal, fc.contactGap, contactArea);
   boundary_ = boundaryDofs();
   // Auto: a dense block of more than kAutoExplicitRows rows would cost more
-  // to form and hold than the applications it saves.
+  // to form and hold than the applications it saves; without contact
+  // projected CG applies F too few times to pay for it.
   long denseRowLimit = -1;
   const std::string dualOperator = p.get<std::string>("Dual Operator");
   if (dualOperator == "Explicit")
     denseRowLimit = std::numeric_limits<long>::max();
-  else if (dualOperator == "Auto" && contact.enabled)
+  else if (dualOperator == "Auto" && contact)
     denseRowLimit = static_cast<long>(kAutoExplicitRows);
   Kplus_ = std::make_unique<SubdomainPseudoInverse>(systems_, boundary_, localSolverName_, denseRowLimit);
 }
@@ -239,7 +391,7 @@ void FetiProblem::applyR(const std::vector<double>& a, Vector& z) const {
 }
 
 std::vector<double> FetiProblem::nodalDisplacement(const Vector& u) const {
-  const size_t N = static_cast<size_t>(disc_.mesh.numNodes());
+  const size_t N = static_cast<size_t>(numNodes_);
   std::vector<double> full(3 * N, 0.0), count(N, 0.0);
   auto uv = u.getData();
   size_t offset = 0;
@@ -263,7 +415,7 @@ std::vector<double> FetiProblem::assembledProduct(const std::vector<double>& uNo
 }
 
 std::vector<double> FetiProblem::assembledLoad() const {
-  return Fem::assembledLoad(systems_, disc_.mesh.numNodes(), *comm_);
+  return Fem::assembledLoad(systems_, numNodes_, *comm_);
 }
 
 }  // namespace Feti

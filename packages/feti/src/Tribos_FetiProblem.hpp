@@ -38,12 +38,40 @@
 namespace Tribos {
 namespace Feti {
 
+// What an application that assembles its own subdomains gives FetiProblem
+// besides them (see the second constructor): the rows of B and what the
+// result check needs to know of them.
+struct FetiConstraints {
+  // Every row of B (gluing, Dirichlet, contact normal and tangential rows),
+  // the same list on every rank; FetiProblem sets the owners.
+  std::vector<DualRow> rows;
+  // Global dof (3 node + c) -> prescribed value: the Dirichlet conditions
+  // that rows of kind Dirichlet impose (the result check reads them here).
+  std::map<long long, double> dirichlet;
+  // The rigid plane of the Normal rows: the body's outward normal and the
+  // gap (u . n <= gap), and the contact area of each contact node (a Tresca
+  // slip bound traction times it is the node's slip bound; absent: 1).
+  std::array<double, 3> contactNormal{0, 0, 0};
+  double contactGap = 0.0;
+  std::map<int, double> contactArea;
+};
+
 class FetiProblem {
  public:
   // Parameters: "Formulation" (TFETI | FETI-1), "Local Solver" (CHOLMOD | KLU2 | Tacho),
   // "Gluing" (Orthonormal | Non-redundant | Full), "Dual Operator" (Auto | Explicit | Implicit).
+  // A decomposed mesh: assembles the subdomains of this rank and derives the
+  // rows of B (meshConstraintRows).
   FetiProblem(const Mesh::Discretization& disc, const Fem::Material& mat, const Fem::LoadCase& loads,
               const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm);
+  // Subdomains an application assembled: this rank's subdomains (ids
+  // ascending, each rank a contiguous range, rank 0 first; K, f, the global
+  // node numbers, the coordinates, and R, or empty R to have the rigid-body
+  // modes built from the coordinates) and the rows of B. Checks sizes,
+  // ranges and that R spans the kernel of K; throws Tribos::Error naming
+  // the subdomain or row. Collective.
+  FetiProblem(std::vector<Fem::SubdomainSystem> localSubdomains, FetiConstraints constraints,
+              const Teuchos::ParameterList& params, const RCP<const Comm>& comm);
   static RCP<const Teuchos::ParameterList> getValidParameters();
 
   const RCP<const Comm>& comm() const { return comm_; }
@@ -55,12 +83,15 @@ class FetiProblem {
   const LocalContact& contact() const { return constraints_.contact; }
   // Local dual rows that are equality rows (gluing, Dirichlet).
   const std::vector<char>& isEqualityRow() const { return constraints_.isEquality; }
-  int numSubdomains() const { return disc_.numSubdomains(); }
+  int numSubdomains() const { return static_cast<int>(primalOffsets_.size()) - 1; }
+  // 1 + the largest global node number of any subdomain.
+  int numNodes() const { return numNodes_; }
   int numLocalSubdomains() const { return static_cast<int>(systems_.size()); }
   const Fem::SubdomainSystem& subdomain(int k) const { return systems_[k]; }
   // Offset of subdomain s in the primal numbering (replicated, size S+1).
   const std::vector<GO>& primalOffsets() const { return primalOffsets_; }
-  const Mesh::Discretization& discretization() const { return disc_; }
+  // The decomposed mesh of the first constructor (throws for the second).
+  const Mesh::Discretization& discretization() const;
 
   // z = K+ p on this rank's subdomains (generalized inverse by fixing nodes).
   void applyKplus(const Vector& p, Vector& z) const { Kplus_->apply(p, z); }
@@ -103,10 +134,13 @@ class FetiProblem {
   static constexpr size_t kAutoExplicitRows = 4000;
 
  private:
+  // What both constructors share once systems_ holds this rank's subdomains.
+  void setup(FetiConstraints constraints, const Teuchos::ParameterList& validated);
   // Per local subdomain, the dofs that some row of B touches (ascending).
   std::vector<std::vector<int>> boundaryDofs() const;
 
-  const Mesh::Discretization& disc_;
+  const Mesh::Discretization* disc_ = nullptr;
+  int numNodes_ = 0;
   RCP<const Comm> comm_;
   std::string localSolverName_;
   std::vector<Fem::SubdomainSystem> systems_;      // this rank's subdomains
