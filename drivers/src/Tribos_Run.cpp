@@ -12,6 +12,7 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_FCLIB_Export.hpp"
 #include "Tribos_FetiContact.hpp"
+#include "Tribos_FetiSolve.hpp"
 #include "Tribos_FetiDual.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_ProjectedCG.hpp"
@@ -184,10 +185,7 @@ double requestedTolerance(const Teuchos::ParameterList& params) {
     case Input::Method::Semismooth: return solver.sublist("SemismoothStarNewton").get<double>("Tolerance");
     case Input::Method::FetiContact: break;
   }
-  const std::string outer = solver.get<std::string>("Outer Algorithm");
-  if (outer == "Algorithm2") return solver.sublist("Algorithm 2").get<double>("Relative Tolerance");
-  const double smalbe = solver.sublist("Algorithm 1").sublist("SMALBE").get<double>("Relative Tolerance");
-  return outer == "MSA+Algorithm1" ? std::max(smalbe, solver.sublist("MSA").get<double>("Tolerance")) : smalbe;
+  return Friction::frictionSolvers().create(solver.get<std::string>("Outer Algorithm"), solver)->requestedTolerance();
 }
 
 // `converged` is a promise about the written result: the solver stopped on
@@ -197,29 +195,19 @@ double requestedTolerance(const Teuchos::ParameterList& params) {
 std::string setResultCheck(const Teuchos::ParameterList& params, bool solverConverged, const std::string& solverReason,
                            const Fem::ResultKKT& kkt, IO::Summary& summary, bool& converged) {
   const double tol = requestedTolerance(params);
-  const double limit = params.sublist("Solver").get<double>("Result Check Factor") * tol;
-  std::string worstName;
-  const double worst = kkt.worst(&worstName);
+  const auto verdict = Fem::resultVerdict(kkt, solverConverged, solverReason, tol,
+                                          params.sublist("Solver").get<double>("Result Check Factor"));
   IO::Summary k;
   k.set("equilibrium", kkt.equilibrium).set("dirichlet", kkt.dirichlet).set("nonpenetration", kkt.nonpenetration);
   k.set("complementarity", kkt.complementarity).set("friction_law", kkt.frictionLaw);
   k.set("displacement_scale", kkt.displacementScale).set("force_scale", kkt.forceScale);
-  k.set("tolerance", tol).set("limit", limit);
+  k.set("tolerance", tol).set("limit", verdict.limit);
   summary.set("kkt", k);
-  converged = solverConverged && worst <= limit;
-  std::string reason = solverReason;
-  if (!solverConverged && reason.empty()) reason = "the solver did not converge";
-  if (solverConverged && !(worst <= limit)) {
-    std::ostringstream os;
-    os << "the " << worstName << " residual of the result, " << worst << ", exceeds " << limit
-       << " (Solver/Result Check Factor times the requested tolerance " << tol << ")";
-    reason = os.str();
-  }
+  converged = verdict.converged;
   summary.set("solver_converged", solverConverged);
   summary.set("converged", converged);
-  const std::string stopReason = converged ? (solverReason.empty() ? "converged" : solverReason) : reason;
-  summary.set("stop_reason", stopReason);
-  return stopReason;
+  summary.set("stop_reason", verdict.stopReason);
+  return verdict.stopReason;
 }
 
 // The displacement and the KKT figures of the result must be finite, and the
@@ -304,7 +292,8 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
 Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& options, const Mesh::Discretization& disc,
                    const Fem::Material& mat, const Fem::LoadCase& loads, const RCP<const Comm>& comm,
                    IO::Summary& summary) {
-  const auto& fetiParams = params.sublist("Solver").sublist("FETI");
+  const auto& solverParams = params.sublist("Solver");
+  const auto& fetiParams = solverParams.sublist("FETI");
   Teuchos::ParameterList problemParams;
   for (const auto& name : {"Local Solver", "Gluing", "Formulation", "Dual Operator"})
     problemParams.set(name, fetiParams.get<std::string>(name));
@@ -313,67 +302,51 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
   contact.enabled = contactParams.get<bool>("Enabled");
   contact.face = contactParams.get<std::string>("Face");
   contact.gap = contactParams.get<double>("Gap");
-  Progress::stage("FETI setup: assembly, gluing, coarse space");
-  const auto t0 = std::chrono::steady_clock::now();
-  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, contact, problemParams, comm));
-  auto dual = rcp(new Feti::FetiDual(problem));
-  Vector lambda(problem->dualMap());
   Contact::FrictionSpec friction;
-  Solution sol;
-  sol.setupSeconds = seconds(t0);
-  const auto t1 = std::chrono::steady_clock::now();
-  if (!contact.enabled) {
-    Progress::stage("projected CG");
-    Feti::ProjectedCG pcg(fetiParams.sublist("Projected CG"));
-    const auto st = pcg.solve(*dual, lambda);
-    summary.set("outer_iterations", st.iterations);
-    summary.set("n_A", st.n_A);
-    summary.set("relative_residual", st.relativeResidual);
-    sol.solverConverged = st.converged;
-    if (!st.converged) sol.solverReason = "projected CG: maximum iterations";
-    sol.solveSeconds = seconds(t1);
-    Progress::stage("result check");
-    sol.u = problem->nodalDisplacement(*dual->recoverPrimal(lambda));
-    sol.kkt = Contact::resultKKT(*problem, sol.u, {}, friction);
-  } else {
+  if (contact.enabled) {
     friction.law = contactParams.get<std::string>("Friction Law");
     friction.coefficient = contactParams.get<double>("Friction Coefficient");
     friction.slipBoundTraction = contactParams.get<double>("Slip Bound Traction");
-    Contact::FetiContactProblem cp(dual, friction);
-    const std::string outer = params.sublist("Solver").get<std::string>("Outer Algorithm");
-    Progress::stage("contact solve: " + outer);
-    const auto result = cp.solve(outer, params.sublist("Solver"),
-                                 options.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
-                                                 : RCP<Teuchos::FancyOStream>());
-    const auto& st = result.status;
-    lambda.assign(*result.lambda);
-    summary.set("outer_algorithm", outer);
+  }
+  Progress::stage("FETI setup: assembly, gluing, coarse space");
+  const auto t0 = std::chrono::steady_clock::now();
+  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, contact, problemParams, comm));
+  Solution sol;
+  sol.setupSeconds = seconds(t0);
+  // The same solve an application runs on its own subdomains (Tribos_FetiSolve.hpp).
+  const auto r = Contact::solveFeti(problem, friction, solverParams,
+                                    options.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
+                                                    : RCP<Teuchos::FancyOStream>());
+  sol.u = r.u;
+  sol.contactNodes = r.contact;
+  sol.kkt = r.kkt;
+  sol.solverConverged = r.solverConverged;
+  sol.solverReason = r.solverReason;
+  sol.solveSeconds = r.solveSeconds;
+  summary.set("n_A", r.n_A);
+  if (!contact.enabled) {
+    summary.set("outer_iterations", r.iterations);
+    summary.set("relative_residual", r.relativeResidual);
+  } else {
+    const auto& st = r.status;
+    summary.set("outer_algorithm", r.outerAlgorithm);
     summary.set("friction_law", friction.law);
     summary.set("outer_iterations", st.outer_iterations);
     summary.set("msa_iterations", st.msa_iterations);
     summary.set("inner_iterations", st.inner_iterations);
-    summary.set("n_A", static_cast<long long>(result.n_A));
     summary.set("n_A_qpp", static_cast<long long>(st.n_A_qpp));
     summary.set("n_A_qpq", static_cast<long long>(st.n_A_qpq));
     summary.set("slip_bound_change", st.slip_bound_change);
     summary.set("history", st.history);
-    sol.solverConverged = st.converged;
-    sol.solverReason = st.reason;
-    sol.solveSeconds = seconds(t1);
-    Progress::stage("result check");
-    sol.u = problem->nodalDisplacement(*result.u);
-    Contact::ContactCounts counts;
-    sol.contactNodes = Contact::contactResults(*problem, sol.u, lambda, st.slipBound, counts);
-    sol.kkt = Contact::resultKKT(*problem, sol.u, sol.contactNodes, friction);
     IO::Summary c;
-    c.set("nodes", counts.nodes).set("active", counts.active).set("stick", counts.stick).set("slip", counts.slip);
+    c.set("nodes", r.counts.nodes).set("active", r.counts.active).set("stick", r.counts.stick).set("slip", r.counts.slip);
     summary.set("contact", c);
     if (!options.exportFclib.empty()) {
       // FCLIB global problem: assembled K, contact rows in the local frame, gaps, F (docs/fclib.md).
       Progress::stage("FCLIB export");
-      FCLIB::Info info{params.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + outer, ""};
-      FCLIB::exportFeti(options.exportFclib, *problem, mat, loads, friction.law, friction.coefficient, *result.u, lambda,
-                        info);
+      FCLIB::Info info{params.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + r.outerAlgorithm, ""};
+      FCLIB::exportFeti(options.exportFclib, *problem, mat, loads, friction.law, friction.coefficient, *r.primal,
+                        *r.lambda, info);
       summary.set("fclib_export", options.exportFclib);
     }
   }

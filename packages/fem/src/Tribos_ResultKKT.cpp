@@ -1,5 +1,7 @@
 #include "Tribos_ResultKKT.hpp"
 
+#include <sstream>
+
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
@@ -121,6 +123,26 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
   res.complementarity = maxOver(kkt.complementarity(), comm);
   res.frictionLaw = maxOver(kkt.frictionLaw(), comm);
   return res;
+}
+
+ResultVerdict resultVerdict(const ResultKKT& kkt, bool solverConverged, const std::string& solverReason,
+                            double tolerance, double factor) {
+  ResultVerdict v;
+  v.limit = factor * tolerance;
+  std::string worstName;
+  const double worst = kkt.worst(&worstName);
+  v.converged = solverConverged && worst <= v.limit;
+  if (v.converged) {
+    v.stopReason = solverReason.empty() ? "converged" : solverReason;
+  } else if (!solverConverged) {
+    v.stopReason = solverReason.empty() ? "the solver did not converge" : solverReason;
+  } else {
+    std::ostringstream os;
+    os << "the " << worstName << " residual of the result, " << worst << ", exceeds " << v.limit
+       << " (Result Check Factor " << factor << " times the requested tolerance " << tolerance << ")";
+    v.stopReason = os.str();
+  }
+  return v;
 }
 
 }  // namespace Fem

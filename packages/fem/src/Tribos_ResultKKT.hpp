@@ -82,5 +82,18 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
 std::vector<double> contactForceVector(int numNodes, const RigidPlane& plane,
                                        const std::vector<ContactNodeForce>& contact, const Comm& comm);
 
+// `converged` is a promise about the result the user gets: the solver
+// stopped on its own test AND every KKT residual of the result is within
+// factor times the requested tolerance. stopReason says why not (the
+// solver's reason, or the residual that exceeds the limit), or the solver's
+// reason for stopping when converged.
+struct ResultVerdict {
+  bool converged = false;
+  double limit = 0;  // factor x tolerance
+  std::string stopReason;
+};
+ResultVerdict resultVerdict(const ResultKKT& kkt, bool solverConverged, const std::string& solverReason,
+                            double tolerance, double factor);
+
 }  // namespace Fem
 }  // namespace Tribos

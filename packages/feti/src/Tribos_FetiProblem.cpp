@@ -249,7 +249,7 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& 
     const std::vector<double> area = Fem::faceNodalAreas(disc.mesh, contact.face);
     for (int node : disc.mesh.faceNodes(contact.face)) fc.contactArea[node] = area[node];
   }
-  setup(std::move(fc), p);
+  setup(std::move(fc), contact.enabled, p);
 }
 
 FetiProblem::FetiProblem(std::vector<Fem::SubdomainSystem> localSubdomains, FetiConstraints constraints,
@@ -261,7 +261,9 @@ FetiProblem::FetiProblem(std::vector<Fem::SubdomainSystem> localSubdomains, Feti
                  "Formulation = " << p.get<std::string>("Formulation") << ": subdomains given by an application are "
                                   "solved by TFETI (Dirichlet conditions as rows of B)");
   for (auto& sys : systems_) checkSubdomain(sys);
-  setup(std::move(constraints), p);
+  bool contact = false;  // the rows are the same on every rank
+  for (const auto& r : constraints.rows) contact = contact || r.kind == DualRow::Normal;
+  setup(std::move(constraints), contact, p);
 }
 
 const Mesh::Discretization& FetiProblem::discretization() const {
@@ -269,7 +271,8 @@ const Mesh::Discretization& FetiProblem::discretization() const {
   return *disc_;
 }
 
-void FetiProblem::setup(FetiConstraints fc, const Teuchos::ParameterList& p) {
+void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::ParameterList& p) {
+  hasContact_ = contact;
   localSolverName_ = p.get<std::string>("Local Solver");
   dirichlet_ = std::move(fc.dirichlet);
   const Numbering numbering = subdomainNumbering(systems_, *comm_);
@@ -294,8 +297,6 @@ void FetiProblem::setup(FetiConstraints fc, const Teuchos::ParameterList& p) {
   }
   checkRows(fc.rows, primalOffsets_);
   distributeRows(fc.rows, numbering.owner);
-  bool contact = false;
-  for (const auto& r : fc.rows) contact = contact || r.kind == DualRow::Normal;
   std::function<double(int)> contactArea;
   if (contact) {
     contactArea = [&fc](int node) {

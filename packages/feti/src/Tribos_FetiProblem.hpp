@@ -81,6 +81,9 @@ class FetiProblem {
   const Vector& f() const { return *f_; }
   const Vector& c() const { return *constraints_.c; }
   const LocalContact& contact() const { return constraints_.contact; }
+  // Whether the problem is a contact problem (the mesh's contact is enabled,
+  // or an application gave Normal rows), on every rank.
+  bool hasContact() const { return hasContact_; }
   // Local dual rows that are equality rows (gluing, Dirichlet).
   const std::vector<char>& isEqualityRow() const { return constraints_.isEquality; }
   int numSubdomains() const { return static_cast<int>(primalOffsets_.size()) - 1; }
@@ -135,12 +138,13 @@ class FetiProblem {
 
  private:
   // What both constructors share once systems_ holds this rank's subdomains.
-  void setup(FetiConstraints constraints, const Teuchos::ParameterList& validated);
+  void setup(FetiConstraints constraints, bool contact, const Teuchos::ParameterList& validated);
   // Per local subdomain, the dofs that some row of B touches (ascending).
   std::vector<std::vector<int>> boundaryDofs() const;
 
   const Mesh::Discretization* disc_ = nullptr;
   int numNodes_ = 0;
+  bool hasContact_ = false;
   RCP<const Comm> comm_;
   std::string localSolverName_;
   std::vector<Fem::SubdomainSystem> systems_;      // this rank's subdomains

@@ -161,6 +161,8 @@ RCP<const ParameterList> MSA::validParameters() {
 
 RCP<const ParameterList> MSA::getValidParameters() const { return validParameters(); }
 
+double Algorithm1::requestedTolerance() const { return params_.sublist("SMALBE").get<double>("Relative Tolerance"); }
+
 MSA::MSA(const ParameterList& params, const ParameterList& algorithm1) : params_(params), tresca_(algorithm1) {
   params_.validateParametersAndSetDefaults(*validParameters());
 }
@@ -271,6 +273,10 @@ RCP<const ParameterList> Algorithm2::validParameters() {
 }
 
 RCP<const ParameterList> Algorithm2::getValidParameters() const { return validParameters(); }
+
+double MSA::requestedTolerance() const {
+  return std::max(tresca_.requestedTolerance(), params_.get<double>("Tolerance"));
+}
 
 Algorithm2::Algorithm2(const ParameterList& params) : params_(params) {
   params_.validateParametersAndSetDefaults(*validParameters());
@@ -413,6 +419,8 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
 }
 
 // ---------------------------------------------------------------- factory
+
+double Algorithm2::requestedTolerance() const { return params_.get<double>("Relative Tolerance"); }
 
 const FrictionSolverRegistry& frictionSolvers() {
   static const FrictionSolverRegistry registry = [] {

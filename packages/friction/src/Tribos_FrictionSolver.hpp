@@ -38,6 +38,9 @@ class FrictionSolver {
   // x: initial guess on input (projected if infeasible), solution on output.
   virtual FrictionStatus solve(const ContactDual& dual, Vector& x) = 0;
   virtual RCP<const Teuchos::ParameterList> getValidParameters() const = 0;
+  // The relative tolerance the solve is asked for: what the result check of
+  // a solution measures its KKT residuals against.
+  virtual double requestedTolerance() const = 0;
   void setOutputStream(RCP<Teuchos::FancyOStream> out) { out_ = out; }
 
  protected:
@@ -54,6 +57,7 @@ class Algorithm1 : public FrictionSolver {
   FrictionStatus solve(const ContactDual& dual, const std::vector<SC>& g, Vector& x);
   RCP<const Teuchos::ParameterList> getValidParameters() const override;
   static RCP<const Teuchos::ParameterList> validParameters();
+  double requestedTolerance() const override;
   // Keeps the SMALBE multiplier between solves (warm start of MSA steps).
   void setWarmStart(bool on) { warmStart_ = on; }
   void setHessianNorm(SC normA) { normA_ = normA; }
@@ -71,6 +75,7 @@ class MSA : public FrictionSolver {
   FrictionStatus solve(const ContactDual& dual, Vector& x) override;
   RCP<const Teuchos::ParameterList> getValidParameters() const override;
   static RCP<const Teuchos::ParameterList> validParameters();
+  double requestedTolerance() const override;  // the larger of Algorithm 1's and the fixed point's
 
  private:
   Teuchos::ParameterList params_;
@@ -83,6 +88,7 @@ class Algorithm2 : public FrictionSolver {
   FrictionStatus solve(const ContactDual& dual, Vector& x) override;
   RCP<const Teuchos::ParameterList> getValidParameters() const override;
   static RCP<const Teuchos::ParameterList> validParameters();
+  double requestedTolerance() const override;
 
  private:
   Teuchos::ParameterList params_;

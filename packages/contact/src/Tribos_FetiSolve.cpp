@@ -1,0 +1,109 @@
+#include "Tribos_FetiSolve.hpp"
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <chrono>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_FetiDual.hpp"
+#include "Tribos_Progress.hpp"
+#include "Tribos_ProjectedCG.hpp"
+
+namespace Tribos {
+namespace Contact {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The entries of params that solveFeti reads, validated against
+// fetiSolveParameters() (so a misspelled algorithm or a value out of range
+// is refused with its name), defaults filled.
+Teuchos::ParameterList validatedSolveParameters(const Teuchos::ParameterList& params) {
+  const auto valid = fetiSolveParameters();
+  Teuchos::ParameterList p;
+  for (auto it = valid->begin(); it != valid->end(); ++it) {
+    const std::string& name = valid->name(it);
+    if (name == "FETI") continue;  // only its "Projected CG" is read here
+    if (params.isSublist(name)) p.sublist(name).setParameters(params.sublist(name));
+    else if (params.isParameter(name)) p.setEntry(name, params.getEntry(name));
+  }
+  if (params.isSublist("FETI") && params.sublist("FETI").isSublist("Projected CG"))
+    p.sublist("FETI").sublist("Projected CG").setParameters(params.sublist("FETI").sublist("Projected CG"));
+  p.validateParametersAndSetDefaults(*valid);
+  return p;
+}
+
+}  // namespace
+
+RCP<const Teuchos::ParameterList> fetiSolveParameters() {
+  static RCP<Teuchos::ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::parameterList("Solver");
+    pl->set("Outer Algorithm", "Algorithm2", "contact problems: " + Friction::frictionSolvers().documentation(),
+            Friction::frictionSolvers().validator());
+    pl->set("Result Check Factor", 100.0,
+            "converged means every KKT residual of the result is at most this factor times the solver's requested "
+            "tolerance",
+            rcp(new Teuchos::EnhancedNumberValidator<double>(1.0, 1e300)));
+    Friction::FrictionSolverFactory::addValidParameters(*pl);
+    pl->sublist("FETI").sublist("Projected CG").setParameters(*Feti::ProjectedCG::getValidParameters());
+  }
+  return pl;
+}
+
+FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const FrictionSpec& friction,
+                          const Teuchos::ParameterList& params, RCP<Teuchos::FancyOStream> out) {
+  const Teuchos::ParameterList p = validatedSolveParameters(params);
+  auto dual = rcp(new Feti::FetiDual(problem));
+  FetiSolveResult r;
+  r.lambda = rcp(new Vector(problem->dualMap()));
+  FrictionSpec law = friction;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!problem->hasContact()) {
+    Progress::stage("projected CG");
+    const auto& pcgParams = p.sublist("FETI").sublist("Projected CG");
+    Feti::ProjectedCG pcg(pcgParams);
+    if (!out.is_null()) pcg.setOutputStream(out);
+    const auto st = pcg.solve(*dual, *r.lambda);
+    r.iterations = st.iterations;
+    r.n_A = st.n_A;
+    r.relativeResidual = st.relativeResidual;
+    r.solverConverged = st.converged;
+    if (!st.converged) r.solverReason = "projected CG: maximum iterations";
+    r.tolerance = pcgParams.get<double>("Tolerance");
+    r.primal = dual->recoverPrimal(*r.lambda);
+    law = FrictionSpec();  // no contact forces to check
+  } else {
+    FetiContactProblem cp(dual, friction);
+    r.outerAlgorithm = p.get<std::string>("Outer Algorithm");
+    TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, friction.law),
+                   "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << friction.law << " friction ("
+                                        << joinNames(Friction::frictionSolvers().accepting(friction.law)) << " do)");
+    Progress::stage("contact solve: " + r.outerAlgorithm);
+    const auto sol = cp.solve(r.outerAlgorithm, p, out);
+    r.status = sol.status;
+    r.iterations = sol.status.outer_iterations;
+    r.n_A = sol.n_A;
+    r.solverConverged = sol.status.converged;
+    r.solverReason = sol.status.reason;
+    r.tolerance = Friction::frictionSolvers().create(r.outerAlgorithm, p)->requestedTolerance();
+    r.lambda->assign(*sol.lambda);
+    r.primal = sol.u;
+  }
+  r.solveSeconds = secondsSince(t0);
+  Progress::stage("result check");
+  r.u = problem->nodalDisplacement(*r.primal);
+  if (problem->hasContact())
+    r.contact = contactResults(*problem, r.u, *r.lambda, r.status.slipBound, r.counts);
+  r.kkt = resultKKT(*problem, r.u, r.contact, law);
+  r.verdict = Fem::resultVerdict(r.kkt, r.solverConverged, r.solverReason, r.tolerance,
+                                 p.get<double>("Result Check Factor"));
+  return r;
+}
+
+}  // namespace Contact
+}  // namespace Tribos

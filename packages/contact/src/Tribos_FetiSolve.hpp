@@ -1,0 +1,62 @@
+// Tribos_FetiSolve.hpp: a FETI problem solved the way Tribos solves it, for
+// the driver and for applications that assemble their own subdomains
+// (FetiProblem's second constructor) alike:
+//   no contact: projected CG on the dual problem (list "FETI"/"Projected CG");
+//   contact:    the outer algorithm "Outer Algorithm" (Tresca: Algorithm 1;
+//               Coulomb: Algorithm2 or MSA+Algorithm1) on the transformed
+//               dual problem (FetiContactProblem);
+// then the result an application writes: the nodal displacement, the
+// contact forces, slip and status per contact node, the KKT residuals of
+// that result node by node (Fem::resultKKT), and the verdict: converged
+// means the solver stopped on its test AND the residuals are within
+// "Result Check Factor" times its requested tolerance.
+#pragma once
+
+#include <Teuchos_FancyOStream.hpp>
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+#include <vector>
+
+#include "Tribos_FetiContact.hpp"
+#include "Tribos_FetiProblem.hpp"
+#include "Tribos_ResultKKT.hpp"
+
+namespace Tribos {
+namespace Contact {
+
+struct FetiSolveResult {
+  std::vector<double> u;        // nodal displacement, 3 per global node, on every rank
+  RCP<Vector> lambda;           // the multipliers of B (this rank's rows)
+  RCP<Vector> primal;           // the subdomain displacements (FETI's primal vector)
+  ContactNodeResults contact;   // this rank's contact nodes (empty without contact)
+  ContactCounts counts;         // over all ranks
+  Fem::ResultKKT kkt;           // of u and the contact forces
+  Fem::ResultVerdict verdict;   // converged, limit, stop reason
+  double tolerance = 0;         // the solver's requested tolerance
+  // The solver's own report.
+  bool solverConverged = false;
+  std::string solverReason;
+  std::string outerAlgorithm;            // empty without contact
+  Friction::FrictionStatus status;       // contact: the outer algorithm's status
+  int iterations = 0;                    // projected CG iterations or outer iterations
+  long long n_A = 0;                     // applications of F in the solve
+  double relativeResidual = 0;           // projected CG
+  double solveSeconds = 0;
+};
+
+// The parameters solveFeti reads, with defaults and documentation:
+// "Outer Algorithm", "Result Check Factor", the outer algorithms' sublists
+// "Algorithm 1", "MSA", "Algorithm 2", and "FETI"/"Projected CG". Other
+// entries of the list are left to their owners.
+RCP<const Teuchos::ParameterList> fetiSolveParameters();
+
+// Solves problem; friction: the law of the contact rows (ignored without
+// contact). Collective. Throws Tribos::Error for parameters that are not
+// valid (naming them) and CollectiveError for a body that neither its
+// Dirichlet rows nor its contact hold.
+FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const FrictionSpec& friction,
+                          const Teuchos::ParameterList& params, RCP<Teuchos::FancyOStream> out = Teuchos::null);
+
+}  // namespace Contact
+}  // namespace Tribos
