@@ -1,19 +1,18 @@
 #include "Tribos_FetiProblem.hpp"
 
+#include <mpi.h>
+
+#include <Teuchos_LAPACK.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Vector.hpp>
-
-#include <mpi.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 
-#include <Teuchos_LAPACK.hpp>
-
+#include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -21,9 +20,7 @@ namespace Feti {
 
 namespace {
 
-MPI_Comm rawComm(const Comm& comm) {
-  return *dynamic_cast<const Teuchos::MpiComm<int>&>(comm).getRawMpiComm();
-}
+MPI_Comm rawComm(const Comm& comm) { return *dynamic_cast<const Teuchos::MpiComm<int>&>(comm).getRawMpiComm(); }
 
 }  // namespace
 
@@ -59,7 +56,8 @@ void eliminateDirichlet(Fem::SubdomainSystem& sys, const std::map<long long, dou
   for (int i = 0; i < n; ++i)
     if (fixed[i])
       for (int a = 0; a < 6; ++a)
-        for (int b = 0; b < 6; ++b) gram(a, b) += sys.R[static_cast<size_t>(a) * n + i] * sys.R[static_cast<size_t>(b) * n + i];
+        for (int b = 0; b < 6; ++b)
+          gram(a, b) += sys.R[static_cast<size_t>(a) * n + i] * sys.R[static_cast<size_t>(b) * n + i];
   Teuchos::LAPACK<int, double> lapack;
   std::vector<double> w(6), work(64);
   int info = 0;
@@ -95,18 +93,21 @@ Numbering subdomainNumbering(const std::vector<Fem::SubdomainSystem>& systems, c
   TRIBOS_REQUIRE(S > 0, "FetiProblem: no subdomains on any rank");
   std::vector<long> rankPlus1(S, 0), dofs(S, 0), count(S, 0);
   int maxNode = -1;
-  for (size_t k = 0; k < systems.size(); ++k) {
-    const auto& sys = systems[k];
-    TRIBOS_REQUIRE(sys.id >= 0 && sys.id < S, "FetiProblem: subdomain id " << sys.id << " on rank " << comm.getRank()
-                                                  << " is outside 0.." << S - 1 << " (" << S << " subdomains in all)");
-    TRIBOS_REQUIRE(k == 0 || sys.id == systems[k - 1].id + 1,
-                   "FetiProblem: rank " << comm.getRank() << " holds subdomains " << systems[k - 1].id << " and "
-                                        << sys.id << ": a rank's subdomains must be consecutive and ascending");
-    rankPlus1[sys.id] = comm.getRank() + 1;
-    dofs[sys.id] = sys.numDofs();
-    count[sys.id] = 1;
-    for (int n : sys.nodes) maxNode = std::max(maxNode, n);
-  }
+  checkOnEveryRank(comm, [&] {
+    for (size_t k = 0; k < systems.size(); ++k) {
+      const auto& sys = systems[k];
+      TRIBOS_REQUIRE(sys.id >= 0 && sys.id < S, "FetiProblem: subdomain id " << sys.id << " on rank " << comm.getRank()
+                                                                             << " is outside 0.." << S - 1 << " (" << S
+                                                                             << " subdomains in all)");
+      TRIBOS_REQUIRE(k == 0 || sys.id == systems[k - 1].id + 1,
+                     "FetiProblem: rank " << comm.getRank() << " holds subdomains " << systems[k - 1].id << " and "
+                                          << sys.id << ": a rank's subdomains must be consecutive and ascending");
+      rankPlus1[sys.id] = comm.getRank() + 1;
+      dofs[sys.id] = sys.numDofs();
+      count[sys.id] = 1;
+      for (int n : sys.nodes) maxNode = std::max(maxNode, n);
+    }
+  });
   std::vector<long> sum(S);
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(S), count.data(), sum.data());
   for (long s = 0; s < S; ++s)
@@ -118,7 +119,8 @@ Numbering subdomainNumbering(const std::vector<Fem::SubdomainSystem>& systems, c
     out.owner[s] = static_cast<int>(sum[s] - 1);
     TRIBOS_REQUIRE(s == 0 || out.owner[s] >= out.owner[s - 1],
                    "FetiProblem: subdomain " << s << " is on rank " << out.owner[s] << " but subdomain " << s - 1
-                                             << " on rank " << out.owner[s - 1] << ": ranks must hold ascending ranges");
+                                             << " on rank " << out.owner[s - 1]
+                                             << ": ranks must hold ascending ranges");
   }
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(S), dofs.data(), sum.data());
   out.primalOffsets.assign(S + 1, 0);
@@ -140,9 +142,10 @@ void checkSubdomain(Fem::SubdomainSystem& sys) {
   const int n = sys.numDofs();
   const std::string name = "FetiProblem: subdomain " + std::to_string(sys.id);
   TRIBOS_REQUIRE(n > 0, name << " has no nodes");
-  TRIBOS_REQUIRE(sys.K.rows == n && static_cast<int>(sys.K.rowptr.size()) == n + 1,
+  TRIBOS_REQUIRE(sys.K.rows == n && sys.K.cols == n && static_cast<int>(sys.K.rowptr.size()) == n + 1,
                  name << ": K has " << sys.K.rows << " rows, expected 3 x " << sys.nodes.size() << " nodes = " << n);
-  for (int c : sys.K.col) TRIBOS_REQUIRE(c >= 0 && c < n, name << ": K has a column index " << c << " outside 0.." << n - 1);
+  for (int c : sys.K.col)
+    TRIBOS_REQUIRE(c >= 0 && c < n, name << ": K has a column index " << c << " outside 0.." << n - 1);
   TRIBOS_REQUIRE(static_cast<int>(sys.f.size()) == n, name << ": f has " << sys.f.size() << " entries, expected " << n);
   TRIBOS_REQUIRE(sys.coords.size() == sys.nodes.size(),
                  name << ": " << sys.coords.size() << " coordinates for " << sys.nodes.size() << " nodes");
@@ -171,7 +174,7 @@ void checkSubdomain(Fem::SubdomainSystem& sys) {
 
 // An application's rows: copies name existing subdomain nodes, numbers are
 // finite, and the tangential rows of a node go with its normal row.
-void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOffsets) {
+void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOffsets, const FetiConstraints& fc) {
   const int S = static_cast<int>(primalOffsets.size()) - 1;
   std::map<int, int> normalSubdomain;  // node -> subdomain of its normal row
   for (size_t i = 0; i < rows.size(); ++i) {
@@ -184,11 +187,39 @@ void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOf
     for (const auto& c : r.copies) {
       TRIBOS_REQUIRE(c.subdomain >= 0 && c.subdomain < S, name << ": subdomain " << c.subdomain << " does not exist");
       const GO nodes = (primalOffsets[c.subdomain + 1] - primalOffsets[c.subdomain]) / 3;
-      TRIBOS_REQUIRE(c.localNode >= 0 && c.localNode < nodes,
-                     name << ": subdomain " << c.subdomain << " has no local node " << c.localNode << " (it has " << nodes << ")");
+      TRIBOS_REQUIRE(c.localNode >= 0 && c.localNode < nodes, name << ": subdomain " << c.subdomain
+                                                                   << " has no local node " << c.localNode
+                                                                   << " (it has " << nodes << ")");
       TRIBOS_REQUIRE(std::isfinite(c.weight) && c.weight != 0, name << ": weight " << c.weight);
     }
     if (r.kind == DualRow::Normal) normalSubdomain[r.node] = r.copies.front().subdomain;
+  }
+  // The contact rows lie on the plane: the normal rows along its normal with
+  // its gap, the tangential rows along the frame of Feti::tangents() (the
+  // contact forces and slips are reported in that frame).
+  bool contact = false;
+  for (const auto& r : rows) contact = contact || r.kind == DualRow::Normal;
+  const auto& nrm = fc.contactNormal;
+  TRIBOS_REQUIRE(!contact || std::abs(std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]) - 1) <= 1e-12,
+                 "FetiProblem: the contact plane's normal (" << nrm[0] << ", " << nrm[1] << ", " << nrm[2]
+                                                             << ") is not a unit vector");
+  std::array<double, 3> frame[3];
+  frame[0] = fc.contactNormal;
+  tangents(fc.contactNormal, frame[1], frame[2]);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    if (r.kind == DualRow::Gluing || r.kind == DualRow::Dirichlet) continue;
+    const int f = r.kind == DualRow::Normal ? 0 : (r.kind == DualRow::Tangent1 ? 1 : 2);
+    double d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(r.dir[c] - frame[f][c]));
+    TRIBOS_REQUIRE(d <= 1e-12, "FetiProblem: contact row "
+                                   << i << " of node " << r.node << " has the direction (" << r.dir[0] << ", "
+                                   << r.dir[1] << ", " << r.dir[2] << "), expected (" << frame[f][0] << ", "
+                                   << frame[f][1] << ", " << frame[f][2]
+                                   << ") of the contact plane's frame (normal, Feti::tangents)");
+    TRIBOS_REQUIRE(f > 0 || std::abs(r.c - fc.contactGap) <= 1e-12 * std::max(1.0, std::abs(fc.contactGap)),
+                   "FetiProblem: normal row " << i << " of node " << r.node << " has the gap " << r.c
+                                              << ", the contact plane " << fc.contactGap);
   }
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
@@ -258,9 +289,13 @@ FetiProblem::FetiProblem(std::vector<Fem::SubdomainSystem> localSubdomains, Feti
   Teuchos::ParameterList p(params);
   p.validateParametersAndSetDefaults(*getValidParameters(), 0);
   TRIBOS_REQUIRE(p.get<std::string>("Formulation") == "TFETI",
-                 "Formulation = " << p.get<std::string>("Formulation") << ": subdomains given by an application are "
-                                  "solved by TFETI (Dirichlet conditions as rows of B)");
-  for (auto& sys : systems_) checkSubdomain(sys);
+                 "Formulation = " << p.get<std::string>("Formulation")
+                                  << ": subdomains given by an application are "
+                                     "solved by TFETI (Dirichlet conditions as rows of B)");
+  // A rank that finds its subdomain wrong must not leave the others waiting.
+  checkOnEveryRank(*comm_, [&] {
+    for (auto& sys : systems_) checkSubdomain(sys);
+  });
   bool contact = false;  // the rows are the same on every rank
   for (const auto& r : constraints.rows) contact = contact || r.kind == DualRow::Normal;
   setup(std::move(constraints), contact, p);
@@ -287,7 +322,8 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
   for (int s = 0; s < S; ++s) kernelOffsets_[s + 1] = kernelOffsets_[s] + all[s];
   const GO first = systems_.empty() ? 0 : primalOffsets_[systems_.front().id];
   const GO last = systems_.empty() ? 0 : primalOffsets_[systems_.back().id + 1];
-  primalMap_ = rcp(new Map(static_cast<Tpetra::global_size_t>(primalOffsets_[S]), static_cast<size_t>(last - first), 0, comm_));
+  primalMap_ =
+      rcp(new Map(static_cast<Tpetra::global_size_t>(primalOffsets_[S]), static_cast<size_t>(last - first), 0, comm_));
   f_ = rcp(new Vector(primalMap_));
   {
     auto fv = f_->getDataNonConst();
@@ -295,7 +331,7 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
     for (const auto& sys : systems_)
       for (double v : sys.f) fv[k++] = v;
   }
-  checkRows(fc.rows, primalOffsets_);
+  if (!disc_) checkRows(fc.rows, primalOffsets_, fc);
   distributeRows(fc.rows, numbering.owner);
   std::function<double(int)> contactArea;
   if (contact) {
@@ -357,7 +393,8 @@ void FetiProblem::applyK(const Vector& p, Vector& z) const {
 }
 
 void FetiProblem::applySchur(const Vector& p, Vector& z) const {
-  if (!preconditioner_) preconditioner_ = std::make_unique<DirichletPreconditioner>(systems_, boundary_, localSolverName_);
+  if (!preconditioner_)
+    preconditioner_ = std::make_unique<DirichletPreconditioner>(systems_, boundary_, localSolverName_);
   preconditioner_->apply(p, z);
 }
 
@@ -384,7 +421,8 @@ void FetiProblem::applyR(const std::vector<double>& a, Vector& z) const {
     const int n = sys.numDofs();
     for (int i = 0; i < n; ++i) {
       double s = 0;
-      for (int j = 0; j < kernelDim(sys); ++j) s += sys.R[static_cast<size_t>(j) * n + i] * a[kernelOffsets_[sys.id] + j];
+      for (int j = 0; j < kernelDim(sys); ++j)
+        s += sys.R[static_cast<size_t>(j) * n + i] * a[kernelOffsets_[sys.id] + j];
       zv[offset + i] = s;
     }
     offset += n;
@@ -415,9 +453,7 @@ std::vector<double> FetiProblem::assembledProduct(const std::vector<double>& uNo
   return Fem::assembledProduct(systems_, uNodal, *comm_);
 }
 
-std::vector<double> FetiProblem::assembledLoad() const {
-  return Fem::assembledLoad(systems_, numNodes_, *comm_);
-}
+std::vector<double> FetiProblem::assembledLoad() const { return Fem::assembledLoad(systems_, numNodes_, *comm_); }
 
 }  // namespace Feti
 }  // namespace Tribos

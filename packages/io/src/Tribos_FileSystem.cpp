@@ -95,19 +95,6 @@ std::string renameFile(const std::string& from, const std::string& to) {
   return "cannot rename " + from + " to " + to + ": " + systemReason(errno);
 }
 
-std::string agreeOnError(const Comm& comm, const std::string& localError) {
-  const int size = comm.getSize();
-  int mine = localError.empty() ? size : comm.getRank(), first = size;
-  Teuchos::reduceAll<int, int>(comm, Teuchos::REDUCE_MIN, mine, Teuchos::outArg(first));
-  if (first == size) return "";
-  std::string message = localError;
-  int length = static_cast<int>(message.size());
-  Teuchos::broadcast<int, int>(comm, first, Teuchos::outArg(length));
-  message.resize(static_cast<size_t>(length));
-  if (length > 0) Teuchos::broadcast<int, char>(comm, first, length, &message[0]);
-  return message;
-}
-
 std::string rootError(const Comm& comm, const std::string& errorOnRoot) {
   return broadcastFromRoot(comm, comm.getRank() == 0 ? errorOnRoot : std::string());
 }

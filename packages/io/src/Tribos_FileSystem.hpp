@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
@@ -38,9 +39,9 @@ std::string syncPath(const std::string& path);
 std::string removeIfExists(const std::string& path);
 std::string renameFile(const std::string& from, const std::string& to);
 
-// Collective: the error of the lowest rank that has one, on every rank ("" if
-// no rank failed). Used after every step that each rank does for itself.
-std::string agreeOnError(const Comm& comm, const std::string& localError);
+// Collective: the error of the lowest rank that has one (Tribos::agreeOnError,
+// core): used after every step that each rank does for itself.
+using Tribos::agreeOnError;
 // Collective: rank 0's error on every rank. Used after steps that only rank 0 does.
 std::string rootError(const Comm& comm, const std::string& errorOnRoot);
 // Collective: rank 0's value on every rank.

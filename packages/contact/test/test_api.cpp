@@ -1,0 +1,151 @@
+// The application interface: FetiProblem from assembled subdomains and rows
+// of B, solved by Contact::solveFeti.
+//  - The same problem through the mesh constructor and through the
+//    application constructor (subdomains assembled by Fem, rows by
+//    meshConstraintRows, handed over as an application would) gives the same
+//    displacement, and the same on 1, 2 and 3 ranks (every rank count also
+//    solves on rank 0 alone and compares).
+//  - Misuse is refused before any work, naming what is wrong: sizes, a
+//    kernel that is not one, ids out of order, rows naming missing nodes,
+//    contact rows off the plane's frame.
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "Tribos_Assembly.hpp"
+#include "Tribos_Error.hpp"
+#include "Tribos_FetiSolve.hpp"
+#include "Tribos_Loads.hpp"
+#include "Tribos_TestSupport.hpp"
+
+namespace {
+
+using namespace Tribos;
+
+// The seed brick, coarse: Tet4, 3 unit cubes along x, clamped at x = 0,
+// pressed onto z = 0 and pushed along -x; Coulomb F = 0.3.
+struct Brick {
+  Mesh::BoxSpec spec;
+  Mesh::DecompositionSpec dec;
+  Fem::Material mat;
+  Fem::LoadCase loads;
+  Feti::ContactSpec contact;
+  Brick() {
+    spec.type = Mesh::CellType::Tet4;
+    spec.x = {0, 3};
+    spec.cells = {6, 2, 2};
+    dec.grid = {3, 1, 1};
+    mat.E = 21.2e10;
+    mat.nu = 0.277;
+    Fem::DirichletCondition clamp;
+    clamp.face = "xmin";
+    loads.dirichlet.push_back(clamp);
+    loads.tractions.push_back({"zmax", {0, 0, -4e7}});
+    loads.tractions.push_back({"xmax", {-2e7, 0, 0}});
+    contact.enabled = true;
+  }
+  Mesh::Discretization disc(const Comm& comm) const {
+    return Mesh::Discretization(Mesh::generateBox(spec), spec, dec, comm.getSize(), comm.getRank());
+  }
+};
+
+const Contact::FrictionSpec kCoulomb{"Coulomb", 0.3, 0.0};
+
+Teuchos::ParameterList tight() {
+  Teuchos::ParameterList p;
+  p.sublist("Algorithm 2").set("Relative Tolerance", 1e-9);
+  return p;
+}
+
+// What an application would hand over, built from the brick's mesh.
+struct Handover {
+  std::vector<Fem::SubdomainSystem> systems;
+  Feti::FetiConstraints constraints;
+};
+
+Handover handover(const Brick& b, const Mesh::Discretization& disc) {
+  Handover h;
+  for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s) {
+    h.systems.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], b.mat, b.loads));
+    h.systems.back().R.clear();  // built again from the coordinates
+  }
+  auto& fc = h.constraints;
+  fc.dirichlet = Fem::constrainedDofs(disc.mesh, b.loads.dirichlet);
+  fc.rows = Feti::meshConstraintRows(disc, fc.dirichlet, b.contact, "Orthonormal", false);
+  fc.contactNormal = Feti::faceNormal("zmin");
+  const auto area = Fem::faceNodalAreas(disc.mesh, "zmin");
+  for (int node : disc.mesh.faceNodes("zmin")) fc.contactArea[node] = area[node];
+  return h;
+}
+
+Contact::FetiSolveResult solveApplication(Handover h, const RCP<const Comm>& comm) {
+  auto problem = rcp(new Feti::FetiProblem(std::move(h.systems), std::move(h.constraints), Teuchos::ParameterList(), comm));
+  return Contact::solveFeti(problem, kCoulomb, tight());
+}
+
+TEUCHOS_UNIT_TEST(ApplicationInterface, SameAsMeshPathOnEveryRankCount) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Brick b;
+  const auto disc = b.disc(*comm);
+  auto meshProblem = rcp(new Feti::FetiProblem(disc, b.mat, b.loads, b.contact, Teuchos::ParameterList(), comm));
+  const auto viaMesh = Contact::solveFeti(meshProblem, kCoulomb, tight());
+  const auto viaApp = solveApplication(handover(b, disc), comm);
+  TEST_ASSERT(viaMesh.verdict.converged);
+  TEST_ASSERT(viaApp.verdict.converged);
+  TEST_COMPARE(viaApp.counts.slip, >, 0);
+  const double d = Test::maxRelDiff(viaApp.u, viaMesh.u);
+  out << "application vs mesh path: " << d << "\n";
+  TEST_COMPARE(d, <=, 1e-7);
+  // Rank 0 alone (all three subdomains on one rank) gives the same.
+  std::vector<double> serial(viaApp.u.size());
+  const auto self = comm->split(comm->getRank() == 0 ? 0 : 1, comm->getRank());
+  if (comm->getRank() == 0) serial = solveApplication(handover(b, b.disc(*self)), self).u;
+  Teuchos::broadcast(*comm, 0, static_cast<int>(serial.size()), serial.data());
+  const double dr = Test::maxRelDiff(viaApp.u, serial);
+  out << comm->getSize() << " ranks vs 1: " << dr << "\n";
+  TEST_COMPARE(dr, <=, 1e-7);
+}
+
+// Expects the application constructor to throw a message containing `what`.
+void refused(const std::string& label, const std::function<void(Handover&)>& spoil, const std::string& what,
+             Teuchos::FancyOStream& out, bool& success) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Brick b;
+  auto h = handover(b, b.disc(*comm));
+  spoil(h);
+  std::string message;
+  try {
+    Feti::FetiProblem(std::move(h.systems), std::move(h.constraints), Teuchos::ParameterList(), comm);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  out << label << ": " << message << "\n";
+  TEST_ASSERT(message.find(what) != std::string::npos);
+}
+
+TEUCHOS_UNIT_TEST(ApplicationInterface, MisuseRefused) {
+  const int me = Tpetra::getDefaultComm()->getRank();
+  refused("short f", [&](Handover& h) { if (me == 0) h.systems[0].f.pop_back(); }, "f has", out, success);
+  refused("wrong kernel", [&](Handover& h) {
+            if (me != 0) return;
+            auto& R = h.systems[0].R;
+            R = Fem::rigidBodyModes(h.systems[0].coords);
+            for (size_t i = 0; i < R.size() / 6; ++i) R[i] += 0.1 * std::sin(double(i));  // not a translation
+          }, "is not in the kernel of K", out, success);
+  refused("too few coordinates", [&](Handover& h) { if (me == 0) h.systems[0].coords.pop_back(); }, "coordinates for", out, success);
+  refused("missing node", [&](Handover& h) { h.constraints.rows[0].copies[0].localNode = 100000; }, "has no local node", out, success);
+  refused("missing subdomain", [&](Handover& h) { h.constraints.rows[0].copies[0].subdomain = 7; }, "subdomain 7 does not exist", out, success);
+  refused("oblique tangent", [&](Handover& h) {
+            for (auto& r : h.constraints.rows)
+              if (r.kind == Feti::DualRow::Tangent1) r.dir = {0.6, 0.8, 0};
+          }, "contact plane's frame", out, success);
+  refused("not a unit normal", [&](Handover& h) { h.constraints.contactNormal = {0, 0, -2}; }, "not a unit vector", out, success);
+  // Reversed ids: a rank's subdomains out of order, or ranks out of order.
+  refused("ids reversed", [&](Handover& h) { for (auto& s : h.systems) s.id = 2 - s.id; }, "ascending", out, success);
+}
+
+}  // namespace
