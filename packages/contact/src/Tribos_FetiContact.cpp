@@ -78,8 +78,19 @@ double maxOver(double v, const Comm& comm) {
 
 }  // namespace
 
+void checkFriction(const FrictionSpec& friction) {
+  const auto law = friction.law;
+  TRIBOS_REQUIRE(law == "Frictionless" || law == "Tresca" || law == "Coulomb",
+                 "friction law \"" << law << "\": valid laws are Frictionless, Tresca, Coulomb");
+  TRIBOS_REQUIRE(std::isfinite(friction.coefficient) && friction.coefficient >= 0,
+                 "friction coefficient " << friction.coefficient << ": must be a finite number >= 0");
+  TRIBOS_REQUIRE(std::isfinite(friction.slipBoundTraction) && friction.slipBoundTraction >= 0,
+                 "slip bound traction " << friction.slipBoundTraction << ": must be a finite number >= 0");
+}
+
 FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction)
     : scaling_(rcp(new Friction::ScalingTransform(20))), dual_(dual) {
+  checkFriction(friction);
   const auto& lc = dual->problem().contact();
   // The dual problem as TFETI gives it: min 1/2 lambda'F lambda - lambda'h
   // s.t. G^ lambda = L^-1 e, lambda_N >= 0, ||lambda_T,k|| <= g_k.

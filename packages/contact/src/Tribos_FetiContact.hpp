@@ -32,6 +32,9 @@ struct FrictionSpec {
   double coefficient = 0.0;          // Coulomb F
   double slipBoundTraction = 0.0;    // Tresca: traction bound, times nodal area gives g_k
 };
+// Throws Tribos::Error naming the entry: an unknown law, a coefficient or
+// slip bound traction that is negative or not finite.
+void checkFriction(const FrictionSpec& friction);
 
 // A solved FETI contact problem: multipliers, primal displacement, the outer
 // algorithm's status and the applications of F the solve took.

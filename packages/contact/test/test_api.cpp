@@ -144,8 +144,46 @@ TEUCHOS_UNIT_TEST(ApplicationInterface, MisuseRefused) {
               if (r.kind == Feti::DualRow::Tangent1) r.dir = {0.6, 0.8, 0};
           }, "contact plane's frame", out, success);
   refused("not a unit normal", [&](Handover& h) { h.constraints.contactNormal = {0, 0, -2}; }, "not a unit vector", out, success);
+  refused("three modes", [&](Handover& h) {  // translations only
+            for (auto& s : h.systems) {
+              s.R = Fem::rigidBodyModes(s.coords);
+              s.R.resize(s.R.size() / 2);
+            }
+          },
+          "expected the 6 rigid-body modes", out, success);
+  refused("contact on a Dirichlet dof", [&](Handover& h) {
+            for (const auto& r : h.constraints.rows)  // a clamped node: Dirichlet rows on all components
+              if (r.kind == Feti::DualRow::Dirichlet) {
+                auto c = r;
+                c.kind = Feti::DualRow::Normal;
+                c.dir = h.constraints.contactNormal;
+                c.c = 0;
+                h.constraints.rows.push_back(c);
+                break;
+              }
+          }, "acts on a dof that Dirichlet row", out, success);
   // Reversed ids: a rank's subdomains out of order, or ranks out of order.
   refused("ids reversed", [&](Handover& h) { for (auto& s : h.systems) s.id = 2 - s.id; }, "ascending", out, success);
+}
+
+TEUCHOS_UNIT_TEST(ApplicationInterface, NegativeFrictionRefused) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Brick b;
+  const auto disc = b.disc(*comm);  // outlives the problem, which refers to it
+  auto problem = rcp(new Feti::FetiProblem(disc, b.mat, b.loads, b.contact, Teuchos::ParameterList(), comm));
+  for (const Contact::FrictionSpec& bad : {Contact::FrictionSpec{"Coulomb", -0.3, 0.0},
+                                          Contact::FrictionSpec{"Tresca", 0.0, -1e6},
+                                          Contact::FrictionSpec{"Colomb", 0.3, 0.0}}) {
+    std::string message;
+    try {
+      Contact::solveFeti(problem, bad, tight());
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    out << bad.law << " " << bad.coefficient << " " << bad.slipBoundTraction << ": " << message << "\n";
+    TEST_ASSERT(message.find("must be a finite number >= 0") != std::string::npos ||
+                message.find("valid laws are") != std::string::npos);
+  }
 }
 
 }  // namespace

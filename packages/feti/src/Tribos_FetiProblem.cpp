@@ -152,8 +152,11 @@ void checkSubdomain(Fem::SubdomainSystem& sys) {
   for (int node : sys.nodes) TRIBOS_REQUIRE(node >= 0, name << ": negative global node number " << node);
   TRIBOS_REQUIRE(allFinite(sys.K.val) && allFinite(sys.f), name << ": K or f has a value that is not finite");
   if (sys.R.empty()) sys.R = Fem::rigidBodyModes(sys.coords);
-  TRIBOS_REQUIRE(sys.R.size() % n == 0 && sys.R.size() / n <= 6,
-                 name << ": R has " << sys.R.size() << " entries, expected 3 x nodes x (at most 6) kernel vectors");
+  // TFETI: every subdomain floats, with the six rigid-body motions as the
+  // kernel of K; with fewer, K_reg would be singular.
+  TRIBOS_REQUIRE(sys.R.size() == 6 * static_cast<size_t>(n),
+                 name << ": R has " << sys.R.size() << " entries, expected the 6 rigid-body modes x " << n
+                      << " dofs; a TFETI subdomain floats: give all six, or none and the coordinates");
   const int r = static_cast<int>(sys.R.size() / n);
   Fem::orthonormalizeColumns(sys.R, n, r, name + ": the columns of R are linearly dependent");
   // Every floating subdomain is regularized at its fixing dofs: a kernel
@@ -193,6 +196,21 @@ void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOf
       TRIBOS_REQUIRE(std::isfinite(c.weight) && c.weight != 0, name << ": weight " << c.weight);
     }
     if (r.kind == DualRow::Normal) normalSubdomain[r.node] = r.copies.front().subdomain;
+  }
+  // A contact row must not act on a component a Dirichlet row fixes (the
+  // mesh path leaves such directions out of the contact set).
+  std::map<int, std::vector<std::pair<size_t, std::array<double, 3>>>> fixedDirections;  // node -> (row, dir)
+  for (size_t i = 0; i < rows.size(); ++i)
+    if (rows[i].kind == DualRow::Dirichlet) fixedDirections[rows[i].node].push_back({i, rows[i].dir});
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    if (r.kind == DualRow::Gluing || r.kind == DualRow::Dirichlet) continue;
+    const auto it = fixedDirections.find(r.node);
+    if (it == fixedDirections.end()) continue;
+    for (const auto& [j, d] : it->second)
+      TRIBOS_REQUIRE(std::abs(d[0] * r.dir[0] + d[1] * r.dir[1] + d[2] * r.dir[2]) <= 1e-12,
+                     "FetiProblem: contact row " << i << " of node " << r.node << " acts on a dof that Dirichlet row "
+                                                 << j << " fixes; leave that direction out of the contact rows");
   }
   // The contact rows lie on the plane: the normal rows along its normal with
   // its gap, the tangential rows along the frame of Feti::tangents() (the
