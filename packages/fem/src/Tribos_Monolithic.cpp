@@ -1,10 +1,6 @@
 #include "Tribos_Monolithic.hpp"
 
 #include <Amesos2.hpp>
-#include <BelosLinearProblem.hpp>
-#include <BelosSolverFactory.hpp>
-#include <BelosTpetraAdapter.hpp>
-#include <MueLu_CreateTpetraPreconditioner.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Vector.hpp>
@@ -15,6 +11,9 @@
 #include <mpi.h>
 
 #include "Tribos_Assembly.hpp"
+#include "Tribos_PreconditionedCG.hpp"
+
+#include <MueLu_TpetraOperator.hpp>
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -138,23 +137,13 @@ class CGMueLuSolve : public MonolithicLinearSolver {
     mueluParams.set("coarse: type", "RELAXATION");
     mueluParams.sublist("coarse: params").set("relaxation: type", "Symmetric Gauss-Seidel");
     mueluParams.sublist("coarse: params").set("relaxation: sweeps", 4);
-    mueluParams.sublist("user data").set("Nullspace", Teuchos::rcp_const_cast<MultiVector>(Teuchos::rcpFromRef(nullspace)));
     auto A = Teuchos::rcp_const_cast<CrsMatrix>(Teuchos::rcpFromRef(K));
-    RCP<Operator> M = MueLu::CreateTpetraPreconditioner<SC, LO, GO, Node>(
-        Teuchos::rcp_implicit_cast<Operator>(A), mueluParams);
-    using Problem = Belos::LinearProblem<SC, MultiVector, Operator>;
-    auto problem = rcp(new Problem(A, Teuchos::rcpFromRef(u), Teuchos::rcp_const_cast<Vector>(Teuchos::rcpFromRef(f))));
-    problem->setLeftPrec(M);
-    TRIBOS_REQUIRE(problem->setProblem(), "Belos could not set up the monolithic problem");
-    auto belosParams = Teuchos::parameterList();
-    belosParams->set("Convergence Tolerance", params.get<double>("Tolerance"));
-    belosParams->set("Maximum Iterations", params.get<int>("Maximum Iterations"));
-    Belos::SolverFactory<SC, MultiVector, Operator> factory;
-    auto solver = factory.create("CG", belosParams);
-    solver->setProblem(problem);
-    const bool converged = solver->solve() == Belos::Converged;
-    iterations = solver->getNumIters();
-    return converged;
+    RCP<Operator> M = mueluPreconditioner(A, Teuchos::rcp_const_cast<MultiVector>(Teuchos::rcpFromRef(nullspace)),
+                                          mueluParams);
+    const auto r = preconditionedCG(A, M, f, u, params.get<double>("Tolerance"), false,
+                                    params.get<int>("Maximum Iterations"));
+    iterations = r.iterations;
+    return r.converged;
   }
 };
 

@@ -115,6 +115,11 @@ class CholmodSolver : public LocalSolver {
     numericFactor(S);
     last_ = last;
   }
+  void refactor(const LocalCsr& A) override {
+    if (!L_ || A.rows != n_) return factor(A);
+    cholmod_sparse S = cholmodView(A, true);
+    numericFactor(S);
+  }
   std::vector<double> inverseBlock(const std::vector<int>& dofs) const override {
     if (dofs != last_ || dofs.empty()) return LocalSolver::inverseBlock(dofs);
     std::vector<double> Z = trailingFactor();

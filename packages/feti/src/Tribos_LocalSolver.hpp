@@ -26,6 +26,10 @@ class LocalSolver {
     (void)last;
     factor(A);
   }
+  // New values of A on the pattern of the last factor(A): a numeric
+  // refactorization that keeps the ordering and symbolic analysis where the
+  // backend can (CHOLMOD); the others factor again.
+  virtual void refactor(const LocalCsr& A) { factor(A); }
   // x = A^-1 b for nrhs right-hand sides stored column after column (length n each).
   virtual void solve(const double* b, double* x, int nrhs = 1) const = 0;
   // (A^-1) restricted to the rows and columns `dofs`: dense, symmetric,

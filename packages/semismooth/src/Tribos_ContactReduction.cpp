@@ -1,6 +1,5 @@
 #include "Tribos_ContactReduction.hpp"
 
-#include <cholmod.h>
 
 #include <Teuchos_Time.hpp>
 
@@ -8,7 +7,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "Tribos_CholmodStatus.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_LocalSolver.hpp"
 #include "Tribos_RigidMotions.hpp"
@@ -24,79 +22,24 @@ double norm2(const std::vector<double>& v) {
 
 namespace {
 
-// CHOLMOD on a fixed pattern: the fill-reducing ordering and the symbolic
-// factor are computed once; every factor() is a numeric refactorization.
-class CholmodPatternSolver : public PatternSolver {
+// A LocalSolver on a fixed pattern: the first factor() analyses and factors,
+// later ones refactor numerically (CHOLMOD keeps its symbolic analysis).
+class LocalPatternSolver : public PatternSolver {
  public:
-  explicit CholmodPatternSolver(const LocalCsr& pattern) : A_(pattern) {
-    cholmod_start(&common_);
-    common_.print = 0;
-    L_ = cholmod_analyze(view(), &common_);
-    requireCholmodOk(common_, "analysis");
-  }
-  ~CholmodPatternSolver() override {
-    if (L_) cholmod_free_factor(&L_, &common_);
-    cholmod_finish(&common_);
-  }
-  void factor(const std::vector<double>& values) override {
-    A_.val = values;
-    cholmod_factorize(view(), L_, &common_);
-    requireCholmodOk(common_, "factorization", L_);
-  }
-  void solve(const double* b, double* x, int nrhs) const override {
-    cholmod_dense B;
-    std::memset(&B, 0, sizeof B);
-    B.nrow = A_.rows;
-    B.ncol = nrhs;
-    B.nzmax = B.d = A_.rows;
-    B.nzmax *= nrhs;
-    B.x = const_cast<double*>(b);
-    B.xtype = CHOLMOD_REAL;
-    B.dtype = CHOLMOD_DOUBLE;
-    cholmod_dense* X = cholmod_solve(CHOLMOD_A, L_, &B, &common_);
-    requireCholmodOk(common_, "solve");
-    TRIBOS_REQUIRE(X != nullptr, "CHOLMOD: solve failed");
-    std::copy_n(static_cast<double*>(X->x), static_cast<size_t>(A_.rows) * nrhs, x);
-    cholmod_free_dense(&X, &common_);
-  }
-
- private:
-  // A symmetric CSR matrix is its own CSC; stype = 1 reads the upper triangle.
-  cholmod_sparse* view() {
-    std::memset(&S_, 0, sizeof S_);
-    S_.nrow = S_.ncol = A_.rows;
-    S_.nzmax = A_.col.size();
-    S_.p = A_.rowptr.data();
-    S_.i = A_.col.data();
-    S_.x = A_.val.data();
-    S_.stype = 1;
-    S_.itype = CHOLMOD_INT;
-    S_.xtype = CHOLMOD_REAL;
-    S_.dtype = CHOLMOD_DOUBLE;
-    S_.sorted = 1;
-    S_.packed = 1;
-    return &S_;
-  }
-  LocalCsr A_;
-  cholmod_sparse S_;
-  mutable cholmod_common common_;
-  cholmod_factor* L_ = nullptr;
-};
-
-// Any other backend of createLocalSolver(): full factorization each time.
-class GenericPatternSolver : public PatternSolver {
- public:
-  GenericPatternSolver(const std::string& name, const LocalCsr& pattern)
+  LocalPatternSolver(const std::string& name, const LocalCsr& pattern)
       : A_(pattern), solver_(createLocalSolver(name)) {}
   void factor(const std::vector<double>& values) override {
     A_.val = values;
-    solver_->factor(A_);
+    if (factored_) solver_->refactor(A_);
+    else solver_->factor(A_);
+    factored_ = true;
   }
   void solve(const double* b, double* x, int nrhs) const override { solver_->solve(b, x, nrhs); }
 
  private:
   LocalCsr A_;
   RCP<LocalSolver> solver_;
+  bool factored_ = false;
 };
 
 // Columns (t1, t2 = n x t1, n) of the rotation of a contact frame, row-major.
@@ -207,8 +150,7 @@ PrescribedDirections classifyPrescribed(const std::array<double, 3>& normal, con
 }
 
 std::unique_ptr<PatternSolver> createPatternSolver(const std::string& name, const LocalCsr& pattern) {
-  if (name == "CHOLMOD") return std::make_unique<CholmodPatternSolver>(pattern);
-  return std::make_unique<GenericPatternSolver>(name, pattern);
+  return std::make_unique<LocalPatternSolver>(name, pattern);
 }
 
 RotatedSystem::RotatedSystem(const ContactProblem& p) : numNodes(p.numNodes()), m(static_cast<int>(p.contact.size())), contact(p.contact) {

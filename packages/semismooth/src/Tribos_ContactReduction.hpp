@@ -79,8 +79,8 @@ class PatternSolver {
   virtual void factor(const std::vector<double>& values) = 0;
   virtual void solve(const double* b, double* x, int nrhs = 1) const = 0;
 };
-// "CHOLMOD" keeps the symbolic analysis; other names of createLocalSolver()
-// re-factor from scratch.
+// A LocalSolver of feti (createLocalSolver(name)) that refactors: "CHOLMOD"
+// keeps the symbolic analysis; the other backends factor from scratch.
 std::unique_ptr<PatternSolver> createPatternSolver(const std::string& name, const LocalCsr& pattern);
 
 // The problem in contact frames on the unprescribed ("free") dofs: K and f

@@ -1,8 +1,7 @@
 #include "Tribos_MueLuCG.hpp"
 
-#include <BelosLinearProblem.hpp>
-#include <BelosSolverFactory.hpp>
-#include <BelosTpetraAdapter.hpp>
+#include "Tribos_PreconditionedCG.hpp"
+
 #include <MueLu_CreateTpetraPreconditioner.hpp>
 #include <Teuchos_Time.hpp>
 
@@ -55,17 +54,13 @@ void MueLuCG::setValues(const std::vector<double>& values, bool updatePreconditi
   }
   A_->fillComplete();
   if (M_.is_null()) {
-    Teuchos::ParameterList params = mueluParams_;
-    params.sublist("user data").set("Nullspace", nullspace_);
-    M_ = MueLu::CreateTpetraPreconditioner<SC, LO, GO, Node>(Teuchos::rcp_implicit_cast<Operator>(A_), params);
+    M_ = Fem::mueluPreconditioner(A_, nullspace_, mueluParams_);
   } else if (keepPreconditioner_ || !updatePreconditioner) {
     // The hierarchy of the first matrix, unchanged; its finest level applies
     // the new values of A_ (the same object).
   } else if (mueluParams_.get<std::string>("reuse: type", "none") == "none") {
     // A fresh hierarchy (the only way to honour "reuse: type" = "none").
-    Teuchos::ParameterList params = mueluParams_;
-    params.sublist("user data").set("Nullspace", nullspace_);
-    M_ = MueLu::CreateTpetraPreconditioner<SC, LO, GO, Node>(Teuchos::rcp_implicit_cast<Operator>(A_), params);
+    M_ = Fem::mueluPreconditioner(A_, nullspace_, mueluParams_);
   } else {
     MueLu::ReuseTpetraPreconditioner<SC, LO, GO, Node>(A_, *M_);
   }
@@ -77,32 +72,12 @@ int MueLuCG::solve(const Vector& b, Vector& x, double absTol, int maxIt) const {
   TRIBOS_REQUIRE(!M_.is_null(), "MueLuCG: solve() before setValues()");
   x.putScalar(0.0);
   if (b.norm2() <= absTol) return 0;
-  using Problem = Belos::LinearProblem<SC, MultiVector, Operator>;
-  auto problem = rcp(new Problem(A_, Teuchos::rcpFromRef(static_cast<MultiVector&>(x)),
-                                 Teuchos::rcpFromRef(static_cast<const MultiVector&>(b))));
-  problem->setLeftPrec(M_);
-  TRIBOS_REQUIRE(problem->setProblem(), "MueLuCG: Belos could not set up the problem");
-  auto belosParams = Teuchos::parameterList();
   // An absolute tolerance on the unpreconditioned residual: the caller ties
   // it to quantities (||l||, the current residual) that b does not know.
-  belosParams->set("Implicit Residual Scaling", "None");
-  belosParams->set("Convergence Tolerance", absTol);
-  belosParams->set("Maximum Iterations", maxIt);
-  // p'Ap <= 0 only happens from round-off once the residual stagnates at
-  // machine precision; Belos then stops instead of throwing.
-  belosParams->set("Assert Positive Definiteness", false);
-  Belos::SolverFactory<SC, MultiVector, Operator> factory;
-  auto solver = factory.create("CG", belosParams);
-  solver->setProblem(problem);
-  Belos::ReturnType ret = Belos::Unconverged;
-  try {
-    ret = solver->solve();
-  } catch (const std::exception& e) {
-    TRIBOS_REQUIRE(false, "MueLuCG: Belos CG failed: " << e.what());
-  }
-  TRIBOS_REQUIRE(ret == Belos::Converged, "MueLuCG: CG did not reach " << absTol << " in " << maxIt
-                                                                        << " steps (CG Maximum Iterations)");
-  return solver->getNumIters();
+  const auto r = Fem::preconditionedCG(A_, M_, b, x, absTol, true, maxIt);
+  TRIBOS_REQUIRE(r.converged, "MueLuCG: CG did not reach " << absTol << " in " << maxIt
+                                                             << " steps (CG Maximum Iterations)");
+  return r.iterations;
 }
 
 }  // namespace Semismooth

@@ -12,36 +12,13 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_LocalSolver.hpp"
+#include "Tribos_FetiOperators.hpp"
 #include "Tribos_QP_Projection.hpp"
 
 namespace Tribos {
 namespace Semismooth {
 
 namespace {
-
-// In-place Cholesky A = L L' of a dense column-major SPD matrix, then solve.
-void denseCholeskySolve(std::vector<double>& A, int n, std::vector<double>& b) {
-  auto at = [&](int i, int j) -> double& { return A[static_cast<size_t>(j) * n + i]; };
-  for (int j = 0; j < n; ++j) {
-    double s = at(j, j);
-    for (int k = 0; k < j; ++k) s -= at(j, k) * at(j, k);
-    TRIBOS_REQUIRE(s > 0, "semismooth*: dense Newton matrix is not positive definite");
-    at(j, j) = std::sqrt(s);
-    for (int i = j + 1; i < n; ++i) {
-      double t = at(i, j);
-      for (int k = 0; k < j; ++k) t -= at(i, k) * at(j, k);
-      at(i, j) = t / at(j, j);
-    }
-  }
-  for (int i = 0; i < n; ++i) {
-    for (int k = 0; k < i; ++k) b[i] -= at(i, k) * b[k];
-    b[i] /= at(i, i);
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    for (int k = i + 1; k < n; ++k) b[i] -= at(k, i) * b[k];
-    b[i] /= at(i, i);
-  }
-}
 
 bool inContact(NodeState s) { return s == NodeState::ContactStick || s == NodeState::ContactSlip; }
 bool sticks(NodeState s) { return s == NodeState::NoContactStick || s == NodeState::ContactStick; }
@@ -270,7 +247,11 @@ void SemismoothStarNewton::newtonStep(const Approximation& ap, const std::vector
       A[static_cast<size_t>(q) * nF + p] = v;
     }
   }
-  if (nF > 0) denseCholeskySolve(A, nF, b);
+  if (nF > 0) {
+    Feti::DenseCholesky cholesky;  // LAPACK, as FETI's coarse problem
+    TRIBOS_REQUIRE(cholesky.tryFactor(std::move(A), nF), "semismooth*: dense Newton matrix is not positive definite");
+    cholesky.solve(b);
+  }
   dx.assign(nc, 0.0);
   for (int q = 0; q < nF; ++q) dx[F[q]] = b[q];
   applyS(dx, Sdx);
