@@ -664,19 +664,38 @@ void readConstraintPart(hid_t group, hid_t vectors, const Location& where,
 
 }  // namespace
 
+// The open problem group of an FCLIB file and its "vectors" subgroup, with
+// the friction coefficients and the contact dimension every problem has.
+struct ProblemGroup {
+  Handle file, group, vectors;
+  Location where, vectorsWhere;
+  int spacedim = 0;
+  std::vector<double> mu;
+  Dimension contact;
+
+  ProblemGroup(const std::string& path, const char* groupName)
+      : file(openFileForReading(path)),
+        group(openGroup(file.get(), Location{path, ""}, groupName)),
+        where(Location{path, ""}.child(groupName)),
+        vectorsWhere(where.child("vectors")) {
+    vectors = openGroup(group.get(), where, "vectors");
+    spacedim = readSpacedim(group.get(), where);
+    mu = readDoubles(vectors.get(), vectorsWhere, "mu");
+    contact = contactDimension(mu.size(), spacedim, vectorsWhere);
+  }
+};
+
 LocalProblem readLocal(const std::string& path) {
   QuietHdf5Errors quiet;
-  Handle file = openFileForReading(path);
-  const Location root{path, ""};
-  Handle group = openGroup(file.get(), root, kLocalGroup);
-  const Location where = root.child(kLocalGroup);
-  Handle vectors = openGroup(group.get(), where, "vectors");
-  const Location vectorsWhere = where.child("vectors");
-
+  ProblemGroup g(path, kLocalGroup);
+  const Handle& group = g.group;
+  const Handle& vectors = g.vectors;
+  const Location& where = g.where;
+  const Location& vectorsWhere = g.vectorsWhere;
+  const Dimension& contact = g.contact;
   LocalProblem P;
-  P.spacedim = readSpacedim(group.get(), where);
-  P.mu = readDoubles(vectors.get(), vectorsWhere, "mu");
-  const Dimension contact = contactDimension(P.mu.size(), P.spacedim, vectorsWhere);
+  P.spacedim = g.spacedim;
+  P.mu = g.mu;
   P.q = readDoubles(vectors.get(), vectorsWhere, "q", contact.value, contact.source);
   P.W = readMatrix(group.get(), where, "W", contact, contact);
   readMixedPart(group.get(), vectors.get(), where, vectorsWhere, contact, P);
@@ -686,17 +705,15 @@ LocalProblem readLocal(const std::string& path) {
 
 GlobalProblem readGlobal(const std::string& path) {
   QuietHdf5Errors quiet;
-  Handle file = openFileForReading(path);
-  const Location root{path, ""};
-  Handle group = openGroup(file.get(), root, kGlobalGroup);
-  const Location where = root.child(kGlobalGroup);
-  Handle vectors = openGroup(group.get(), where, "vectors");
-  const Location vectorsWhere = where.child("vectors");
-
+  ProblemGroup g(path, kGlobalGroup);
+  const Handle& group = g.group;
+  const Handle& vectors = g.vectors;
+  const Location& where = g.where;
+  const Location& vectorsWhere = g.vectorsWhere;
+  const Dimension& contact = g.contact;
   GlobalProblem P;
-  P.spacedim = readSpacedim(group.get(), where);
-  P.mu = readDoubles(vectors.get(), vectorsWhere, "mu");
-  const Dimension contact = contactDimension(P.mu.size(), P.spacedim, vectorsWhere);
+  P.spacedim = g.spacedim;
+  P.mu = g.mu;
   P.f = readDoubles(vectors.get(), vectorsWhere, "f");
   const Dimension dofs{P.f.size(), " (the length of " + vectorsWhere.path("f") + ")"};
   P.w = readDoubles(vectors.get(), vectorsWhere, "w", contact.value, contact.source);
