@@ -688,17 +688,12 @@ struct ProblemGroup {
 LocalProblem readLocal(const std::string& path) {
   QuietHdf5Errors quiet;
   ProblemGroup g(path, kLocalGroup);
-  const Handle& group = g.group;
-  const Handle& vectors = g.vectors;
-  const Location& where = g.where;
-  const Location& vectorsWhere = g.vectorsWhere;
-  const Dimension& contact = g.contact;
   LocalProblem P;
   P.spacedim = g.spacedim;
   P.mu = g.mu;
-  P.q = readDoubles(vectors.get(), vectorsWhere, "q", contact.value, contact.source);
-  P.W = readMatrix(group.get(), where, "W", contact, contact);
-  readMixedPart(group.get(), vectors.get(), where, vectorsWhere, contact, P);
+  P.q = readDoubles(g.vectors.get(), g.vectorsWhere, "q", g.contact.value, g.contact.source);
+  P.W = readMatrix(g.group.get(), g.where, "W", g.contact, g.contact);
+  readMixedPart(g.group.get(), g.vectors.get(), g.where, g.vectorsWhere, g.contact, P);
   validate(P, "FCLIB file " + path);
   return P;
 }
@@ -706,20 +701,15 @@ LocalProblem readLocal(const std::string& path) {
 GlobalProblem readGlobal(const std::string& path) {
   QuietHdf5Errors quiet;
   ProblemGroup g(path, kGlobalGroup);
-  const Handle& group = g.group;
-  const Handle& vectors = g.vectors;
-  const Location& where = g.where;
-  const Location& vectorsWhere = g.vectorsWhere;
-  const Dimension& contact = g.contact;
   GlobalProblem P;
   P.spacedim = g.spacedim;
   P.mu = g.mu;
-  P.f = readDoubles(vectors.get(), vectorsWhere, "f");
-  const Dimension dofs{P.f.size(), " (the length of " + vectorsWhere.path("f") + ")"};
-  P.w = readDoubles(vectors.get(), vectorsWhere, "w", contact.value, contact.source);
-  P.M = readMatrix(group.get(), where, "M", dofs, dofs);
-  P.H = readMatrix(group.get(), where, "H", dofs, contact);
-  readConstraintPart(group.get(), vectors.get(), where, vectorsWhere, dofs, P);
+  P.f = readDoubles(g.vectors.get(), g.vectorsWhere, "f");
+  const Dimension dofs{P.f.size(), " (the length of " + g.vectorsWhere.path("f") + ")"};
+  P.w = readDoubles(g.vectors.get(), g.vectorsWhere, "w", g.contact.value, g.contact.source);
+  P.M = readMatrix(g.group.get(), g.where, "M", dofs, dofs);
+  P.H = readMatrix(g.group.get(), g.where, "H", dofs, g.contact);
+  readConstraintPart(g.group.get(), g.vectors.get(), g.where, g.vectorsWhere, dofs, P);
   validate(P, "FCLIB file " + path);
   return P;
 }
