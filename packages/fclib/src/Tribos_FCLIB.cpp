@@ -843,29 +843,48 @@ std::vector<Solution> readGuesses(const std::string& path) {
   return guesses;
 }
 
+namespace {
+
+// The layout both kinds of problem share: the problem group with its
+// matrices, its "vectors" subgroup, spacedim and info, then the solution and
+// the guesses; written under a temporary and renamed (writeAtomically).
+template <class Matrices, class Vectors>
+void writeProblem(const std::string& path, const char* groupName, int spacedim, const Info& info,
+                  const Solution* solution, const std::vector<Solution>& guesses, Matrices&& matrices,
+                  Vectors&& vectors) {
+  writeAtomically(path, [&](hid_t file, const Location& root) {
+    Handle group = createGroup(file, root, groupName);
+    const Location where = root.child(groupName);
+    matrices(group.get(), where);
+    {
+      Handle v = createGroup(group.get(), where, "vectors");
+      vectors(v.get(), where.child("vectors"));
+    }
+    writeInt(group.get(), where, "spacedim", spacedim);
+    writeInfo(group.get(), where, info);
+    writeSolutionAndGuesses(file, root, solution, guesses);
+  });
+}
+
+}  // namespace
+
 void writeLocal(const std::string& path, const LocalProblem& P, const Info& info,
                 const Solution* solution, const std::vector<Solution>& guesses,
                 Storage storage) {
   const std::string context = "FCLIB file " + path + " (writing)";
   validate(P, context);
   checkSolutions(solution, guesses, P.q.size(), std::nullopt, context);
-  writeAtomically(path, [&](hid_t file, const Location& root) {
-    Handle group = createGroup(file, root, kLocalGroup);
-    const Location where = root.child(kLocalGroup);
-    writeMatrix(group.get(), where, "W", P.W, storage);
-    if (P.V) writeMatrix(group.get(), where, "V", *P.V, storage);
-    if (P.R) writeMatrix(group.get(), where, "R", *P.R, storage);
-    {
-      Handle vectors = createGroup(group.get(), where, "vectors");
-      const Location vectorsWhere = where.child("vectors");
-      writeDoubles(vectors.get(), vectorsWhere, "q", P.q);
-      writeDoubles(vectors.get(), vectorsWhere, "mu", P.mu);
-      if (P.s) writeDoubles(vectors.get(), vectorsWhere, "s", *P.s);
-    }
-    writeInt(group.get(), where, "spacedim", P.spacedim);
-    writeInfo(group.get(), where, info);
-    writeSolutionAndGuesses(file, root, solution, guesses);
-  });
+  writeProblem(path, kLocalGroup, P.spacedim, info, solution, guesses,
+               [&](hid_t group, const Location& where) {
+                 writeMatrix(group, where, "W", P.W, storage);
+                 if (P.V) writeMatrix(group, where, "V", *P.V, storage);
+                 if (P.R) writeMatrix(group, where, "R", *P.R, storage);
+               },
+               [&](hid_t vectors, const Location& where) {
+                 writeDoubles(vectors, where, "q", P.q);
+                 writeDoubles(vectors, where, "mu", P.mu);
+                 if (P.s) writeDoubles(vectors, where, "s", *P.s);
+               });
 }
 
 void writeGlobal(const std::string& path, const GlobalProblem& P, const Info& info,
@@ -874,24 +893,18 @@ void writeGlobal(const std::string& path, const GlobalProblem& P, const Info& in
   const std::string context = "FCLIB file " + path + " (writing)";
   validate(P, context);
   checkSolutions(solution, guesses, P.w.size(), P.f.size(), context);
-  writeAtomically(path, [&](hid_t file, const Location& root) {
-    Handle group = createGroup(file, root, kGlobalGroup);
-    const Location where = root.child(kGlobalGroup);
-    writeMatrix(group.get(), where, "M", P.M, storage);
-    writeMatrix(group.get(), where, "H", P.H, storage);
-    if (P.G) writeMatrix(group.get(), where, "G", *P.G, storage);
-    {
-      Handle vectors = createGroup(group.get(), where, "vectors");
-      const Location vectorsWhere = where.child("vectors");
-      writeDoubles(vectors.get(), vectorsWhere, "f", P.f);
-      writeDoubles(vectors.get(), vectorsWhere, "w", P.w);
-      writeDoubles(vectors.get(), vectorsWhere, "mu", P.mu);
-      if (P.b) writeDoubles(vectors.get(), vectorsWhere, "b", *P.b);
-    }
-    writeInt(group.get(), where, "spacedim", P.spacedim);
-    writeInfo(group.get(), where, info);
-    writeSolutionAndGuesses(file, root, solution, guesses);
-  });
+  writeProblem(path, kGlobalGroup, P.spacedim, info, solution, guesses,
+               [&](hid_t group, const Location& where) {
+                 writeMatrix(group, where, "M", P.M, storage);
+                 writeMatrix(group, where, "H", P.H, storage);
+                 if (P.G) writeMatrix(group, where, "G", *P.G, storage);
+               },
+               [&](hid_t vectors, const Location& where) {
+                 writeDoubles(vectors, where, "f", P.f);
+                 writeDoubles(vectors, where, "w", P.w);
+                 writeDoubles(vectors, where, "mu", P.mu);
+                 if (P.b) writeDoubles(vectors, where, "b", *P.b);
+               });
 }
 
 }  // namespace FCLIB
