@@ -219,10 +219,9 @@ Teuchos::ParameterList solverList(const SolveOptions& options) {
   return params;
 }
 
+// The tolerance the outer algorithm is asked for (each algorithm states its own).
 double requestedTolerance(const Teuchos::ParameterList& params, const std::string& algorithm) {
-  if (algorithm == "Algorithm2") return params.sublist("Algorithm 2").get<double>("Relative Tolerance");
-  const double smalbe = params.sublist("Algorithm 1").sublist("SMALBE").get<double>("Relative Tolerance");
-  return algorithm == "MSA+Algorithm1" ? std::max(smalbe, params.sublist("MSA").get<double>("Tolerance")) : smalbe;
+  return Friction::frictionSolvers().create(algorithm, params)->requestedTolerance();
 }
 
 // What 'converged' is checked against: the requested tolerance and the limit
