@@ -8,7 +8,7 @@ is DIR/NAME.h5 with DIR/NAME.parameters.xml (NAME: the only *.h5 of DIR, or
 --base). Written, for the contact surface of the result:
 
   NAME_contact_pressure.png  normal pressure p = normal force / nodal area [Pa]
-  NAME_contact_status.png    no contact / stick / slip per node, slip as arrows
+  NAME_contact_status.png    no contact / stick / slip per node, the tangential displacement as arrows
   NAME_contact_ratio.png     Coulomb: |t_T| / (F t_N) (1 on the slip zone)
 
 The nodal area of a contact node is its share of the contact face: the
@@ -190,7 +190,7 @@ def plot(directory, base, r, out):
     fig.colorbar(m, ax=ax, label="normal pressure [Pa]")
     written.append(save(fig, out, base + "_contact_pressure.png"))
 
-    fig, ax = figure("Contact status (arrows: slip)", u, v, labels)
+    fig, ax = figure("Contact status (arrows: tangential displacement)", u, v, labels)
     colours = {0: ("lightgrey", "no contact"), 1: ("tab:blue", "stick"), 2: ("tab:orange", "slip")}
     for s, (c, label) in colours.items():
         sel = r["status"] == s
@@ -201,7 +201,7 @@ def plot(directory, base, r, out):
         # The largest slip drawn as 8 % of the face's extent.
         scale = longest / (0.08 * max(np.ptp(u), np.ptp(v)))
         q = ax.quiver(u, v, su, sv, color="black", zorder=3, width=0.003, angles="xy", scale_units="xy", scale=scale)
-        ax.quiverkey(q, 0.75, 1.06, longest, "largest slip %.2e m" % longest, labelpos="E", fontproperties={"size": 8})
+        ax.quiverkey(q, 0.75, 1.06, longest, "largest %.2e m" % longest, labelpos="E", fontproperties={"size": 8})
     ax.triplot(tri, color="0.85", lw=0.5, zorder=1)
     ax.legend(loc="upper right", fontsize=8)
     written.append(save(fig, out, base + "_contact_status.png"))
