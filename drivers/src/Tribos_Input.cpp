@@ -5,11 +5,13 @@
 #include <Teuchos_XMLParameterListHelpers.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_GmshReader.hpp"
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_FrictionSolver.hpp"
@@ -59,9 +61,15 @@ class ComponentsValidator : public Teuchos::ParameterEntryValidator {
   ValidStringsList validStringValues() const override { return Teuchos::null; }
 };
 
+// Faces are the box's (xmin, ..., zmax) or, with Mesh/File, the physical
+// surfaces of the file: no validator, validate() and checkMeshFaces() check
+// the names against the mesh the run has.
+const char* const kFaceDoc =
+    "named boundary face: xmin, xmax, ymin, ymax, zmin, zmax of the box, or a physical surface name of Mesh/File";
+
 ParameterList makeDirichletItem() {
   ParameterList p("Dirichlet item");
-  p.set("Face", "xmin", "named boundary face", choice(kFaces));
+  p.set("Face", "xmin", kFaceDoc);
   p.set("Components", "xyz", "fixed components", rcp(new ComponentsValidator));
   p.set("Value", Array<double>(3, 0.0), "prescribed displacement (x, y, z)");
   return p;
@@ -69,7 +77,7 @@ ParameterList makeDirichletItem() {
 
 ParameterList makeTractionItem() {
   ParameterList p("Traction item");
-  p.set("Face", "xmax", "named boundary face", choice(kFaces));
+  p.set("Face", "xmax", kFaceDoc);
   p.set("Value", Array<double>(3, 0.0), "surface traction (x, y, z), force per area");
   return p;
 }
@@ -90,7 +98,13 @@ RCP<const ParameterList> validParameters() {
   if (!pl.is_null()) return pl;
   pl = Teuchos::parameterList("Tribos");
   pl->set("Problem Name", "tribos", "name of the problem in the summary");
-  ParameterList& mesh = pl->sublist("Mesh", false, "structured box mesh");
+  ParameterList& mesh = pl->sublist("Mesh", false, "structured box mesh, or a mesh read from a Gmsh file");
+  mesh.set("File", "",
+           "Gmsh mesh of one body (.msh version 4, ASCII or binary, or a .geo script meshed at run time), relative to "
+           "the input file's directory (also when given by --set) or absolute; empty: the box. With a file, Element, "
+           "the ranges, Cells and Level are ignored, faces are the file's physical surfaces (by name), and the "
+           "decomposition is METIS (Partitioner = Structured is taken as METIS with the Subdomain Grid's number of "
+           "subdomains)");
   mesh.set("Element", "Tet4", "cell type", choice(tuple<std::string>("Tet4", "Hex8")));
   mesh.set("X Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along x");
   mesh.set("Y Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along y");
@@ -114,7 +128,9 @@ RCP<const ParameterList> validParameters() {
   bc.set("Volume Force", Array<double>(3, 0.0), "volume force density (x, y, z)");
   ParameterList& contact = pl->sublist("Contact", false, "contact of a face with a rigid plane");
   contact.set("Enabled", false, "solve a contact problem");
-  contact.set("Face", "zmin", "contact face; the rigid plane lies a distance Gap beyond it", choice(kFaces));
+  contact.set("Face", "zmin",
+              "contact face (a box face, or a planar physical surface of Mesh/File); the rigid plane lies a distance "
+              "Gap beyond it, parallel to it");
   contact.set("Gap", 0.0, "initial normal gap between the face and the plane");
   contact.set("Friction Law", "Coulomb", "Frictionless, Tresca (given slip bound) or Coulomb",
               choice(tuple<std::string>("Frictionless", "Tresca", "Coulomb")));
@@ -284,6 +300,37 @@ void requireFinite(const ParameterList& list, const std::string& path) {
   }
 }
 
+// The faces named by conditions and the contact, with the path of their parameter.
+std::vector<std::pair<std::string, std::string>> namedFaces(const ParameterList& params) {
+  std::vector<std::pair<std::string, std::string>> faces;
+  const auto& bc = params.sublist("Boundary Conditions");
+  for (const char* kind : {"Dirichlet", "Traction"}) {
+    const auto& list = bc.sublist(kind);
+    for (auto it = list.begin(); it != list.end(); ++it)
+      faces.emplace_back("Boundary Conditions/" + std::string(kind) + "/" + list.name(it) + "/Face",
+                         list.sublist(list.name(it)).get<std::string>("Face"));
+  }
+  if (params.sublist("Contact").get<bool>("Enabled"))
+    faces.emplace_back("Contact/Face", params.sublist("Contact").get<std::string>("Face"));
+  return faces;
+}
+
+// A box has the faces xmin..zmax; other names need a mesh file (checked
+// against the file's physical surfaces when it is read: checkMeshFaces).
+void validateFaceNames(const ParameterList& params) {
+  const bool file = !meshFile(params).empty();
+  for (const auto& [path, face] : namedFaces(params)) {
+    TRIBOS_REQUIRE(!face.empty(), "parameter \"" << path << "\" is empty; name a boundary face");
+    if (file) continue;
+    std::string valid;
+    bool found = false;
+    for (const auto& f : kFaces) found = found || f == face, valid += (valid.empty() ? "" : ", ") + f;
+    TRIBOS_REQUIRE(found, "parameter \"" << path << "\" = \"" << face << "\": valid values are " << valid
+                                         << " (the faces of the box); \"" << face
+                                         << "\" may name a physical surface of a mesh read from Mesh/File");
+  }
+}
+
 void validateMaterial(const ParameterList& m) {
   const double E = m.get<double>("Young's Modulus"), nu = m.get<double>("Poisson's Ratio");
   TRIBOS_REQUIRE(E > 0, "\"Material/Young's Modulus\" = " << E << ": must be positive");
@@ -358,6 +405,7 @@ void validate(ParameterList& params, const std::string& source) {
     requireFinite(params, "");
     validateMaterial(params.sublist("Material"));
     validateOutput(params.sublist("Output"));
+    validateFaceNames(params);
     boxSpec(params);  // cell and node counts fit
   } catch (const Error& e) {
     throw Error(source + ": " + e.what());
@@ -402,7 +450,34 @@ RCP<ParameterList> read(const std::string& file, const std::vector<std::string>&
   RCP<ParameterList> params = IO::readParameterFile(file);
   for (const auto& o : overrides) applyOverride(*params, o);
   validate(*params, "input file \"" + file + "\"");
+  // A mesh file relative to the input file's directory becomes absolute, so
+  // that the effective parameters (BASE.parameters.xml in the output
+  // directory, --print-parameters) run again from anywhere.
+  auto& mesh = params->sublist("Mesh");
+  const std::filesystem::path meshPath = mesh.get<std::string>("File");
+  if (!meshPath.empty() && meshPath.is_relative())
+    mesh.set("File", (std::filesystem::absolute(std::filesystem::path(file).parent_path()) / meshPath)
+                         .lexically_normal()
+                         .string());
   return params;
+}
+
+std::string meshFile(const ParameterList& params) { return params.sublist("Mesh").get<std::string>("File"); }
+
+Mesh::Mesh mesh(const ParameterList& params, std::vector<std::string>* warnings) {
+  const std::string file = meshFile(params);
+  return file.empty() ? Mesh::generateBox(boxSpec(params)) : Mesh::readGmsh(file, warnings);
+}
+
+void checkMeshFaces(const Mesh::Mesh& mesh, const ParameterList& params) {
+  const std::string file = meshFile(params);
+  const std::string where = file.empty() ? "the box" : "mesh file \"" + file + "\"";
+  std::string names;
+  for (const auto& n : mesh.faceNames()) names += (names.empty() ? "" : ", ") + n;
+  for (const auto& [path, face] : namedFaces(params))
+    TRIBOS_REQUIRE(mesh.faces.count(face), "parameter \"" << path << "\" = \"" << face << "\": " << where
+                                                         << " has no physical surface of that name; its names are: "
+                                                         << (names.empty() ? "(none)" : names));
 }
 
 namespace {
@@ -467,6 +542,13 @@ Mesh::DecompositionSpec decompositionSpec(const ParameterList& params) {
   const auto& g = m.get<Array<int>>("Subdomain Grid");
   dec.grid = {g[0], g[1], g[2]};
   dec.subdomains = m.get<int>("Subdomains");
+  // A grid of boxes splits a box only: a mesh from a file is split by METIS
+  // into as many subdomains as the grid has boxes (so that an input file's
+  // default, Structured {1, 1, 1}, stays valid).
+  if (!meshFile(params).empty() && dec.partitioner == "Structured") {
+    dec.partitioner = "METIS";
+    dec.subdomains = dec.grid[0] * dec.grid[1] * dec.grid[2];
+  }
   return dec;
 }
 
@@ -516,7 +598,7 @@ PlaneContact planeContact(const ParameterList& params) {
 
 Semismooth::MeshContactProblem semismoothProblem(const ParameterList& params) {
   Semismooth::MeshContactProblem pr;
-  pr.mesh = Mesh::generateBox(boxSpec(params));
+  pr.mesh = mesh(params);
   pr.material = material(params);
   pr.loads = loadCase(params);
   const PlaneContact pc = planeContact(params);

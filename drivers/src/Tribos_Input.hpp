@@ -44,6 +44,16 @@ Method method(const Teuchos::ParameterList& params);
 
 // Builders from a validated list.
 Mesh::BoxSpec boxSpec(const Teuchos::ParameterList& params);
+// Mesh/File: the Gmsh file of the body ("" for the box). read() makes a
+// relative path absolute (relative to the input file's directory).
+std::string meshFile(const Teuchos::ParameterList& params);
+// The mesh of the run: the box of boxSpec(), or the body read from
+// meshFile() (Mesh::readGmsh; its warnings are added to `warnings`, printed
+// on std::cerr when null). Serial: the driver reads on rank 0 and broadcasts.
+Mesh::Mesh mesh(const Teuchos::ParameterList& params, std::vector<std::string>* warnings = nullptr);
+// Every face the conditions and the contact name exists in `mesh`; throws
+// naming the parameter, the file and the names the mesh has.
+void checkMeshFaces(const Mesh::Mesh& mesh, const Teuchos::ParameterList& params);
 Mesh::DecompositionSpec decompositionSpec(const Teuchos::ParameterList& params);
 Fem::Material material(const Teuchos::ParameterList& params);
 Fem::LoadCase loadCase(const Teuchos::ParameterList& params);
@@ -55,8 +65,8 @@ struct PlaneContact {
   double gap = 0.0, slipBoundTraction = 0.0;
 };
 PlaneContact planeContact(const Teuchos::ParameterList& params);
-// The whole semismooth* problem of a validated list, on the box mesh of
-// boxSpec(params): what the prism benchmark and tests solve.
+// The whole semismooth* problem of a validated list, on the mesh of
+// mesh(params): what the prism benchmark and tests solve.
 Semismooth::MeshContactProblem semismoothProblem(const Teuchos::ParameterList& params);
 
 }  // namespace Input

@@ -39,7 +39,7 @@ struct SubdomainShape {
   double nodes = 0, surfaceNodes = 0;
 };
 
-SubdomainShape subdomainShape(const Mesh::BoxSpec& spec, const Mesh::DecompositionSpec& dec, int S) {
+SubdomainShape subdomainShape(const Mesh::BoxSpec& spec, double totalNodes, const Mesh::DecompositionSpec& dec, int S) {
   SubdomainShape s;
   if (dec.partitioner == "Structured") {
     double n[3];
@@ -47,19 +47,18 @@ SubdomainShape subdomainShape(const Mesh::BoxSpec& spec, const Mesh::Decompositi
     s.nodes = n[0] * n[1] * n[2];
     s.surfaceNodes = 2.0 * (n[0] * n[1] + n[1] * n[2] + n[0] * n[2]);
   } else {
-    const double total = double(spec.cells[0] + 1) * (spec.cells[1] + 1) * (spec.cells[2] + 1);
-    s.nodes = 1.1 * total / S;  // interface nodes are copied
+    s.nodes = 1.1 * totalNodes / S;  // interface nodes are copied
     s.surfaceNodes = 6.0 * std::pow(s.nodes, 2.0 / 3.0);
   }
   return s;
 }
 
-double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec, int numRanks, int rank) {
+double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec, double nodes, int numRanks, int rank) {
   const auto dec = Input::decompositionSpec(params);
   const int S = dec.partitioner == "METIS" ? dec.subdomains : dec.grid[0] * dec.grid[1] * dec.grid[2];
   const auto layout = Mesh::makeRankLayout(S, numRanks);
   const int mine = layout.firstSubdomain(rank + 1) - layout.firstSubdomain(rank);
-  const SubdomainShape s = subdomainShape(spec, dec, S);
+  const SubdomainShape s = subdomainShape(spec, nodes, dec, S);
   const double d = 3.0 * s.nodes, b = 1.5 * s.surfaceNodes;
   const std::string op = params.sublist("Solver").sublist("FETI").get<std::string>("Dual Operator");
   const bool contact = Input::method(params) == Input::Method::FetiContact;
@@ -103,11 +102,12 @@ std::string MemoryEstimate::describe() const {
   return bytes(total()) + " (mesh and vectors " + bytes(mesh) + ", solver " + bytes(solver) + ")";
 }
 
-MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks, int rank, bool verify) {
+MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks, int rank, bool verify,
+                              const MeshSize* meshSize) {
   const Mesh::BoxSpec spec = Input::boxSpec(params);
   const double cx = spec.cells[0], cy = spec.cells[1], cz = spec.cells[2];
-  const double nodes = (cx + 1) * (cy + 1) * (cz + 1);
-  const double cells = cx * cy * cz * (spec.type == Mesh::CellType::Tet4 ? 6.0 : 1.0);
+  const double nodes = meshSize ? meshSize->nodes : (cx + 1) * (cy + 1) * (cz + 1);
+  const double cells = meshSize ? meshSize->cells : cx * cy * cz * (spec.type == Mesh::CellType::Tet4 ? 6.0 : 1.0);
   MemoryEstimate e;
   e.mesh = 80.0 * kMB + 400.0 * nodes + 50.0 * cells;
   const Input::Method m = Input::method(params);
@@ -116,7 +116,7 @@ MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks
   else if (m == Input::Method::Monolithic)
     e.solver = monolithicBytes(params, nodes, numRanks);
   else
-    e.solver = fetiBytes(params, spec, numRanks, rank);
+    e.solver = fetiBytes(params, spec, nodes, numRanks, rank);
   if (verify && (m == Input::Method::Monolithic || m == Input::Method::FetiLinear)) e.solver += monolithicBytes(params, nodes, numRanks);
   return e;
 }
@@ -140,8 +140,9 @@ double parseMemorySize(const std::string& text, const std::string& what) {
   return v * scale;
 }
 
-MemoryEstimate requireMemory(const Teuchos::ParameterList& params, double limit, bool verify, const RCP<const Comm>& comm) {
-  const MemoryEstimate mine = estimateMemory(params, comm->getSize(), comm->getRank(), verify);
+MemoryEstimate requireMemory(const Teuchos::ParameterList& params, double limit, bool verify, const RCP<const Comm>& comm,
+                             const MeshSize* meshSize) {
+  const MemoryEstimate mine = estimateMemory(params, comm->getSize(), comm->getRank(), verify, meshSize);
   const MPI_Comm world = *Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm, true)->getRawMpiComm();
   MPI_Comm machine;
   MPI_Comm_split_type(world, MPI_COMM_TYPE_SHARED, comm->getRank(), MPI_INFO_NULL, &machine);
@@ -166,7 +167,8 @@ MemoryEstimate requireMemory(const Teuchos::ParameterList& params, double limit,
   std::ostringstream os;
   os << "the run needs about " << need.describe() << " on a machine running " << report[3] << " of its ranks, but "
      << bytes(report[2]) << (limit > 0 ? " are allowed (--max-memory)" : " are available there")
-     << "; use a coarser mesh (Mesh/Level, Mesh/Cells), more subdomains or more machines"
+     << "; use a coarser mesh (" << (meshSize ? "Mesh/File" : "Mesh/Level, Mesh/Cells")
+     << "), more subdomains or more machines"
      << (limit > 0 ? ", or raise --max-memory" : "");
   throw CollectiveError(os.str());
 }

@@ -7,6 +7,7 @@
 // sizes, docs/exit_codes.md#memory):
 //   base           80 MB (libraries, MPI)
 //   mesh           every rank holds the whole mesh: 400 per node + 50 per cell
+//                  (the box's counts, or those of the mesh read from Mesh/File)
 //   FETI           per subdomain s with n_s nodes, d_s = 3 n_s dofs:
 //                    4000 n_s (K_s, B_s, maps) + 150 d_s^(4/3) (sparse Cholesky
 //                    factor with nested dissection) + 16 b_s^2 (dense (K+)_bb
@@ -33,8 +34,16 @@ struct MemoryEstimate {
   std::string describe() const;  // "1.2 GB (mesh 0.1 GB, solver 1.1 GB)"
 };
 
-// This rank's estimate for the run `params` describes on numRanks ranks.
-MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks, int rank, bool verify);
+// The size of a mesh that is not the box of the parameters (Mesh/File): the
+// counts of the mesh read.
+struct MeshSize {
+  double nodes = 0, cells = 0;
+};
+
+// This rank's estimate for the run `params` describes on numRanks ranks; the
+// mesh is the box of Input::boxSpec(params), or of size *meshSize when given.
+MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks, int rank, bool verify,
+                              const MeshSize* meshSize = nullptr);
 
 // Memory this machine can give a run: MemAvailable, lowered by a cgroup
 // limit when there is one (bytes; 0 when unknown).
@@ -47,6 +56,7 @@ double parseMemorySize(const std::string& text, const std::string& what);
 // compares them with `limit` (bytes; 0 = the machine's available memory).
 // Throws CollectiveError with the estimate when the run does not fit.
 // Returns this rank's estimate.
-MemoryEstimate requireMemory(const Teuchos::ParameterList& params, double limit, bool verify, const RCP<const Comm>& comm);
+MemoryEstimate requireMemory(const Teuchos::ParameterList& params, double limit, bool verify, const RCP<const Comm>& comm,
+                             const MeshSize* meshSize = nullptr);
 
 }  // namespace Tribos

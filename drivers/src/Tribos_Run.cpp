@@ -4,10 +4,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <iostream>
 #include <memory>
 #include <sstream>
 
+#include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Assembly.hpp"
+#include "Tribos_ConstraintRows.hpp"
 #include "Tribos_ContactReduction.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_FCLIB_Export.hpp"
@@ -15,6 +18,7 @@
 #include "Tribos_FetiSolve.hpp"
 #include "Tribos_FetiDual.hpp"
 #include "Tribos_FrictionSolver.hpp"
+#include "Tribos_GmshReader.hpp"
 #include "Tribos_ProjectedCG.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_InputXml.hpp"
@@ -388,6 +392,81 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   files.commit();
 }
 
+// The mesh read on rank 0 goes to every rank (ranks reading the file on
+// their own could mesh a .geo differently, and would each print warnings).
+void broadcastMesh(Mesh::Mesh& mesh, const Comm& comm) {
+  std::string names;
+  std::vector<int> facetCounts, facets;  // per face; per facet its nodes and cell
+  for (const auto& [name, face] : mesh.faces) {
+    names += name + '\n';
+    facetCounts.push_back(static_cast<int>(face.size()));
+    for (const auto& f : face) {
+      facets.insert(facets.end(), f.nodes.begin(), f.nodes.end());
+      facets.push_back(f.cell);
+    }
+  }
+  int sizes[5] = {mesh.type == Mesh::CellType::Tet4 ? 0 : 1, mesh.numNodes(), static_cast<int>(mesh.connectivity.size()),
+                  static_cast<int>(names.size()), static_cast<int>(facets.size())};
+  Teuchos::broadcast(comm, 0, 5, sizes);
+  mesh.type = sizes[0] == 0 ? Mesh::CellType::Tet4 : Mesh::CellType::Hex8;
+  const int npf = mesh.type == Mesh::CellType::Tet4 ? 3 : 4;  // nodes per facet
+  mesh.coords.resize(sizes[1]);
+  mesh.connectivity.resize(sizes[2]);
+  names.resize(sizes[3]);
+  facets.resize(sizes[4]);
+  if (sizes[1] > 0) Teuchos::broadcast(comm, 0, 3 * sizes[1], mesh.coords[0].data());
+  if (sizes[2] > 0) Teuchos::broadcast(comm, 0, sizes[2], mesh.connectivity.data());
+  if (sizes[3] > 0) Teuchos::broadcast(comm, 0, sizes[3], &names[0]);
+  if (sizes[4] > 0) Teuchos::broadcast(comm, 0, sizes[4], facets.data());
+  std::vector<std::string> faceNames;
+  std::stringstream ss(names);
+  for (std::string name; std::getline(ss, name);) faceNames.push_back(name);
+  facetCounts.resize(faceNames.size());
+  if (!faceNames.empty()) Teuchos::broadcast(comm, 0, static_cast<int>(facetCounts.size()), facetCounts.data());
+  if (comm.getRank() == 0) return;
+  mesh.faces.clear();
+  size_t at = 0;
+  for (size_t k = 0; k < faceNames.size(); ++k) {
+    auto& face = mesh.faces[faceNames[k]];
+    for (int i = 0; i < facetCounts[k]; ++i) {
+      Mesh::Facet f;
+      f.nodes.assign(facets.begin() + at, facets.begin() + at + npf);
+      f.cell = facets[at + npf];
+      at += npf + 1;
+      face.push_back(std::move(f));
+    }
+  }
+}
+
+// The mesh of Mesh/File, read on rank 0 and checked before any work: the
+// faces the input names exist (the message lists the file's names), the
+// contact face is planar, there are enough cells for the subdomains. A
+// refusal is the same CollectiveError on every rank (exit 1).
+Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::DecompositionSpec& decomposition,
+                        const Comm& comm) {
+  Mesh::Mesh mesh;
+  std::vector<std::string> warnings;
+  std::string error;
+  if (comm.getRank() == 0) {
+    try {
+      mesh = Input::mesh(params, &warnings);
+      Input::checkMeshFaces(mesh, params);
+      const auto& contact = params.sublist("Contact");
+      if (contact.get<bool>("Enabled")) Feti::faceNormal(mesh, contact.get<std::string>("Face"));
+      TRIBOS_REQUIRE(requestedSubdomains(decomposition) <= mesh.numCells(),
+                     "Mesh asks for " << requestedSubdomains(decomposition) << " subdomains but mesh file \""
+                                      << Input::meshFile(params) << "\" has " << mesh.numCells() << " cells");
+    } catch (const Error& e) {
+      error = e.what();
+    }
+  }
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError(error);
+  for (const auto& w : warnings) std::cerr << "tribos: warning: " << w << std::endl;
+  broadcastMesh(mesh, comm);
+  return mesh;
+}
+
 }  // namespace
 
 void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& options, int numRanks) {
@@ -410,29 +489,41 @@ void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& optio
 
 RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) {
   const auto t0 = std::chrono::steady_clock::now();
+  const auto decomposition = decompositionFor(params, comm->getSize());
+  // A mesh file is read first: the memory estimate needs its size, and the
+  // names the input gives its faces are checked before any work.
+  std::unique_ptr<Mesh::Mesh> fileMesh;
+  MeshSize fileMeshSize;
+  if (!Input::meshFile(params).empty()) {
+    Progress::stage("reading the mesh");
+    fileMesh = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, *comm));
+    fileMeshSize = {double(fileMesh->numNodes()), double(fileMesh->numCells())};
+  }
   Progress::stage("memory estimate");
-  const MemoryEstimate memory = requireMemory(params, options.maxMemory, options.verify, comm);
+  const MemoryEstimate memory =
+      requireMemory(params, options.maxMemory, options.verify, comm, fileMesh ? &fileMeshSize : nullptr);
   Progress::stage("checking output paths");
   const auto outputDir = prepareOutput(params, options, comm);
   IO::Summary summary;
   summary.set("problem", params.get<std::string>("Problem Name"));
   if (!options.inputName.empty()) summary.set("input", options.inputName);
   Progress::stage("mesh and decomposition");
-  const auto spec = Input::boxSpec(params);
   const auto mat = Input::material(params);
   const auto loads = Input::loadCase(params);
-  const auto decomposition = decompositionFor(params, comm->getSize());
-  Mesh::Discretization disc(Mesh::generateBox(spec), spec, decomposition, comm->getSize(), comm->getRank());
-  // Faces named by conditions must exist: check before any solve.
-  for (const auto& d : loads.dirichlet) disc.mesh.face(d.face);
-  for (const auto& t : loads.tractions) disc.mesh.face(t.face);
+  // A mesh from a file is described by its bounding box where a BoxSpec is
+  // asked for (one structured subdomain, e.g. the FCLIB export's).
+  Mesh::Mesh mesh = fileMesh ? std::move(*fileMesh) : Mesh::generateBox(Input::boxSpec(params));
+  const auto spec = fileMesh ? Mesh::boundingBox(mesh) : Input::boxSpec(params);
+  if (!fileMesh) Input::checkMeshFaces(mesh, params);  // the box's names were validated with the input
+  Mesh::Discretization disc(std::move(mesh), spec, decomposition, comm->getSize(), comm->getRank());
   const Input::Method method = Input::method(params);
   const bool semismooth = method == Input::Method::Semismooth;
   const std::string type = semismooth ? "SemismoothStarNewton" : params.sublist("Solver").get<std::string>("Type");
   summary.set("algorithm", type);
   summary.set("ranks", comm->getSize());
   summary.set("subdomains", disc.numSubdomains());
-  summary.set("element", Mesh::cellTypeName(spec.type));
+  summary.set("element", Mesh::cellTypeName(disc.mesh.type));
+  if (fileMesh) summary.set("mesh_file", Input::meshFile(params));
   summary.set("nodes", disc.mesh.numNodes());
   summary.set("cells", disc.mesh.numCells());
 

@@ -10,6 +10,8 @@
 
 #include <mpi.h>
 
+#include <algorithm>
+
 #include "Tribos_Assembly.hpp"
 #include "Tribos_PreconditionedCG.hpp"
 
@@ -32,7 +34,27 @@ MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const Mater
   map_ = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(), gids, 0, comm));
   const auto bc = constrainedDofs(mesh, loads.dirichlet);
   const int npc = mesh.nodesPerCell(), ne = 3 * npc;
-  K_ = rcp(new CrsMatrix(map_, mesh.type == Mesh::CellType::Tet4 ? 60 : 81));
+  // Entries per row: 3 per node sharing a cell with the row's node, over all
+  // cells (rows of shared nodes receive other ranks' entries at fillComplete).
+  // Counted, not bounded: an unstructured mesh (Mesh/File) has no fixed
+  // number of neighbours.
+  std::vector<std::vector<int>> neighbours(mesh.numNodes());
+  const auto& owner = disc.nodeOwner();
+  for (int c = 0; c < mesh.numCells(); ++c)
+    for (int a = 0; a < npc; ++a) {
+      const int n = mesh.cell(c)[a];
+      if (owner[n] == disc.myRank) neighbours[n].insert(neighbours[n].end(), mesh.cell(c), mesh.cell(c) + npc);
+    }
+  std::vector<size_t> entries;
+  entries.reserve(gids.size());
+  for (int n : disc.ownedNodes()) {
+    auto& nb = neighbours[n];
+    std::sort(nb.begin(), nb.end());
+    const size_t count = 3 * static_cast<size_t>(std::unique(nb.begin(), nb.end()) - nb.begin());
+    std::vector<int>().swap(nb);
+    entries.insert(entries.end(), 3, count);
+  }
+  K_ = rcp(new CrsMatrix(map_, Teuchos::ArrayView<const size_t>(entries)));
   // Element-level symmetric elimination of the Dirichlet dofs: their columns
   // move to the right-hand side, their rows keep only the diagonal, so K stays
   // SPD and CG applies.

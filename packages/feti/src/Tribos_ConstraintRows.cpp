@@ -40,6 +40,54 @@ std::array<double, 3> faceNormal(const std::string& face) {
   return it->second;
 }
 
+std::array<double, 3> faceNormal(const Mesh::Mesh& mesh, const std::string& face) {
+  const auto& facets = mesh.face(face);
+  TRIBOS_REQUIRE(!facets.empty(), "contact surface '" << face << "' has no facets");
+  // Area vectors: half the cross product of the triangle's edges from its
+  // first node, or of the quadrilateral's diagonals (its mean plane). Built
+  // from coordinate differences, so a facet in an axis plane has exactly
+  // zero in-plane components and a box face gets the box table's normal.
+  std::array<double, 3> sum{0, 0, 0}, lo = mesh.coords[facets[0].nodes[0]], hi = lo;
+  std::vector<std::array<double, 3>> area;
+  area.reserve(facets.size());
+  for (const Mesh::Facet& f : facets) {
+    const auto& x = mesh.coords;
+    const auto& v = f.nodes;
+    const bool quad = v.size() == 4;
+    std::array<double, 3> u{}, w{};
+    for (int d = 0; d < 3; ++d) {
+      u[d] = x[v[quad ? 2 : 1]][d] - x[v[0]][d];
+      w[d] = quad ? x[v[3]][d] - x[v[1]][d] : x[v[2]][d] - x[v[0]][d];
+    }
+    const std::array<double, 3> a{(u[1] * w[2] - u[2] * w[1]) / 2, (u[2] * w[0] - u[0] * w[2]) / 2,
+                                  (u[0] * w[1] - u[1] * w[0]) / 2};
+    for (int d = 0; d < 3; ++d) sum[d] += a[d];
+    for (int node : v)
+      for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], x[node][d]), hi[d] = std::max(hi[d], x[node][d]);
+    area.push_back(a);
+  }
+  const double len = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+  TRIBOS_REQUIRE(len > 0, "contact surface '" << face << "' has no area");
+  std::array<double, 3> n{sum[0] / len, sum[1] / len, sum[2] / len};
+  // The rigid plane is one plane: every facet must face along n and every
+  // node lie on the plane through the first, to round-off of the extent.
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const auto& x0 = mesh.coords[facets[0].nodes[0]];
+  for (size_t i = 0; i < facets.size(); ++i) {
+    const auto& a = area[i];
+    const double al = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    bool planar = a[0] * n[0] + a[1] * n[1] + a[2] * n[2] >= (1 - 1e-10) * al;
+    for (int node : facets[i].nodes) {
+      const auto& p = mesh.coords[node];
+      planar = planar && std::abs((p[0] - x0[0]) * n[0] + (p[1] - x0[1]) * n[1] + (p[2] - x0[2]) * n[2]) <= 1e-10 * extent;
+    }
+    TRIBOS_REQUIRE(planar, "contact surface '" << face << "' is not planar: its facet " << i << " (of cell "
+                                               << facets[i].cell << ") leaves the plane of mean normal (" << n[0] << ", "
+                                               << n[1] << ", " << n[2] << "); the contact partner is a rigid plane");
+  }
+  return n;
+}
+
 // Two unit tangents completing n to a right-handed orthonormal frame (n, t1, t2).
 void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::array<double, 3>& t2) {
   const std::array<double, 3> e = std::abs(n[0]) < 0.9 ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
@@ -101,7 +149,7 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
     }
   }
   if (contact.enabled) {
-    const auto n = faceNormal(contact.face);
+    const auto n = faceNormal(mesh, contact.face);
     std::array<double, 3> t1, t2;
     tangents(n, t1, t2);
     // A Dirichlet condition on the normal component takes the node out of

@@ -93,6 +93,11 @@ DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<
 
 // Outward unit normal of a face of the box ("xmin", ..., "zmax").
 std::array<double, 3> faceNormal(const std::string& face);
+// Outward unit normal of a named face of a mesh, from its facets' geometry
+// (a box's faces or a Gmsh file's physical surfaces alike). Throws naming
+// the face when it is not planar ("contact surface 'bottom' is not planar"):
+// the contact partner is a rigid plane, which a curved surface cannot meet.
+std::array<double, 3> faceNormal(const Mesh::Mesh& mesh, const std::string& face);
 // Two unit tangents completing n to a right-handed orthonormal frame (n, t1, t2).
 void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::array<double, 3>& t2);
 

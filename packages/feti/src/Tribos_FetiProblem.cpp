@@ -293,7 +293,7 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& 
   }
   fc.rows = meshConstraintRows(disc, fc.dirichlet, contact, p.get<std::string>("Gluing"), feti1);
   if (contact.enabled) {
-    fc.contactNormal = faceNormal(contact.face);
+    fc.contactNormal = faceNormal(disc.mesh, contact.face);
     fc.contactGap = contact.gap;
     const std::vector<double> area = Fem::faceNodalAreas(disc.mesh, contact.face);
     for (int node : disc.mesh.faceNodes(contact.face)) fc.contactArea[node] = area[node];
