@@ -158,10 +158,11 @@ TEUCHOS_UNIT_TEST(Gmsh, GeoMeshedAtRunTimeHex8) {
   double vol = 0;
   for (int c = 0; c < m.numCells(); ++c) vol += cellVolume(m, c);
   TEST_FLOATING_EQUALITY(vol, 2.0, 1e-12);
-  TEST_ASSERT(m.faceNames() == (std::vector<std::string>{"bottom", "clamp", "top"}));
+  TEST_ASSERT(m.faceNames() == (std::vector<std::string>{"bottom", "clamp", "front", "top"}));
   checkFace(m, "bottom", 2.0, {{0, 0, -1}}, out, success);
   checkFace(m, "top", 2.0, {{0, 0, 1}}, out, success);
   checkFace(m, "clamp", 1.0, {{-1, 0, 0}}, out, success);
+  checkFace(m, "front", 2.0, {{0, -1, 0}}, out, success);
   const BoxSpec box = boundingBox(m);
   TEST_ASSERT(box.x == (std::array<double, 2>{0, 2}) && box.y == (std::array<double, 2>{0, 1}) &&
               box.z == (std::array<double, 2>{0, 1}));
@@ -234,6 +235,24 @@ TEUCHOS_UNIT_TEST(Gmsh, InvertedElementsAndUnusedNodes) {
     out << warnings[0] << "\n";
     TEST_ASSERT(contains(warnings[0], "1 of its 5 nodes belong to no 3D element and are dropped (the first: node 5)"));
   }
+  std::remove(file.c_str());
+}
+
+// A hand-written file with a tetrahedron in volume 1 and a hexahedron in
+// volume 2: a Mesh has one cell type.
+const char* kMixed =
+    "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+    "$Entities\n0 0 0 2\n1 0 0 0 1 1 1 0 0\n2 0 0 0 1 1 1 0 0\n$EndEntities\n"
+    "$Nodes\n1 8 1 8\n3 1 0 8\n1\n2\n3\n4\n5\n6\n7\n8\n"
+    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n$EndNodes\n"
+    "$Elements\n2 2 1 2\n3 1 4 1\n1 1 2 4 5\n3 2 5 1\n2 1 2 3 4 5 6 7 8\n$EndElements\n";
+
+TEUCHOS_UNIT_TEST(Gmsh, MixedCellTypes) {
+  const std::string file = scratch("mixed.msh");
+  std::ofstream(file) << kMixed;
+  const std::string e = readError(file);
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "mixed.msh") && contains(e, "mixes Tet4 (volume 1) and Hex8 (volume 2); a body has one cell type"));
   std::remove(file.c_str());
 }
 

@@ -1,5 +1,7 @@
 // A 2 x 1 x 1 block of 4 x 2 x 2 hexahedra (transfinite, recombined), meshed
-// by the reader at run time: the Hex8 path of the Gmsh reader.
+// by the reader at run time: the Hex8 path of the Gmsh reader and of the
+// driver (test/CMakeLists.txt). Surfaces: bottom z = 0, top z = 1,
+// clamp x = 0, front y = 0.
 Point(1) = {0, 0, 0};
 Point(2) = {2, 0, 0};
 Point(3) = {2, 1, 0};
@@ -19,3 +21,4 @@ Physical Volume("beam") = {out[1]};
 Physical Surface("bottom") = {1};
 Physical Surface("top") = {out[0]};
 Physical Surface("clamp") = {out[5]};
+Physical Surface("front") = {out[2]};
