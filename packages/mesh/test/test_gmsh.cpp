@@ -123,6 +123,7 @@ TEUCHOS_UNIT_TEST(Gmsh, ShippedBlock) {
   const Mesh m = readGmsh(blockMsh(), &warnings);
   out << m.numNodes() << " nodes, " << m.numCells() << " cells\n";
   checkBlock(m, out, success);
+  TEST_EQUALITY(m.numCells(), 1125);  // the shipped file's tetrahedra
   TEST_EQUALITY(warnings.size(), 0u);
   // The counts of the file itself: its $Nodes and $Elements of the volume.
   std::ifstream in(blockMsh());
