@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <new>
 #include <sstream>
 #include <unordered_map>
 
@@ -169,10 +170,7 @@ std::string physicalName(int dim, int tag) {
   return name.empty() ? std::to_string(tag) : name;
 }
 
-}  // namespace
-
-Mesh readGmsh(const std::string& path, std::vector<std::string>* warnings) {
-  const std::string file = "mesh file \"" + path + "\"";
+Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<std::string>* warnings) {
   {
     std::error_code ec;
     TRIBOS_REQUIRE(!std::filesystem::is_directory(path, ec), file << " is a directory");
@@ -331,6 +329,27 @@ Mesh readGmsh(const std::string& path, std::vector<std::string>* warnings) {
     }
   }
   return mesh;
+}
+
+}  // namespace
+
+Mesh readGmsh(const std::string& path, std::vector<std::string>* warnings) {
+  const std::string file = "mesh file \"" + path + "\"";
+  // A Gmsh call that fails outside gmshError() (on a model Gmsh has read)
+  // throws a string (4.8) or an exception: said as a Tribos::Error naming the file.
+  try {
+    return readGmshFile(path, file, warnings);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(file + ": Gmsh: " + e.what());
+  } catch (const std::string& e) {
+    throw Error(file + ": Gmsh: " + e);
+  } catch (const char* e) {
+    throw Error(file + ": Gmsh: " + std::string(e ? e : "unknown error"));
+  }
 }
 
 BoxSpec boundingBox(const Mesh& mesh) {
