@@ -208,6 +208,7 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
   auto solver = Friction::FrictionSolverFactory().create(outerAlgorithm, solverParams);
   if (!out.is_null()) solver->setOutputStream(out);
   FetiContactSolution sol;
+  sol.requestedTolerance = solver->requestedTolerance();
   sol.x = rcp(new Vector(dual_->problem().dualMap()));
   // n_A: the solver's applications of F only; the setup's (A lambda~ of the
   // homogenization, the power iterations of the scaling) and recoverPrimal's

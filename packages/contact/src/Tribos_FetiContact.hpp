@@ -43,6 +43,7 @@ struct FetiContactSolution {
   RCP<Vector> lambda, u;
   Friction::FrictionStatus status;
   long long n_A = 0;
+  double requestedTolerance = 0;  // the outer algorithm's (what the result check measures against)
 };
 
 class FetiContactProblem {

@@ -90,7 +90,7 @@ FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const Fri
     r.n_A = sol.n_A;
     r.solverConverged = sol.status.converged;
     r.solverReason = sol.status.reason;
-    r.tolerance = Friction::frictionSolvers().create(r.outerAlgorithm, p)->requestedTolerance();
+    r.tolerance = sol.requestedTolerance;
     r.lambda->assign(*sol.lambda);
     r.primal = sol.u;
   }

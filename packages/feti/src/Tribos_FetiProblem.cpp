@@ -151,14 +151,15 @@ void checkSubdomain(Fem::SubdomainSystem& sys) {
                  name << ": " << sys.coords.size() << " coordinates for " << sys.nodes.size() << " nodes");
   for (int node : sys.nodes) TRIBOS_REQUIRE(node >= 0, name << ": negative global node number " << node);
   TRIBOS_REQUIRE(allFinite(sys.K.val) && allFinite(sys.f), name << ": K or f has a value that is not finite");
-  if (sys.R.empty()) sys.R = Fem::rigidBodyModes(sys.coords);
+  const bool given = !sys.R.empty();  // else built orthonormal from the coordinates
+  if (!given) sys.R = Fem::rigidBodyModes(sys.coords);
   // TFETI: every subdomain floats, with the six rigid-body motions as the
   // kernel of K; with fewer, K_reg would be singular.
   TRIBOS_REQUIRE(sys.R.size() == 6 * static_cast<size_t>(n),
                  name << ": R has " << sys.R.size() << " entries, expected the 6 rigid-body modes x " << n
                       << " dofs; a TFETI subdomain floats: give all six, or none and the coordinates");
   const int r = static_cast<int>(sys.R.size() / n);
-  Fem::orthonormalizeColumns(sys.R, n, r, name + ": the columns of R are linearly dependent");
+  if (given) Fem::orthonormalizeColumns(sys.R, n, r, name + ": the columns of R are linearly dependent");
   // Every floating subdomain is regularized at its fixing dofs: a kernel
   // vector of K missing from R would leave K_reg singular, a column of R
   // outside the kernel would make K+ wrong. ||K r|| <= 1e-8 max|K_ii| (||r|| = 1).
