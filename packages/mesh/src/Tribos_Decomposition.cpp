@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "Tribos_Error.hpp"
 
@@ -31,6 +32,121 @@ std::vector<int> partitionMetis(const Mesh& mesh, int numSubdomains) {
   TRIBOS_REQUIRE(status == METIS_OK, "METIS_PartMeshDual failed with status " << status << " for "
                                                                               << numSubdomains << " subdomains");
   for (int e = 0; e < ne; ++e) part[e] = static_cast<int>(epart[e]);
+  return part;
+}
+
+std::vector<int> subdomainsPerBody(const Mesh& mesh, int numSubdomains) {
+  const int B = mesh.numBodies();
+  if (B == 1) return {numSubdomains};  // partitionMetis checks it against the cells
+  std::string names;
+  for (int b = 0; b < B; ++b) names += (b ? ", " : "") + mesh.bodyName(b);
+  TRIBOS_REQUIRE(numSubdomains >= B, "the mesh has " << B << " bodies (" << names << ") but only " << numSubdomains
+                                                    << " subdomain" << (numSubdomains == 1 ? "" : "s")
+                                                    << " are asked for; each body needs at least one of its own");
+  std::vector<long long> cells(B, 0);
+  for (int c = 0; c < mesh.numCells(); ++c) ++cells[mesh.bodyOf(c)];
+  const long long N = mesh.numCells(), S = numSubdomains;
+  // Body b deserves S n_b / N subdomains: floors first (at least one), then
+  // one more for the largest shortfalls S n_b - a_b N, or one less for the
+  // largest surpluses, ties to the lower body.
+  std::vector<int> count(B);
+  long long total = 0;
+  for (int b = 0; b < B; ++b) total += count[b] = static_cast<int>(std::max(1LL, S * cells[b] / N));
+  auto shortfall = [&](int b) { return S * cells[b] - count[b] * N; };
+  for (; total < S; ++total) {
+    int best = 0;
+    for (int b = 1; b < B; ++b)
+      if (shortfall(b) > shortfall(best)) best = b;
+    ++count[best];
+  }
+  for (; total > S; --total) {
+    int best = -1;
+    for (int b = 0; b < B; ++b)
+      if (count[b] > 1 && (best < 0 || shortfall(b) < shortfall(best))) best = b;
+    --count[best];
+  }
+  for (int b = 0; b < B; ++b)
+    TRIBOS_REQUIRE(count[b] <= cells[b], "body \"" << mesh.bodyName(b) << "\" has " << cells[b] << " cells but gets "
+                                                   << count[b] << " of the " << numSubdomains
+                                                   << " subdomains (in proportion to its cells); ask for fewer subdomains");
+  return count;
+}
+
+void requireConnectedBodies(const Mesh& mesh) {
+  const int ne = mesh.numCells();
+  if (ne == 0) return;
+  const int npc = mesh.nodesPerCell();
+  std::vector<idx_t> eptr(ne + 1), eind(mesh.connectivity.begin(), mesh.connectivity.end());
+  for (int e = 0; e <= ne; ++e) eptr[e] = static_cast<idx_t>(e) * npc;
+  idx_t nev = ne, nn = mesh.numNodes(), ncommon = mesh.type == CellType::Tet4 ? 3 : 4, numflag = 0;
+  idx_t *xadj = nullptr, *adjncy = nullptr;
+  const int status = METIS_MeshToDual(&nev, &nn, eptr.data(), eind.data(), &ncommon, &numflag, &xadj, &adjncy);
+  TRIBOS_REQUIRE(status == METIS_OK, "METIS_MeshToDual failed with status " << status);
+  // Pieces by breadth-first search within each body.
+  std::vector<int> piece(ne, -1), firstCell;  // the first cell of each piece
+  std::vector<int> queue;
+  for (int start = 0; start < ne; ++start) {
+    if (piece[start] >= 0) continue;
+    const int p = static_cast<int>(firstCell.size()), body = mesh.bodyOf(start);
+    for (int q : firstCell) {
+      if (mesh.bodyOf(q) != body) continue;
+      METIS_Free(xadj);
+      METIS_Free(adjncy);
+      throw Error("body \"" + mesh.bodyName(body) + "\" is in several pieces that share no face (cells " +
+                  std::to_string(q) + " and " + std::to_string(start) +
+                  " of the mesh are in different pieces): a subdomain of two pieces has 12 rigid motions, not the 6 "
+                  "FETI counts; make each piece a body of its own (a physical volume or element block each)");
+    }
+    firstCell.push_back(start);
+    piece[start] = p;
+    queue.assign(1, start);
+    for (size_t k = 0; k < queue.size(); ++k)
+      for (idx_t j = xadj[queue[k]]; j < xadj[queue[k] + 1]; ++j) {
+        const int n = static_cast<int>(adjncy[j]);
+        if (piece[n] < 0 && mesh.bodyOf(n) == body) piece[n] = p, queue.push_back(n);
+      }
+  }
+  METIS_Free(xadj);
+  METIS_Free(adjncy);
+}
+
+namespace {
+
+// The cells of one body as a mesh of their own (nodes renumbered in
+// ascending global order; no faces): what METIS partitions for the body.
+Mesh bodyMesh(const Mesh& mesh, int body, std::vector<int>& cells) {
+  Mesh sub;
+  sub.type = mesh.type;
+  cells.clear();
+  for (int c = 0; c < mesh.numCells(); ++c)
+    if (mesh.bodyOf(c) == body) cells.push_back(c);
+  std::vector<int> local(mesh.numNodes(), -1);
+  for (int c : cells)
+    for (int a = 0; a < mesh.nodesPerCell(); ++a) local[mesh.cell(c)[a]] = 0;
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    if (local[n] == 0) local[n] = sub.numNodes(), sub.coords.push_back(mesh.coords[n]);
+  for (int c : cells)
+    for (int a = 0; a < mesh.nodesPerCell(); ++a) sub.connectivity.push_back(local[mesh.cell(c)[a]]);
+  return sub;
+}
+
+}  // namespace
+
+std::vector<int> partitionMetisByBody(const Mesh& mesh, int numSubdomains, std::vector<int>* subdomainBody) {
+  requireConnectedBodies(mesh);
+  const std::vector<int> count = subdomainsPerBody(mesh, numSubdomains);
+  if (subdomainBody) {
+    subdomainBody->clear();
+    for (int b = 0; b < mesh.numBodies(); ++b) subdomainBody->insert(subdomainBody->end(), count[b], b);
+  }
+  if (mesh.numBodies() == 1) return partitionMetis(mesh, numSubdomains);
+  std::vector<int> part(mesh.numCells(), -1), cells;
+  int first = 0;
+  for (int b = 0; b < mesh.numBodies(); ++b) {
+    const std::vector<int> bodyPart = partitionMetis(bodyMesh(mesh, b, cells), count[b]);
+    for (size_t k = 0; k < cells.size(); ++k) part[cells[k]] = first + bodyPart[k];
+    first += count[b];
+  }
   return part;
 }
 

@@ -14,6 +14,25 @@ namespace Mesh {
 // which two cells are adjacent when they share a face). Deterministic.
 std::vector<int> partitionMetis(const Mesh& mesh, int numSubdomains);
 
+// Subdomains of each body when numSubdomains are spread over the bodies in
+// proportion to their cell counts (largest remainders), at least one each.
+// Refused when there are fewer subdomains than bodies, or when a body gets
+// more subdomains than it has cells.
+std::vector<int> subdomainsPerBody(const Mesh& mesh, int numSubdomains);
+
+// Refuses a body whose cells form several pieces that share no face (cells
+// adjacent as in METIS' dual graph), naming the body and a cell of two
+// pieces: FETI's R_s holds the 6 rigid motions of one connected subdomain,
+// and a subdomain of two pieces has 12.
+void requireConnectedBodies(const Mesh& mesh);
+
+// METIS body by body, so that no subdomain holds cells of two bodies:
+// subdomainsPerBody() subdomains each, numbered contiguously in body order
+// (subdomainBody[s] is the body of subdomain s). Bodies must be connected
+// (requireConnectedBodies). A mesh of one body gets partitionMetis(mesh,
+// numSubdomains) itself.
+std::vector<int> partitionMetisByBody(const Mesh& mesh, int numSubdomains, std::vector<int>* subdomainBody = nullptr);
+
 // Element-to-subdomain map splitting the box into sx x sy x sz boxes by cell
 // centroid; subdomain index = ix + sx (iy + sy iz). Requires each box to own
 // whole cells (sx divides nx ...), so the seed brick's 3 unit cubes come out exactly.

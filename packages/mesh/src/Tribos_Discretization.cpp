@@ -7,12 +7,16 @@ namespace Mesh {
 
 Discretization::Discretization(Mesh m, const BoxSpec& s, const DecompositionSpec& dec, int numRanks, int rank)
     : mesh(std::move(m)), spec(s), myRank(rank) {
+  mesh.checkBodies();
   int S = 0;
   if (dec.partitioner == "Structured") {
+    TRIBOS_REQUIRE(mesh.numBodies() == 1, "the Structured partitioner splits one box, but the mesh has "
+                                              << mesh.numBodies() << " bodies; use METIS");
     cellPart = partitionStructured(mesh, spec, dec.grid);
     S = dec.grid[0] * dec.grid[1] * dec.grid[2];
+    subdomainBody.assign(S, 0);
   } else if (dec.partitioner == "METIS") {
-    cellPart = partitionMetis(mesh, dec.subdomains);
+    cellPart = partitionMetisByBody(mesh, dec.subdomains, &subdomainBody);
     S = dec.subdomains;
   } else {
     throw Error("partitioner \"" + dec.partitioner + "\" unknown; valid: Structured, METIS");

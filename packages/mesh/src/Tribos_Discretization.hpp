@@ -19,6 +19,9 @@ struct DecompositionSpec {
   int subdomains = 1;                       // for METIS
 };
 
+// METIS partitions each body of the mesh on its own (partitionMetisByBody):
+// a subdomain never holds cells of two bodies, and every body must be
+// connected. The Structured partitioner splits a box: one body only.
 class Discretization {
  public:
   Discretization(Mesh mesh, const BoxSpec& spec, const DecompositionSpec& dec, int numRanks, int myRank);
@@ -26,6 +29,7 @@ class Discretization {
   Mesh mesh;
   BoxSpec spec;
   std::vector<int> cellPart;             // cell -> subdomain
+  std::vector<int> subdomainBody;        // subdomain -> body (mesh.bodyName); contiguous per body
   std::vector<Subdomain> subdomains;     // all subdomains (replicated)
   RankLayout layout;
   int myRank = 0;

@@ -15,6 +15,7 @@
 #include <unordered_map>
 
 #include "Tribos_Error.hpp"
+#include "detail/Tribos_MeshFacets.hpp"
 
 namespace Tribos {
 namespace Mesh {
@@ -88,95 +89,54 @@ class GmshSession {
   bool owner_ = true;
 };
 
-using Point = std::array<double, 3>;
-
-double triple(const Point& o, const Point& a, const Point& b, const Point& c) {
-  const double u[3] = {a[0] - o[0], a[1] - o[1], a[2] - o[2]};
-  const double v[3] = {b[0] - o[0], b[1] - o[1], b[2] - o[2]};
-  const double w[3] = {c[0] - o[0], c[1] - o[1], c[2] - o[2]};
-  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
-}
-
-// Whether a cell has positive volume everywhere: the tetrahedron's volume,
-// the hexahedron's Jacobian at each of its corners (the trilinear map is
-// one-to-one when all eight are positive), relative to the cell's size so
-// that round-off flat cells count as degenerate.
-bool positiveCell(const Mesh& mesh, int c) {
-  const int* n = mesh.cell(c);
-  const auto& x = mesh.coords;
-  double h = 0;
-  for (int a = 0; a < mesh.nodesPerCell(); ++a)
-    for (int d = 0; d < 3; ++d) h = std::max(h, std::abs(x[n[a]][d] - x[n[0]][d]));
-  const double floor = 1e-12 * h * h * h;
-  if (mesh.type == CellType::Tet4) return triple(x[n[0]], x[n[1]], x[n[2]], x[n[3]]) > floor;
-  // Corner k and its three neighbours in right-handed order (Tribos' Hex8
-  // order: the bottom quadrilateral 0-3 counter-clockwise seen from above, the top 4-7).
-  static const int corner[8][3] = {{1, 3, 4}, {2, 0, 5}, {3, 1, 6}, {0, 2, 7},
-                                   {7, 5, 0}, {4, 6, 1}, {5, 7, 2}, {6, 4, 3}};
-  for (int k = 0; k < 8; ++k)
-    if (triple(x[n[k]], x[n[corner[k][0]]], x[n[corner[k][1]]], x[n[corner[k][2]]]) <= floor) return false;
-  return true;
-}
-
-// Local faces of the reference cells, counter-clockwise seen from outside
-// (as generateBox's faces).
-const std::vector<std::vector<int>>& cellFaces(CellType type) {
-  static const std::vector<std::vector<int>> tet = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-  static const std::vector<std::vector<int>> hex = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                                    {1, 2, 6, 5}, {2, 3, 7, 6}, {0, 4, 7, 3}};
-  return type == CellType::Tet4 ? tet : hex;
-}
-
-// Every cell face, keyed by its sorted node ids, to find the cell of a
-// surface facet and whether the face lies on the boundary (one cell).
-struct FaceIndex {
-  struct Entry {
-    std::array<int, 4> key;
-    int cell, local;
-  };
-  std::vector<Entry> entries;
-
-  static std::array<int, 4> keyOf(std::vector<int> nodes) {
-    std::sort(nodes.begin(), nodes.end());
-    std::array<int, 4> key{-1, -1, -1, -1};
-    std::copy(nodes.begin(), nodes.end(), key.begin());
-    return key;
-  }
-  explicit FaceIndex(const Mesh& mesh) {
-    const auto& faces = cellFaces(mesh.type);
-    entries.reserve(static_cast<size_t>(mesh.numCells()) * faces.size());
-    for (int c = 0; c < mesh.numCells(); ++c)
-      for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
-        std::vector<int> nodes;
-        for (int ln : faces[f]) nodes.push_back(mesh.cell(c)[ln]);
-        entries.push_back({keyOf(nodes), c, f});
-      }
-    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
-  }
-  // The one cell whose face this is, or -1 (no cell, or an interior face).
-  const Entry* boundaryFace(const std::vector<int>& nodes) const {
-    const auto key = keyOf(nodes);
-    auto lo = std::lower_bound(entries.begin(), entries.end(), key,
-                               [](const Entry& e, const std::array<int, 4>& k) { return e.key < k; });
-    if (lo == entries.end() || lo->key != key) return nullptr;
-    if (lo + 1 != entries.end() && (lo + 1)->key == key) return nullptr;
-    return &*lo;
-  }
-};
-
 std::string physicalName(int dim, int tag) {
   std::string name;
   gmsh::model::getPhysicalName(dim, tag, name);
   return name.empty() ? std::to_string(tag) : name;
 }
 
-Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<std::string>* warnings) {
-  {
-    std::error_code ec;
-    TRIBOS_REQUIRE(!std::filesystem::is_directory(path, ec), file << " is a directory");
-    std::ifstream probe(path, std::ios::binary);
-    TRIBOS_REQUIRE(probe.good(), "cannot open " << file << ": " << std::strerror(errno));
+// The bodies: each physical volume (by tag) with its volume entities, or one
+// body of every volume when the file has none.
+struct Body {
+  std::string name, what;  // what: how messages call it
+  std::vector<int> entities;
+};
+
+std::vector<Body> readBodies(const std::string& file) {
+  std::vector<Body> bodies;
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, 3);
+  std::sort(groups.begin(), groups.end());
+  std::map<int, std::string> owner;  // volume entity -> the physical volume holding it
+  for (const auto& g : groups) {
+    Body body;
+    body.name = physicalName(3, g.second);
+    body.what = "physical volume '" + body.name + "'";
+    for (const Body& b : bodies)
+      TRIBOS_REQUIRE(b.name != body.name, file << ": two physical volumes are named '" << body.name
+                                               << "'; each physical volume is a body and needs a name of its own");
+    gmsh::model::getEntitiesForPhysicalGroup(3, g.second, body.entities);
+    // An element of two physical volumes would be a cell of two bodies.
+    for (int e : body.entities) {
+      const auto [it, fresh] = owner.emplace(e, body.what);
+      TRIBOS_REQUIRE(fresh, file << ": the elements of volume " << e << " are in " << it->second << " and "
+                                 << body.what << "; a cell belongs to one body");
+    }
+    bodies.push_back(std::move(body));
   }
+  if (bodies.empty()) {
+    gmsh::vectorpair entities;
+    gmsh::model::getEntities(entities, 3);
+    Body all;
+    all.name = "body";
+    for (const auto& e : entities) all.entities.push_back(e.second);
+    bodies.push_back(std::move(all));
+  }
+  return bodies;
+}
+
+Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<std::string>* warnings) {
+  detail::requireReadable(path, file);
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char ch) { return std::tolower(ch); });
 
@@ -209,90 +169,62 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
   gmshIndex.reserve(nodeTags.size());
   for (size_t i = 0; i < nodeTags.size(); ++i) gmshIndex.emplace(nodeTags[i], static_cast<int>(i));
 
-  // The body: the volumes of the physical volumes, or every volume.
-  std::vector<std::pair<int, std::string>> volumes;  // entity tag, what to call it in messages
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, 3);
-  if (!groups.empty()) {
-    std::map<int, bool> seen;  // an entity in two physical volumes is read once
-    for (const auto& g : groups) {
-      std::vector<int> entities;
-      gmsh::model::getEntitiesForPhysicalGroup(3, g.second, entities);
-      for (int e : entities)
-        if (!seen[e]) seen[e] = true, volumes.emplace_back(e, "physical volume '" + physicalName(3, g.second) + "'");
-    }
-  } else {
-    gmsh::vectorpair entities;
-    gmsh::model::getEntities(entities, 3);
-    for (const auto& e : entities) volumes.emplace_back(e.second, "volume " + std::to_string(e.second));
-  }
-
+  const std::vector<Body> bodies = readBodies(file);
+  const bool physical = !bodies.front().what.empty();
   Mesh mesh;
   int cellGmshType = 0;
   std::string firstVolume;
   std::vector<std::size_t> cellTags, cellNodes;  // Gmsh tags
-  for (const auto& [entity, what] : volumes) {
-    std::vector<int> types;
-    gmsh::model::mesh::getElementTypes(types, 3, entity);
-    for (int type : types) {
-      TRIBOS_REQUIRE(type == 4 || type == 5, file << ": element type " << type << " (" << elementTypeName(type) << ") in "
-                                                  << what << " is not supported; Tribos reads Tet4 and Hex8");
-      TRIBOS_REQUIRE(cellGmshType == 0 || cellGmshType == type,
-                     file << " mixes " << elementTypeName(cellGmshType) << " (" << firstVolume << ") and "
-                          << elementTypeName(type) << " (" << what << "); a body has one cell type, Tet4 or Hex8");
-      if (cellGmshType == 0) cellGmshType = type, firstVolume = what;
-      std::vector<std::size_t> tags, nodes;
-      gmsh::model::mesh::getElementsByType(type, tags, nodes, entity);
-      cellTags.insert(cellTags.end(), tags.begin(), tags.end());
-      cellNodes.insert(cellNodes.end(), nodes.begin(), nodes.end());
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+    const size_t before = cellTags.size();
+    for (int entity : bodies[b].entities) {
+      const std::string what = physical ? bodies[b].what : "volume " + std::to_string(entity);
+      std::vector<int> types;
+      gmsh::model::mesh::getElementTypes(types, 3, entity);
+      for (int type : types) {
+        TRIBOS_REQUIRE(type == 4 || type == 5, file << ": element type " << type << " (" << elementTypeName(type) << ") in "
+                                                    << what << " is not supported; Tribos reads Tet4 and Hex8");
+        TRIBOS_REQUIRE(cellGmshType == 0 || cellGmshType == type,
+                       file << " mixes " << elementTypeName(cellGmshType) << " (" << firstVolume << ") and "
+                            << elementTypeName(type) << " (" << what << "); a body has one cell type, Tet4 or Hex8");
+        if (cellGmshType == 0) cellGmshType = type, firstVolume = what;
+        std::vector<std::size_t> tags, nodes;
+        gmsh::model::mesh::getElementsByType(type, tags, nodes, entity);
+        cellTags.insert(cellTags.end(), tags.begin(), tags.end());
+        cellNodes.insert(cellNodes.end(), nodes.begin(), nodes.end());
+      }
     }
+    mesh.cellBody.insert(mesh.cellBody.end(), cellTags.size() - before, b);
+    if (physical) mesh.bodyNames.push_back(bodies[b].name);
   }
-  TRIBOS_REQUIRE(!cellTags.empty(), file << " has no 3D elements" << (groups.empty() ? "" : " in its physical volumes")
+  TRIBOS_REQUIRE(!cellTags.empty(), file << " has no 3D elements" << (physical ? " in its physical volumes" : "")
                                           << "; Tribos meshes bodies with Tet4 or Hex8 cells");
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b)
+    TRIBOS_REQUIRE(std::count(mesh.cellBody.begin(), mesh.cellBody.end(), b) > 0,
+                   file << ": " << bodies[b].what << " has no 3D elements; each physical volume is a body");
+  if (!physical) mesh.cellBody.clear();  // one body, as a box mesh
   mesh.type = cellGmshType == 4 ? CellType::Tet4 : CellType::Hex8;
 
   // Nodes no cell uses (geometry points, nodes of surfaces only) are dropped;
   // the rest keep Gmsh's order. Gmsh's Tet4 and Hex8 node orders are
   // Tribos' (positive volume; Hex8 bottom 0-3 then top 4-7), checked below.
-  std::vector<int> newIndex(nodeTags.size(), -1);
+  // Nodes shared by cells of two bodies stay shared: the bodies are bonded there.
+  std::vector<char> usedByCells(nodeTags.size(), 0);
   for (std::size_t tag : cellNodes) {
     const auto it = gmshIndex.find(tag);
     TRIBOS_REQUIRE(it != gmshIndex.end(), file << ": an element names node " << tag << ", which the file does not define");
-    newIndex[it->second] = 0;
+    usedByCells[it->second] = 1;
   }
-  int used = 0;
-  std::size_t firstDropped = 0;
-  for (size_t i = 0; i < nodeTags.size(); ++i) {
-    if (newIndex[i] < 0) {
-      if (firstDropped == 0) firstDropped = nodeTags[i];
-      continue;
-    }
-    newIndex[i] = used++;
-    mesh.coords.push_back({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
-  }
-  if (used < static_cast<int>(nodeTags.size())) {
-    std::ostringstream os;
-    os << file << ": " << nodeTags.size() - used << " of its " << nodeTags.size()
-       << " nodes belong to no 3D element and are dropped (the first: node " << firstDropped << ")";
-    if (warnings) warnings->push_back(os.str());
-    else std::cerr << "warning: " << os.str() << std::endl;
-  }
+  const std::vector<int> newIndex =
+      detail::numberUsedNodes(usedByCells, std::vector<long long>(nodeTags.begin(), nodeTags.end()), file, warnings);
+  for (size_t i = 0; i < nodeTags.size(); ++i)
+    if (newIndex[i] >= 0) mesh.coords.push_back({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
   mesh.connectivity.reserve(cellNodes.size());
   for (std::size_t tag : cellNodes) mesh.connectivity.push_back(newIndex[gmshIndex.at(tag)]);
-
-  std::vector<std::size_t> bad;
-  for (int c = 0; c < mesh.numCells(); ++c)
-    if (!positiveCell(mesh, c)) bad.push_back(cellTags[c]);
-  if (!bad.empty()) {
-    std::ostringstream os;
-    for (size_t i = 0; i < std::min<size_t>(bad.size(), 5); ++i) os << (i ? ", " : "") << bad[i];
-    throw Error(file + ": " + std::to_string(bad.size()) + " inverted or degenerate element" +
-                (bad.size() > 1 ? "s" : "") + " (non-positive volume): element" + (bad.size() > 1 ? "s " : " ") + os.str() +
-                (bad.size() > 5 ? ", ..." : ""));
-  }
+  detail::requirePositiveCells(mesh, file, std::vector<long long>(cellTags.begin(), cellTags.end()));
 
   // Named faces: the physical surfaces, each facet the face of its boundary cell.
-  const FaceIndex index(mesh);
+  const detail::FaceIndex index(mesh);
   const int facetType = mesh.type == CellType::Tet4 ? 2 : 3;
   gmsh::vectorpair surfaces;
   gmsh::model::getPhysicalGroups(surfaces, 2);
@@ -320,14 +252,12 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
           }
           const auto* hit = std::count(facetNodes.begin(), facetNodes.end(), -1) ? nullptr : index.boundaryFace(facetNodes);
           TRIBOS_REQUIRE(hit, file << ": surface '" << name << "' is not on the boundary (facet " << tags[k] << ")");
-          Facet f;
-          f.cell = hit->cell;
-          for (int ln : cellFaces(mesh.type)[hit->local]) f.nodes.push_back(mesh.cell(hit->cell)[ln]);
-          face.push_back(std::move(f));
+          face.push_back(detail::outwardFacet(mesh, hit->cell, hit->local));
         }
       }
     }
   }
+  mesh.checkBodies();
   return mesh;
 }
 

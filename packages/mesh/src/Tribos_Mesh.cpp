@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "Tribos_Error.hpp"
+#include "detail/Tribos_MeshFacets.hpp"
 
 namespace Tribos {
 namespace Mesh {
@@ -18,19 +19,37 @@ CellType cellTypeFromName(const std::string& name) {
   throw Error("element \"" + name + "\" unknown; valid: Tet4, Hex8");
 }
 
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  return list.empty() ? "(none)" : list;
+}
+
+}  // namespace
+
 const std::vector<Facet>& Mesh::face(const std::string& name) const {
   auto it = faces.find(name);
   if (it == faces.end()) {
-    std::string valid;
-    for (const auto& f : faces) valid += (valid.empty() ? "" : ", ") + f.first;
-    throw Error("mesh has no face named \"" + name + "\"; valid faces: " + valid);
+    // A node set has no facets to integrate a load over or to put in contact.
+    TRIBOS_REQUIRE(!nodeSets.count(name), "\"" << name << "\" is a node set without facets; a face is needed here; "
+                                                         "valid faces: " << joined(faceNames()));
+    throw Error("mesh has no face named \"" + name + "\"; valid faces: " + joined(faceNames()));
   }
   return it->second;
 }
 
 std::vector<int> Mesh::faceNodes(const std::string& name) const {
   std::vector<int> nodes;
-  for (const Facet& f : face(name)) nodes.insert(nodes.end(), f.nodes.begin(), f.nodes.end());
+  if (!faces.count(name) && nodeSets.count(name)) {
+    nodes = nodeSets.at(name);
+  } else if (!faces.count(name)) {
+    throw Error("mesh has no face named \"" + name + "\"; valid faces: " + joined(faceNames()) +
+                (nodeSets.empty() ? "" : "; node sets: " + joined(nodeSetNames())));
+  } else {
+    for (const Facet& f : face(name)) nodes.insert(nodes.end(), f.nodes.begin(), f.nodes.end());
+  }
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;
@@ -42,24 +61,58 @@ std::vector<std::string> Mesh::faceNames() const {
   return names;
 }
 
+std::vector<std::string> Mesh::nodeSetNames() const {
+  std::vector<std::string> names;
+  for (const auto& s : nodeSets) names.push_back(s.first);
+  return names;
+}
+
+const std::string& Mesh::bodyName(int body) const {
+  static const std::string single = "body";
+  TRIBOS_REQUIRE(body >= 0 && body < numBodies(), "body " << body << " out of range; the mesh has " << numBodies()
+                                                          << " bod" << (numBodies() == 1 ? "y" : "ies"));
+  return bodyNames.empty() ? single : bodyNames[body];
+}
+
+int Mesh::bodyIndex(const std::string& name) const {
+  std::vector<std::string> names;
+  for (int b = 0; b < numBodies(); ++b) {
+    if (bodyName(b) == name) return b;
+    names.push_back(bodyName(b));
+  }
+  throw Error("mesh has no body named \"" + name + "\"; valid bodies: " + joined(names));
+}
+
+int Mesh::faceBody(const std::string& name) const {
+  const std::vector<Facet>& facets = face(name);
+  TRIBOS_REQUIRE(!facets.empty(), "face \"" << name << "\" has no facets, so it lies on no body");
+  const int body = bodyOf(facets.front().cell);
+  for (const Facet& f : facets)
+    TRIBOS_REQUIRE(bodyOf(f.cell) == body, "face \"" << name << "\" has facets on bodies \"" << bodyName(body)
+                                                      << "\" and \"" << bodyName(bodyOf(f.cell))
+                                                      << "\"; a face here must lie on one body");
+  return body;
+}
+
+void Mesh::checkBodies() const {
+  TRIBOS_REQUIRE(cellBody.empty() || static_cast<int>(cellBody.size()) == numCells(),
+                 "mesh: cellBody has " << cellBody.size() << " entries for " << numCells() << " cells");
+  std::vector<int> cells(numBodies(), 0);
+  for (int c = 0; c < static_cast<int>(cellBody.size()); ++c) {
+    TRIBOS_REQUIRE(cellBody[c] >= 0 && cellBody[c] < numBodies(),
+                   "mesh: cell " << c << " is in body " << cellBody[c] << " but the mesh has " << numBodies()
+                                 << " bod" << (numBodies() == 1 ? "y" : "ies") << " (bodyNames)");
+    ++cells[cellBody[c]];
+  }
+  if (cellBody.empty()) cells[0] = numCells();
+  for (int b = 0; b < numBodies(); ++b) {
+    TRIBOS_REQUIRE(numCells() == 0 || cells[b] > 0, "mesh: body \"" << bodyName(b) << "\" has no cells");
+    for (int a = 0; a < b; ++a)
+      TRIBOS_REQUIRE(bodyName(a) != bodyName(b), "mesh: two bodies are named \"" << bodyName(b) << "\"");
+  }
+}
+
 namespace {
-
-// Local faces of the reference cells, ordered so the normal points outwards.
-const std::vector<std::vector<int>>& referenceFaces(CellType type) {
-  static const std::vector<std::vector<int>> tet = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-  static const std::vector<std::vector<int>> hex = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                                    {1, 2, 6, 5}, {2, 3, 7, 6}, {0, 4, 7, 3}};
-  return type == CellType::Tet4 ? tet : hex;
-}
-
-double signedVolume6(const std::array<double, 3>& a, const std::array<double, 3>& b,
-                     const std::array<double, 3>& c, const std::array<double, 3>& d) {
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-         u[2] * (v[0] * w[1] - v[1] * w[0]);
-}
 
 // Collects the cell faces lying on the six planes of the box.
 void collectBoundaryFaces(Mesh& mesh, const BoxSpec& spec) {
@@ -70,7 +123,7 @@ void collectBoundaryFaces(Mesh& mesh, const BoxSpec& spec) {
   const std::array<double, 6> planes = {spec.x[0], spec.x[1], spec.y[0], spec.y[1], spec.z[0], spec.z[1]};
   for (const auto& n : names) mesh.faces[n];
   for (int c = 0; c < mesh.numCells(); ++c) {
-    for (const auto& lf : referenceFaces(mesh.type)) {
+    for (const auto& lf : detail::cellFaces(mesh.type)) {
       for (int p = 0; p < 6; ++p) {
         const int axis = p / 2;
         bool on = true;
@@ -124,7 +177,7 @@ Mesh generateBox(const BoxSpec& spec) {
             ++ijk[p[s]];
             tet[s + 1] = nodeId(ijk[0], ijk[1], ijk[2]);
           }
-          if (signedVolume6(mesh.coords[tet[0]], mesh.coords[tet[1]], mesh.coords[tet[2]], mesh.coords[tet[3]]) < 0)
+          if (detail::triple(mesh.coords[tet[0]], mesh.coords[tet[1]], mesh.coords[tet[2]], mesh.coords[tet[3]]) < 0)
             std::swap(tet[2], tet[3]);
           mesh.connectivity.insert(mesh.connectivity.end(), tet, tet + 4);
         }

@@ -1,6 +1,7 @@
-// Tribos_Mesh.hpp: structured box meshes of P1 tetrahedra or Q1 hexahedra with
-// named boundary faces. The mesh is small enough to be replicated on every rank;
-// each rank then assembles only the subdomains it owns.
+// Tribos_Mesh.hpp: meshes of P1 tetrahedra or Q1 hexahedra with named boundary
+// faces, named node sets and one or several bodies; structured box meshes.
+// The mesh is small enough to be replicated on every rank; each rank then
+// assembles only the subdomains it owns.
 #pragma once
 
 #include <array>
@@ -29,23 +30,45 @@ struct BoxSpec {
   CellType type = CellType::Hex8;
 };
 
+// Bodies: every cell belongs to one body (cellBody), named by bodyNames. A
+// mesh that never sets them (box meshes, older code) is one body named
+// "body". Two bodies that share nodes are bonded there (a conformal
+// interface); bodies meet in contact only through distinct nodes.
 class Mesh {
  public:
   CellType type = CellType::Hex8;
   std::vector<std::array<double, 3>> coords;    // per node
   std::vector<int> connectivity;                // nodesPerCell() ids per cell
   std::map<std::string, std::vector<Facet>> faces;  // named boundary faces
+  std::vector<int> cellBody;                    // body of each cell; empty: every cell is body 0
+  std::vector<std::string> bodyNames;           // per body; empty: one body named "body"
+  std::map<std::string, std::vector<int>> nodeSets;  // named sets of node ids, no facets
 
   int nodesPerCell() const { return Mesh::nodesPerCellOf(type); }
   int numNodes() const { return static_cast<int>(coords.size()); }
   int numCells() const { return static_cast<int>(connectivity.size()) / nodesPerCell(); }
   const int* cell(int c) const { return &connectivity[static_cast<size_t>(c) * nodesPerCell()]; }
 
-  // Sorted unique node ids of a named face; throws naming the face and the
-  // valid names when it does not exist.
+  // Sorted unique node ids of a named face, or of a node set when no face
+  // has the name; throws naming it and the valid names when neither exists.
   std::vector<int> faceNodes(const std::string& name) const;
+  // The facets of a named face; throws naming the face and the valid faces
+  // when it does not exist (saying so when the name is a node set's).
   const std::vector<Facet>& face(const std::string& name) const;
   std::vector<std::string> faceNames() const;
+  std::vector<std::string> nodeSetNames() const;
+
+  int numBodies() const { return bodyNames.empty() ? 1 : static_cast<int>(bodyNames.size()); }
+  int bodyOf(int cell) const { return cellBody.empty() ? 0 : cellBody[cell]; }
+  const std::string& bodyName(int body) const;
+  // The index of a named body; throws naming it and the valid bodies.
+  int bodyIndex(const std::string& name) const;
+  // The body whose cells own the facets of a named face; throws naming the
+  // face when it has no facets or its facets lie on several bodies.
+  int faceBody(const std::string& face) const;
+  // Throws when cellBody and bodyNames disagree (sizes, out-of-range body,
+  // duplicate names, a body without cells).
+  void checkBodies() const;
 
  private:
   static int nodesPerCellOf(CellType t) { return t == CellType::Tet4 ? 4 : 8; }

@@ -1,0 +1,129 @@
+#include "Tribos_MeshFacets.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Mesh {
+namespace detail {
+
+double triple(const Point& o, const Point& a, const Point& b, const Point& c) {
+  const double u[3] = {a[0] - o[0], a[1] - o[1], a[2] - o[2]};
+  const double v[3] = {b[0] - o[0], b[1] - o[1], b[2] - o[2]};
+  const double w[3] = {c[0] - o[0], c[1] - o[1], c[2] - o[2]};
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
+const std::vector<std::vector<int>>& cellFaces(CellType type) {
+  static const std::vector<std::vector<int>> tet = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  static const std::vector<std::vector<int>> hex = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                    {1, 2, 6, 5}, {2, 3, 7, 6}, {0, 4, 7, 3}};
+  return type == CellType::Tet4 ? tet : hex;
+}
+
+Facet outwardFacet(const Mesh& mesh, int cell, int local) {
+  Facet f;
+  f.cell = cell;
+  for (int ln : cellFaces(mesh.type)[local]) f.nodes.push_back(mesh.cell(cell)[ln]);
+  return f;
+}
+
+bool positiveCell(const Mesh& mesh, int c) {
+  const int* n = mesh.cell(c);
+  const auto& x = mesh.coords;
+  double h = 0;
+  for (int a = 0; a < mesh.nodesPerCell(); ++a)
+    for (int d = 0; d < 3; ++d) h = std::max(h, std::abs(x[n[a]][d] - x[n[0]][d]));
+  const double floor = 1e-12 * h * h * h;
+  if (mesh.type == CellType::Tet4) return triple(x[n[0]], x[n[1]], x[n[2]], x[n[3]]) > floor;
+  // Corner k and its three neighbours in right-handed order (Tribos' Hex8
+  // order: the bottom quadrilateral 0-3 counter-clockwise seen from above, the top 4-7).
+  static const int corner[8][3] = {{1, 3, 4}, {2, 0, 5}, {3, 1, 6}, {0, 2, 7},
+                                   {7, 5, 0}, {4, 6, 1}, {5, 7, 2}, {6, 4, 3}};
+  for (int k = 0; k < 8; ++k)
+    if (triple(x[n[k]], x[n[corner[k][0]]], x[n[corner[k][1]]], x[n[corner[k][2]]]) <= floor) return false;
+  return true;
+}
+
+void requirePositiveCells(const Mesh& mesh, const std::string& file, const std::vector<long long>& cellIds) {
+  std::vector<long long> bad;
+  for (int c = 0; c < mesh.numCells(); ++c)
+    if (!positiveCell(mesh, c)) bad.push_back(cellIds[c]);
+  if (bad.empty()) return;
+  std::ostringstream os;
+  for (size_t i = 0; i < std::min<size_t>(bad.size(), 5); ++i) os << (i ? ", " : "") << bad[i];
+  throw Error(file + ": " + std::to_string(bad.size()) + " inverted or degenerate element" +
+              (bad.size() > 1 ? "s" : "") + " (non-positive volume): element" + (bad.size() > 1 ? "s " : " ") + os.str() +
+              (bad.size() > 5 ? ", ..." : ""));
+}
+
+std::array<int, 4> FaceIndex::keyOf(std::vector<int> nodes) {
+  std::sort(nodes.begin(), nodes.end());
+  std::array<int, 4> key{-1, -1, -1, -1};
+  std::copy(nodes.begin(), nodes.begin() + std::min<size_t>(nodes.size(), 4), key.begin());
+  return key;
+}
+
+FaceIndex::FaceIndex(const Mesh& mesh) {
+  const auto& faces = cellFaces(mesh.type);
+  entries_.reserve(static_cast<size_t>(mesh.numCells()) * faces.size());
+  for (int c = 0; c < mesh.numCells(); ++c)
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
+      std::vector<int> nodes;
+      for (int ln : faces[f]) nodes.push_back(mesh.cell(c)[ln]);
+      entries_.push_back({keyOf(nodes), c, f});
+    }
+  std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
+}
+
+const FaceIndex::Entry* FaceIndex::boundaryFace(const std::vector<int>& nodes) const {
+  if (nodes.size() < 3 || nodes.size() > 4) return nullptr;
+  const auto key = keyOf(nodes);
+  auto lo = std::lower_bound(entries_.begin(), entries_.end(), key,
+                             [](const Entry& e, const std::array<int, 4>& k) { return e.key < k; });
+  if (lo == entries_.end() || lo->key != key) return nullptr;
+  if (lo + 1 != entries_.end() && (lo + 1)->key == key) return nullptr;
+  return &*lo;
+}
+
+void requireReadable(const std::string& path, const std::string& file) {
+  std::error_code ec;
+  TRIBOS_REQUIRE(!std::filesystem::is_directory(path, ec), file << " is a directory");
+  std::ifstream probe(path, std::ios::binary);
+  TRIBOS_REQUIRE(probe.good(), "cannot open " << file << ": " << std::strerror(errno));
+}
+
+void warn(std::vector<std::string>* warnings, const std::string& message) {
+  if (warnings) warnings->push_back(message);
+  else std::cerr << "warning: " << message << std::endl;
+}
+
+std::vector<int> numberUsedNodes(const std::vector<char>& usedByCells, const std::vector<long long>& nodeIds,
+                                 const std::string& file, std::vector<std::string>* warnings) {
+  std::vector<int> index(usedByCells.size(), -1);
+  int used = 0;
+  long long firstDropped = -1;
+  for (size_t i = 0; i < usedByCells.size(); ++i) {
+    if (usedByCells[i]) index[i] = used++;
+    else if (firstDropped < 0) firstDropped = nodeIds[i];
+  }
+  if (used < static_cast<int>(usedByCells.size())) {
+    std::ostringstream os;
+    os << file << ": " << usedByCells.size() - used << " of its " << usedByCells.size()
+       << " nodes belong to no 3D element and are dropped (the first: node " << firstDropped << ")";
+    warn(warnings, os.str());
+  }
+  return index;
+}
+
+}  // namespace detail
+}  // namespace Mesh
+}  // namespace Tribos
