@@ -108,6 +108,6 @@ function(tribos_finish_package)
     VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
   install(FILES ${PROJECT_BINARY_DIR}/cmake/TribosConfig.cmake ${PROJECT_BINARY_DIR}/cmake/TribosConfigVersion.cmake
                 ${PROJECT_SOURCE_DIR}/cmake/FindMETIS.cmake ${PROJECT_SOURCE_DIR}/cmake/FindCHOLMOD.cmake
-                ${PROJECT_SOURCE_DIR}/cmake/FindGmsh.cmake
+                ${PROJECT_SOURCE_DIR}/cmake/FindGmsh.cmake ${PROJECT_SOURCE_DIR}/cmake/FindExodusII.cmake
           DESTINATION ${TRIBOS_INSTALL_CMAKEDIR})
 endfunction()

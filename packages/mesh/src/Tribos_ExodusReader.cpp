@@ -1,0 +1,228 @@
+#include "Tribos_ExodusReader.hpp"
+
+#include <exodusII.h>
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <sstream>
+
+#include "Tribos_Error.hpp"
+#include "detail/Tribos_MeshFacets.hpp"
+
+namespace Tribos {
+namespace Mesh {
+
+namespace {
+
+// The Exodus II library's last error, for messages.
+std::string exodusError() {
+  const char *msg = nullptr, *func = nullptr;
+  int code = 0;
+  ex_get_err(&msg, &func, &code);
+  return msg && *msg ? msg : "unknown error";
+}
+
+// One open file, closed however the read ends; every call that fails is a
+// Tribos::Error naming the file and what was being read.
+class ExodusFile {
+ public:
+  ExodusFile(const std::string& path, const std::string& file) : file_(file) {
+    int cpuWordSize = sizeof(double), ioWordSize = 0;
+    float version = 0;
+    id_ = ex_open(path.c_str(), EX_READ, &cpuWordSize, &ioWordSize, &version);
+    TRIBOS_REQUIRE(id_ >= 0, file << " is not an Exodus II file the Exodus library can read (" << exodusError() << ")");
+    // Names longer than the default 32 characters are read whole.
+    const int64_t used = ex_inquire_int(id_, EX_INQ_DB_MAX_USED_NAME_LENGTH);
+    if (used > 0) ex_set_max_name_length(id_, static_cast<int>(used));
+    nameLength_ = std::max<int64_t>(used, MAX_NAME_LENGTH);
+  }
+  ~ExodusFile() { ex_close(id_); }
+  ExodusFile(const ExodusFile&) = delete;
+  ExodusFile& operator=(const ExodusFile&) = delete;
+
+  int id() const { return id_; }
+  void check(int status, const std::string& what) const {
+    TRIBOS_REQUIRE(status >= 0, file_ << ": cannot read " << what << " (Exodus II: " << exodusError() << ")");
+  }
+  // The entity's name, or `prefix` + its id when it has none.
+  std::string name(ex_entity_type type, int id, const std::string& prefix) const {
+    std::string name(nameLength_ + 1, '\0');
+    check(ex_get_name(id_, type, id, &name[0]), "the name of " + prefix + std::to_string(id));
+    name.resize(name.find('\0'));
+    while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back()))) name.pop_back();
+    return name.empty() ? prefix + std::to_string(id) : name;
+  }
+  std::vector<int> ids(ex_entity_type type, int64_t count, const std::string& what) const {
+    std::vector<int> ids(count);
+    if (count > 0) check(ex_get_ids(id_, type, ids.data()), "the ids of its " + what);
+    return ids;
+  }
+
+ private:
+  std::string file_;
+  int id_ = -1;
+  int64_t nameLength_ = MAX_NAME_LENGTH;
+};
+
+// Sides of the Exodus II reference cells (1-based local nodes, side 1 first).
+const std::vector<std::vector<int>>& exodusSides(CellType type) {
+  static const std::vector<std::vector<int>> tet = {{1, 2, 4}, {2, 3, 4}, {1, 4, 3}, {1, 3, 2}};
+  static const std::vector<std::vector<int>> hex = {{1, 2, 6, 5}, {2, 3, 7, 6}, {3, 4, 8, 7},
+                                                    {1, 5, 8, 4}, {1, 4, 3, 2}, {5, 6, 7, 8}};
+  return type == CellType::Tet4 ? tet : hex;
+}
+
+// The cell type of an Exodus element type ("TETRA", "TET4", "HEX8", ...,
+// any case) with this many nodes; false when Tribos has no such cell.
+bool cellTypeOf(std::string name, int64_t nodes, CellType& type) {
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return std::toupper(ch); });
+  if (name.rfind("TET", 0) == 0 && nodes == 4) return type = CellType::Tet4, true;
+  if (name.rfind("HEX", 0) == 0 && nodes == 8) return type = CellType::Hex8, true;
+  return false;
+}
+
+// The names of a kind of entity, refused when two agree (a name is how an
+// input file refers to a body, a face or a node set).
+std::vector<std::string> uniqueNames(const ExodusFile& exo, ex_entity_type type, const std::vector<int>& ids,
+                                     const std::string& prefix, const std::string& what, const std::string& file) {
+  std::vector<std::string> names;
+  for (size_t k = 0; k < ids.size(); ++k) {
+    names.push_back(exo.name(type, ids[k], prefix));
+    for (size_t j = 0; j < k; ++j)
+      TRIBOS_REQUIRE(names[j] != names[k], file << ": two " << what << "s are named '" << names[k] << "' (ids " << ids[j]
+                                               << " and " << ids[k] << "); a name must be unique");
+  }
+  return names;
+}
+
+Mesh readExodusFile(const std::string& path, const std::string& file, std::vector<std::string>* warnings) {
+  detail::requireReadable(path, file);
+  const ExodusFile exo(path, file);
+  ex_init_params init{};
+  exo.check(ex_get_init_ext(exo.id(), &init), "its header");
+  TRIBOS_REQUIRE(init.num_dim == 3, file << " is a " << init.num_dim << "D mesh; Tribos reads 3D meshes");
+  TRIBOS_REQUIRE(init.num_elem > 0 && init.num_nodes > 0, file << " has no elements; Tribos meshes bodies with Tet4 or Hex8 cells");
+
+  std::vector<double> x(init.num_nodes), y(init.num_nodes), z(init.num_nodes);
+  exo.check(ex_get_coord(exo.id(), x.data(), y.data(), z.data()), "the node coordinates");
+  std::vector<int> nodeMap(init.num_nodes), elemMap(init.num_elem);  // the file's ids
+  exo.check(ex_get_id_map(exo.id(), EX_NODE_MAP, nodeMap.data()), "the node number map");
+  exo.check(ex_get_id_map(exo.id(), EX_ELEM_MAP, elemMap.data()), "the element number map");
+
+  // Element blocks: the bodies, in file order (the order of the elements'
+  // internal numbers, which side sets use).
+  Mesh mesh;
+  const std::vector<int> blockIds = exo.ids(EX_ELEM_BLOCK, init.num_elem_blk, "element blocks");
+  const std::vector<std::string> blockNames = uniqueNames(exo, EX_ELEM_BLOCK, blockIds, "block_", "element block", file);
+  std::vector<int> fileNodes;                     // 1-based file node of each cell corner
+  std::vector<int> elementOf;                     // cell -> 0-based internal element number
+  std::vector<int> cellOf(init.num_elem, -1);     // internal element -> cell
+  std::string firstBlock;
+  int element = 0;
+  for (size_t k = 0; k < blockIds.size(); ++k) {
+    char typeName[MAX_STR_LENGTH + 1] = "";
+    int count = 0, nodes = 0, edges = 0, faces = 0, attributes = 0;
+    exo.check(ex_get_block(exo.id(), EX_ELEM_BLOCK, blockIds[k], typeName, &count, &nodes, &edges, &faces, &attributes),
+              "element block " + std::to_string(blockIds[k]));
+    const std::string what = "block '" + blockNames[k] + "'";
+    if (count == 0) {
+      detail::warn(warnings, file + ": " + what + " has no elements and is ignored");
+      continue;
+    }
+    CellType type;
+    TRIBOS_REQUIRE(cellTypeOf(typeName, nodes, type), file << ": element type " << typeName << " of " << nodes << " nodes in "
+                                                          << what << " is not supported; Tribos reads Tet4 and Hex8");
+    TRIBOS_REQUIRE(firstBlock.empty() || type == mesh.type,
+                   file << " mixes " << cellTypeName(mesh.type) << " (" << firstBlock << ") and " << cellTypeName(type)
+                        << " (" << what << "); a body has one cell type, Tet4 or Hex8");
+    if (firstBlock.empty()) mesh.type = type, firstBlock = what;
+    std::vector<int> connectivity(static_cast<size_t>(count) * nodes);
+    exo.check(ex_get_conn(exo.id(), EX_ELEM_BLOCK, blockIds[k], connectivity.data(), nullptr, nullptr),
+              "the connectivity of " + what);
+    fileNodes.insert(fileNodes.end(), connectivity.begin(), connectivity.end());
+    for (int e = 0; e < count; ++e, ++element) {
+      cellOf[element] = static_cast<int>(elementOf.size());
+      elementOf.push_back(element);
+      mesh.cellBody.push_back(static_cast<int>(mesh.bodyNames.size()));
+    }
+    mesh.bodyNames.push_back(blockNames[k]);
+  }
+  TRIBOS_REQUIRE(!elementOf.empty(), file << " has no elements in its element blocks; Tribos meshes bodies with Tet4 or Hex8 cells");
+
+  // Nodes no cell uses are dropped; the others keep the file's order.
+  std::vector<char> usedByCells(init.num_nodes, 0);
+  for (int n : fileNodes) {
+    TRIBOS_REQUIRE(n >= 1 && n <= init.num_nodes, file << ": an element names node " << n << " of " << init.num_nodes);
+    usedByCells[n - 1] = 1;
+  }
+  const std::vector<int> newIndex =
+      detail::numberUsedNodes(usedByCells, std::vector<long long>(nodeMap.begin(), nodeMap.end()), file, warnings);
+  for (int64_t i = 0; i < init.num_nodes; ++i)
+    if (newIndex[i] >= 0) mesh.coords.push_back({x[i], y[i], z[i]});
+  mesh.connectivity.reserve(fileNodes.size());
+  for (int n : fileNodes) mesh.connectivity.push_back(newIndex[n - 1]);
+  std::vector<long long> cellIds;
+  for (int e : elementOf) cellIds.push_back(elemMap[e]);
+  detail::requirePositiveCells(mesh, file, cellIds);
+
+  // Side sets: faces, each side the outward face of its cell.
+  const detail::FaceIndex index(mesh);
+  const auto& sides = exodusSides(mesh.type);
+  const std::vector<int> sideSetIds = exo.ids(EX_SIDE_SET, init.num_side_sets, "side sets");
+  const std::vector<std::string> sideSetNames = uniqueNames(exo, EX_SIDE_SET, sideSetIds, "sideset_", "side set", file);
+  for (size_t k = 0; k < sideSetIds.size(); ++k) {
+    const std::string what = "side set '" + sideSetNames[k] + "'";
+    int count = 0, factors = 0;
+    exo.check(ex_get_set_param(exo.id(), EX_SIDE_SET, sideSetIds[k], &count, &factors), what);
+    std::vector<int> elements(count), sideNumbers(count);
+    if (count > 0) exo.check(ex_get_set(exo.id(), EX_SIDE_SET, sideSetIds[k], elements.data(), sideNumbers.data()), what);
+    std::vector<Facet>& face = mesh.faces[sideSetNames[k]];
+    for (int s = 0; s < count; ++s) {
+      const int e = elements[s] - 1, side = sideNumbers[s];
+      TRIBOS_REQUIRE(e >= 0 && e < init.num_elem && cellOf[e] >= 0,
+                     file << ": " << what << " names element " << elements[s] << ", which is in no element block");
+      TRIBOS_REQUIRE(side >= 1 && side <= static_cast<int>(sides.size()),
+                     file << ": " << what << " names side " << side << " of element " << elemMap[e] << "; a "
+                          << cellTypeName(mesh.type) << " has sides 1 to " << sides.size());
+      const int c = cellOf[e];
+      std::vector<int> nodes;
+      for (int ln : sides[side - 1]) nodes.push_back(mesh.cell(c)[ln - 1]);
+      const auto* hit = index.boundaryFace(nodes);
+      TRIBOS_REQUIRE(hit && hit->cell == c, file << ": " << what << " is not on the boundary (element " << elemMap[e]
+                                                 << " side " << side << ")");
+      face.push_back(detail::outwardFacet(mesh, c, hit->local));
+    }
+  }
+
+  // Node sets.
+  const std::vector<int> nodeSetIds = exo.ids(EX_NODE_SET, init.num_node_sets, "node sets");
+  const std::vector<std::string> nodeSetNames = uniqueNames(exo, EX_NODE_SET, nodeSetIds, "nodeset_", "node set", file);
+  for (size_t k = 0; k < nodeSetIds.size(); ++k) {
+    const std::string what = "node set '" + nodeSetNames[k] + "'";
+    int count = 0, factors = 0;
+    exo.check(ex_get_set_param(exo.id(), EX_NODE_SET, nodeSetIds[k], &count, &factors), what);
+    std::vector<int> nodes(count);
+    if (count > 0) exo.check(ex_get_set(exo.id(), EX_NODE_SET, nodeSetIds[k], nodes.data(), nullptr), what);
+    std::vector<int>& set = mesh.nodeSets[nodeSetNames[k]];
+    for (int n : nodes) {
+      TRIBOS_REQUIRE(n >= 1 && n <= init.num_nodes, file << ": " << what << " names node " << n << " of " << init.num_nodes);
+      TRIBOS_REQUIRE(newIndex[n - 1] >= 0, file << ": " << what << " holds node " << nodeMap[n - 1]
+                                                << ", which belongs to no element");
+      set.push_back(newIndex[n - 1]);
+    }
+    std::sort(set.begin(), set.end());
+    set.erase(std::unique(set.begin(), set.end()), set.end());
+  }
+  mesh.checkBodies();
+  return mesh;
+}
+
+}  // namespace
+
+Mesh readExodus(const std::string& path, std::vector<std::string>* warnings) {
+  return readExodusFile(path, "mesh file \"" + path + "\"", warnings);
+}
+
+}  // namespace Mesh
+}  // namespace Tribos
