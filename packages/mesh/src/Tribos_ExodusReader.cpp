@@ -140,6 +140,9 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
     std::vector<int> connectivity(static_cast<size_t>(count) * nodes);
     exo.check(ex_get_conn(exo.id(), EX_ELEM_BLOCK, blockIds[k], connectivity.data(), nullptr, nullptr),
               "the connectivity of " + what);
+    for (int n : connectivity)
+      TRIBOS_REQUIRE(n >= 1 && n <= init.num_nodes, file << ": an element of " << what << " names node " << n
+                                                          << "; the file's nodes are 1 to " << init.num_nodes);
     fileNodes.insert(fileNodes.end(), connectivity.begin(), connectivity.end());
     for (int e = 0; e < count; ++e, ++element) {
       cellOf[element] = static_cast<int>(elementOf.size());
@@ -152,10 +155,7 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
 
   // Nodes no cell uses are dropped; the others keep the file's order.
   std::vector<char> usedByCells(init.num_nodes, 0);
-  for (int n : fileNodes) {
-    TRIBOS_REQUIRE(n >= 1 && n <= init.num_nodes, file << ": an element names node " << n << " of " << init.num_nodes);
-    usedByCells[n - 1] = 1;
-  }
+  for (int n : fileNodes) usedByCells[n - 1] = 1;
   const std::vector<int> newIndex =
       detail::numberUsedNodes(usedByCells, std::vector<long long>(nodeMap.begin(), nodeMap.end()), file, warnings);
   for (int64_t i = 0; i < init.num_nodes; ++i)
@@ -206,7 +206,8 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
     if (count > 0) exo.check(ex_get_set(exo.id(), EX_NODE_SET, nodeSetIds[k], nodes.data(), nullptr), what);
     std::vector<int>& set = mesh.nodeSets[nodeSetNames[k]];
     for (int n : nodes) {
-      TRIBOS_REQUIRE(n >= 1 && n <= init.num_nodes, file << ": " << what << " names node " << n << " of " << init.num_nodes);
+      TRIBOS_REQUIRE(n >= 1 && n <= init.num_nodes, file << ": " << what << " names node " << n
+                                                          << "; the file's nodes are 1 to " << init.num_nodes);
       TRIBOS_REQUIRE(newIndex[n - 1] >= 0, file << ": " << what << " holds node " << nodeMap[n - 1]
                                                 << ", which belongs to no element");
       set.push_back(newIndex[n - 1]);
