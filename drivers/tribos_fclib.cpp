@@ -1,11 +1,12 @@
 // tribos_fclib: read an FCLIB problem, solve it with a Tribos friction
 // algorithm, compare with the stored solution when there is one, and report.
-//   tribos_fclib FILE.hdf5 [--xml solver.xml] [--algorithm NAME] [--summary FILE.json]
+//   tribos_fclib FILE.hdf5 [--xml solver.xml] [--algorithm NAME] [--tolerance TOL]
+//                [--max-iterations N] [--summary FILE.json]
 //                [--mass-solver KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose]
 // Exit status: 0 converged; 1 bad input or error (usage, unreadable or invalid
 // problem, unusable output path: nothing solved, nothing written); 2 not
-// converged (the summary and the solution file are still written, and
-// stop_reason says why).
+// converged (the result check failed, e.g. ||F_nat||/||q|| above --tolerance;
+// the summary and the solution file are still written, and stop_reason says why).
 // The solve runs on rank 0 with a communicator of one rank (Amesos2 is not
 // usable on multi-rank communicators in this Trilinos build); other ranks wait.
 #include <Teuchos_CommHelpers.hpp>
@@ -13,7 +14,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,22 +35,65 @@ namespace {
 
 using namespace Tribos;
 
-const char* kUsage =
-    "usage: tribos_fclib FILE.hdf5 [--xml solver.xml] [--algorithm MSA+Algorithm1|Algorithm2|Tresca]\n"
-    "                   [--summary FILE.json] [--mass-solver KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose]\n"
-    "solver.xml: a ParameterList holding the friction solver list (sublists \"Algorithm 1\", \"MSA\",\n"
-    "\"Algorithm 2\"), either at its root or in a sublist \"Solver\"; \"Outer Algorithm\" there picks the\n"
-    "algorithm (default Algorithm2, --algorithm wins).\n"
-    "converged: true means the result solves the FCLIB problem: every value finite, natural-map error and\n"
-    "KKT residuals within Result Check Factor (default 100) times the requested tolerance.\n"
-    "exit status: 0 converged; 1 bad input or error (nothing written); 2 not converged (results written).\n";
+// The algorithms come from the friction registry: every one that solves
+// Coulomb friction (the law of FCLIB problems).
+std::string usage() {
+  const std::string names = joinNames(FCLIB::coulombAlgorithms());
+  return "usage: tribos_fclib FILE.hdf5 [--xml solver.xml] [--algorithm NAME] [--tolerance TOL] [--max-iterations N]\n"
+         "                   [--summary FILE.json] [--mass-solver KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose]\n"
+         "--algorithm NAME     a friction algorithm that solves Coulomb problems: " + names + "\n"
+         "                     (default Algorithm2)\n"
+         "--tolerance TOL      0 < TOL < 1: the result must reach ||F_nat|| / ||q|| <= TOL (the natural-map error\n"
+         "                     relative to q, Siconos' measure); the algorithm is asked for TOL and, when its own\n"
+         "                     stopping test is met first, again from its result with a tighter tolerance.\n"
+         "                     Without it the algorithm's tolerances (defaults or solver.xml) decide.\n"
+         "--max-iterations N   N >= 1: the limit on the algorithm's outer iterations (MSA steps, Algorithm 2\n"
+         "                     loops, Newton steps)\n"
+         "solver.xml: a ParameterList holding the friction solver list (sublists \"Algorithm 1\", \"MSA\",\n"
+         "\"Algorithm 2\", ...), either at its root or in a sublist \"Solver\"; \"Outer Algorithm\" there picks the\n"
+         "algorithm (--algorithm wins); --tolerance and --max-iterations override its values.\n"
+         "converged: true means the result solves the FCLIB problem: every value finite, natural-map error and\n"
+         "KKT residuals within Result Check Factor (default 100) times the requested tolerance, and with\n"
+         "--tolerance ||F_nat|| / ||q|| <= TOL.\n"
+         "exit status: 0 converged; 1 bad input or error (nothing written); 2 not converged (the result check\n"
+         "failed; results written, stop_reason says why).\n";
+}
 
 enum ExitStatus { kConverged = 0, kError = 1, kNotConverged = 2 };
 
 struct Args {
   std::string input, xml, summary, algorithm, massSolver = "KLU2", writeSolution;
+  double tolerance = 0;     // 0: not given
+  int maxIterations = 0;    // 0: not given
   bool verbose = false;
 };
+
+// The whole text must be a finite number (no trailing characters, no nan/inf).
+double parseDouble(const std::string& flag, const std::string& text) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  TRIBOS_REQUIRE(used == text.size() && used > 0 && std::isfinite(value),
+                 flag << ": \"" << text << "\" is not a finite number");
+  return value;
+}
+
+int parseInt(const std::string& flag, const std::string& text) {
+  std::size_t used = 0;
+  long long value = 0;
+  try {
+    value = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  TRIBOS_REQUIRE(used == text.size() && used > 0, flag << ": \"" << text << "\" is not an integer");
+  TRIBOS_REQUIRE(value >= 1 && value <= 100000000, flag << ": " << value << " is out of range, expected 1 .. 100000000");
+  return static_cast<int>(value);
+}
 
 Args parse(int argc, char** argv) {
   Args a;
@@ -58,25 +104,35 @@ Args parse(int argc, char** argv) {
     auto next = [&](const char* flag) {
       TRIBOS_REQUIRE(i + 1 < argc && argv[i + 1][0] != '-',
                      flag << " needs a value" << (i + 1 < argc ? std::string(", got the option ") + argv[i + 1] : "")
-                          << "\n" << kUsage);
+                          << "\n" << usage());
       return std::string(argv[++i]);
     };
     if (s == "--xml") a.xml = next("--xml");
     else if (s == "--summary") a.summary = next("--summary");
     else if (s == "--algorithm") a.algorithm = next("--algorithm");
+    else if (s == "--tolerance") {
+      a.tolerance = parseDouble("--tolerance", next("--tolerance"));
+      TRIBOS_REQUIRE(a.tolerance > 0 && a.tolerance < 1,
+                     "--tolerance: " << a.tolerance << " is out of range, expected 0 < TOL < 1");
+    } else if (s == "--max-iterations") a.maxIterations = parseInt("--max-iterations", next("--max-iterations"));
     else if (s == "--mass-solver") a.massSolver = next("--mass-solver");
     else if (s == "--write-solution") a.writeSolution = next("--write-solution");
     else if (s == "--verbose") a.verbose = true;
-    else if (!s.empty() && s[0] == '-') throw Error("unknown option " + s + "\n" + kUsage);
+    else if (!s.empty() && s[0] == '-') throw Error("unknown option " + s + "\n" + usage());
     else {
-      TRIBOS_REQUIRE(a.input.empty(), "more than one input file given\n" << kUsage);
+      TRIBOS_REQUIRE(a.input.empty(), "more than one input file given\n" << usage());
       a.input = s;
     }
   }
-  TRIBOS_REQUIRE(!a.input.empty(), "no input file given\n" << kUsage);
+  TRIBOS_REQUIRE(!a.input.empty(), "no input file given\n" << usage());
   // Checked here: a local problem never factors M, so a typo would pass unseen.
   TRIBOS_REQUIRE(a.massSolver == "KLU2" || a.massSolver == "CHOLMOD" || a.massSolver == "Tacho",
                  "--mass-solver: unknown \"" << a.massSolver << "\"; valid: KLU2, CHOLMOD, Tacho");
+  if (!a.algorithm.empty()) {
+    const auto valid = FCLIB::coulombAlgorithms();
+    TRIBOS_REQUIRE(std::find(valid.begin(), valid.end(), a.algorithm) != valid.end(),
+                   "--algorithm: unknown \"" << a.algorithm << "\"; valid (Coulomb friction): " << joinNames(valid));
+  }
   return a;
 }
 
@@ -106,6 +162,8 @@ FCLIB::SolveOptions solveOptions(const Args& args) {
     if (solver.isParameter("Outer Algorithm")) options.algorithm = solver.get<std::string>("Outer Algorithm");
   }
   if (!args.algorithm.empty()) options.algorithm = args.algorithm;
+  options.naturalMapTolerance = args.tolerance;
+  options.maxIterations = args.maxIterations;
   return options;
 }
 
@@ -235,6 +293,15 @@ void reportSolve(const Args& args, const FCLIB::SolveReport& rep, FCLIB::Problem
   kkt.set("nonpenetration", rep.kktNormal).set("complementarity", rep.kktComplementarity);
   kkt.set("friction_law", rep.kktFriction).set("tolerance", rep.tolerance).set("limit", rep.limit);
   summary.set("kkt", kkt);
+  if (rep.naturalMapTolerance > 0) {
+    IO::Summary t;
+    t.set("tolerance", rep.naturalMapTolerance).set("rounds", rep.rounds);
+    std::ostringstream errs;  // ||F_nat||/||q|| after each solve
+    errs << std::scientific << std::setprecision(3);
+    for (size_t k = 0; k < rep.roundErrors.size(); ++k) errs << (k ? " " : "") << rep.roundErrors[k];
+    t.set("round_errors", errs.str());
+    summary.set("natural_map", t);
+  }
   IO::Summary w;
   w.set("norm_estimate", rep.normW);
   if (rep.spectrumKnown) w.set("eig_min", rep.eigMin).set("eig_max", rep.eigMax).set("numerical_rank", rep.numericalRank);
@@ -273,7 +340,7 @@ bool helpRequested(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (helpRequested(argc, argv)) {
-    std::cout << kUsage;
+    std::cout << usage();
     return kConverged;
   }
   Tpetra::ScopeGuard guard(&argc, &argv);

@@ -15,6 +15,9 @@
 #include "Tribos_ContactKKT.hpp"
 #include "Tribos_DualTransform.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_SemismoothNewton.hpp"
+
+#include <klu.h>
 
 namespace Tribos {
 namespace FCLIB {
@@ -144,6 +147,27 @@ std::vector<double> DelassusOperator::dense() const {
   return D;
 }
 
+LocalCsr DelassusOperator::explicitMatrix() const {
+  LocalCsr A;
+  A.rows = A.cols = static_cast<int>(map_->getGlobalNumElements());
+  if (W_) {
+    A.rowptr = W_->rowptr;
+    A.col = W_->col;
+    A.val = W_->val;
+    return A;
+  }
+  const std::vector<double> D = dense();
+  const int n = A.rows;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double a = D[static_cast<size_t>(j) * n + i];
+      if (a != 0.0 || i == j) A.col.push_back(j), A.val.push_back(a);
+    }
+    A.rowptr.push_back(static_cast<int>(A.col.size()));
+  }
+  return A;
+}
+
 // ---------------------------------------------------------------- solve
 
 Teuchos::ParameterList defaultSolverParameters() {
@@ -172,6 +196,52 @@ Teuchos::ParameterList defaultSolverParameters() {
 namespace {
 
 using ContactDualPtr = std::shared_ptr<Friction::ContactDual>;
+
+// The Newton systems of "Semismooth Newton" by SuiteSparse's KLU: the
+// symbolic analysis once (the pattern of J does not change), a numeric
+// factorization per step. J is given by rows; KLU reads the arrays as the
+// columns of J', so klu_tsolve solves with J.
+class KluNewtonSolver : public Friction::NewtonLinearSolver {
+ public:
+  KluNewtonSolver() { klu_defaults(&common_); }
+  ~KluNewtonSolver() override { release(true); }
+  KluNewtonSolver(const KluNewtonSolver&) = delete;
+  KluNewtonSolver& operator=(const KluNewtonSolver&) = delete;
+  bool factor(const LocalCsr& J) override {
+    if (!symbolic_ || J.rows != n_ || J.rowptr != pattern_) {
+      release(true);
+      n_ = J.rows;
+      pattern_ = J.rowptr;
+      rowptr_ = J.rowptr;
+      col_ = J.col;
+      symbolic_ = klu_analyze(n_, rowptr_.data(), col_.data(), &common_);
+      if (!symbolic_) return false;
+    }
+    release(false);
+    val_ = J.val;
+    numeric_ = klu_factor(rowptr_.data(), col_.data(), val_.data(), symbolic_, &common_);
+    if (!numeric_ || common_.status != KLU_OK) return false;
+    klu_rcond(symbolic_, numeric_, &common_);
+    return common_.rcond > 1e-15;
+  }
+  void solve(const double* b, double* x) const override {
+    std::copy(b, b + n_, x);
+    klu_tsolve(symbolic_, numeric_, n_, 1, x, &common_);
+  }
+  std::string name() const override { return "KLU"; }
+
+ private:
+  void release(bool all) {
+    if (numeric_) klu_free_numeric(&numeric_, &common_);
+    if (all && symbolic_) klu_free_symbolic(&symbolic_, &common_);
+  }
+  mutable klu_common common_;
+  klu_symbolic* symbolic_ = nullptr;
+  klu_numeric* numeric_ = nullptr;
+  int n_ = -1;
+  std::vector<int> pattern_, rowptr_, col_;
+  std::vector<double> val_;
+};
 
 // Counts applications of the wrapped operator (the Hessian work n_A).
 class CountingOperator : public Operator {
@@ -219,24 +289,18 @@ Teuchos::ParameterList solverList(const SolveOptions& options) {
   return params;
 }
 
-// The tolerance the outer algorithm is asked for (each algorithm states its own).
-double requestedTolerance(const Teuchos::ParameterList& params, const std::string& algorithm) {
-  return Friction::frictionSolvers().create(algorithm, params)->requestedTolerance();
-}
-
 // What 'converged' is checked against: the requested tolerance and the limit
 // Result Check Factor times it. Checked before any work.
 struct ResultLimit {
   double tolerance, limit;
 };
 
-ResultLimit resultLimit(const Teuchos::ParameterList& params, const SolveOptions& options) {
+double resultCheckFactor(const Teuchos::ParameterList& params, const SolveOptions& options) {
   const double factor = params.isParameter("Result Check Factor") ? params.get<double>("Result Check Factor")
                                                                    : options.resultCheckFactor;
   if (!(factor >= 1.0) || !std::isfinite(factor))
     throw Error("FCLIB solve: Result Check Factor = " + std::to_string(factor) + ", expected >= 1");
-  const double tolerance = requestedTolerance(params, options.algorithm);
-  return {tolerance, factor * tolerance};
+  return factor;
 }
 
 using SolverPtr = RCP<Friction::FrictionSolver>;
@@ -308,22 +372,77 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
     std::cout << "FCLIB: " << nc << " contacts, ||W|| ~ " << rep.normW << ", eig(W) in [" << rep.eigMin << ", "
               << rep.eigMax << "], numerical rank " << rep.numericalRank << ", ||q|| " << std::sqrt(std::inner_product(q.begin(), q.end(), q.begin(), 0.0)) << "\n";
   if (options.verbose) solver.setOutputStream(Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout)));
+  LocalCsr explicitW;
+  if (auto* newton = dynamic_cast<Friction::SemismoothNewton*>(&solver)) {
+    explicitW = op.explicitMatrix();
+    newton->setHessianMatrix(&explicitW, rep.scale);
+    newton->setLinearSolver(rcp(new KluNewtonSolver()));
+    const double s = rep.scale;  // v = A r - b = s (W r + q) = s u
+    newton->setStoppingMeasure([&q, &mu, s](const std::vector<double>& r, const std::vector<double>& v) {
+      std::vector<double> u(v.size());
+      for (size_t i = 0; i < v.size(); ++i) u[i] = v[i] / s;
+      return naturalMapError(r, u, mu, q).relativeToQ;
+    });
+  }
   rep.timeSetup = seconds(t0);
   const auto t1 = std::chrono::steady_clock::now();
   Vector x(map);
-  rep.status = solver.solve(*cd, x);
+  const double target = options.naturalMapTolerance;
+  const int rounds = target > 0 ? options.toleranceRounds : 1;
+  double requested = target > 0 ? solver.requestedTolerance() : 0;
+  int iterationsLeft = options.maxIterations;
+  for (int round = 1; round <= rounds; ++round) {
+    const Friction::FrictionStatus s = solver.solve(*cd, x);
+    if (round == 1) {
+      rep.status = s;
+    } else {  // the counts of every round, the state of the last
+      Friction::FrictionStatus sum = s;
+      sum.outer_iterations += rep.status.outer_iterations;
+      sum.msa_iterations += rep.status.msa_iterations;
+      sum.inner_iterations += rep.status.inner_iterations;
+      sum.n_A += rep.status.n_A;
+      sum.n_A_qpp += rep.status.n_A_qpp;
+      sum.n_A_qpq += rep.status.n_A_qpq;
+      sum.history.insert(sum.history.begin(), rep.status.history.begin(), rep.status.history.end());
+      rep.status = sum;
+    }
+    rep.rounds = round;
+    transforms.back(x);
+    {
+      auto xv = x.getData();
+      rep.r.assign(xv.begin(), xv.end());
+    }
+    op.applyW(rep.r, rep.u);
+    for (int i = 0; i < n; ++i) rep.u[i] += q[i];
+    rep.err = naturalMapError(rep.r, rep.u, mu, q);
+    if (target <= 0) break;
+    rep.roundErrors.push_back(rep.err.relativeToQ);
+    if (!s.converged || !(rep.err.relativeToQ > target) || round == rounds) break;
+    // The algorithm met its own test but not the natural-map error: ask again
+    // from this result, the tolerance scaled by how far the error is off.
+    const int used = s.msa_iterations > 0 ? s.msa_iterations : s.outer_iterations;  // the loop the limit counts
+    if (iterationsLeft > 0) {
+      iterationsLeft -= used;
+      if (iterationsLeft <= 0) {
+        rep.status.converged = false;
+        rep.status.reason = "--max-iterations (" + std::to_string(options.maxIterations) +
+                            ") reached before the natural-map error met the tolerance";
+        break;
+      }
+      solver.setMaximumIterations(iterationsLeft);
+    }
+    if (requested <= 1.0001e-15) break;
+    requested = std::max(1e-15, requested * std::min(0.1, 0.5 * target / rep.err.relativeToQ));
+    solver.setRequestedTolerance(requested);
+  }
+  if (target > 0 && rep.status.converged && rep.err.relativeToQ > target)
+    rep.note = "the algorithm met its own stopping test " + std::to_string(rep.rounds) +
+               " time(s) with tightened tolerances (down to " + std::to_string(requested) +
+               ") but not the natural-map tolerance";
   rep.timeSolve = seconds(t1);
   rep.n_A = A.count() - n_A0;
-  transforms.back(x);
-  {
-    auto xv = x.getData();
-    rep.r.assign(xv.begin(), xv.end());
-  }
-  op.applyW(rep.r, rep.u);
-  for (int i = 0; i < n; ++i) rep.u[i] += q[i];
-  rep.err = naturalMapError(rep.r, rep.u, mu, q);
   kktResiduals(rep.r, rep.u, mu, q, rep);
-  if (rep.spectrumKnown && rep.numericalRank < n) {
+  if (rep.spectrumKnown && rep.numericalRank < n && rep.note.empty()) {
     std::ostringstream s;
     s << "W is singular (numerical rank " << rep.numericalRank << " of " << n
       << "): the Tresca subproblems are convex but not strictly, so MPRGP/MPGP/SMALBE rate bounds and the "
@@ -375,16 +494,47 @@ struct Setup {
 
 Setup setup(const SolveOptions& options) {
   const Teuchos::ParameterList params = solverList(options);
-  return {Friction::FrictionSolverFactory().create(options.algorithm, params), resultLimit(params, options)};
+  const auto& registry = Friction::frictionSolvers();
+  const auto coulomb = coulombAlgorithms();
+  if (registry.has(options.algorithm) &&
+      std::find(coulomb.begin(), coulomb.end(), registry.canonical(options.algorithm)) == coulomb.end())
+    throw Error("FCLIB solve: algorithm \"" + options.algorithm +
+                "\" does not solve Coulomb friction, the law of FCLIB problems; valid: " +
+                joinNames(coulombAlgorithms()));
+  if (!(options.naturalMapTolerance >= 0 && options.naturalMapTolerance < 1))
+    throw Error("FCLIB solve: tolerance " + std::to_string(options.naturalMapTolerance) +
+                " on ||F_nat||/||q||, expected in [0, 1) (0: the algorithm's own)");
+  if (options.maxIterations < 0)
+    throw Error("FCLIB solve: maximum iterations " + std::to_string(options.maxIterations) +
+                ", expected >= 0 (0: the algorithm's own)");
+  if (options.toleranceRounds < 1)
+    throw Error("FCLIB solve: tolerance rounds " + std::to_string(options.toleranceRounds) + ", expected >= 1");
+  const double factor = resultCheckFactor(params, options);
+  SolverPtr solver = registry.create(options.algorithm, params);
+  if (options.naturalMapTolerance > 0) solver->setRequestedTolerance(std::max(options.naturalMapTolerance, 1e-15));
+  if (options.maxIterations > 0) solver->setMaximumIterations(options.maxIterations);
+  const double tolerance = solver->requestedTolerance();
+  return {solver, {tolerance, factor * tolerance}};
 }
 
-void finish(const ResultLimit& limit, SolveReport& rep) {
-  rep.tolerance = limit.tolerance;
-  rep.limit = limit.limit;
+void finish(const ResultLimit& limit, const SolveOptions& options, SolveReport& rep) {
+  rep.tolerance = options.naturalMapTolerance > 0 ? options.naturalMapTolerance : limit.tolerance;
+  rep.limit = options.naturalMapTolerance > 0 ? limit.limit / limit.tolerance * options.naturalMapTolerance
+                                              : limit.limit;
+  rep.naturalMapTolerance = options.naturalMapTolerance;
   judgeResult(rep);
 }
 
 }  // namespace
+
+std::vector<std::string> coulombAlgorithms() {
+  const auto& registry = Friction::frictionSolvers();
+  std::vector<std::string> out;
+  for (const auto& name : registry.names())
+    if (registry.accepts(name, "Coulomb") || registry.accepts(name, Friction::kCoulombWithoutEquality))
+      out.push_back(name);
+  return out;
+}
 
 void judgeResult(SolveReport& rep) {
   const bool finite = allFinite(rep.r) && allFinite(rep.u) && allFinite(rep.v);
@@ -398,6 +548,9 @@ void judgeResult(SolveReport& rep) {
     reason << (rep.status.reason.empty() ? "the solver did not converge" : rep.status.reason);
   else if (!finite)
     reason << "the result has non-finite entries";
+  else if (rep.naturalMapTolerance > 0 && !(rep.err.relativeToQ <= rep.naturalMapTolerance))
+    reason << "the natural-map error ||F_nat||/||q|| of the result, " << rep.err.relativeToQ
+           << ", exceeds the requested tolerance " << rep.naturalMapTolerance;
   else
     for (const auto& [name, value] : figures)
       if (!(value <= rep.limit)) {  // a nan fails too
@@ -423,7 +576,7 @@ SolveReport solve(const LocalProblem& problem, const SolveOptions& options, cons
     DelassusOperator op(problem.W, map);
     rep = solveReduced(op, problem.q, problem.mu, options, *s.solver, map);
   }
-  finish(s.limit, rep);
+  finish(s.limit, options, rep);
   return rep;
 }
 
@@ -459,7 +612,7 @@ SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, con
   rep.err = naturalMapError(rep.r, rep.u, problem.mu, q);
   kktResiduals(rep.r, rep.u, problem.mu, q, rep);
   rep.massSolves = M->solves();
-  finish(s.limit, rep);
+  finish(s.limit, options, rep);
   return rep;
 }
 

@@ -38,6 +38,7 @@
 #include "Tribos_FCLIB.hpp"
 #include "Tribos_FCLIB_Accuracy.hpp"
 #include "Tribos_FrictionSolver.hpp"
+#include "Tribos_LocalCsr.hpp"
 #include "Tribos_LocalSolver.hpp"
 #include "Tribos_Types.hpp"
 
@@ -81,6 +82,9 @@ class DelassusOperator : public Operator {
   void applyW(const std::vector<double>& x, std::vector<double>& y) const;
   // W as a dense column-major n x n array (n applications).
   std::vector<double> dense() const;
+  // W as a CSR matrix: the stored W of a local problem, or H' M^-1 H formed
+  // by dense() (its nonzero entries) for a global one.
+  LocalCsr explicitMatrix() const;
 
  private:
   const SparseMatrix* W_ = nullptr;
@@ -90,10 +94,27 @@ class DelassusOperator : public Operator {
   mutable std::vector<double> x_, y_, z_;
 };
 
+// "Semismooth Newton" (Friction::SemismoothNewton) is given W explicitly,
+// KLU for its Newton systems, and stops on ||F_nat|| / ||q|| <= its Relative
+// Tolerance (the natural-map error of Tribos_FCLIB_Accuracy.hpp).
 struct SolveOptions {
-  // "MSA+Algorithm1" | "Algorithm2" (or "Tresca": one Tresca solve with the
-  // slip bound 0, i.e. the frictionless problem; rarely useful here).
+  // A registered friction algorithm that solves Coulomb problems
+  // (Friction::frictionSolvers().accepting("Coulomb"): "MSA+Algorithm1",
+  // "Algorithm2", ...); others (the Tresca solver, whose slip bound an FCLIB
+  // problem does not give) are refused before any work, naming the valid ones.
   std::string algorithm = "Algorithm2";
+  // > 0: the result must reach ||F_nat|| / ||q|| <= naturalMapTolerance (the
+  // natural-map error relative to q, Siconos' measure). The algorithm is
+  // asked for this relative tolerance (FrictionSolver::setRequestedTolerance);
+  // an algorithm whose own stopping test is a different measure is asked
+  // again from its result with a tolerance scaled by naturalMapTolerance/err
+  // (at most Tolerance Rounds solves) until the natural-map error is met.
+  // 0: the algorithm's parameters decide alone (the tolerance of the list).
+  double naturalMapTolerance = 0;
+  int toleranceRounds = 8;
+  // > 0: the limit on the algorithm's outer iterations
+  // (FrictionSolver::setMaximumIterations), shared by the rounds above.
+  int maxIterations = 0;
   // The "Solver" list of the friction factory (sublists "Algorithm 1", "MSA",
   // "Algorithm 2"); entries not given take the values of defaultSolverParameters().
   Teuchos::ParameterList solverParams;
@@ -142,7 +163,16 @@ struct SolveReport {
   bool converged = false;
   std::string stopReason;        // why not converged, else the solver's reason
   double tolerance = 0, limit = 0;
+  // With SolveOptions::naturalMapTolerance > 0: that tolerance, which
+  // err.relativeToQ must meet as well for 'converged', the solves it took
+  // and err.relativeToQ after each.
+  double naturalMapTolerance = 0;
+  int rounds = 1;
+  std::vector<double> roundErrors;
 };
+
+// The algorithms an FCLIB problem (Coulomb friction) can be solved with.
+std::vector<std::string> coulombAlgorithms();
 
 // Sets rep.converged and rep.stopReason from rep.status, rep.r, rep.u, rep.v,
 // rep.err and the KKT residuals against rep.limit (see SolveReport).

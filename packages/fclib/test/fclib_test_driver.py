@@ -378,8 +378,61 @@ def parallel(args):
     print("2 ranks: exit status 1 and 0 on every rank", flush=True)
 
 
+def tolerance_and_algorithms(args):
+    """--tolerance, --max-iterations and --algorithm: every Coulomb algorithm
+    of the registry (listed by --help) reaches the requested natural-map
+    error ||F_nat||/||q|| (exit 0, the reported error below it); a budget too
+    small to reach it exits 2 with the reason; bad values exit 1 naming the
+    option."""
+    rc, out, _ = run([args.driver, "--help"])
+    line = [l for l in out.splitlines() if l.startswith("--algorithm NAME")]
+    check(len(line) == 1, "--help lists the algorithms", out)
+    names = [n.strip() for n in line[0].split(":", 1)[1].split(",")] if line else []
+    check("Algorithm2" in names and "MSA+Algorithm1" in names and "Tresca" not in names,
+          "--help: the Coulomb algorithms, not Tresca", names)
+    for k, name in enumerate(args.algorithms or names):
+        for tol in (1e-6, 1e-10):
+            label = f"tolerance_{k}_{tol:g}"
+            s, _ = solve(args, label, copy_of(args.samples, args.work, LOCAL, label),
+                         0, ("--algorithm", name, "--tolerance", repr(tol)))
+            err = s.get("err", {}).get("relative_to_q", 1)
+            check(s.get("algorithm") == name, f"{label}: algorithm {name}", s.get("algorithm"))
+            check(err <= tol, f"{label}: {name} ||F_nat||/||q|| = {err} <= {tol}")
+            check(s.get("natural_map", {}).get("tolerance") == tol, f"{label}: tolerance reported", s.get("natural_map"))
+        print(f"{name}: ||F_nat||/||q|| below 1e-6 and 1e-10, exit 0", flush=True)
+    s, _ = solve(args, "max_iterations", copy_of(args.samples, args.work, LOCAL, "max_iterations"), 2,
+                 ("--algorithm", "Algorithm2", "--tolerance", "1e-10", "--max-iterations", "2"))
+    check(s.get("err", {}).get("relative_to_q", 0) > 1e-10, "max_iterations: error above the tolerance")
+    check("Maximum Iterations (2)" in s.get("stop_reason", ""), "max_iterations: reason", s.get("stop_reason"))
+    check(s.get("outer_iterations", 0) <= 2, "max_iterations: at most 2 iterations", s.get("outer_iterations"))
+    good = copy_of(args.samples, args.work, LOCAL, "options")
+    cases = [
+        ("tolerance_nan", ["--tolerance", "nan"], "--tolerance: \"nan\" is not a finite number"),
+        ("tolerance_inf", ["--tolerance", "inf"], "--tolerance: \"inf\" is not a finite number"),
+        ("tolerance_text", ["--tolerance", "1e-8x"], "--tolerance: \"1e-8x\" is not a finite number"),
+        ("tolerance_zero", ["--tolerance", "0"], "--tolerance: 0 is out of range, expected 0 < TOL < 1"),
+        ("tolerance_one", ["--tolerance", "1"], "--tolerance: 1 is out of range"),
+        ("tolerance_missing", ["--tolerance"], "--tolerance needs a value"),
+        ("iterations_zero", ["--max-iterations", "0"], "--max-iterations: 0 is out of range"),
+        ("iterations_fraction", ["--max-iterations", "2.5"], "--max-iterations: \"2.5\" is not an integer"),
+        ("iterations_huge", ["--max-iterations", "99999999999999999999"], "--max-iterations: \"99999999999999999999\" is not an integer"),
+        ("algorithm_tresca", ["--algorithm", "Tresca"], "--algorithm: unknown \"Tresca\"; valid (Coulomb friction): "),
+        ("algorithm_bogus", ["--algorithm", "Bogus"], "--algorithm: unknown \"Bogus\"; valid (Coulomb friction): "
+         + ", ".join(names)),
+    ]
+    for name, extra, fragment in cases:
+        summary, solution = outputs(args.work, name)
+        expect_refusal(args, name, [args.driver, good, *extra, "--summary", summary], fragment, summary, solution)
+    print(f"{len(cases)} bad option values refused", flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser()
+    parser.add_argument("--section", choices=["files", "options"], default="files",
+                        help="files: corrupted/valid files, usage, paths, ranks; options: --tolerance, "
+                             "--max-iterations, --algorithm")
+    parser.add_argument("--algorithms", nargs="*", default=[],
+                        help="with --section options: these algorithms only (default: every one --help lists)")
     parser.add_argument("--driver", required=True)
     parser.add_argument("--samples", required=True)
     parser.add_argument("--work", required=True)
@@ -388,11 +441,14 @@ def main():
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
-    bad_inputs(args)
-    good_inputs(args)
-    not_converged(args)
-    usage_and_paths(args)
-    parallel(args)
+    if args.section == "options":
+        tolerance_and_algorithms(args)
+    else:
+        bad_inputs(args)
+        good_inputs(args)
+        not_converged(args)
+        usage_and_paths(args)
+        parallel(args)
     if failures:
         print(f"fclib_test_driver: {len(failures)} check(s) failed")
         return 1

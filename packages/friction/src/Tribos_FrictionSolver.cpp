@@ -5,8 +5,10 @@
 
 #include <cmath>
 #include <iomanip>
+#include <sstream>
 
 #include "Tribos_BlockGaussSeidel.hpp"
+#include "Tribos_SemismoothNewton.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_QP.hpp"
 #include "Tribos_QP_AugmentedLagrangian.hpp"
@@ -163,6 +165,39 @@ RCP<const ParameterList> MSA::getValidParameters() const { return validParameter
 
 double Algorithm1::requestedTolerance() const { return params_.sublist("SMALBE").get<double>("Relative Tolerance"); }
 
+namespace {
+// pl[name] = value after the check of the entry's validator in 'valid' (the
+// range documented for the parameter); the message names the parameter.
+template <class T>
+void setValidated(ParameterList& pl, const ParameterList& valid, const std::string& name, T value,
+                  const std::string& context) {
+  const auto validator = valid.getEntry(name).validator();
+  if (!validator.is_null()) {
+    ParameterList probe(valid.name());
+    probe.set(name, value);
+    try {
+      validator->validate(probe.getEntry(name), name, valid.name());
+    } catch (const std::exception&) {
+      std::ostringstream s;
+      s << context << ": " << name << " = " << value << " is outside the valid range ("
+        << valid.getEntry(name).docString() << ")";
+      throw Error(s.str());
+    }
+  }
+  pl.set(name, value);
+}
+}  // namespace
+
+void Algorithm1::setRequestedTolerance(double tolerance) {
+  setValidated(params_.sublist("SMALBE"), validParameters()->sublist("SMALBE"), "Relative Tolerance", tolerance,
+               "Algorithm 1");
+}
+
+void Algorithm1::setMaximumIterations(int iterations) {
+  setValidated(params_.sublist("SMALBE"), validParameters()->sublist("SMALBE"), "Maximum Outer Iterations",
+               iterations, "Algorithm 1");
+}
+
 MSA::MSA(const ParameterList& params, const ParameterList& algorithm1) : params_(params), tresca_(algorithm1) {
   params_.validateParametersAndSetDefaults(*validParameters());
 }
@@ -277,6 +312,13 @@ RCP<const ParameterList> Algorithm2::getValidParameters() const { return validPa
 double MSA::requestedTolerance() const {
   return std::max(tresca_.requestedTolerance(), params_.get<double>("Tolerance"));
 }
+
+void MSA::setRequestedTolerance(double tolerance) {
+  setValidated(params_, *validParameters(), "Tolerance", tolerance, "MSA");
+  tresca_.setRequestedTolerance(tolerance);
+}
+
+void MSA::setMaximumIterations(int iterations) { setValidated(params_, *validParameters(), "Maximum Iterations", iterations, "MSA"); }
 
 Algorithm2::Algorithm2(const ParameterList& params) : params_(params) {
   params_.validateParametersAndSetDefaults(*validParameters());
@@ -422,6 +464,14 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
 
 double Algorithm2::requestedTolerance() const { return params_.get<double>("Relative Tolerance"); }
 
+void Algorithm2::setRequestedTolerance(double tolerance) {
+  setValidated(params_, *validParameters(), "Relative Tolerance", tolerance, "Algorithm 2");
+}
+
+void Algorithm2::setMaximumIterations(int iterations) {
+  setValidated(params_, *validParameters(), "Maximum Iterations", iterations, "Algorithm 2");
+}
+
 const FrictionSolverRegistry& frictionSolvers() {
   static const FrictionSolverRegistry registry = [] {
     auto sub = [](const ParameterList& p, const char* n) { return p.isSublist(n) ? p.sublist(n) : ParameterList(n); };
@@ -433,6 +483,12 @@ const FrictionSolverRegistry& frictionSolvers() {
           "the method of successive approximations over Tresca problems", {"Coulomb"});
     r.add("Algorithm2", [=](const ParameterList& p) -> RCP<FrictionSolver> { return rcp(new Algorithm2(sub(p, "Algorithm 2"))); },
           "the slip bound updated inside the augmented Lagrangian loop", {"Coulomb"});
+    r.add("Semismooth Newton",
+          [=](const ParameterList& p) -> RCP<FrictionSolver> {
+            return rcp(new SemismoothNewton(sub(p, "Semismooth Newton")));
+          },
+          "Newton on the Alart-Curnier function with an Armijo line search (serial, no equality constraint)",
+          {kCoulombWithoutEquality});
     return r;
   }();
   return registry;

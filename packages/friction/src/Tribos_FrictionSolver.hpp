@@ -41,6 +41,13 @@ class FrictionSolver {
   // The relative tolerance the solve is asked for: what the result check of
   // a solution measures its KKT residuals against.
   virtual double requestedTolerance() const = 0;
+  // Overrides of the parameter list for callers that ask every algorithm
+  // the same (tribos_fclib --tolerance, --max-iterations): the relative
+  // tolerance requestedTolerance() then returns, and the limit on the outer
+  // iterations (the algorithm's own loop: SMALBE outer iterations, MSA steps,
+  // Algorithm 2 loops, Newton steps). Not calling them changes nothing.
+  virtual void setRequestedTolerance(double tolerance) = 0;
+  virtual void setMaximumIterations(int iterations) = 0;
   void setOutputStream(RCP<Teuchos::FancyOStream> out) { out_ = out; }
 
  protected:
@@ -58,6 +65,8 @@ class Algorithm1 : public FrictionSolver {
   RCP<const Teuchos::ParameterList> getValidParameters() const override;
   static RCP<const Teuchos::ParameterList> validParameters();
   double requestedTolerance() const override;
+  void setRequestedTolerance(double tolerance) override;  // SMALBE Relative Tolerance
+  void setMaximumIterations(int iterations) override;     // SMALBE Maximum Outer Iterations
   // Keeps the SMALBE multiplier between solves (warm start of MSA steps).
   void setWarmStart(bool on) { warmStart_ = on; }
   void setHessianNorm(SC normA) { normA_ = normA; }
@@ -76,6 +85,8 @@ class MSA : public FrictionSolver {
   RCP<const Teuchos::ParameterList> getValidParameters() const override;
   static RCP<const Teuchos::ParameterList> validParameters();
   double requestedTolerance() const override;  // the larger of Algorithm 1's and the fixed point's
+  void setRequestedTolerance(double tolerance) override;  // both: MSA Tolerance and Algorithm 1's
+  void setMaximumIterations(int iterations) override;     // MSA Maximum Iterations
 
  private:
   Teuchos::ParameterList params_;
@@ -89,6 +100,8 @@ class Algorithm2 : public FrictionSolver {
   RCP<const Teuchos::ParameterList> getValidParameters() const override;
   static RCP<const Teuchos::ParameterList> validParameters();
   double requestedTolerance() const override;
+  void setRequestedTolerance(double tolerance) override;  // Relative Tolerance
+  void setMaximumIterations(int iterations) override;     // Maximum Iterations
 
  private:
   Teuchos::ParameterList params_;
@@ -101,6 +114,11 @@ class Algorithm2 : public FrictionSolver {
 // Each accepts the friction laws it solves ("Frictionless", "Tresca",
 // "Coulomb"); the maker takes the list with sublists "Algorithm 1", "MSA",
 // "Algorithm 2" (missing ones take defaults).
+// "Semismooth Newton" (Tribos_SemismoothNewton.hpp) accepts only
+// kCoulombWithoutEquality: Coulomb problems without G x = 0 on one rank (FCLIB
+// local and global problems), not FETI's; its list is the sublist
+// "Semismooth Newton".
+inline const char* const kCoulombWithoutEquality = "Coulomb without equality constraint";
 using FrictionSolverRegistry = Registry<FrictionSolver, const Teuchos::ParameterList&>;
 const FrictionSolverRegistry& frictionSolvers();
 

@@ -1,0 +1,460 @@
+#include "Tribos_SemismoothNewton.hpp"
+
+#include <Teuchos_LAPACK.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_Progress.hpp"
+
+namespace Tribos {
+namespace Friction {
+
+using Teuchos::ParameterList;
+
+namespace {
+
+template <class T>
+RCP<Teuchos::EnhancedNumberValidator<T>> range(T lo, T hi) {
+  return rcp(new Teuchos::EnhancedNumberValidator<T>(lo, hi));
+}
+
+double norm2(const std::vector<double>& a) {
+  double s = 0;
+  for (double v : a) s += v * v;
+  return std::sqrt(s);
+}
+
+class DenseLu : public NewtonLinearSolver {
+ public:
+  bool factor(const LocalCsr& J) override {
+    n_ = J.rows;
+    lu_.assign(static_cast<size_t>(n_) * n_, 0.0);
+    for (int i = 0; i < n_; ++i)
+      for (int k = J.rowptr[i]; k < J.rowptr[i + 1]; ++k) lu_[static_cast<size_t>(J.col[k]) * n_ + i] += J.val[k];
+    pivots_.assign(n_, 0);
+    int info = 0;
+    Teuchos::LAPACK<int, double>().GETRF(n_, n_, lu_.data(), n_, pivots_.data(), &info);
+    return info == 0;
+  }
+  void solve(const double* b, double* x) const override {
+    std::copy(b, b + n_, x);
+    int info = 0;
+    Teuchos::LAPACK<int, double>().GETRS('N', n_, 1, lu_.data(), n_, pivots_.data(), x, n_, &info);
+  }
+  std::string name() const override { return "Dense LU"; }
+
+ private:
+  int n_ = 0;
+  std::vector<double> lu_;
+  std::vector<int> pivots_;
+};
+
+// A of the dual, formed column by column from n applications.
+LocalCsr formDense(const Operator& A, const RCP<const Map>& map) {
+  const int n = static_cast<int>(map->getGlobalNumElements());
+  std::vector<double> D(static_cast<size_t>(n) * n);
+  Vector e(map), Ae(map);
+  for (int j = 0; j < n; ++j) {
+    e.putScalar(0.0);
+    e.replaceLocalValue(j, 1.0);
+    A.apply(e, Ae);
+    auto col = Ae.getData();
+    for (int i = 0; i < n; ++i) D[static_cast<size_t>(i) * n + j] = col[i];
+  }
+  LocalCsr M;
+  M.rows = M.cols = n;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j)
+      if (D[static_cast<size_t>(i) * n + j] != 0.0 || i == j) M.col.push_back(j), M.val.push_back(D[static_cast<size_t>(i) * n + j]);
+    M.rowptr.push_back(static_cast<int>(M.col.size()));
+  }
+  return M;
+}
+
+double diagonalEntry(const LocalCsr& A, int i) {
+  for (int k = A.rowptr[i]; k < A.rowptr[i + 1]; ++k)
+    if (A.col[k] == i) return A.val[k];
+  return 0.0;
+}
+
+}  // namespace
+
+RCP<NewtonLinearSolver> denseLuSolver() { return rcp(new DenseLu()); }
+
+// ---------------------------------------------------------------- AlartCurnier
+
+AlartCurnier::AlartCurnier(const ContactDual& dual, std::vector<double> rho)
+    : rho_(std::move(rho)), n_(static_cast<int>(dual.map()->getNodeNumElements())) {
+  std::vector<char> used(n_, 0);
+  for (int k = 0; k < dual.numLocalContacts(); ++k) {
+    Contact c{};
+    c.normal = dual.normalRows[k];
+    used[c.normal] = 1;
+    c.tangents = 0;
+    for (int j = 0; j < 2; ++j) {
+      const LO t = dual.tangentRows[2 * k + j];
+      if (t < 0) continue;
+      c.tangent[c.tangents] = t;
+      c.centre[c.tangents] = dual.tangentCenter.empty() ? 0.0 : dual.tangentCenter[2 * k + j];
+      ++c.tangents;
+      used[t] = 1;
+    }
+    c.lower = dual.normalLower[k];
+    c.offset = dual.normalOffset[k];
+    c.friction = dual.frictionCoefficient.empty() ? 0.0 : dual.frictionCoefficient[k];
+    contacts_.push_back(c);
+  }
+  for (int i = 0; i < n_; ++i)
+    if (!used[i]) freeRows_.push_back(i);
+}
+
+namespace {
+
+// The case of one contact: Phi on its rows and the blocks D_x, D_v (m x m,
+// m = 1 + tangents; index 0 normal, 1.. tangential).
+struct ContactBlocks {
+  double phi[3];
+  double Dx[3][3], Dv[3][3];
+};
+
+}  // namespace
+
+namespace {
+
+// Phi on the rows of one contact and the blocks D_x, D_v of its case.
+void contactBlocks(const AlartCurnier::Contact& c, const std::vector<double>& x, const std::vector<double>& v,
+                   double rhoN, double rhoT, ContactBlocks& out) {
+  const int m = 1 + c.tangents;
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) out.Dx[p][q] = out.Dv[p][q] = 0.0;
+  const double xN = x[c.normal], vN = v[c.normal];
+  const double tauN = xN - rhoN * vN;
+  if (tauN > c.lower) {
+    out.phi[0] = xN - tauN;
+    out.Dv[0][0] = rhoN;
+  } else {
+    out.phi[0] = xN - c.lower;
+    out.Dx[0][0] = 1.0;
+  }
+  const double candidate = tauN + c.offset;
+  const double R = c.friction * std::max(0.0, candidate);
+  double z[2] = {0, 0}, nz = 0;
+  for (int j = 0; j + 1 < m; ++j) {
+    z[j] = x[c.tangent[j]] - c.centre[j] - rhoT * v[c.tangent[j]];
+    nz += z[j] * z[j];
+  }
+  nz = std::sqrt(nz);
+  if (nz <= R) {
+    for (int j = 0; j + 1 < m; ++j) {
+      out.phi[j + 1] = x[c.tangent[j]] - c.centre[j] - z[j];
+      out.Dv[j + 1][j + 1] = rhoT;
+    }
+  } else {
+    const double ratio = R / nz;
+    for (int j = 0; j + 1 < m; ++j) {
+      const double t = z[j] / nz;
+      out.phi[j + 1] = x[c.tangent[j]] - c.centre[j] - R * t;
+      for (int i = 0; i + 1 < m; ++i) {
+        // P = (R/||z||)(I - t t') in 2D; 0 for an interval
+        const double P = m == 3 ? ratio * ((i == j ? 1.0 : 0.0) - t * z[i] / nz) : 0.0;
+        out.Dx[j + 1][i + 1] = (i == j ? 1.0 : 0.0) - P;
+        out.Dv[j + 1][i + 1] = rhoT * P;
+      }
+      if (candidate > 0) {
+        out.Dx[j + 1][0] -= t * c.friction;
+        out.Dv[j + 1][0] += t * c.friction * rhoN;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void AlartCurnier::value(const std::vector<double>& x, const std::vector<double>& v, std::vector<double>& phi) const {
+  phi.assign(n_, 0.0);
+  ContactBlocks b;
+  for (const Contact& c : contacts_) {
+    const double rhoN = rho_[c.normal], rhoT = c.tangents > 0 ? rho_[c.tangent[0]] : 0.0;
+    contactBlocks(c, x, v, rhoN, rhoT, b);
+    phi[c.normal] = b.phi[0];
+    for (int j = 0; j < c.tangents; ++j) phi[c.tangent[j]] = b.phi[j + 1];
+  }
+  for (int i : freeRows_) phi[i] = rho_[i] * v[i];
+}
+
+void AlartCurnier::jacobian(const std::vector<double>& x, const std::vector<double>& v, const LocalCsr& A, double mu,
+                            LocalCsr& J) const {
+  // The pattern, once: per contact row the union of A's rows of the contact
+  // and the contact's own columns (sorted).
+  std::vector<int> mark(n_, -1);
+  const bool buildPattern = J.rows != n_;
+  if (buildPattern) {
+    J = LocalCsr();
+    J.rows = J.cols = n_;
+    std::vector<std::vector<int>> rowCols(n_);
+    auto addRows = [&](const std::vector<int>& rows) {
+      std::vector<int> cols;
+      for (int r : rows) {
+        if (mark[r] < 0) mark[r] = 1, cols.push_back(r);
+        for (int k = A.rowptr[r]; k < A.rowptr[r + 1]; ++k)
+          if (mark[A.col[k]] < 0) mark[A.col[k]] = 1, cols.push_back(A.col[k]);
+      }
+      for (int c : cols) mark[c] = -1;
+      std::sort(cols.begin(), cols.end());
+      for (int r : rows) rowCols[r] = cols;
+    };
+    for (const Contact& c : contacts_) {
+      std::vector<int> rows{c.normal};
+      for (int j = 0; j < c.tangents; ++j) rows.push_back(c.tangent[j]);
+      addRows(rows);
+    }
+    for (int i : freeRows_) addRows({i});
+    for (int i = 0; i < n_; ++i) {
+      J.col.insert(J.col.end(), rowCols[i].begin(), rowCols[i].end());
+      J.rowptr.push_back(static_cast<int>(J.col.size()));
+    }
+    J.val.assign(J.col.size(), 0.0);
+  }
+  std::fill(J.val.begin(), J.val.end(), 0.0);
+  // Row r of J += a * (row s of A); the position of each column of row r in
+  // J.val through 'mark'.
+  auto addRow = [&](int r, int s, double a) {
+    if (a == 0.0) return;
+    for (int k = A.rowptr[s]; k < A.rowptr[s + 1]; ++k) J.val[mark[A.col[k]]] += a * A.val[k];
+  };
+  auto open = [&](int r) {
+    for (int k = J.rowptr[r]; k < J.rowptr[r + 1]; ++k) mark[J.col[k]] = k;
+  };
+  auto close = [&](int r) {
+    for (int k = J.rowptr[r]; k < J.rowptr[r + 1]; ++k) mark[J.col[k]] = -1;
+  };
+  ContactBlocks b;
+  for (const Contact& c : contacts_) {
+    const double rhoN = rho_[c.normal], rhoT = c.tangents > 0 ? rho_[c.tangent[0]] : 0.0;
+    contactBlocks(c, x, v, rhoN, rhoT, b);
+    const int m = 1 + c.tangents;
+    int rows[3] = {c.normal, c.tangents > 0 ? c.tangent[0] : -1, c.tangents > 1 ? c.tangent[1] : -1};
+    for (int p = 0; p < m; ++p) {
+      const int r = rows[p];
+      open(r);
+      for (int q = 0; q < m; ++q) {
+        J.val[mark[rows[q]]] += b.Dx[p][q];
+        addRow(r, rows[q], b.Dv[p][q]);
+      }
+      J.val[mark[r]] += mu;
+      close(r);
+    }
+  }
+  for (int i : freeRows_) {
+    open(i);
+    addRow(i, i, rho_[i]);
+    J.val[mark[i]] += mu;
+    close(i);
+  }
+}
+
+// ---------------------------------------------------------------- SemismoothNewton
+
+RCP<const ParameterList> SemismoothNewton::validParameters() {
+  static RCP<ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::parameterList("Semismooth Newton");
+    pl->set("Relative Tolerance", 1e-8,
+            "stop when the stopping measure (default ||Phi(x)|| / ||rho b||, the Alart-Curnier residual; FCLIB: "
+            "||F_nat|| / ||q||) is at most this",
+            range<double>(1e-15, 1.0));
+    pl->set("Maximum Iterations", 200, "Newton steps", range<int>(1, 1000000));
+    pl->set("Line Search", "Armijo",
+            "Armijo: backtracking on psi = 1/2 ||Phi||^2 until psi(x + t d) <= (1 - 2 sigma t) psi(x); None: full steps",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Armijo", "None"))));
+    pl->set("sigma", 1e-4, "Armijo constant", range<double>(1e-12, 0.5));
+    pl->set("Backtracking Factor", 0.5, "t <- factor t while the Armijo test fails", range<double>(0.01, 0.99));
+    pl->set("Maximum Backtracking Steps", 30,
+            "trial steps per Newton step; when none passes, the last is taken (counted as a line-search failure)",
+            range<int>(0, 200));
+    pl->set("rho Factor", 1.0, "rho_i = factor / A_ii (normal rows; the tangential pair shares the mean)",
+            range<double>(1e-6, 1e6));
+    pl->set("Regularization", 1e-10,
+            "Levenberg-Marquardt term mu_k = this times min(1, ||Phi(x_k)|| / ||Phi(x_0)||) on the diagonal of J "
+            "(W singular: sticking or closed contacts whose rows of A are dependent)",
+            range<double>(0.0, 1.0));
+    pl->set("Dense Limit", 5000, "without an explicit matrix, A is formed densely up to this many rows",
+            range<int>(1, 100000));
+  }
+  return pl;
+}
+
+RCP<const ParameterList> SemismoothNewton::getValidParameters() const { return validParameters(); }
+
+SemismoothNewton::SemismoothNewton(const ParameterList& params) : params_(params) {
+  params_.validateParametersAndSetDefaults(*validParameters());
+}
+
+double SemismoothNewton::requestedTolerance() const { return params_.get<double>("Relative Tolerance"); }
+
+void SemismoothNewton::setRequestedTolerance(double tolerance) {
+  TRIBOS_REQUIRE(tolerance >= 1e-15 && tolerance <= 1.0,
+                 "Semismooth Newton: Relative Tolerance = " << tolerance << " is outside [1e-15, 1]");
+  params_.set("Relative Tolerance", tolerance);
+}
+
+void SemismoothNewton::setMaximumIterations(int iterations) {
+  TRIBOS_REQUIRE(iterations >= 1 && iterations <= 1000000,
+                 "Semismooth Newton: Maximum Iterations = " << iterations << " is outside [1, 1000000]");
+  params_.set("Maximum Iterations", iterations);
+}
+
+void SemismoothNewton::setHessianMatrix(const LocalCsr* A, double scale) {
+  explicitA_ = A;
+  explicitScale_ = scale;
+}
+
+FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector) {
+  dual.check();
+  const auto map = dual.map();
+  TRIBOS_REQUIRE(dual.G.is_null(),
+                 "Semismooth Newton: the dual has an equality constraint G x = 0, which this method does not "
+                 "handle (FETI contact problems: use Algorithm2)");
+  TRIBOS_REQUIRE(map->getComm()->getSize() == 1,
+                 "Semismooth Newton: serial only, the dual lives on " << map->getComm()->getSize() << " ranks");
+  TRIBOS_REQUIRE(dual.frictionCoefficient.size() == dual.normalRows.size(),
+                 "Semismooth Newton: Coulomb friction needs a friction coefficient per contact");
+  const int n = static_cast<int>(map->getNodeNumElements());
+  FrictionStatus st;
+  // A (scaled as dual.A) as a CSR matrix.
+  LocalCsr A;
+  if (explicitA_) {
+    TRIBOS_REQUIRE(explicitA_->rows == n && explicitA_->cols == n,
+                   "Semismooth Newton: the explicit matrix is " << explicitA_->rows << " x " << explicitA_->cols
+                                                                << ", the dual has " << n << " rows");
+    A = *explicitA_;
+    for (double& a : A.val) a *= explicitScale_;
+  } else {
+    const int limit = params_.get<int>("Dense Limit");
+    TRIBOS_REQUIRE(n <= limit, "Semismooth Newton: " << n << " rows and no explicit matrix; Dense Limit is " << limit);
+    A = formDense(*dual.A, map);
+    st.n_A += n;
+  }
+  const double rhoFactor = params_.get<double>("rho Factor");
+  double maxDiag = A.maxAbsDiagonal();
+  if (!(maxDiag > 0)) maxDiag = 1.0;
+  auto rhoOf = [&](double a) { return rhoFactor / (a > 1e-12 * maxDiag ? a : maxDiag); };
+  std::vector<double> rho(n, 0.0);
+  for (int i = 0; i < n; ++i) rho[i] = rhoOf(diagonalEntry(A, i));
+  for (int k = 0; k < dual.numLocalContacts(); ++k) {
+    const LO t1 = dual.tangentRows[2 * k], t2 = dual.tangentRows[2 * k + 1];
+    if (t1 >= 0 && t2 >= 0) rho[t1] = rho[t2] = rhoOf(0.5 * (diagonalEntry(A, t1) + diagonalEntry(A, t2)));
+  }
+  const AlartCurnier ac(dual, rho);
+
+  std::vector<double> b(n), x(n), v(n), phi(n), d(n), w(n), xt(n), vt(n), phit(n), rhs(n);
+  {
+    auto bv = dual.b->getData();
+    std::copy(bv.begin(), bv.end(), b.begin());
+    auto xv = xVector.getData();
+    std::copy(xv.begin(), xv.end(), x.begin());
+  }
+  auto velocity = [&](const std::vector<double>& y, std::vector<double>& out) {
+    A.multiply(y.data(), out.data());
+    for (int i = 0; i < n; ++i) out[i] -= b[i];
+    ++st.n_A;
+  };
+  double normRhoB = 0;
+  for (int i = 0; i < n; ++i) normRhoB += rho[i] * b[i] * rho[i] * b[i];
+  normRhoB = std::sqrt(normRhoB);
+  if (!(normRhoB > 0)) normRhoB = 1.0;
+  const Measure measure =
+      measure_ ? measure_ : Measure([&](const std::vector<double>&, const std::vector<double>&) { return norm2(phi) / normRhoB; });
+
+  RCP<NewtonLinearSolver> linear = linear_.is_null() ? denseLuSolver() : linear_;
+  const double tol = params_.get<double>("Relative Tolerance");
+  const int maxIter = params_.get<int>("Maximum Iterations");
+  const bool armijo = params_.get<std::string>("Line Search") == "Armijo";
+  const double sigma = params_.get<double>("sigma"), beta = params_.get<double>("Backtracking Factor");
+  const int maxBack = params_.get<int>("Maximum Backtracking Steps");
+  const double regularization = params_.get<double>("Regularization");
+
+  velocity(x, v);
+  ac.value(x, v, phi);
+  const double phi0 = std::max(norm2(phi), 1e-300);
+  LocalCsr J;
+  int lineSearchFailures = 0;
+  for (int it = 0;; ++it) {
+    const double normPhi = norm2(phi);
+    const double m = measure(x, v);
+    st.history.push_back(m);
+    st.norm_gP = normPhi;
+    if (!out_.is_null())
+      *out_ << "Semismooth Newton " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << m
+            << "  ||Phi|| " << normPhi << "\n";
+    Progress::iteration([&] {
+      return "Semismooth Newton " + std::to_string(it) + ": measure " + Progress::sci(m) + ", tolerance " +
+             Progress::sci(tol);
+    });
+    if (!std::isfinite(m)) {
+      st.reason = "Semismooth Newton: the stopping measure is not finite at step " + std::to_string(it);
+      break;
+    }
+    if (m <= tol) {
+      st.converged = true;
+      st.reason = "Semismooth Newton: stopping measure below tolerance";
+      break;
+    }
+    if (it == maxIter) {
+      st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of Semismooth Newton reached";
+      break;
+    }
+    // The Newton direction, regularized when the factorization fails.
+    double mu = regularization * std::min(1.0, normPhi / phi0);
+    bool factored = false;
+    for (int attempt = 0; attempt < 4 && !factored; ++attempt) {
+      ac.jacobian(x, v, A, mu, J);
+      factored = linear->factor(J);
+      mu = std::max(mu * 1e3, 1e-10);
+    }
+    if (!factored) {
+      st.reason = "Semismooth Newton: the generalized Jacobian is singular at step " + std::to_string(it);
+      break;
+    }
+    for (int i = 0; i < n; ++i) rhs[i] = -phi[i];
+    linear->solve(rhs.data(), d.data());
+    A.multiply(d.data(), w.data());
+    ++st.n_A;
+    const double psi = 0.5 * normPhi * normPhi;
+    double t = 1.0;
+    bool accepted = false;
+    for (int k = 0; k <= (armijo ? maxBack : 0); ++k) {
+      for (int i = 0; i < n; ++i) xt[i] = x[i] + t * d[i], vt[i] = v[i] + t * w[i];
+      ac.value(xt, vt, phit);
+      const double nt = norm2(phit);
+      if (!armijo || 0.5 * nt * nt <= (1.0 - 2.0 * sigma * t) * psi) {
+        accepted = true;
+        break;
+      }
+      ++st.inner_iterations;
+      if (k < maxBack) t *= beta;
+    }
+    if (!accepted) ++lineSearchFailures;
+    x.swap(xt);
+    velocity(x, v);  // exact, not v + t w, so that round-off does not accumulate
+    ac.value(x, v, phi);
+    st.outer_iterations = it + 1;
+  }
+  if (lineSearchFailures > 0) st.reason += " (" + std::to_string(lineSearchFailures) + " line-search failures)";
+  {
+    auto xv = xVector.getDataNonConst();
+    std::copy(x.begin(), x.end(), xv.begin());
+  }
+  st.slipBound = dual.coulombSlipBound(xVector);
+  st.n_A_qpp = st.n_A;
+  return st;
+}
+
+}  // namespace Friction
+}  // namespace Tribos
