@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   const auto& u = sol.u;
   const auto uNodes = problem->nodalDisplacement(*u);
   Contact::ContactCounts counts;
-  const auto r = Contact::contactResults(*problem, uNodes, *lambda, st.slipBound, counts);
+  const auto r = Contact::contactResults(*problem, uNodes, *lambda, st.slipBound, {fs}, counts);
 
   // Compare node by node on the contact nodes of this rank; sums over ranks.
   std::map<int, int> ssIndex;

@@ -104,7 +104,6 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
     r = Semismooth::solveFromMesh(disc.mesh, mat, loads, contact.face, contact.gap, contact.slipBoundTraction, ssParams, verbose && comm.getRank() == 0 ? &std::cout : nullptr,
                                   distributed ? Teuchos::rcpFromRef(comm) : RCP<const Comm>());
   std::vector<Fem::ContactNodeForce> forces;
-  Fem::RigidPlane plane;
   std::vector<double> Ku, f;
   if (comm.getRank() == 0) {
     u = r.u;
@@ -117,7 +116,6 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
     info[3] = r.reductionSeconds;
     info[4] = r.solverSeconds;
     forces = Semismooth::contactForces(r);
-    plane = Semismooth::contactPlane(r);
     const auto slip = Semismooth::contactSlip(r);
     const auto status = Semismooth::contactStatus(r);
     for (size_t i = 0; i < forces.size(); ++i) {
@@ -137,15 +135,13 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
     Teuchos::broadcast(comm, 0, static_cast<int>(v->size()), v->data());
   }
   Teuchos::broadcast(comm, 0, 5, info);
-  Teuchos::broadcast(comm, 0, 3, plane.normal.data());
-  Teuchos::broadcast(comm, 0, &plane.gap);
   int nres = static_cast<int>(residuals.size());
   Teuchos::broadcast(comm, 0, &nres);
   residuals.resize(nres);
   if (nres > 0) Teuchos::broadcast(comm, 0, nres, residuals.data());
   Fem::FrictionLaw friction;
   friction.kind = Fem::FrictionLaw::parse(law);  // Tresca or Frictionless (the input refuses Coulomb here)
-  kkt = Fem::resultKKT(u, Ku, f, Fem::constrainedDofs(disc.mesh, loads.dirichlet), plane, friction, forces, comm);
+  kkt = Fem::resultKKT(u, Ku, f, Fem::constrainedDofs(disc.mesh, loads.dirichlet), friction, forces, comm);
   long long counts[4] = {static_cast<long long>(nodes.nodes.size()), 0, 0, 0};
   for (int st : nodes.status) counts[1] += st > 0, counts[2] += st == 1, counts[3] += st == 2;
   Teuchos::broadcast(comm, 0, 4, counts);
@@ -288,8 +284,8 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
   for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s)
     systems.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, loads));
   sol.kkt = Fem::resultKKT(sol.u, Fem::assembledProduct(systems, sol.u, *comm),
-                           Fem::assembledLoad(systems, disc.mesh.numNodes(), *comm), dirichlet, Fem::RigidPlane{},
-                           Fem::FrictionLaw{}, {}, *comm);
+                           Fem::assembledLoad(systems, disc.mesh.numNodes(), *comm), dirichlet, Fem::FrictionLaw{},
+                           {}, *comm);
   return sol;
 }
 

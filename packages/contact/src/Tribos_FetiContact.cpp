@@ -88,9 +88,28 @@ void checkFriction(const FrictionSpec& friction) {
                  "slip bound traction " << friction.slipBoundTraction << ": must be a finite number >= 0");
 }
 
-FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction)
+const FrictionSpec& frictionOfPair(const PairFriction& friction, int pair) {
+  TRIBOS_REQUIRE(!friction.empty(), "no friction law given for the contact pairs");
+  TRIBOS_REQUIRE(friction.size() == 1 || (pair >= 0 && pair < static_cast<int>(friction.size())),
+                 "contact pair " << pair << " has no friction law (" << friction.size() << " given)");
+  return friction.size() == 1 ? friction[0] : friction[pair];
+}
+
+std::string runLaw(const PairFriction& friction) {
+  bool tresca = false, coulomb = false;
+  for (const auto& f : friction) {
+    checkFriction(f);
+    tresca = tresca || f.law == "Tresca";
+    coulomb = coulomb || f.law == "Coulomb";
+  }
+  TRIBOS_REQUIRE(!(tresca && coulomb), "contact pairs with Tresca and with Coulomb friction in one run: no outer "
+                                       "algorithm solves both; make them all Coulomb (or Tresca)");
+  return coulomb ? "Coulomb" : (tresca ? "Tresca" : "Frictionless");
+}
+
+FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const PairFriction& friction)
     : scaling_(rcp(new Friction::ScalingTransform(20))), dual_(dual) {
-  checkFriction(friction);
+  runLaw(friction);  // checks every pair's law
   const auto& lc = dual->problem().contact();
   // The dual problem as TFETI gives it: min 1/2 lambda'F lambda - lambda'h
   // s.t. G^ lambda = L^-1 e, lambda_N >= 0, ||lambda_T,k|| <= g_k.
@@ -105,14 +124,16 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Fri
   cd_.normalOffset.assign(nc, 0.0);
   cd_.slipBound.assign(nc, 0.0);
   cd_.frictionCoefficient.assign(nc, 0.0);
-  if (friction.law == "Tresca")
-    for (size_t k = 0; k < nc; ++k) cd_.slipBound[k] = friction.slipBoundTraction * lc.nodalArea[k];
-  if (friction.law == "Coulomb") cd_.frictionCoefficient.assign(nc, friction.coefficient);
+  for (size_t k = 0; k < nc; ++k) {
+    const FrictionSpec& f = frictionOfPair(friction, lc.constraint[k].pair);
+    if (f.law == "Tresca") cd_.slipBound[k] = f.slipBoundTraction * lc.nodalArea[k];
+    if (f.law == "Coulomb") cd_.frictionCoefficient[k] = f.coefficient;
+  }
   transforms_.add(rcp(new Friction::HomogenizationTransform(Teuchos::rcpFromRef(dual->lambdaTilde()))))
       .add(rcp(new Friction::ProjectionTransform(rcp(new CoarseProjector(dual)))))
       .add(scaling_)
       .forward(cd_);
-  if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact(friction);
+  if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact();
 }
 
 std::vector<char> FetiContactProblem::rowMask(bool normal, bool tangent) const {
@@ -120,8 +141,9 @@ std::vector<char> FetiContactProblem::rowMask(bool normal, bool tangent) const {
   std::vector<char> mask(p.isEqualityRow());
   for (size_t k = 0; k < cd_.normalRows.size(); ++k) {
     if (normal) mask[cd_.normalRows[k]] = 1;
+    const bool friction = cd_.slipBound[k] > 0 || cd_.frictionCoefficient[k] > 0;
     for (int j = 0; j < 2; ++j)
-      if (tangent && cd_.tangentRows[2 * k + j] >= 0) mask[cd_.tangentRows[2 * k + j]] = 1;
+      if (tangent && friction && cd_.tangentRows[2 * k + j] >= 0) mask[cd_.tangentRows[2 * k + j]] = 1;
   }
   return mask;
 }
@@ -138,11 +160,15 @@ std::vector<char> FetiContactProblem::rowMask(bool normal, bool tangent) const {
 //     resist), the right side is <= 0, so a load with e'alpha > 0 (pushing
 //     the body along alpha) cannot be balanced. alpha is taken as the part
 //     of the load's rigid work that the equality rows do not hold.
-void FetiContactProblem::checkHeldByContact(const FrictionSpec& friction) const {
+void FetiContactProblem::checkHeldByContact() const {
   const auto& coarse = dual_->coarse();
-  const bool tangentHolds = (friction.law == "Coulomb" && friction.coefficient > 0) ||
-                            (friction.law == "Tresca" && friction.slipBoundTraction > 0);
-  const auto hold = rowMask(true, tangentHolds);
+  bool anyFriction = false;
+  for (size_t k = 0; k < cd_.normalRows.size(); ++k)
+    anyFriction = anyFriction || cd_.slipBound[k] > 0 || cd_.frictionCoefficient[k] > 0;
+  int local = anyFriction, global = 0;
+  Teuchos::reduceAll(*dual_->problem().comm(), Teuchos::REDUCE_MAX, local, Teuchos::outArg(global));
+  const bool tangentHolds = global != 0;
+  const auto hold = rowMask(true, true);
   const auto motions = coarse.freeMotions(&hold);
   if (!motions.empty()) {
     std::string list;
@@ -177,9 +203,8 @@ void FetiContactProblem::checkHeldByContact(const FrictionSpec& friction) const 
     for (int j = 0; j < 2; ++j)
       if (cd_.tangentRows[2 * k + j] >= 0) vt += vv[cd_.tangentRows[2 * k + j]] * vv[cd_.tangentRows[2 * k + j]];
     vt = std::sqrt(vt);
-    const double F = friction.law == "Coulomb" ? friction.coefficient : 0.0;
-    resist = std::max(resist, vv[cd_.normalRows[k]] + F * vt);
-    if (friction.law == "Tresca") frictionWork += cd_.slipBound[k] * vt;
+    resist = std::max(resist, vv[cd_.normalRows[k]] + cd_.frictionCoefficient[k] * vt);
+    frictionWork += cd_.slipBound[k] * vt;
   }
   double resistAll = resist, frictionAll = frictionWork;
   Teuchos::reduceAll(*p.comm(), Teuchos::REDUCE_MAX, resist, Teuchos::outArg(resistAll));
@@ -271,12 +296,16 @@ std::vector<Fem::ContactNodeForce> ContactNodeResults::forces() const {
     out[k].normalForce = normalForce[k];
     for (int d = 0; d < 3; ++d) out[k].tangentialForce[d] = tangentialForce[3 * k + d];
     out[k].slipBound = slipBound[k];
+    out[k].frictionCoefficient = frictionCoefficient[k];
+    out[k].normal = constraint[k].normal;
+    out[k].gap = constraint[k].gap;
+    out[k].master = constraint[k].master;
   }
   return out;
 }
 
 ContactNodeResults contactResults(const Feti::FetiProblem& p, const std::vector<double>& uNodal, const Vector& lambda,
-                                  const std::vector<double>& g, ContactCounts& counts) {
+                                  const std::vector<double>& g, const PairFriction& friction, ContactCounts& counts) {
   const Comm& comm = *p.comm();
   const auto& lc = p.contact();
   auto l = lambda.getData();
@@ -297,18 +326,21 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const std::vector<
     if (status > 0) ++local[1];
     if (status == 1) ++local[2];
     if (status == 2) ++local[3];
-    const int node = lc.nodes[k];
-    const double* u = &uNodal[3 * static_cast<size_t>(node)];
-    const double un = u[0] * lc.normal[0] + u[1] * lc.normal[1] + u[2] * lc.normal[2];
-    out.nodes.push_back(node);
+    const Feti::ContactConstraint& cc = lc.constraint[k];
+    const auto w = Feti::relativeDisplacement(cc, uNodal);
+    const double wn = w[0] * cc.normal[0] + w[1] * cc.normal[1] + w[2] * cc.normal[2];
+    const FrictionSpec& f = frictionOfPair(friction, cc.pair);
+    out.nodes.push_back(cc.node);
+    out.constraint.push_back(cc);
+    out.frictionCoefficient.push_back(f.law == "Coulomb" ? f.coefficient : 0.0);
     out.normalForce.push_back(lN);
-    out.gap.push_back(lc.gap - un);
+    out.gap.push_back(cc.gap - wn);
     out.slipBound.push_back(gk);
-    // Force on the body: -B'lambda, tangential part -(l1 t1 + l2 t2); slip:
-    // the tangential displacement (the plane is fixed).
+    // Force on the slave node: -B'lambda, tangential part -(l1 t1 + l2 t2);
+    // slip: the relative tangential displacement.
     for (int d = 0; d < 3; ++d) {
-      out.tangentialForce.push_back(-(l1 * lc.t1[d] + l2 * lc.t2[d]));
-      out.slip.push_back(u[d] - un * lc.normal[d]);
+      out.tangentialForce.push_back(-(l1 * cc.t1[d] + l2 * cc.t2[d]));
+      out.slip.push_back(w[d] - wn * cc.normal[d]);
     }
     out.status.push_back(status);
   }
@@ -319,15 +351,11 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const std::vector<
 }
 
 Fem::ResultKKT resultKKT(const Feti::FetiProblem& p, const std::vector<double>& uNodal, const ContactNodeResults& contact,
-                         const FrictionSpec& friction) {
-  Fem::RigidPlane plane;
-  plane.normal = p.contact().normal;
-  plane.gap = p.contact().gap;
+                         const PairFriction& friction) {
   Fem::FrictionLaw law;
-  law.kind = Fem::FrictionLaw::parse(friction.law);
-  law.coefficient = friction.coefficient;
-  return Fem::resultKKT(uNodal, p.assembledProduct(uNodal), p.assembledLoad(), p.dirichlet(), plane, law,
-                        contact.forces(), *p.comm());
+  law.kind = Fem::FrictionLaw::parse(runLaw(friction));
+  return Fem::resultKKT(uNodal, p.assembledProduct(uNodal), p.assembledLoad(), p.dirichlet(), law, contact.forces(),
+                        *p.comm());
 }
 
 }  // namespace Contact

@@ -36,6 +36,16 @@ struct FrictionSpec {
 // slip bound traction that is negative or not finite.
 void checkFriction(const FrictionSpec& friction);
 
+// The friction of each contact pair (Feti::ContactConstraint::pair); a list
+// of one applies to every pair.
+using PairFriction = std::vector<FrictionSpec>;
+const FrictionSpec& frictionOfPair(const PairFriction& friction, int pair);
+// The law the outer algorithm solves for all pairs at once: Coulomb when a
+// pair is Coulomb (a frictionless pair has F = 0), else Tresca when a pair
+// is Tresca (a frictionless pair has g = 0), else Frictionless. Tresca and
+// Coulomb pairs in one run are refused (no outer algorithm solves both).
+std::string runLaw(const PairFriction& friction);
+
 // A solved FETI contact problem: multipliers, primal displacement, the outer
 // algorithm's status and the applications of F the solve took.
 struct FetiContactSolution {
@@ -48,7 +58,9 @@ struct FetiContactSolution {
 
 class FetiContactProblem {
  public:
-  FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction);
+  FetiContactProblem(RCP<const Feti::FetiDual> dual, const PairFriction& friction);
+  FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction)
+      : FetiContactProblem(dual, PairFriction{friction}) {}
   const Friction::ContactDual& contactDual() const { return cd_; }
   const Feti::FetiDual& fetiDual() const { return *dual_; }
   // lambda = lambda~ + x (the chain's back map)
@@ -65,11 +77,12 @@ class FetiContactProblem {
 
  private:
   // Local dual rows: equality rows plus the normal and/or tangential rows.
+  // tangent: the tangential rows of the contacts with friction (g_k > 0 or F_k > 0).
   std::vector<char> rowMask(bool normal, bool tangent) const;
   // Equality rows plus the contact rows where B u = c holds at lambda.
   std::vector<char> activeRows(const Vector& lambda, const std::vector<double>& g) const;
   // Refuses a body that its contact cannot hold (throws naming the motion).
-  void checkHeldByContact(const FrictionSpec& friction) const;
+  void checkHeldByContact() const;
 
   // PFP, P(h - F lambda~) -> s PFP, s P(h - F lambda~) (||A|| = 1); the last
   // of transforms_.
@@ -86,7 +99,11 @@ struct ContactCounts {
 // Node-wise results of the local contact nodes (rank-local), as written.
 struct ContactNodeResults {
   std::vector<int> nodes;
-  std::vector<double> normalForce, tangentialForce /*3 per node, on the body*/, slip /*3 per node*/, gap;
+  std::vector<Feti::ContactConstraint> constraint;  // frame, initial gap, master nodes, pair
+  std::vector<double> frictionCoefficient;          // Coulomb F of the node's pair (0 for the other laws)
+  // Forces on the slave node; slip: the relative tangential displacement;
+  // gap: the current normal gap d - w.n.
+  std::vector<double> normalForce, tangentialForce /*3 per node*/, slip /*3 per node*/, gap;
   std::vector<double> slipBound;  // g of the solution (Tresca, Coulomb F lambda_N), 0 when frictionless
   std::vector<int> status;        // 0 no contact, 1 stick, 2 slip
   // The forces as the result check takes them.
@@ -97,12 +114,13 @@ struct ContactNodeResults {
 // from the written (nodal, single-valued) displacement. g: the slip bound of
 // the solution (local, one per contact node), empty for frictionless.
 ContactNodeResults contactResults(const Feti::FetiProblem& problem, const std::vector<double>& uNodal,
-                                  const Vector& lambda, const std::vector<double>& g, ContactCounts& counts);
+                                  const Vector& lambda, const std::vector<double>& g, const PairFriction& friction,
+                                  ContactCounts& counts);
 
 // The KKT residuals (Fem::resultKKT) of the written result: the nodal
 // displacement and the contact forces (none for a problem without contact).
 Fem::ResultKKT resultKKT(const Feti::FetiProblem& problem, const std::vector<double>& uNodal,
-                         const ContactNodeResults& contact, const FrictionSpec& friction);
+                         const ContactNodeResults& contact, const PairFriction& friction);
 
 }  // namespace Contact
 }  // namespace Tribos

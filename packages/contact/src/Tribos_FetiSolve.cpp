@@ -55,13 +55,13 @@ RCP<const Teuchos::ParameterList> fetiSolveParameters() {
   return pl;
 }
 
-FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const FrictionSpec& friction,
+FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const PairFriction& friction,
                           const Teuchos::ParameterList& params, RCP<Teuchos::FancyOStream> out) {
   const Teuchos::ParameterList p = validatedSolveParameters(params);
   auto dual = rcp(new Feti::FetiDual(problem));
   FetiSolveResult r;
   r.lambda = rcp(new Vector(problem->dualMap()));
-  FrictionSpec law = friction;
+  PairFriction law = friction;
   const auto t0 = std::chrono::steady_clock::now();
   if (!problem->hasContact()) {
     Progress::stage("projected CG");
@@ -76,13 +76,14 @@ FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const Fri
     if (!st.converged) r.solverReason = "projected CG: maximum iterations";
     r.tolerance = pcgParams.get<double>("Tolerance");
     r.primal = dual->recoverPrimal(*r.lambda);
-    law = FrictionSpec();  // no contact forces to check
+    law = {FrictionSpec()};  // no contact forces to check
   } else {
     FetiContactProblem cp(dual, friction);
     r.outerAlgorithm = p.get<std::string>("Outer Algorithm");
-    TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, friction.law),
-                   "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << friction.law << " friction ("
-                                        << joinNames(Friction::frictionSolvers().accepting(friction.law)) << " do)");
+    const std::string runLawName = runLaw(friction);
+    TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, runLawName),
+                   "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << runLawName << " friction ("
+                                        << joinNames(Friction::frictionSolvers().accepting(runLawName)) << " do)");
     Progress::stage("contact solve: " + r.outerAlgorithm);
     const auto sol = cp.solve(r.outerAlgorithm, p, out);
     r.status = sol.status;
@@ -98,7 +99,7 @@ FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const Fri
   Progress::stage("result check");
   r.u = problem->nodalDisplacement(*r.primal);
   if (problem->hasContact())
-    r.contact = contactResults(*problem, r.u, *r.lambda, r.status.slipBound, r.counts);
+    r.contact = contactResults(*problem, r.u, *r.lambda, r.status.slipBound, friction, r.counts);
   r.kkt = resultKKT(*problem, r.u, r.contact, law);
   r.verdict = Fem::resultVerdict(r.kkt, r.solverConverged, r.solverReason, r.tolerance,
                                  p.get<double>("Result Check Factor"));

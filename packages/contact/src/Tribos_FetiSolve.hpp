@@ -51,12 +51,16 @@ struct FetiSolveResult {
 // entries of the list are left to their owners.
 RCP<const Teuchos::ParameterList> fetiSolveParameters();
 
-// Solves problem; friction: the law of the contact rows (ignored without
-// contact). Collective. Throws Tribos::Error for parameters that are not
-// valid (naming them) and CollectiveError for a body that neither its
-// Dirichlet rows nor its contact hold.
-FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const FrictionSpec& friction,
+// Solves problem; friction: the law of each contact pair (one for all;
+// ignored without contact). Collective. Throws Tribos::Error for parameters
+// that are not valid (naming them) and CollectiveError for a body that
+// neither its Dirichlet rows nor its contact hold.
+FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const PairFriction& friction,
                           const Teuchos::ParameterList& params, RCP<Teuchos::FancyOStream> out = Teuchos::null);
+inline FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const FrictionSpec& friction,
+                                 const Teuchos::ParameterList& params, RCP<Teuchos::FancyOStream> out = Teuchos::null) {
+  return solveFeti(problem, PairFriction{friction}, params, out);
+}
 
 }  // namespace Contact
 }  // namespace Tribos

@@ -75,7 +75,8 @@ Handover handover(const Brick& b, const Mesh::Discretization& disc) {
   }
   auto& fc = h.constraints;
   fc.dirichlet = Fem::constrainedDofs(disc.mesh, b.loads.dirichlet);
-  fc.rows = Feti::meshConstraintRows(disc, fc.dirichlet, b.contact, "Orthonormal", false);
+  const auto contact = Feti::contactConstraints(disc.mesh, {Feti::planeBeyondFace(disc.mesh, "zmin", b.contact.gap)});
+  fc.rows = Feti::meshConstraintRows(disc, fc.dirichlet, contact, "Orthonormal", false);
   fc.contactNormal = Feti::faceNormal("zmin");
   const auto area = Fem::faceNodalAreas(disc.mesh, "zmin");
   for (int node : disc.mesh.faceNodes("zmin")) fc.contactArea[node] = area[node];
@@ -142,7 +143,7 @@ TEUCHOS_UNIT_TEST(ApplicationInterface, MisuseRefused) {
   refused("oblique tangent", [&](Handover& h) {
             for (auto& r : h.constraints.rows)
               if (r.kind == Feti::DualRow::Tangent1) r.dir = {0.6, 0.8, 0};
-          }, "contact plane's frame", out, success);
+          }, "contact frame", out, success);
   refused("not a unit normal", [&](Handover& h) { h.constraints.contactNormal = {0, 0, -2}; }, "not a unit vector", out, success);
   refused("three modes", [&](Handover& h) {  // translations only
             for (auto& s : h.systems) {

@@ -1,5 +1,7 @@
 #include "Tribos_FCLIB_Export.hpp"
 
+#include <map>
+
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Vector.hpp>
@@ -13,7 +15,7 @@
 namespace Tribos {
 namespace FCLIB {
 
-void buildFromFeti(const Feti::FetiProblem& problem, const Fem::Material& mat, const Fem::LoadCase& loads,
+void buildFromFeti(const Feti::FetiProblem& problem, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
                    const std::string& law, double coefficient, const Vector& u, const Vector& lambda,
                    GlobalProblem& out, Solution& solution) {
   TRIBOS_REQUIRE(law == "Frictionless" || law == "Coulomb",
@@ -76,16 +78,22 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::Material& mat, c
   // The frame (N, T1, T2) = (-n, -t1, t2), right-handed, and r = (l_N, l_T1, -l_T2)
   // (the force on the body, -B'lambda, is then H r).
   const double sign[3] = {-1.0, -1.0, 1.0};
-  const std::array<double, 3>* dirs[3] = {&lc.normal, &lc.t1, &lc.t2};
+  std::map<int, const Feti::ContactConstraint*> constraintOf;
+  for (const auto& c : problem.contactConstraints()) constraintOf[c.node] = &c;
   rows.clear(), cols.clear(), vals.clear();
   int nc = 0;
   for (int node = 0; node < numNodes; ++node) {
     const double* e = &all[5 * static_cast<size_t>(node)];
     if (e[0] == 0.0) continue;
+    const Feti::ContactConstraint& cc = *constraintOf.at(node);
+    const std::array<double, 3>* dirs[3] = {&cc.normal, &cc.t1, &cc.t2};
     for (int a = 0; a < 3; ++a) {
       for (int d = 0; d < 3; ++d) {
         const double h = sign[a] * (*dirs[a])[d];
-        if (h != 0.0) rows.push_back(3 * node + d), cols.push_back(3 * nc + a), vals.push_back(h);
+        if (h == 0.0) continue;
+        rows.push_back(3 * node + d), cols.push_back(3 * nc + a), vals.push_back(h);
+        for (const auto& [m, weight] : cc.master)
+          rows.push_back(3 * m + d), cols.push_back(3 * nc + a), vals.push_back(-weight * h);
       }
       // force on the body -lambda_a dir_a = r_a sign_a dir_a
       solution.r.push_back(-sign[a] * e[1 + a]);
@@ -102,7 +110,7 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::Material& mat, c
   validate(out, "FCLIB export");
 }
 
-void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Fem::Material& mat,
+void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Fem::BodyMaterials& mat,
                 const Fem::LoadCase& loads, const std::string& law, double coefficient, const Vector& u,
                 const Vector& lambda, const Info& info) {
   GlobalProblem p;

@@ -33,13 +33,15 @@ namespace FCLIB {
 // Builds the problem and the solution (v, u = H'v + w, r) from a solved FETI
 // contact problem. Collective over the FETI communicator; the result is
 // complete on rank 0 only (other ranks get empty objects). 'law' is
-// "Frictionless" or "Coulomb" (FCLIB has no Tresca friction: throws).
-void buildFromFeti(const Feti::FetiProblem& problem, const Fem::Material& mat, const Fem::LoadCase& loads,
+// "Frictionless" or "Coulomb" (FCLIB has no Tresca friction: throws). A
+// contact between bodies puts the master nodes' weights into H (the local
+// velocity is the relative one).
+void buildFromFeti(const Feti::FetiProblem& problem, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
                    const std::string& law, double coefficient, const Vector& u, const Vector& lambda,
                    GlobalProblem& out, Solution& solution);
 
 // buildFromFeti, then writeGlobal on rank 0 (compressed rows).
-void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Fem::Material& mat,
+void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Fem::BodyMaterials& mat,
                 const Fem::LoadCase& loads, const std::string& law, double coefficient, const Vector& u,
                 const Vector& lambda, const Info& info);
 

@@ -51,7 +51,7 @@ void addEntry(LocalCsr& A, int i, int j, double v) {
 
 }  // namespace
 
-SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const Material& mat,
+SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
                                   const LoadCase& loads) {
   SubdomainSystem sys;
   sys.id = sub.id;
@@ -63,7 +63,7 @@ SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain&
   for (size_t k = 0; k < sub.cells.size(); ++k) {
     const int* ln = &sub.connectivity[k * npc];
     const auto X = cellCoordinates(mesh, sub.cells[k]);
-    const auto Ke = elementStiffness(mesh.type, X, mat);
+    const auto Ke = elementStiffness(mesh.type, X, mat.ofCell(mesh, sub.cells[k]));
     for (int a = 0; a < 3 * npc; ++a)
       for (int b = 0; b < 3 * npc; ++b) addEntry(sys.K, 3 * ln[a / 3] + a % 3, 3 * ln[b / 3] + b % 3, Ke[a * 3 * npc + b]);
     if (hasVolumeForce) {

@@ -24,7 +24,7 @@ struct SubdomainSystem {
   int numDofs() const { return 3 * static_cast<int>(nodes.size()); }
 };
 
-SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const Material& mat,
+SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
                                   const LoadCase& loads);
 
 // Cell node coordinates.

@@ -24,6 +24,20 @@ struct Material {
   std::array<double, 36> D() const;
 };
 
+// The material of every body of a mesh (Mesh::bodyOf): one for all bodies
+// (implicitly from a Material) or one per body.
+class BodyMaterials {
+ public:
+  BodyMaterials(const Material& all) : perBody_{all} {}  // NOLINT: every body has it
+  explicit BodyMaterials(std::vector<Material> perBody) : perBody_(std::move(perBody)) {}
+  const Material& ofBody(int body) const { return perBody_.size() == 1 ? perBody_[0] : perBody_.at(body); }
+  const Material& ofCell(const Mesh::Mesh& mesh, int cell) const { return ofBody(mesh.bodyOf(cell)); }
+  int size() const { return static_cast<int>(perBody_.size()); }
+
+ private:
+  std::vector<Material> perBody_;
+};
+
 // Element stiffness (row-major, 3*npc x 3*npc) of a cell with the given nodes.
 std::vector<double> elementStiffness(Mesh::CellType type, const std::vector<Point>& X, const Material& mat);
 

@@ -21,7 +21,7 @@
 namespace Tribos {
 namespace Fem {
 
-MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const Material& mat, const LoadCase& loads,
+MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const BodyMaterials& mat, const LoadCase& loads,
                                    const RCP<const Comm>& comm)
     : disc_(disc), comm_(comm) {
   const Mesh::Mesh& mesh = disc.mesh;
@@ -62,7 +62,7 @@ MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const Mater
   std::vector<GO> dofs(ne);
   std::vector<SC> row(ne);
   for (int c : disc.localCells()) {
-    const auto Ke = elementStiffness(mesh.type, cellCoordinates(mesh, c), mat);
+    const auto Ke = elementStiffness(mesh.type, cellCoordinates(mesh, c), mat.ofCell(mesh, c));
     std::vector<double> ubar(ne, 0.0);
     std::vector<char> fixed(ne, 0);
     for (int a = 0; a < ne; ++a) {

@@ -38,7 +38,7 @@ const MonolithicSolverRegistry& monolithicSolvers();
 
 class MonolithicSystem {
  public:
-  MonolithicSystem(const Mesh::Discretization& disc, const Material& mat, const LoadCase& loads,
+  MonolithicSystem(const Mesh::Discretization& disc, const BodyMaterials& mat, const LoadCase& loads,
                    const RCP<const Comm>& comm);
 
   // "Linear Solver": "CG+MueLu" | "Direct"; "Tolerance"; "Maximum Iterations".

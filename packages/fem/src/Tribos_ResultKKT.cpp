@@ -61,24 +61,27 @@ double ResultKKT::worst(std::string* which) const {
   return best.second;
 }
 
-std::vector<double> contactForceVector(int numNodes, const RigidPlane& plane,
-                                       const std::vector<ContactNodeForce>& contact, const Comm& comm) {
+std::vector<double> contactForceVector(int numNodes, const std::vector<ContactNodeForce>& contact, const Comm& comm) {
   std::vector<double> phi(3 * static_cast<size_t>(numNodes), 0.0), out(phi.size(), 0.0);
   for (const auto& c : contact)
-    for (int d = 0; d < 3; ++d) phi[3 * static_cast<size_t>(c.node) + d] += -c.normalForce * plane.normal[d] + c.tangentialForce[d];
+    for (int d = 0; d < 3; ++d) {
+      const double force = -c.normalForce * c.normal[d] + c.tangentialForce[d];
+      phi[3 * static_cast<size_t>(c.node) + d] += force;
+      for (const auto& [node, weight] : c.master) phi[3 * static_cast<size_t>(node) + d] -= weight * force;
+    }
   if (!phi.empty())
     Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(phi.size()), phi.data(), out.data());
   return out;
 }
 
 ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku, const std::vector<double>& f,
-                    const std::map<long long, double>& dirichlet, const RigidPlane& plane, const FrictionLaw& law,
+                    const std::map<long long, double>& dirichlet, const FrictionLaw& law,
                     const std::vector<ContactNodeForce>& contact, const Comm& comm) {
   TRIBOS_REQUIRE(u.size() == Ku.size() && u.size() == f.size() && u.size() % 3 == 0,
                  "resultKKT: u, Ku and f must be nodal vectors of one size (got " << u.size() << ", " << Ku.size()
                                                                                   << ", " << f.size() << ")");
   const int numNodes = static_cast<int>(u.size() / 3);
-  const auto phi = contactForceVector(numNodes, plane, contact, comm);
+  const auto phi = contactForceVector(numNodes, contact, comm);
   ResultKKT res;
   const double U = std::max(normInf(u), 1e-300);
   const double P = std::max({normInf(f), normInf(Ku), normInf(phi), 1e-300});
@@ -104,20 +107,25 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
   // Contact node by node (rank-local nodes, then the maximum over ranks).
   Friction::ContactKKT kkt(P, U);
   for (const auto& c : contact) {
-    const double* un = &u[3 * static_cast<size_t>(c.node)];
-    const double unn = dot(plane.normal, un);
+    // w: the relative displacement of the slave node and its partner.
+    double w[3];
+    for (int d = 0; d < 3; ++d) w[d] = u[3 * static_cast<size_t>(c.node) + d];
+    for (const auto& [node, weight] : c.master)
+      for (int d = 0; d < 3; ++d) w[d] -= weight * u[3 * static_cast<size_t>(node) + d];
+    const double wn = dot(c.normal, w);
     double g = 0;
     if (law.kind == FrictionLaw::Tresca) g = c.slipBound;
-    if (law.kind == FrictionLaw::Coulomb) g = law.coefficient * std::max(c.normalForce, 0.0);
-    // Slip and friction force in the tangent plane, without the components a
-    // Dirichlet condition fixes.
+    if (law.kind == FrictionLaw::Coulomb) g = c.frictionCoefficient * std::max(c.normalForce, 0.0);
+    // Slip and friction force in the tangent plane, without the components
+    // that Dirichlet conditions fix at the slave node and every master node.
     double s[3], phiT[3];
     for (int d = 0; d < 3; ++d) {
-      const bool fixed = dirichlet.count(3LL * c.node + d) > 0;
-      s[d] = fixed ? 0.0 : un[d] - unn * plane.normal[d];
+      bool fixed = dirichlet.count(3LL * c.node + d) > 0;
+      for (const auto& m : c.master) fixed = fixed && dirichlet.count(3LL * m.first + d) > 0;
+      s[d] = fixed ? 0.0 : w[d] - wn * c.normal[d];
       phiT[d] = fixed ? 0.0 : c.tangentialForce[d];
     }
-    kkt.add(c.normalForce, plane.gap - unn /* d - u.n */, phiT, s, 3, g);
+    kkt.add(c.normalForce, c.gap - wn /* d - w.n */, phiT, s, 3, g);
   }
   res.nonpenetration = maxOver(kkt.nonpenetration(), comm);
   res.complementarity = maxOver(kkt.complementarity(), comm);

@@ -4,25 +4,27 @@
 // semismooth*, ...) reports these figures, computed here and only here, so
 // that `converged` means the same thing whichever solver produced u.
 //
-// The body (assembled stiffness K, load f, Dirichlet conditions u_D = ubar)
-// touches a rigid plane with outward face normal n and initial gap d:
+// The bodies (assembled stiffness K, load f, Dirichlet conditions u_D = ubar)
+// meet in contact node by node: slave node s with the contact normal n, the
+// initial gap d and the master nodes i with weights N_i (none against a
+// rigid plane), relative displacement w = u_s - sum N_i u_i:
 //   equilibrium      K u - f - phi = 0             at every dof without a Dirichlet condition
 //   Dirichlet        u_D = ubar
-//   non-penetration  u.n <= d                      at every contact node
-//   complementarity  lambda_N >= 0, lambda_N (d - u.n) = 0
+//   non-penetration  w.n <= d                      at every contact node
+//   complementarity  lambda_N >= 0, lambda_N (d - w.n) = 0
 //   friction         phi_T = P_g(phi_T - c s)      (|phi_T| <= g, phi_T opposes the slip s when |phi_T| = g)
-// where phi = -lambda_N n + phi_T is the force of the plane on the body,
-// s = u - (u.n) n the tangential displacement (the slip on a fixed plane),
-// g the slip bound (Tresca: given; Coulomb: F lambda_N; frictionless: 0) and
-// P_g the projection on the disk of radius g. Tangential components that a
-// Dirichlet condition fixes are left out of the friction law (the reaction
-// there is not a friction force).
+// where phi_s = -lambda_N n + phi_T is the force on the slave node, -N_i
+// phi_s its reaction on master node i, s = w - (w.n) n the relative slip, g
+// the slip bound (Tresca: given; Coulomb: F lambda_N; frictionless: 0) and
+// P_g the projection on the disk of radius g. Tangential components that
+// Dirichlet conditions fix at the slave node and its master nodes are left
+// out of the friction law (the reaction there is not a friction force).
 //
 // Normalisation (every figure is dimensionless and exists for any load):
 //   equilibrium      ||(K u - f - phi)_free||_2 / max(||f||_2, ||K u||_2, ||phi||_2)
 //   Dirichlet        max |u_D - ubar| / U
-//   non-penetration  max (u.n - d)^+ / U
-//   complementarity  max |min(lambda_N / P, (d - u.n) / U)|
+//   non-penetration  max (w.n - d)^+ / U
+//   complementarity  max |min(lambda_N / P, (d - w.n) / U)|
 //   friction         max ||phi_T - P_g(phi_T - (P/U) s)|| / P
 // with U = max |u| and P the largest nodal force of the problem,
 // max(|f|_inf, |K u|_inf, |phi|_inf), so a displacement-driven run (f = 0)
@@ -32,6 +34,7 @@
 #include <array>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "Tribos_Types.hpp"
@@ -39,18 +42,11 @@
 namespace Tribos {
 namespace Fem {
 
-// A rigid plane: u.n <= gap at every contact node (n the outward unit normal
-// of the body's contact face).
-struct RigidPlane {
-  std::array<double, 3> normal{0, 0, -1};
-  double gap = 0.0;
-};
-
-// The friction law of the contact: Frictionless, Tresca (slipBound per
-// node) or Coulomb (coefficient F, g = F lambda_N).
+// The friction law of the run: Frictionless, Tresca (slipBound per node) or
+// Coulomb (g = F lambda_N, F per node). A frictionless pair in a Tresca or
+// Coulomb run has g = 0 or F = 0.
 struct FrictionLaw {
   enum Kind { Frictionless, Tresca, Coulomb } kind = Frictionless;
-  double coefficient = 0.0;
   static Kind parse(const std::string& name);  // "Frictionless" | "Tresca" | "Coulomb"
   static const char* name(Kind k);
 };
@@ -58,10 +54,14 @@ struct FrictionLaw {
 // One contact node of the result (rank-local; every contact node is held by
 // exactly one rank).
 struct ContactNodeForce {
-  int node = -1;                        // mesh node
-  double normalForce = 0.0;             // lambda_N; the plane pushes the body with -lambda_N n
-  std::array<double, 3> tangentialForce{0, 0, 0};  // phi_T, force of the plane on the body
+  int node = -1;                        // the slave mesh node
+  double normalForce = 0.0;             // lambda_N; the slave node is pushed with -lambda_N n
+  std::array<double, 3> tangentialForce{0, 0, 0};  // phi_T, friction force on the slave node
   double slipBound = 0.0;               // Tresca g (force); ignored for the other laws
+  double frictionCoefficient = 0.0;     // Coulomb F; ignored for the other laws
+  std::array<double, 3> normal{0, 0, -1};  // n, unit, pointing from the slave node into its partner
+  double gap = 0.0;                     // d
+  std::vector<std::pair<int, double>> master;  // master nodes and weights N_i; empty: a rigid plane
 };
 
 struct ResultKKT {
@@ -74,13 +74,12 @@ struct ResultKKT {
 // u, Ku, f: nodal vectors (3 per node), replicated on every rank. dirichlet:
 // global dof (3 node + c) -> prescribed value. Collective over comm.
 ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku, const std::vector<double>& f,
-                    const std::map<long long, double>& dirichlet, const RigidPlane& plane, const FrictionLaw& law,
+                    const std::map<long long, double>& dirichlet, const FrictionLaw& law,
                     const std::vector<ContactNodeForce>& contact, const Comm& comm);
 
 // The contact force phi (3 per node, replicated) of the rank-local contact
-// nodes, summed over the ranks.
-std::vector<double> contactForceVector(int numNodes, const RigidPlane& plane,
-                                       const std::vector<ContactNodeForce>& contact, const Comm& comm);
+// nodes and their reactions on the master nodes, summed over the ranks.
+std::vector<double> contactForceVector(int numNodes, const std::vector<ContactNodeForce>& contact, const Comm& comm);
 
 // `converged` is a promise about the result the user gets: the solver
 // stopped on its own test AND every KKT residual of the result is within

@@ -98,7 +98,7 @@ void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::ar
 }
 
 std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const std::map<long long, double>& bc,
-                                        const ContactSpec& contact, const std::string& gluing,
+                                        const std::vector<ContactConstraint>& contact, const std::string& gluing,
                                         bool eliminateDirichlet) {
   const Mesh::Mesh& mesh = disc.mesh;
   auto copyOf = [&](int s, int node, double weight) { return RowCopy{s, disc.subdomains[s].localNode(node), weight}; };
@@ -148,34 +148,36 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
         }
     }
   }
-  if (contact.enabled) {
-    const auto n = faceNormal(mesh, contact.face);
-    std::array<double, 3> t1, t2;
-    tangents(n, t1, t2);
-    // A Dirichlet condition on the normal component takes the node out of
-    // the contact set; one on a tangential component removes only that
-    // friction direction (a symmetry plane through the contact face).
-    for (int node : mesh.faceNodes(contact.face)) {
+  for (const ContactConstraint& cc : contact) {
+    // A direction is left out when Dirichlet conditions fix it at the slave
+    // node and at every master node (then the row would repeat theirs). A
+    // Dirichlet condition on the normal takes the node out of the contact
+    // set; one on a tangential component removes only that friction
+    // direction (a symmetry plane through the contact surface).
+    auto fixedAt = [&](int node, const std::array<double, 3>& dir) {
       std::array<bool, 3> fixed{};
       for (int c = 0; c < 3; ++c) fixed[c] = bc.count(3LL * node + c) > 0;
-      if (fixedDirection(n, fixed, node)) continue;
-      DualRow r{DualRow::Normal};
-      r.node = node;
-      r.copies = {copyOf(copies[node].front(), node, 1.0)};
-      r.dir = n;
-      r.c = contact.gap;
+      return fixedDirection(dir, fixed, node);
+    };
+    auto fixedAtAll = [&](const std::array<double, 3>& dir) {
+      if (!fixedAt(cc.node, dir)) return false;
+      for (const auto& m : cc.master)
+        if (!fixedAt(m.first, dir)) return false;
+      return true;
+    };
+    if (!cc.glued && fixedAtAll(cc.normal)) continue;
+    DualRow r{cc.glued ? DualRow::Gluing : DualRow::Normal};
+    r.node = cc.node;
+    r.copies = {copyOf(copies[cc.node].front(), cc.node, 1.0)};
+    for (const auto& [node, weight] : cc.master) r.copies.push_back(copyOf(copies[node].front(), node, -weight));
+    const std::array<double, 3>* dirs[3] = {&cc.normal, &cc.t1, &cc.t2};
+    const DualRow::Kind kinds[3] = {DualRow::Normal, DualRow::Tangent1, DualRow::Tangent2};
+    for (int j = 0; j < 3; ++j) {
+      if ((j > 0 || cc.glued) && fixedAtAll(*dirs[j])) continue;
+      r.kind = cc.glued ? DualRow::Gluing : kinds[j];
+      r.dir = *dirs[j];
+      r.c = j == 0 && !cc.glued ? cc.gap : 0.0;
       rows.push_back(r);
-      r.c = 0;
-      if (!fixedDirection(t1, fixed, node)) {
-        r.kind = DualRow::Tangent1;
-        r.dir = t1;
-        rows.push_back(r);
-      }
-      if (!fixedDirection(t2, fixed, node)) {
-        r.kind = DualRow::Tangent2;
-        r.dir = t2;
-        rows.push_back(r);
-      }
     }
   }
   return rows;
@@ -190,8 +192,8 @@ void distributeRows(std::vector<DualRow>& rows, const std::vector<int>& owner) {
 }
 
 DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<const Map>& primalMap,
-                                    const std::vector<GO>& primalOffsets, const std::array<double, 3>& contactNormal,
-                                    double contactGap, const std::function<double(int)>& contactArea) {
+                                    const std::vector<GO>& primalOffsets,
+                                    const std::vector<ContactConstraint>& contact) {
   const RCP<const Comm>& comm = primalMap->getComm();
   const int me = comm->getRank();
   DualConstraints dc;
@@ -223,12 +225,9 @@ DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<
     ++gid;
   }
   dc.B->fillComplete(primalMap, dc.dualMap);
-  if (!contactArea) return dc;
+  std::map<int, const ContactConstraint*> constraintOf;  // slave node -> its constraint
+  for (const auto& c : contact) constraintOf[c.node] = &c;
   LocalContact& lc = dc.contact;
-  lc.normal = contactNormal;
-  lc.gap = contactGap;
-  tangents(lc.normal, lc.t1, lc.t2);
-
   // Rows of one node are on one rank: the normal row, then its tangential
   // rows (t1, t2; a direction fixed by a Dirichlet condition has none: -1).
   std::map<int, size_t> contactIndex;  // mesh node -> local contact number
@@ -239,7 +238,10 @@ DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<
       contactIndex[r.node] = lc.nodes.size();
       lc.normalRows.push_back(lid);
       lc.nodes.push_back(r.node);
-      lc.nodalArea.push_back(contactArea(r.node));
+      const auto it = constraintOf.find(r.node);
+      TRIBOS_REQUIRE(it != constraintOf.end(), "contact row of node " << r.node << " has no contact constraint");
+      lc.constraint.push_back(*it->second);
+      lc.nodalArea.push_back(it->second->area);
       lc.tangentRows.insert(lc.tangentRows.end(), {-1, -1});
     } else if (r.kind == DualRow::Tangent1 || r.kind == DualRow::Tangent2) {
       lc.tangentRows[2 * contactIndex.at(r.node) + (r.kind == DualRow::Tangent2)] = lid;

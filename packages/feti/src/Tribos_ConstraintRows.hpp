@@ -13,14 +13,16 @@
 #include <string>
 #include <vector>
 
+#include "Tribos_ContactSearch.hpp"
 #include "Tribos_Discretization.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
 namespace Feti {
 
-// Contact of one face with a rigid plane: u . n <= gap at every node of the
-// face (n the outward normal of the face), two tangents per node.
+// Contact of one face with a rigid plane parallel to it: u . n <= gap at
+// every node of the face (n the outward normal of the face), two tangents
+// per node. The one-face case of ContactPair (planeBeyondFace).
 struct ContactSpec {
   bool enabled = false;
   std::string face = "zmin";
@@ -48,14 +50,15 @@ struct DualRow {
   int owner = 0;            // rank: the owner of the first copy's subdomain (FetiProblem sets it)
 };
 
-// The contact structure of this rank's dual dofs (local indices).
+// The contact structure of this rank's dual dofs (local indices): per
+// local contact node its rows and its constraint (frame, gap, master nodes,
+// pair, area; Tribos_ContactSearch.hpp).
 struct LocalContact {
   std::vector<LO> normalRows;       // lambda_I rows, one per local contact node
   std::vector<LO> tangentRows;      // 2 per contact node: t1, t2 (-1: direction fixed by a Dirichlet condition)
   std::vector<int> nodes;           // mesh node of each local contact node
   std::vector<double> nodalArea;    // contact-face area attached to the node
-  std::array<double, 3> normal{0, 0, 0}, t1{0, 0, 0}, t2{0, 0, 0};
-  double gap = 0.0;                 // u . normal <= gap
+  std::vector<ContactConstraint> constraint;  // of each local contact node
 };
 
 // This rank's part of the constraints: B (rows of this rank, columns the
@@ -71,10 +74,13 @@ struct DualConstraints {
 // The rows of a decomposed mesh: gluing of the subdomain copies of every node
 // ("Orthonormal", "Non-redundant" or "Full"), the Dirichlet conditions
 // (none when eliminateDirichlet: FETI-1 eliminates them in the subdomains)
-// and the contact of one face with a rigid plane (normal and tangential rows
-// of every face node whose directions no Dirichlet condition fixes).
+// and the contact constraints (contactConstraints()): per slave node a
+// normal row and the tangential rows, on the slave node's first copy and
+// the first copies of its master nodes (weights -N_i), leaving out the
+// directions that Dirichlet conditions fix at the slave node and at every
+// master node; a glued constraint gives three equality rows instead.
 std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const std::map<long long, double>& dirichlet,
-                                        const ContactSpec& contact, const std::string& gluing,
+                                        const std::vector<ContactConstraint>& contact, const std::string& gluing,
                                         bool eliminateDirichlet);
 
 // Sets every row's owner (owner[s]: the rank of subdomain s) and orders the
@@ -83,13 +89,12 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
 void distributeRows(std::vector<DualRow>& rows, const std::vector<int>& owner);
 
 // This rank's part of B and c; primalOffsets[s]: the first global primal dof
-// of subdomain s. The contact rows lie on the plane (contactNormal,
-// contactGap); contactArea(node): the contact area of a contact node (for
-// traction slip bounds). Rows ordered by distributeRows(). Collective over
-// the primal map's communicator.
+// of subdomain s. contact: the constraint of every node that has a Normal
+// row (the same list on every rank). Rows ordered by distributeRows().
+// Collective over the primal map's communicator.
 DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<const Map>& primalMap,
-                                    const std::vector<GO>& primalOffsets, const std::array<double, 3>& contactNormal,
-                                    double contactGap, const std::function<double(int)>& contactArea);
+                                    const std::vector<GO>& primalOffsets,
+                                    const std::vector<ContactConstraint>& contact);
 
 // Outward unit normal of a face of the box ("xmin", ..., "zmax").
 std::array<double, 3> faceNormal(const std::string& face);

@@ -213,32 +213,39 @@ void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOf
                      "FetiProblem: contact row " << i << " of node " << r.node << " acts on a dof that Dirichlet row "
                                                  << j << " fixes; leave that direction out of the contact rows");
   }
-  // The contact rows lie on the plane: the normal rows along its normal with
-  // its gap, the tangential rows along the frame of Feti::tangents() (the
+  // The contact rows follow their node's constraint: the normal row along
+  // its normal with its gap, the tangential rows along its t1, t2 (the
   // contact forces and slips are reported in that frame).
-  bool contact = false;
-  for (const auto& r : rows) contact = contact || r.kind == DualRow::Normal;
-  const auto& nrm = fc.contactNormal;
-  TRIBOS_REQUIRE(!contact || std::abs(std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]) - 1) <= 1e-12,
-                 "FetiProblem: the contact plane's normal (" << nrm[0] << ", " << nrm[1] << ", " << nrm[2]
-                                                             << ") is not a unit vector");
-  std::array<double, 3> frame[3];
-  frame[0] = fc.contactNormal;
-  tangents(fc.contactNormal, frame[1], frame[2]);
+  std::map<int, const ContactConstraint*> constraintOf;
+  for (const auto& c : fc.contact) {
+    const auto& n = c.normal;
+    TRIBOS_REQUIRE(std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1) <= 1e-12,
+                   "FetiProblem: the contact normal (" << n[0] << ", " << n[1] << ", " << n[2] << ") of node " << c.node
+                                                       << " is not a unit vector");
+    constraintOf[c.node] = &c;
+  }
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
     if (r.kind == DualRow::Gluing || r.kind == DualRow::Dirichlet) continue;
+    const auto it = constraintOf.find(r.node);
+    TRIBOS_REQUIRE(it != constraintOf.end(), "FetiProblem: contact row " << i << " of node " << r.node
+                                                                         << " has no contact constraint");
+    const ContactConstraint& cc = *it->second;
     const int f = r.kind == DualRow::Normal ? 0 : (r.kind == DualRow::Tangent1 ? 1 : 2);
+    const std::array<double, 3>& frame = f == 0 ? cc.normal : (f == 1 ? cc.t1 : cc.t2);
     double d = 0;
-    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(r.dir[c] - frame[f][c]));
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(r.dir[c] - frame[c]));
     TRIBOS_REQUIRE(d <= 1e-12, "FetiProblem: contact row "
                                    << i << " of node " << r.node << " has the direction (" << r.dir[0] << ", "
-                                   << r.dir[1] << ", " << r.dir[2] << "), expected (" << frame[f][0] << ", "
-                                   << frame[f][1] << ", " << frame[f][2]
-                                   << ") of the contact plane's frame (normal, Feti::tangents)");
-    TRIBOS_REQUIRE(f > 0 || std::abs(r.c - fc.contactGap) <= 1e-12 * std::max(1.0, std::abs(fc.contactGap)),
+                                   << r.dir[1] << ", " << r.dir[2] << "), expected (" << frame[0] << ", " << frame[1]
+                                   << ", " << frame[2] << ") of the node's contact frame (normal, t1, t2)");
+    TRIBOS_REQUIRE(f > 0 || std::abs(r.c - cc.gap) <= 1e-12 * std::max(1.0, std::abs(cc.gap)),
                    "FetiProblem: normal row " << i << " of node " << r.node << " has the gap " << r.c
-                                              << ", the contact plane " << fc.contactGap);
+                                              << ", its contact constraint " << cc.gap);
+    TRIBOS_REQUIRE(r.copies.size() == 1 + cc.master.size(),
+                   "FetiProblem: contact row " << i << " of node " << r.node << " touches " << r.copies.size()
+                                               << " node copies, its constraint names " << cc.master.size()
+                                               << " master nodes besides the node");
   }
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
@@ -247,6 +254,28 @@ void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOf
     TRIBOS_REQUIRE(it != normalSubdomain.end() && it->second == r.copies.front().subdomain,
                    "FetiProblem: tangential row " << i << " of node " << r.node
                                                   << " has no normal row of that node on the same subdomain");
+  }
+}
+
+// The plane shorthand of FetiConstraints: one constraint per Normal row.
+void planeConstraints(FetiConstraints& fc) {
+  if (!fc.contact.empty()) return;
+  const auto& n = fc.contactNormal;
+  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (const auto& r : fc.rows) {
+    if (r.kind != DualRow::Normal) continue;
+    TRIBOS_REQUIRE(std::abs(length - 1) <= 1e-12, "FetiProblem: the contact plane's normal ("
+                                                      << n[0] << ", " << n[1] << ", " << n[2]
+                                                      << ") is not a unit vector");
+    ContactConstraint c;
+    c.node = r.node;
+    c.pair = 0;
+    c.normal = n;
+    tangents(n, c.t1, c.t2);
+    c.gap = fc.contactGap;
+    const auto it = fc.contactArea.find(r.node);
+    c.area = it == fc.contactArea.end() ? 1.0 : it->second;
+    fc.contact.push_back(c);
   }
 }
 
@@ -280,8 +309,9 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
   return pl;
 }
 
-FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& mat, const Fem::LoadCase& loads,
-                         const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm)
+FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
+                         const std::vector<ContactConstraint>& contact, const Teuchos::ParameterList& params,
+                         const RCP<const Comm>& comm)
     : disc_(&disc), comm_(comm) {
   Teuchos::ParameterList p(params);
   p.validateParametersAndSetDefaults(*getValidParameters(), 0);
@@ -293,14 +323,24 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::Material& 
     if (feti1) eliminateDirichlet(systems_.back(), fc.dirichlet);
   }
   fc.rows = meshConstraintRows(disc, fc.dirichlet, contact, p.get<std::string>("Gluing"), feti1);
-  if (contact.enabled) {
-    fc.contactNormal = faceNormal(disc.mesh, contact.face);
-    fc.contactGap = contact.gap;
-    const std::vector<double> area = Fem::faceNodalAreas(disc.mesh, contact.face);
-    for (int node : disc.mesh.faceNodes(contact.face)) fc.contactArea[node] = area[node];
-  }
-  setup(std::move(fc), contact.enabled, p);
+  fc.contact = contact;
+  bool hasContact = false;
+  for (const auto& c : contact) hasContact = hasContact || !c.glued;
+  setup(std::move(fc), hasContact, p);
 }
+
+namespace {
+
+std::vector<ContactConstraint> faceContact(const Mesh::Mesh& mesh, const ContactSpec& contact) {
+  if (!contact.enabled) return {};
+  return contactConstraints(mesh, {planeBeyondFace(mesh, contact.face, contact.gap)});
+}
+
+}  // namespace
+
+FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
+                         const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm)
+    : FetiProblem(disc, mat, loads, faceContact(disc.mesh, contact), params, comm) {}
 
 FetiProblem::FetiProblem(std::vector<Fem::SubdomainSystem> localSubdomains, FetiConstraints constraints,
                          const Teuchos::ParameterList& params, const RCP<const Comm>& comm)
@@ -317,6 +357,7 @@ FetiProblem::FetiProblem(std::vector<Fem::SubdomainSystem> localSubdomains, Feti
   });
   bool contact = false;  // the rows are the same on every rank
   for (const auto& r : constraints.rows) contact = contact || r.kind == DualRow::Normal;
+  checkOnEveryRank(*comm_, [&] { planeConstraints(constraints); });
   setup(std::move(constraints), contact, p);
 }
 
@@ -352,14 +393,8 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
   }
   if (!disc_) checkRows(fc.rows, primalOffsets_, fc);
   distributeRows(fc.rows, numbering.owner);
-  std::function<double(int)> contactArea;
-  if (contact) {
-    contactArea = [&fc](int node) {
-      const auto it = fc.contactArea.find(node);
-      return it == fc.contactArea.end() ? 1.0 : it->second;
-    };
-  }
-  constraints_ = assembleConstraints(fc.rows, primalMap_, primalOffsets_, fc.contactNormal, fc.contactGap, contactArea);
+  constraints_ = assembleConstraints(fc.rows, primalMap_, primalOffsets_, fc.contact);
+  contactConstraints_ = std::move(fc.contact);
   boundary_ = boundaryDofs();
   // Auto: a dense block of more than kAutoExplicitRows rows would cost more
   // to form and hold than the applications it saves; without contact

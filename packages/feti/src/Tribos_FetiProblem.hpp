@@ -48,9 +48,17 @@ struct FetiConstraints {
   // Global dof (3 node + c) -> prescribed value: the Dirichlet conditions
   // that rows of kind Dirichlet impose (the result check reads them here).
   std::map<long long, double> dirichlet;
-  // The rigid plane of the Normal rows: the body's outward normal and the
-  // gap (u . n <= gap), and the contact area of each contact node (a Tresca
-  // slip bound traction times it is the node's slip bound; absent: 1).
+  // The constraint of every node that has a Normal row (the same list on
+  // every rank; Tribos_ContactSearch.hpp): its frame (the normal row's and
+  // the tangential rows' directions), gap (the normal row's c), master
+  // nodes (global numbers; the rows' further copies) and contact area (a
+  // Tresca slip bound traction times it is the node's slip bound). The
+  // result check reads the relative displacement and the forces from it.
+  std::vector<ContactConstraint> contact;
+  // Shorthand when `contact` is empty: every Normal row presses its node on
+  // one rigid plane with the body's outward normal contactNormal and the
+  // gap contactGap (u . n <= gap), tangents Feti::tangents(n), and the
+  // contact area of each node (absent: 1).
   std::array<double, 3> contactNormal{0, 0, 0};
   double contactGap = 0.0;
   std::map<int, double> contactArea;
@@ -60,9 +68,14 @@ class FetiProblem {
  public:
   // Parameters: "Formulation" (TFETI | FETI-1), "Local Solver" (CHOLMOD | KLU2 | Tacho),
   // "Gluing" (Orthonormal | Non-redundant | Full), "Dual Operator" (Auto | Explicit | Implicit).
-  // A decomposed mesh: assembles the subdomains of this rank and derives the
-  // rows of B (meshConstraintRows).
-  FetiProblem(const Mesh::Discretization& disc, const Fem::Material& mat, const Fem::LoadCase& loads,
+  // A decomposed mesh: assembles the subdomains of this rank (each body with
+  // its material) and derives the rows of B (meshConstraintRows) with the
+  // contact constraints of contactConstraints() (none: no contact).
+  FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
+              const std::vector<ContactConstraint>& contact, const Teuchos::ParameterList& params,
+              const RCP<const Comm>& comm);
+  // The one-face contact with a rigid plane parallel to it (planeBeyondFace).
+  FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
               const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm);
   // Subdomains an application assembled: this rank's subdomains (ids
   // ascending, each rank a contiguous range, rank 0 first; K, f, the global
@@ -81,6 +94,8 @@ class FetiProblem {
   const Vector& f() const { return *f_; }
   const Vector& c() const { return *constraints_.c; }
   const LocalContact& contact() const { return constraints_.contact; }
+  // The contact constraints of all contact nodes (every rank holds all).
+  const std::vector<ContactConstraint>& contactConstraints() const { return contactConstraints_; }
   // Whether the problem is a contact problem (the mesh's contact is enabled,
   // or an application gave Normal rows), on every rank.
   bool hasContact() const { return hasContact_; }
@@ -154,6 +169,7 @@ class FetiProblem {
   RCP<Vector> f_;
   std::map<long long, double> dirichlet_;
   DualConstraints constraints_;
+  std::vector<ContactConstraint> contactConstraints_;
   std::vector<std::vector<int>> boundary_;         // boundaryDofs()
   std::unique_ptr<SubdomainPseudoInverse> Kplus_;
   // The Dirichlet preconditioner, factored on first use (only projected CG

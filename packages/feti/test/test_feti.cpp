@@ -72,7 +72,7 @@ FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm, Teuchos::FancyO
   p.set("Gluing", c.gluing);
   p.set("Formulation", c.formulation);
   p.set("Dual Operator", c.dualOperator);
-  auto problem = rcp(new Feti::FetiProblem(disc, {2.1e11, 0.3}, loads(), {}, p, comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), Feti::ContactSpec{}, p, comm));
   if (problem->explicitDualOperator()) {
     // B (K+)_bb B' x from the dense blocks equals B K+ B' x by sparse solves.
     Vector x(problem->dualMap()), p(problem->primalMap()), z1(problem->primalMap()), z2(problem->primalMap());
@@ -125,7 +125,7 @@ void checkCase(const Case& c, Teuchos::FancyOStream& out, bool& success) {
   out << name << "\n";
   const auto feti = solveFeti(c, comm, out, success);
   auto disc = makeDisc(c, *comm);
-  Fem::MonolithicSystem mono(disc, {2.1e11, 0.3}, loads(), comm);
+  Fem::MonolithicSystem mono(disc, Fem::Material{2.1e11, 0.3}, loads(), comm);
   Teuchos::ParameterList mp = *Fem::MonolithicSystem::getValidParameters();
   mp.set("Linear Solver", "Direct");
   const auto ref = mono.solve(mp);

@@ -25,7 +25,7 @@ LocalCsr regularizedStiffness(Mesh::CellType type, int cells, std::vector<int>& 
   spec.cells = {cells, cells, cells};
   const auto mesh = Mesh::generateBox(spec);
   const auto sub = Mesh::extractSubdomains(mesh, std::vector<int>(mesh.numCells(), 0), 1)[0];
-  const auto sys = Fem::assembleSubdomain(mesh, sub, {2.1e11, 0.3}, {});
+  const auto sys = Fem::assembleSubdomain(mesh, sub, Fem::Material{2.1e11, 0.3}, {});
   LocalCsr K = sys.K;
   const double rho = K.maxAbsDiagonal();
   for (int i : Feti::fixingDofs(sys.R, K.rows))

@@ -41,6 +41,8 @@ std::vector<Fem::ContactNodeForce> contactForces(const SemismoothResult& r) {
     out[i].normalForce = r.lambdaN[i];
     for (int c = 0; c < 3; ++c) out[i].tangentialForce[c] = -r.lambdaT[i][c];
     out[i].slipBound = r.slipBound[i];
+    out[i].normal = r.normal[i];
+    out[i].gap = r.gap[i];
   }
   return out;
 }
@@ -65,22 +67,6 @@ std::vector<int> contactStatus(const SemismoothResult& r) {
     out[i] = !inContact(s) ? 0 : (s == NodeState::ContactStick ? 1 : 2);
   }
   return out;
-}
-
-Fem::RigidPlane contactPlane(const SemismoothResult& r) {
-  requireContactData(r);
-  TRIBOS_REQUIRE(!r.contactNodes.empty(), "semismooth*: no contact nodes");
-  Fem::RigidPlane plane;
-  plane.normal = r.normal[0];
-  plane.gap = r.gap[0];
-  for (size_t i = 1; i < r.contactNodes.size(); ++i) {
-    double diff = std::abs(r.gap[i] - plane.gap);
-    for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(r.normal[i][c] - plane.normal[c]));
-    TRIBOS_REQUIRE(diff <= 1e-8 * (1 + std::abs(plane.gap)),
-                   "semismooth*: contact nodes " << r.contactNodes[0] << " and " << r.contactNodes[i]
-                                                 << " do not lie on one plane (normal or gap differ)");
-  }
-  return plane;
 }
 
 }  // namespace Semismooth

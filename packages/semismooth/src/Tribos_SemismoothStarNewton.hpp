@@ -156,9 +156,6 @@ std::vector<std::array<double, 3>> contactSlip(const SemismoothResult& result);
 // Status of each contact node as written to the result file: 0 no contact,
 // 1 stick, 2 slip (frictionless contact nodes slip).
 std::vector<int> contactStatus(const SemismoothResult& result);
-// The rigid plane of the contact (the common normal of the contact nodes and
-// their gap); throws when the contact nodes do not share one plane.
-Fem::RigidPlane contactPlane(const SemismoothResult& result);
 
 // A body on a rigid plane, as solveFromMesh() takes it: the mesh, material
 // and loads, the contact face with its gap and the Tresca slip bound per

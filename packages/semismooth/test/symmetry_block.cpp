@@ -100,7 +100,7 @@ Fem::ResultKKT kkt(const Semismooth::SemismoothResult& r, Fem::FrictionLaw::Kind
   // Every contact node is held by one rank.
   std::vector<Fem::ContactNodeForce> forces;
   if (comm->getRank() == 0) forces = Semismooth::contactForces(r);
-  return Fem::resultKKT(r.u, r.Ku, r.f, r.dirichlet, Semismooth::contactPlane(r), fl, forces, *comm);
+  return Fem::resultKKT(r.u, r.Ku, r.f, r.dirichlet, fl, forces, *comm);
 }
 
 void printKKT(const std::string& what, const Fem::ResultKKT& k, Teuchos::FancyOStream& out) {
