@@ -3,15 +3,10 @@
 #include <gmsh.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
 #include <map>
 #include <new>
-#include <sstream>
 #include <unordered_map>
 
 #include "Tribos_Error.hpp"
