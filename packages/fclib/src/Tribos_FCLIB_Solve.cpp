@@ -351,7 +351,8 @@ ContactDualPtr contactDual(const Operator& A, const std::vector<double>& q, cons
 
 // The common part: W (as op), q, mu -> r, u, status, err, spectrum.
 SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, const std::vector<double>& mu,
-                         const SolveOptions& options, Friction::FrictionSolver& solver, const RCP<const Map>& map) {
+                         const SolveOptions& options, Friction::FrictionSolver& solver, const RCP<const Map>& map,
+                         double kktLimit) {
   SolveReport rep;
   rep.algorithm = options.algorithm;
   const int nc = static_cast<int>(mu.size());
@@ -417,7 +418,12 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
     rep.err = naturalMapError(rep.r, rep.u, mu, q);
     if (target <= 0) break;
     rep.roundErrors.push_back(rep.err.relativeToQ);
-    if (!s.converged || !(rep.err.relativeToQ > target) || round == rounds) break;
+    // Met when the natural-map error and the KKT residuals of the result
+    // check (judgeResult) are: a next round is asked for when either is not.
+    kktResiduals(rep.r, rep.u, mu, q, rep);
+    const bool met = rep.err.relativeToQ <= target && rep.kktNormal <= kktLimit &&
+                     rep.kktComplementarity <= kktLimit && rep.kktFriction <= kktLimit;
+    if (!s.converged || met || round == rounds) break;
     // The algorithm met its own test but not the natural-map error: ask again
     // from this result, the tolerance scaled by how far the error is off.
     const int used = s.msa_iterations > 0 ? s.msa_iterations : s.outer_iterations;  // the loop the limit counts
@@ -432,13 +438,14 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
       solver.setMaximumIterations(iterationsLeft);
     }
     if (requested <= 1.0001e-15) break;
-    requested = std::max(1e-15, requested * std::min(0.1, 0.5 * target / rep.err.relativeToQ));
+    requested = std::max(1e-15, requested * std::min(0.1, 0.5 * target / std::max(rep.err.relativeToQ, target)));
     solver.setRequestedTolerance(requested);
   }
   if (target > 0 && rep.status.converged && rep.err.relativeToQ > target)
     rep.note = "the algorithm met its own stopping test " + std::to_string(rep.rounds) +
                " time(s) with tightened tolerances (down to " + std::to_string(requested) +
                ") but not the natural-map tolerance";
+  (void)kktLimit;
   rep.timeSolve = seconds(t1);
   rep.n_A = A.count() - n_A0;
   kktResiduals(rep.r, rep.u, mu, q, rep);
@@ -513,14 +520,14 @@ Setup setup(const SolveOptions& options) {
   SolverPtr solver = registry.create(options.algorithm, params);
   if (options.naturalMapTolerance > 0) solver->setRequestedTolerance(std::max(options.naturalMapTolerance, 1e-15));
   if (options.maxIterations > 0) solver->setMaximumIterations(options.maxIterations);
-  const double tolerance = solver->requestedTolerance();
+  const double tolerance =
+      options.naturalMapTolerance > 0 ? options.naturalMapTolerance : solver->requestedTolerance();
   return {solver, {tolerance, factor * tolerance}};
 }
 
 void finish(const ResultLimit& limit, const SolveOptions& options, SolveReport& rep) {
-  rep.tolerance = options.naturalMapTolerance > 0 ? options.naturalMapTolerance : limit.tolerance;
-  rep.limit = options.naturalMapTolerance > 0 ? limit.limit / limit.tolerance * options.naturalMapTolerance
-                                              : limit.limit;
+  rep.tolerance = limit.tolerance;
+  rep.limit = limit.limit;
   rep.naturalMapTolerance = options.naturalMapTolerance;
   judgeResult(rep);
 }
@@ -574,7 +581,7 @@ SolveReport solve(const LocalProblem& problem, const SolveOptions& options, cons
     rep = solveWithZeroW(problem.q, problem.mu, options);
   } else {
     DelassusOperator op(problem.W, map);
-    rep = solveReduced(op, problem.q, problem.mu, options, *s.solver, map);
+    rep = solveReduced(op, problem.q, problem.mu, options, *s.solver, map, s.limit.limit);
   }
   finish(s.limit, options, rep);
   return rep;
@@ -599,7 +606,7 @@ SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, con
     rep = solveWithZeroW(q, problem.mu, options);
   } else {
     DelassusOperator op(problem.H, M, map);
-    rep = solveReduced(op, q, problem.mu, options, *s.solver, map);
+    rep = solveReduced(op, q, problem.mu, options, *s.solver, map, s.limit.limit);
   }
   rep.timeSetup += reduction;
   // v = M^-1 (H r + f), and u = H' v + w from it (the same as W r + q up to round-off).
