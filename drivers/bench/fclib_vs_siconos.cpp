@@ -6,8 +6,11 @@
 // formed, q = H'M^-1 f + w), and both libraries solve that.
 //   tribos_fclib_vs_siconos FILE.hdf5 [--tolerance 1e-8] [--max-iterations N] [--repeat R]
 //                           [--siconos PROX,NSN-AC,NSGS] [--tribos "Semismooth Newton,Algorithm2,MSA+Algorithm1"]
-//                           [--storage sparse-block|sparse|dense]
-// Prints one Markdown table row per solver: time (the fastest of R runs, the
+//                           [--storage sparse-block|sparse|dense] [--siconos-scaled]
+// Prints one Markdown table row per solver (Siconos' rows note its return
+// code, the error its solver reported, dparam[RESIDU], and its
+// fc3d_compute_error of the returned r with u = c (W r + q), on the
+// problem it solved: c W, c q with c = 1/max|W_ij|, see siconosMatrix): time (the fastest of R runs, the
 // solver call alone: fc3d_driver on the assembled matrix; FCLIB::solve on the
 // read problem, without the diagnostic spectrum), iterations (Siconos:
 // iparam[ITER_DONE]; Tribos: Newton steps, Algorithm 2 loops, MSA steps),
@@ -37,6 +40,7 @@ extern "C" {
 #include "NumericsVerbose.h"
 #include "SolverOptions.h"
 #include "SparseBlockMatrix.h"
+#include "fc3d_compute_error.h"
 }
 
 namespace {
@@ -51,6 +55,7 @@ struct Args {
   std::vector<std::string> siconos{"PROX", "NSN-AC", "NSGS"};
   std::vector<std::string> tribos{"Semismooth Newton", "Algorithm2", "MSA+Algorithm1"};
   std::string storage = "sparse-block";
+  bool scaleSiconos = false;
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -99,6 +104,8 @@ Args parse(int argc, char** argv) {
       a.storage = next();
       TRIBOS_REQUIRE(a.storage == "sparse-block" || a.storage == "sparse" || a.storage == "dense",
                      "--storage: unknown \"" << a.storage << "\"; valid: sparse-block, sparse, dense");
+    } else if (s == "--siconos-scaled") {
+      a.scaleSiconos = true;
     } else if (!s.empty() && s[0] == '-') {
       throw Error("unknown option " + s);
     } else {
@@ -149,19 +156,24 @@ struct Row {
 
 // ---------------------------------------------------------------- Siconos
 
-NumericsMatrix* siconosMatrix(const FCLIB::SparseMatrix& W, const std::string& storage) {
+// c W: c = 1 by default, c = 1 / max |W_ij| with --siconos-scaled. c W, c q
+// have the same solution r (u scales by c), but ||F_nat||/||q|| is not
+// invariant under c (it subtracts velocities from forces), so Siconos then
+// stops on the measure of the scaled problem while the table measures the
+// original one.
+NumericsMatrix* siconosMatrix(const FCLIB::SparseMatrix& W, double c, const std::string& storage) {
   const int n = W.m;
   if (storage == "dense") {
     NumericsMatrix* A = NM_create(NM_DENSE, n, n);
     std::fill(A->matrix0, A->matrix0 + static_cast<size_t>(n) * n, 0.0);
     for (int i = 0; i < n; ++i)
-      for (int k = W.rowptr[i]; k < W.rowptr[i + 1]; ++k) A->matrix0[static_cast<size_t>(W.col[k]) * n + i] += W.val[k];
+      for (int k = W.rowptr[i]; k < W.rowptr[i + 1]; ++k) A->matrix0[static_cast<size_t>(W.col[k]) * n + i] += c * W.val[k];
     return A;
   }
   NumericsMatrix* T = NM_create(NM_SPARSE, n, n);
   NM_triplet_alloc(T, W.nnz());
   for (int i = 0; i < n; ++i)
-    for (int k = W.rowptr[i]; k < W.rowptr[i + 1]; ++k) NM_entry(T, i, W.col[k], W.val[k]);
+    for (int k = W.rowptr[i]; k < W.rowptr[i + 1]; ++k) NM_entry(T, i, W.col[k], c * W.val[k]);
   if (storage == "sparse") return T;
   NumericsMatrix* A = NM_create(NM_SPARSE_BLOCK, n, n);
   TRIBOS_REQUIRE(SBM_from_csparse(3, NM_csc(T), A->matrix1) == 0, "Siconos: SBM_from_csparse failed");
@@ -181,9 +193,11 @@ Row runSiconos(const std::string& name, const FCLIB::LocalProblem& p, const Args
   const int nc = p.numberOfContacts(), n = 3 * nc;
   row.time = std::numeric_limits<double>::infinity();
   std::vector<double> r(n), u(n);
+  const double c = args.scaleSiconos ? 1.0 / p.W.maxAbs() : 1.0;
   for (int rep = 0; rep < args.repeat; ++rep) {
-    NumericsMatrix* W = siconosMatrix(p.W, args.storage);
+    NumericsMatrix* W = siconosMatrix(p.W, c, args.storage);
     std::vector<double> q(p.q), mu(p.mu);
+    for (double& v : q) v *= c;
     FrictionContactProblem* problem = frictionContactProblem_new_with_data(3, nc, W, q.data(), mu.data());
     SolverOptions* options = solver_options_create(siconosId(name));
     options->dparam[SICONOS_DPARAM_TOL] = args.tolerance;
@@ -195,7 +209,18 @@ Row runSiconos(const std::string& name, const FCLIB::LocalProblem& p, const Args
     const double t = seconds(t0);
     row.time = std::min(row.time, t);
     row.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
-    row.note = info == 0 ? "" : "info " + std::to_string(info);
+    // Siconos' own measure of its result: the error its solver reported and
+    // fc3d_compute_error on (r, W r + q), which should be our residual.
+    std::vector<double> w(n);
+    p.W.multiply(r, w);
+    for (int i = 0; i < n; ++i) w[i] = c * (w[i] + p.q[i]);
+    double normQ = 0, recomputed = 0;
+    for (double v : q) normQ += v * v;
+    fc3d_compute_error(problem, r.data(), w.data(), args.tolerance, options, std::sqrt(normQ), &recomputed);
+    char own[128];
+    std::snprintf(own, sizeof own, "info %d, reported error %.2e, fc3d_compute_error %.2e", info,
+                  options->dparam[SICONOS_DPARAM_RESIDU], recomputed);
+    row.note = own;
     solver_options_delete(options);
     // The problem holds W, q and mu; q and mu are ours (std::vector).
     problem->q = nullptr;

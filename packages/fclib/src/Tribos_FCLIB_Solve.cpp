@@ -377,7 +377,12 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   if (auto* newton = dynamic_cast<Friction::SemismoothNewton*>(&solver)) {
     explicitW = op.explicitMatrix();
     newton->setHessianMatrix(&explicitW, rep.scale);
-    newton->setLinearSolver(rcp(new KluNewtonSolver()));
+    // KLU for sparse W; LAPACK's dense LU once W has more than a tenth of
+    // its entries (FETI exports: W = H'M^-1 H is dense), where a sparse
+    // factorization only adds indexing to the same fill.
+    const double density = static_cast<double>(explicitW.col.size()) / std::max(1.0, double(n) * n);
+    newton->setLinearSolver(density > 0.1 ? Friction::denseLuSolver()
+                                          : RCP<Friction::NewtonLinearSolver>(rcp(new KluNewtonSolver())));
     const double s = rep.scale;  // v = A r - b = s (W r + q) = s u
     newton->setStoppingMeasure([&q, &mu, s](const std::vector<double>& r, const std::vector<double>& v) {
       std::vector<double> u(v.size());
