@@ -284,7 +284,9 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             "Levenberg-Marquardt term mu_k = this times min(1, ||Phi(x_k)|| / ||Phi(x_0)||) on the diagonal of J "
             "(rows scaled by rho, so the diagonal of J is about 1): it bounds the step where A is singular "
             "(closed or sticking contacts whose rows of A are dependent, as in multibody problems) and vanishes "
-            "at the solution; 1e-3 measured best on the FCLIB dev set (docs/semismooth.md)",
+            "at the solution; 1e-3 measured best on the FCLIB dev set (docs/semismooth.md). It is the starting "
+            "weight lambda: a step the line search cuts below 1e-3 multiplies lambda by 10 (up to 100), a full "
+            "step divides it by 10 (down to this value)",
             range<double>(0.0, 1.0));
     pl->set("Dense Limit", 5000, "without an explicit matrix, A is formed densely up to this many rows",
             range<int>(1, 100000));
@@ -387,6 +389,8 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
   const double phi0 = std::max(norm2(phi), 1e-300);
   LocalCsr J;
   int lineSearchFailures = 0;
+  const double kMaxLambda = 1e2;
+  double lambda = regularization;
   for (int it = 0;; ++it) {
     const double normPhi = norm2(phi);
     const double m = measure(x, v);
@@ -413,7 +417,7 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
       break;
     }
     // The Newton direction, regularized when the factorization fails.
-    double mu = regularization * std::min(1.0, normPhi / phi0);
+    double mu = lambda * std::min(1.0, normPhi / phi0);
     bool factored = false;
     for (int attempt = 0; attempt < 4 && !factored; ++attempt) {
       ac.jacobian(x, v, A, mu, J);
@@ -442,11 +446,22 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
       ++st.inner_iterations;
       if (k < maxBack) t *= beta;
     }
+    st.outer_iterations = it + 1;
+    // Adaptive Levenberg-Marquardt weight: a step cut short (the direction
+    // is poor where A is singular) raises lambda for the next direction, a
+    // full step lowers it back towards Regularization. Without any Armijo
+    // step the iterate stays and the direction is recomputed with the larger
+    // lambda, as long as lambda may still grow.
+    if (armijo && (!accepted || t < 1e-3) && lambda < kMaxLambda) {
+      lambda = std::min(kMaxLambda, std::max(10.0 * lambda, 1e-8));
+      if (!accepted) continue;
+    } else if (t == 1.0) {
+      lambda = std::max(regularization, 0.1 * lambda);
+    }
     if (!accepted) ++lineSearchFailures;
     x.swap(xt);
     velocity(x, v);  // exact, not v + t w, so that round-off does not accumulate
     ac.value(x, v, phi);
-    st.outer_iterations = it + 1;
   }
   if (lineSearchFailures > 0) st.reason += " (" + std::to_string(lineSearchFailures) + " line-search failures)";
   {

@@ -402,6 +402,7 @@ Teuchos::ParameterList solverParameters(double tolerance) {
   pl.sublist("MSA").set("Maximum Iterations", 500);
   pl.sublist("Algorithm 2").set("Relative Tolerance", tolerance);
   pl.sublist("Algorithm 2").set("Maximum Iterations", 5000);
+  pl.sublist("Semismooth Newton").set("Relative Tolerance", tolerance);
   return pl;
 }
 
