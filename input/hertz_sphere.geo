@@ -1,0 +1,104 @@
+// Hertz contact, quarter model: an elastic hemisphere (radius R, flat top
+// face) touching an elastic block at the origin, cut by the symmetry planes
+// x = 0 and y = 0. Two physical volumes ("sphere", "block") meshed
+// separately (no Coherence / BooleanFragments: no shared nodes), P1
+// tetrahedra, refined near the contact point by a size field; the sphere
+// (slave side) is meshed finer than the block (master side).
+//
+// Units: mm (forces in N, moduli in MPa). input/hertz_sphere.msh is Level 1:
+//   gmsh -3 -format msh4 input/hertz_sphere.geo -o input/hertz_sphere.msh
+// finer levels (h near the contact halves per level):
+//   gmsh -3 -format msh4 -setnumber Level 3 input/hertz_sphere.geo -o hertz_sphere_3.msh
+//
+// Physical surfaces: sphere_contact (the spherical face, slave), sphere_top
+// (z = R, displaced), sphere_sym_x, sphere_sym_y; block_top (z = 0, master),
+// block_bottom (z = -H, fixed), block_sym_x, block_sym_y, block_sides.
+SetFactory("OpenCASCADE");
+
+If (!Exists(Level))
+  Level = 1;  // gmsh -setnumber Level N
+EndIf
+R = 10;      // sphere radius
+L = 30;      // block extent along x and y (quarter model)
+H = 30;      // block depth
+hc = 0.1 / 2^(Level - 1);  // element size at the contact point (sphere); the contact radius a ~ 1
+rc = 1.3;    // radius of the uniformly refined zone (about 1.3 a)
+grow = 0.4;  // size gradient beyond it
+hs = 3;      // largest element, sphere
+hb = 6;      // largest element, block
+ratio = 1.5; // block (master) size / sphere (slave) size near the contact
+
+// The sphere, rotated so that its poles (degenerate points of the OCC
+// parametrisation) lie on the x axis, far from the contact point.
+Sphere(1) = {0, 0, R, R};
+Rotate {{0, 1, 0}, {0, 0, R}, Pi / 2} { Volume{1}; }
+Box(2) = {0, 0, 0, R, R, R};
+BooleanIntersection(3) = { Volume{1}; Delete; }{ Volume{2}; Delete; };
+Box(4) = {0, 0, -H, L, L, H};
+
+Physical Volume("sphere") = {3};
+Physical Volume("block") = {4};
+
+eps = 1e-6;
+sx() = Surface In BoundingBox {-eps, -eps, -eps, eps, R + eps, R + eps};
+sy() = Surface In BoundingBox {-eps, -eps, -eps, R + eps, eps, R + eps};
+st() = Surface In BoundingBox {-eps, -eps, R - eps, R + eps, R + eps, R + eps};
+sall() = Boundary{ Volume{3}; };
+scurved() = sall();
+scurved() -= sx();
+scurved() -= sy();
+scurved() -= st();
+Physical Surface("sphere_contact") = scurved();
+Physical Surface("sphere_top") = st();
+Physical Surface("sphere_sym_x") = sx();
+Physical Surface("sphere_sym_y") = sy();
+
+Physical Surface("block_top") = Surface In BoundingBox {-eps, -eps, -eps, L + eps, L + eps, eps};
+Physical Surface("block_bottom") = Surface In BoundingBox {-eps, -eps, -H - eps, L + eps, L + eps, -H + eps};
+Physical Surface("block_sym_x") = Surface In BoundingBox {-eps, -eps, -H - eps, eps, L + eps, eps};
+Physical Surface("block_sym_y") = Surface In BoundingBox {-eps, -eps, -H - eps, L + eps, eps, eps};
+Physical Surface("block_sides") = Surface In BoundingBox {L - eps, -eps, -H - eps, L + eps, L + eps, eps};
+Physical Surface("block_sides") += Surface In BoundingBox {-eps, L - eps, -H - eps, L + eps, L + eps, eps};
+
+// Size fields: the distance to the contact point (the origin), a plateau of
+// size h0 up to rc, then a linear growth; one per body, each restricted to
+// its body and its boundary.
+origin() = Point In BoundingBox {-eps, -eps, -eps, eps, eps, eps};
+Field[1] = Distance;
+Field[1].PointsList = {origin()};
+
+Field[2] = Threshold;
+Field[2].InField = 1;
+Field[2].SizeMin = hc;
+Field[2].SizeMax = hs;
+Field[2].DistMin = rc;
+Field[2].DistMax = rc + (hs - hc) / grow;
+Field[3] = Restrict;
+Field[3].InField = 2;
+Field[3].VolumesList = {3};
+Field[3].SurfacesList = {sall()};
+cs() = Abs(Boundary{ Surface{sall()}; });
+Field[3].CurvesList = {cs()};
+
+Field[4] = Threshold;
+Field[4].InField = 1;
+Field[4].SizeMin = ratio * hc;
+Field[4].SizeMax = hb;
+Field[4].DistMin = rc;
+Field[4].DistMax = rc + (hb - ratio * hc) / grow;
+ball() = Boundary{ Volume{4}; };
+Field[5] = Restrict;
+Field[5].InField = 4;
+Field[5].VolumesList = {4};
+Field[5].SurfacesList = {ball()};
+cb() = Abs(Boundary{ Surface{ball()}; });
+Field[5].CurvesList = {cb()};
+
+Field[6] = Min;
+Field[6].FieldsList = {3, 5};
+Background Field = 6;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeFromCurvature = 0;
+Mesh.MeshSizeMax = hb;
+Mesh.Optimize = 1;
