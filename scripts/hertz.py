@@ -153,6 +153,7 @@ def analyse(directory, R=RADIUS, base="solution", input_file=INPUT, overrides=()
         x = f["points/contact/geometry"][...]
         fn = f["points/contact/normal_force"][...].ravel()
         status = f["points/contact/status"][...].ravel().astype(int)
+        weight = f["points/contact/master_weight"][...].max(axis=1) if "points/contact/master_weight" in f else None
     Estar = effective_modulus(input_file, overrides)
     r = np.hypot(x[:, 0], x[:, 1])
     F = 4.0 * fn.sum()
@@ -211,6 +212,7 @@ def analyse(directory, R=RADIUS, base="solution", input_file=INPUT, overrides=()
         "r": r.tolist(),
         "pressure": pressure.tolist(),
         "status": status.tolist(),
+        "master_weight": None if weight is None else weight.tolist(),
     }
 
 
@@ -284,14 +286,22 @@ def plot(rows, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12.5, 4.6))
     fine = rows[-1]
     rr = np.linspace(0, fine["a"], 200)
     r, pr = np.array(fine["r"]), np.array(fine["pressure"])
     ax1.plot(rr, fine["p0"] * np.sqrt(1 - (rr / fine["a"]) ** 2), "k-", label="Hertz (F of the run)")
     ax1.plot([fine["a"], fine["a"] * 1.6], [0, 0], "k-")
+    ax1.plot(rr, fine["p0_h"] * np.sqrt(np.clip(1 - (rr / fine["a_fit"]) ** 2, 0, None)), "k--", lw=1,
+             label="fit: p0_h = %.0f, a_fit = %.3f" % (fine["p0_h"], fine["a_fit"]))
     keep = r < 1.6 * fine["a"]
-    ax1.plot(r[keep], pr[keep], "o", ms=3, color="C3", label="nodal pressure f_i / A_i")
+    if fine.get("master_weight"):
+        w = np.array(fine["master_weight"])[keep]
+        sc = ax1.scatter(r[keep], pr[keep], c=w, s=9, cmap="viridis", vmin=1 / 3, vmax=1,
+                         label="nodal pressure f_i / A_i")
+        fig.colorbar(sc, ax=ax1, label="largest master weight (1: on a master node)")
+    else:
+        ax1.plot(r[keep], pr[keep], "o", ms=3, color="C3", label="nodal pressure f_i / A_i")
     ax1.set_xlabel("r [mm]")
     ax1.set_ylabel("contact pressure [MPa]")
     ax1.set_title("Level %d (h = %.3f mm, %d dofs)" % (fine["level"], fine["h"], fine["dofs"]))
@@ -345,7 +355,8 @@ def main():
         with open(args.table, "w") as f:
             f.write(table(rows, True) + "\n")
     with open(os.path.join(args.out, "hertz.json"), "w") as f:
-        json.dump([{k: v for k, v in row.items() if k not in ("r", "pressure", "status")} for row in rows], f, indent=1)
+        json.dump([{k: v for k, v in row.items() if k not in ("r", "pressure", "status", "master_weight")}
+                   for row in rows], f, indent=1)
     if not args.no_plot:
         plot(rows, args.plot)
     bad = [row["level"] for row in rows if not row["converged"]]
