@@ -4,7 +4,8 @@
 // (FCLIB::naturalMapError, ||F_nat|| / ||q||), not by each library's own
 // error. A global problem is reduced to its local one first (W = H'M^-1 H
 // formed, q = H'M^-1 f + w), and both libraries solve that.
-//   tribos_fclib_vs_siconos FILE.hdf5 [--tolerance 1e-8] [--max-iterations N] [--repeat R]
+//   tribos_fclib_vs_siconos FILE.hdf5 [--tolerance 1e-8] [--max-iterations N (Siconos, 10000)]
+//                           [--tribos-max-iterations N (default: the algorithms' own)] [--repeat R]
 //                           [--siconos PROX,NSN-AC,NSGS] [--tribos "Semismooth Newton,Algorithm2,MSA+Algorithm1"]
 //                           [--storage sparse-block|sparse|dense] [--siconos-scaled]
 // Prints one Markdown table row per solver (Siconos' rows note its return
@@ -50,7 +51,8 @@ using namespace Tribos;
 struct Args {
   std::string input;
   double tolerance = 1e-8;
-  int maxIterations = 10000;
+  int maxIterations = 10000;        // Siconos' iparam[MAX_ITER]
+  int tribosMaxIterations = 0;      // 0: each algorithm's own limit (FCLIB defaults)
   int repeat = 3;
   std::vector<std::string> siconos{"PROX", "NSN-AC", "NSGS"};
   std::vector<std::string> tribos{"Semismooth Newton", "Algorithm2", "MSA+Algorithm1"};
@@ -92,6 +94,10 @@ Args parse(int argc, char** argv) {
       const double v = number(next());
       TRIBOS_REQUIRE(v >= 1 && v <= 1e8 && v == std::floor(v), "--max-iterations: expected an integer >= 1");
       a.maxIterations = static_cast<int>(v);
+    } else if (s == "--tribos-max-iterations") {
+      const double v = number(next());
+      TRIBOS_REQUIRE(v >= 1 && v <= 1e8 && v == std::floor(v), "--tribos-max-iterations: expected an integer >= 1");
+      a.tribosMaxIterations = static_cast<int>(v);
     } else if (s == "--repeat") {
       const double v = number(next());
       TRIBOS_REQUIRE(v >= 1 && v <= 100 && v == std::floor(v), "--repeat: expected an integer in 1 .. 100");
@@ -240,7 +246,7 @@ Row runTribos(const std::string& name, const FCLIB::LocalProblem& p, const Args&
   FCLIB::SolveOptions options;
   options.algorithm = name;
   options.naturalMapTolerance = args.tolerance;
-  options.maxIterations = args.maxIterations;
+  options.maxIterations = args.tribosMaxIterations;
   options.denseSpectrumLimit = 0;
   FCLIB::SolveReport rep;
   for (int k = 0; k < args.repeat; ++k) {
