@@ -45,8 +45,9 @@ Estimators from the finite element result:
         is a lower bound of the contact radius, within one element).
 
 Writes the table (stdout, and --table as Markdown), OUT/hertz.json with every
-figure, and the plot of nodal pressure against r with Hertz's curve
-(--plot, default docs/images/hertz_pressure.png). --no-run analyses results
+figure, the plot of nodal pressure against r with Hertz's curve (--plot,
+default docs/images/hertz_pressure.png) and, when Level 1 is among the
+levels, its contact meshes seen from above (hertz_mesh.png beside it). --no-run analyses results
 already in OUT. The script exits 1 if a run fails or does not converge.
 """
 import argparse
@@ -247,6 +248,8 @@ def run(level, args):
     t0 = time.time()
     done = subprocess.run(cmd, stdout=subprocess.DEVNULL)
     wall = time.time() - t0
+    with open(os.path.join(directory, "wall_s.txt"), "w") as f:
+        f.write("%.2f\n" % wall)
     if done.returncode not in (0, 2):
         fail("level %d: tribos exited with %d" % (level, done.returncode))
     return directory, wall
@@ -306,21 +309,66 @@ def plot(rows, path):
     ax1.set_ylabel("contact pressure [MPa]")
     ax1.set_title("Level %d (h = %.3f mm, %d dofs)" % (fine["level"], fine["h"], fine["dofs"]))
     ax1.legend()
-    xx = np.linspace(0, 1, 200)
-    ax2.plot(xx, np.sqrt(1 - xx * xx), "k-", label="Hertz")
-    ax2.plot([1, 1.6], [0, 0], "k-")
-    for i, row in enumerate(rows):
-        r, pr = np.array(row["r"]) / row["a"], np.array(row["pressure"]) / row["p0"]
-        keep = r < 1.6
-        ax2.plot(r[keep], pr[keep], "o^sDv"[i % 5], ms=3.5, mfc="none", color="C%d" % i,
-                 label="Level %d, h = %.3f" % (row["level"], row["h"]))
-    ax2.set_xlabel("r / a")
-    ax2.set_ylabel("p / p0")
-    ax2.set_title("all levels, scaled by Hertz's a and p0")
+    h = np.array([row["h"] for row in rows])
+    for key, label, marker in (("err_a", "|a_h / a - 1|  (moment)", "o"), ("err_a_fit", "|a_fit / a - 1|  (fit)", "s"),
+                               ("err_p0", "|p0_h / p0 - 1|  (fit)", "^")):
+        e = np.abs([row[key] for row in rows])
+        ax2.loglog(h, 100 * e, marker + "-", label=label)
+    if len(rows) > 1:
+        ax2.loglog(h, 100 * abs(rows[0]["err_p0"]) * (h / h[0]), "k:", lw=1, label="slope 1")
+    ax2.set_xlabel("h near the contact [mm]")
+    ax2.set_ylabel("error against Hertz [%]")
+    ax2.set_title("errors under refinement (levels %s)" % ", ".join(str(row["level"]) for row in rows))
+    ax2.grid(True, which="both", alpha=0.3)
     ax2.legend(fontsize=8)
     fig.tight_layout()
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     fig.savefig(path, dpi=110)
+
+
+def mesh_plot(row, path):
+    """The slave facets (sphere) over the master facets (block top) near the
+    contact, seen from above, with the active slave nodes and Hertz's a."""
+    import h5py
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    with h5py.File(os.path.join(row["directory"], "solution.h5"), "r") as f:
+        coords = f["mesh/geometry"][...]
+        cells = f["mesh/topology"][...].astype(int)
+        node = f["points/contact/node"][...].ravel().astype(int)
+        status = f["points/contact/status"][...].ravel().astype(int)
+    facets = tet_boundary_facets(cells)
+    is_slave = np.zeros(len(coords), bool)
+    is_slave[node] = True
+    slave = facets[is_slave[facets].all(axis=1)]
+    top = np.abs(coords[:, 2]) < 1e-9
+    master = facets[top[facets].all(axis=1) & ~is_slave[facets].any(axis=1)]
+    fig, ax = plt.subplots(figsize=(6.4, 6))
+    lim = 1.5 * row["a"]
+    for tri, style in ((master, dict(color="C3", lw=1.4)), (slave, dict(color="C0", lw=0.7))):
+        for t in tri:
+            xy = coords[np.append(t, t[0]), :2]
+            if np.hypot(xy[:, 0], xy[:, 1]).min() < 1.2 * lim:
+                ax.plot(xy[:, 0], xy[:, 1], **style)
+    xs = coords[node]
+    act = status > 0
+    ax.plot(xs[act, 0], xs[act, 1], "o", ms=3.5, color="C0", label="active slave node")
+    t = np.linspace(0, np.pi / 2, 100)
+    ax.plot(row["a"] * np.cos(t), row["a"] * np.sin(t), "k--", label="Hertz contact radius a = %.3f mm" % row["a"])
+    ax.plot([], [], color="C3", lw=1.4, label="master facets (block top)")
+    ax.plot([], [], color="C0", lw=0.7, label="slave facets (sphere), projected")
+    ax.set_xlim(0, lim)
+    ax.set_ylim(0, lim)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_title("Level %d: non-matching contact meshes seen from above" % row["level"])
+    ax.legend(loc="upper right", fontsize=8, framealpha=0.95)
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
 
 
 def main():
@@ -347,6 +395,10 @@ def main():
         if not args.no_run:
             directory, wall = run(level, args)
         row = analyse(directory, overrides=args.set)
+        wall_file = os.path.join(directory, "wall_s.txt")
+        if wall is None and os.path.exists(wall_file):
+            with open(wall_file) as f:
+                wall = float(f.read())
         row["level"], row["wall_s"] = level, wall
         rows.append(row)
         print(table([row], False).split("\n")[1], file=sys.stderr, flush=True)
@@ -359,6 +411,9 @@ def main():
                    for row in rows], f, indent=1)
     if not args.no_plot:
         plot(rows, args.plot)
+        coarse = [row for row in rows if row["level"] == 1]
+        if coarse:
+            mesh_plot(coarse[0], os.path.join(os.path.dirname(os.path.abspath(args.plot)), "hertz_mesh.png"))
     bad = [row["level"] for row in rows if not row["converged"]]
     if bad:
         fail("not converged: level(s) %s" % bad)
