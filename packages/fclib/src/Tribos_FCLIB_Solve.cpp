@@ -450,7 +450,6 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
     rep.note = "the algorithm met its own stopping test " + std::to_string(rep.rounds) +
                " time(s) with tightened tolerances (down to " + std::to_string(requested) +
                ") but not the natural-map tolerance";
-  (void)kktLimit;
   rep.timeSolve = seconds(t1);
   rep.n_A = A.count() - n_A0;
   kktResiduals(rep.r, rep.u, mu, q, rep);
