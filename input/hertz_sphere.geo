@@ -5,9 +5,12 @@
 // tetrahedra, refined near the contact point by a size field; the sphere
 // (slave side) is meshed finer than the block (master side).
 //
-// Units: mm (forces in N, moduli in MPa). input/hertz_sphere.msh is Level 1:
+// Units: mm (forces in N, moduli in MPa). Level L sets the element size at
+// the contact point, hc = 0.1 / 2^(L - 1) mm on the sphere (1.5 hc on the
+// block); the contact radius of input/hertz_sphere.xml is a ~ 1 mm.
+// input/hertz_sphere.msh is Level 1 (2772 nodes):
 //   gmsh -3 -format msh4 input/hertz_sphere.geo -o input/hertz_sphere.msh
-// finer levels (h near the contact halves per level):
+// other levels (0: 979 nodes, 2: 12779, 3: 79869), as scripts/hertz.py does:
 //   gmsh -3 -format msh4 -setnumber Level 3 input/hertz_sphere.geo -o hertz_sphere_3.msh
 //
 // Physical surfaces: sphere_contact (the spherical face, slave), sphere_top

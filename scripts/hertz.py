@@ -45,9 +45,10 @@ Estimators from the finite element result:
         is a lower bound of the contact radius, within one element).
 
 Writes the table (stdout, and --table as Markdown), OUT/hertz.json with every
-figure, the plot of nodal pressure against r with Hertz's curve (--plot,
-default docs/images/hertz_pressure.png) and, when Level 1 is among the
-levels, its contact meshes seen from above (hertz_mesh.png beside it). --no-run analyses results
+figure, the plot of nodal pressure against r with Hertz's curve and the
+errors against h (--plot, default OUT/hertz_pressure.png) and, when Level 1
+is among the levels, its contact meshes seen from above (hertz_mesh.png
+beside it). docs/hertz.md has the command that made docs/images/hertz_*.png. --no-run analyses results
 already in OUT. The script exits 1 if a run fails or does not converge.
 """
 import argparse
@@ -380,12 +381,14 @@ def main():
     ap.add_argument("--tribos", default=default_tribos())
     ap.add_argument("--out", default=os.path.join(ROOT, "output", "hertz"))
     ap.add_argument("--table", help="write the table as Markdown to this file")
-    ap.add_argument("--plot", default=os.path.join(ROOT, "docs", "images", "hertz_pressure.png"))
+    ap.add_argument("--plot", help="the pressure plot (default OUT/hertz_pressure.png; docs: "
+                    "docs/images/hertz_pressure.png)")
     ap.add_argument("--no-plot", action="store_true")
     ap.add_argument("--no-run", action="store_true", help="analyse the results already in --out")
     ap.add_argument("--set", action="append", default=[], help="passed to tribos")
     args = ap.parse_args()
     args.out = os.path.abspath(args.out)
+    args.plot = args.plot or os.path.join(args.out, "hertz_pressure.png")
     args.subdomains = {int(k): int(v) for k, v in (x.split(":") for x in args.subdomains)}
     os.makedirs(args.out, exist_ok=True)
     rows = []
