@@ -11,7 +11,9 @@
 #include <sstream>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_FetiContact.hpp"
 #include "Tribos_GmshReader.hpp"
+#include "Tribos_MeshFile.hpp"
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_FrictionSolver.hpp"
@@ -93,6 +95,33 @@ const ParameterList& tractionItem() {
   return p;
 }
 
+ParameterList pairItem(const ParameterList& contact) {
+  ParameterList p("pair");
+  p.set("Slave Surface", "", "the face whose nodes are pressed on the master (the finer side)");
+  p.set("Master Surface", "", "the face of the other body; empty: the rigid plane of Plane Point and Plane Normal");
+  p.set("Type", "Contact", "Contact (unilateral, with friction) or Glued (bonded: no relative motion)",
+        choice(tuple<std::string>("Contact", "Glued")));
+  p.set("Plane Point", Array<double>(3, 0.0), "rigid plane: a point of it");
+  p.set("Plane Normal", Array<double>(Teuchos::tuple<double>(0.0, 0.0, 1.0)),
+        "rigid plane: its normal pointing out of the obstacle, towards the body (scaled to unit length)");
+  p.set("Friction Law", contact.get<std::string>("Friction Law"), "Frictionless, Tresca or Coulomb",
+        choice(tuple<std::string>("Frictionless", "Tresca", "Coulomb")));
+  p.set("Friction Coefficient", contact.get<double>("Friction Coefficient"), "Coulomb F", range<double>(0.0, 1e6));
+  p.set("Slip Bound Traction", contact.get<double>("Slip Bound Traction"), "Tresca slip bound per area",
+        range<double>(0.0, 1e300));
+  p.set("Search Distance", 0.0,
+        "slave nodes farther than this from their closest point on the master (or from the plane) take no part; "
+        "0: no limit",
+        range<double>(0.0, 1e300));
+  return p;
+}
+
+ParameterList bodyItem(const ParameterList& material) {
+  ParameterList p("body");
+  p.sublist("Material").setParameters(material);
+  return p;
+}
+
 RCP<const ParameterList> validParameters() {
   static RCP<ParameterList> pl;
   if (!pl.is_null()) return pl;
@@ -100,11 +129,13 @@ RCP<const ParameterList> validParameters() {
   pl->set("Problem Name", "tribos", "name of the problem in the summary");
   ParameterList& mesh = pl->sublist("Mesh", false, "structured box mesh, or a mesh read from a Gmsh file");
   mesh.set("File", "",
-           "Gmsh mesh of one body (.msh version 4, ASCII or binary, or a .geo script meshed at run time), relative to "
-           "the input file's directory (also when given by --set) or absolute; empty: the box. With a file, Element, "
-           "the ranges, Cells and Level are ignored, faces are the file's physical surfaces (by name), and the "
-           "decomposition is METIS (Partitioner = Structured is taken as METIS with the Subdomain Grid's number of "
-           "subdomains)");
+           "mesh file: Gmsh (.msh version 4, ASCII or binary, or a .geo script meshed at run time; physical volumes "
+           "are bodies, physical surfaces are faces) or Exodus II (.exo, .e, .ex2, .g; element blocks are bodies, "
+           "side sets are faces, node sets may carry Dirichlet conditions), relative to the input file's directory "
+           "(also when given by --set) or absolute; empty: the box. With a file, Element, the ranges, Cells and Level "
+           "are ignored, faces are named as in the file, and the decomposition is METIS per body (Partitioner = "
+           "Structured is taken as METIS with the Subdomain Grid's number of subdomains, spread over the bodies by "
+           "their cell counts)");
   mesh.set("Element", "Tet4", "cell type", choice(tuple<std::string>("Tet4", "Hex8")));
   mesh.set("X Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along x");
   mesh.set("Y Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along y");
@@ -122,20 +153,32 @@ RCP<const ParameterList> validParameters() {
   ParameterList& mat = pl->sublist("Material", false, "isotropic linear elastic material");
   mat.set("Young's Modulus", 2.1e11, "E > 0");
   mat.set("Poisson's Ratio", 0.3, "0 <= nu < 0.5 (nu = 0.5, an incompressible material, locks displacement elements)");
+  pl->sublist("Bodies", false,
+              "one sublist per body with its own \"Material\" (Young's Modulus, Poisson's Ratio); a body named "
+              "here must exist in the mesh (the box is the one body \"body\"); bodies not named take Material");
   ParameterList& bc = pl->sublist("Boundary Conditions", false, "Dirichlet conditions and loads");
   bc.sublist("Dirichlet", false, "one sublist per condition: Face, Components, Value");
   bc.sublist("Traction", false, "one sublist per load: Face, Value");
   bc.set("Volume Force", Array<double>(3, 0.0), "volume force density (x, y, z)");
-  ParameterList& contact = pl->sublist("Contact", false, "contact of a face with a rigid plane");
+  ParameterList& contact = pl->sublist("Contact", false,
+                                       "contact pairs (Pairs), or one face against a rigid plane parallel to it "
+                                       "(Face, Gap)");
   contact.set("Enabled", false, "solve a contact problem");
   contact.set("Face", "zmin",
-              "contact face (a box face, or a planar physical surface of Mesh/File); the rigid plane lies a distance "
-              "Gap beyond it, parallel to it");
-  contact.set("Gap", 0.0, "initial normal gap between the face and the plane");
-  contact.set("Friction Law", "Coulomb", "Frictionless, Tresca (given slip bound) or Coulomb",
+              "without Pairs: the contact face (a box face, or a planar surface of Mesh/File); the rigid plane lies a "
+              "distance Gap beyond it, parallel to it. Not used with Pairs");
+  contact.set("Gap", 0.0, "without Pairs: initial normal gap between the face and the plane. Not used with Pairs");
+  contact.set("Friction Law", "Coulomb", "Frictionless, Tresca (given slip bound) or Coulomb (the default of every pair)",
               choice(tuple<std::string>("Frictionless", "Tresca", "Coulomb")));
-  contact.set("Friction Coefficient", 0.3, "Coulomb friction coefficient F", range<double>(0.0, 1e6));
-  contact.set("Slip Bound Traction", 0.0, "Tresca slip bound as a traction (force per area)", range<double>(0.0, 1e300));
+  contact.set("Friction Coefficient", 0.3, "Coulomb friction coefficient F (the default of every pair)",
+              range<double>(0.0, 1e6));
+  contact.set("Slip Bound Traction", 0.0, "Tresca slip bound as a traction, force per area (the default of every pair)",
+              range<double>(0.0, 1e300));
+  contact.sublist("Pairs", false,
+                  "one sublist per contact pair: Slave Surface, Master Surface (empty: a rigid plane through Plane "
+                  "Point with the unit normal Plane Normal pointing out of the obstacle), Type (Contact or Glued), "
+                  "friction (Friction Law, Friction Coefficient, Slip Bound Traction; default: Contact's), Search "
+                  "Distance; the contact of each slave node is node-to-segment on the master surface (docs/contact.md)");
   ParameterList& solver = pl->sublist("Solver", false, "solution algorithm");
   solver.set("Type", "Monolithic", "Monolithic (assembled global solve) or FETI",
              choice(tuple<std::string>("Monolithic", "FETI")));
@@ -232,6 +275,18 @@ void checkValidator(const Teuchos::ParameterEntry& entry, const Teuchos::Paramet
   checkRange<double>(entry, validator.get(), full);
 }
 
+void validateLevel(ParameterList& user, const ParameterList& valid, const std::string& path);
+
+// Sublists of any name, each validated against `item` (defaults filled).
+void validateNamedItems(ParameterList& collection, const ParameterList& item, const std::string& path) {
+  for (auto it = collection.begin(); it != collection.end(); ++it) {
+    const std::string name = collection.name(it);
+    TRIBOS_REQUIRE(collection.isSublist(name), "parameter \"" << path << "/" << name
+                                                              << "\" must be a sublist with keys: " << joinNames(item));
+    validateLevel(collection.sublist(name), item, path + "/" + name);
+  }
+}
+
 // Recursive validation with messages naming the full path of the parameter.
 void validateLevel(ParameterList& user, const ParameterList& valid, const std::string& path) {
   for (auto it = user.begin(); it != user.end(); ++it) {
@@ -254,6 +309,10 @@ void validateLevel(ParameterList& user, const ParameterList& valid, const std::s
       validateItems(user.sublist(name), dirichletItem(), full);
     } else if (full == "Boundary Conditions/Traction") {
       validateItems(user.sublist(name), tractionItem(), full);
+    } else if (full == "Contact/Pairs") {
+      validateNamedItems(user.sublist(name), pairItem(user), full);
+    } else if (full == "Bodies") {
+      validateNamedItems(user.sublist(name), bodyItem(user.sublist("Material")), full);
     } else {
       validateLevel(user.sublist(name), valid.sublist(name), full);
     }
@@ -310,8 +369,17 @@ std::vector<std::pair<std::string, std::string>> namedFaces(const ParameterList&
       faces.emplace_back("Boundary Conditions/" + std::string(kind) + "/" + list.name(it) + "/Face",
                          list.sublist(list.name(it)).get<std::string>("Face"));
   }
-  if (params.sublist("Contact").get<bool>("Enabled"))
-    faces.emplace_back("Contact/Face", params.sublist("Contact").get<std::string>("Face"));
+  const auto& contact = params.sublist("Contact");
+  const auto& pairs = contact.sublist("Pairs");
+  if (contact.get<bool>("Enabled") && pairs.numParams() == 0)
+    faces.emplace_back("Contact/Face", contact.get<std::string>("Face"));
+  for (auto it = pairs.begin(); it != pairs.end(); ++it) {
+    const auto& pair = pairs.sublist(pairs.name(it));
+    const std::string path = "Contact/Pairs/" + pairs.name(it);
+    faces.emplace_back(path + "/Slave Surface", pair.get<std::string>("Slave Surface"));
+    if (!pair.get<std::string>("Master Surface").empty())
+      faces.emplace_back(path + "/Master Surface", pair.get<std::string>("Master Surface"));
+  }
   return faces;
 }
 
@@ -369,6 +437,34 @@ void checkSemismooth(const ParameterList& list) {
   }
 }
 
+// Pairs: a slave surface, a usable plane normal, and Contact enabled.
+void validatePairs(const ParameterList& params) {
+  const auto& contact = params.sublist("Contact");
+  const auto& pairs = contact.sublist("Pairs");
+  TRIBOS_REQUIRE(pairs.numParams() == 0 || contact.get<bool>("Enabled"),
+                 "Contact/Pairs names " << pairs.numParams() << " pair(s) but Contact/Enabled = false");
+  for (auto it = pairs.begin(); it != pairs.end(); ++it) {
+    const std::string path = "Contact/Pairs/" + pairs.name(it);
+    const auto& pair = pairs.sublist(pairs.name(it));
+    TRIBOS_REQUIRE(!pair.get<std::string>("Slave Surface").empty(), "\"" << path << "/Slave Surface\" is empty");
+    const auto& n = pair.get<Array<double>>("Plane Normal");
+    const auto& x = pair.get<Array<double>>("Plane Point");
+    TRIBOS_REQUIRE(n.size() == 3 && x.size() == 3, "\"" << path << "/Plane Normal\" and \"Plane Point\" need 3 components");
+    TRIBOS_REQUIRE(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0, "\"" << path << "/Plane Normal\" is zero");
+  }
+  const auto& bodies = params.sublist("Bodies");
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    try {
+      validateMaterial(bodies.sublist(bodies.name(it)).sublist("Material"));
+    } catch (const Error& e) {
+      std::string what = e.what();
+      const auto at = what.find("\"Material/");
+      if (at != std::string::npos) what.insert(at + 1, "Bodies/" + bodies.name(it) + "/");
+      throw Error(what);
+    }
+  }
+}
+
 }  // namespace
 
 void validate(ParameterList& params, const std::string& source) {
@@ -385,8 +481,17 @@ void validate(ParameterList& params, const std::string& source) {
     }
     const auto& contact = params.sublist("Contact");
     const auto& solver = params.sublist("Solver");
-    if (contact.get<bool>("Enabled")) {
-      const std::string law = contact.get<std::string>("Friction Law"), outer = solver.get<std::string>("Outer Algorithm");
+    validatePairs(params);
+    // Glued pairs only: no unilateral contact, projected CG solves the run.
+    bool unilateral = contact.sublist("Pairs").numParams() == 0;
+    const auto& pairList = contact.sublist("Pairs");
+    for (auto it = pairList.begin(); it != pairList.end(); ++it)
+      unilateral = unilateral || pairList.sublist(pairList.name(it)).get<std::string>("Type") == "Contact";
+    if (contact.get<bool>("Enabled") && unilateral) {
+      const std::string law = Contact::runLaw(pairFriction(params)), outer = solver.get<std::string>("Outer Algorithm");
+      TRIBOS_REQUIRE(outer != kSemismooth || contact.sublist("Pairs").numParams() == 0,
+                     "Solver/Outer Algorithm = " << kSemismooth << " solves one face against a rigid plane (Contact/Face, "
+                                                 "Gap); Contact/Pairs needs a FETI outer algorithm");
       TRIBOS_REQUIRE(solver.get<std::string>("Type") == "FETI" || outer == kSemismooth,
                      "contact problems are solved by FETI (Solver/Type = FETI) or by Solver/Outer Algorithm = " << kSemismooth);
       // Which algorithms solve which law: the registry's compatibility query.
@@ -428,6 +533,11 @@ void applyOverride(ParameterList& params, const std::string& assignment) {
     const std::string& p = parts[i];
     if (at == "Boundary Conditions/Dirichlet" || at == "Boundary Conditions/Traction") {
       valid = at == "Boundary Conditions/Dirichlet" ? &dirichletItem() : &tractionItem();
+    } else if (at == "Contact/Pairs" || at == "Bodies") {
+      // Any name; typed as the item (its defaults do not matter here).
+      static const ParameterList pair = pairItem(validParameters()->sublist("Contact"));
+      static const ParameterList body = bodyItem(validParameters()->sublist("Material"));
+      valid = at == "Bodies" ? &body : &pair;
     } else {
       TRIBOS_REQUIRE(valid->isSublist(p), "--set \"" << assignment << "\": no sublist \"" << p
                                                      << "\"; valid: " << joinNames(*valid));
@@ -437,8 +547,10 @@ void applyOverride(ParameterList& params, const std::string& assignment) {
     user = &user->sublist(p);
   }
   const std::string& key = parts.back();
-  TRIBOS_REQUIRE(at != "Boundary Conditions/Dirichlet" && at != "Boundary Conditions/Traction",
-                 "--set \"" << assignment << "\": name a key inside a condition, e.g. \"" << path << "/Face\"");
+  TRIBOS_REQUIRE(at != "Boundary Conditions/Dirichlet" && at != "Boundary Conditions/Traction" &&
+                     at != "Contact/Pairs" && at != "Bodies",
+                 "--set \"" << assignment << "\": name a key inside a condition, pair or body, e.g. \"" << path
+                             << "/NAME/...\"");
   TRIBOS_REQUIRE(valid->isParameter(key) && !valid->isSublist(key),
                  "--set \"" << assignment << "\": unknown parameter \"" << path << "\"; valid: " << joinNames(*valid));
   const std::string type = IO::parameterTypeName(valid->getEntry(key).getAny());
@@ -466,7 +578,7 @@ std::string meshFile(const ParameterList& params) { return params.sublist("Mesh"
 
 Mesh::Mesh mesh(const ParameterList& params, std::vector<std::string>* warnings) {
   const std::string file = meshFile(params);
-  return file.empty() ? Mesh::generateBox(boxSpec(params)) : Mesh::readGmsh(file, warnings);
+  return file.empty() ? Mesh::generateBox(boxSpec(params)) : Mesh::readMeshFile(file, warnings);
 }
 
 void checkMeshFaces(const Mesh::Mesh& mesh, const ParameterList& params) {
@@ -475,9 +587,21 @@ void checkMeshFaces(const Mesh::Mesh& mesh, const ParameterList& params) {
   std::string names;
   for (const auto& n : mesh.faceNames()) names += (names.empty() ? "" : ", ") + n;
   for (const auto& [path, face] : namedFaces(params))
-    TRIBOS_REQUIRE(mesh.faces.count(face), "parameter \"" << path << "\" = \"" << face << "\": " << where
-                                                         << " has no physical surface of that name; its names are: "
-                                                         << (names.empty() ? "(none)" : names));
+    TRIBOS_REQUIRE(mesh.faces.count(face) || (mesh.nodeSets.count(face) && path.find("Dirichlet") != std::string::npos),
+                   "parameter \"" << path << "\" = \"" << face << "\": " << where
+                                  << " has no " << (mesh.nodeSets.count(face) ? "face (only a node set, which carries "
+                                                                                 "Dirichlet conditions only) "
+                                                                               : "physical surface ")
+                                  << "of that name; its names are: " << (names.empty() ? "(none)" : names));
+  const auto& bodies = params.sublist("Bodies");
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    std::string valid;
+    bool found = false;
+    for (int b = 0; b < mesh.numBodies(); ++b)
+      found = found || mesh.bodyName(b) == bodies.name(it), valid += (valid.empty() ? "" : ", ") + mesh.bodyName(b);
+    TRIBOS_REQUIRE(found, "parameter \"Bodies/" << bodies.name(it) << "\": " << where << " has no body of that name; "
+                                                << "its bodies are: " << valid);
+  }
 }
 
 namespace {
@@ -594,6 +718,62 @@ PlaneContact planeContact(const ParameterList& params) {
   pc.slipBoundTraction =
       contact.get<std::string>("Friction Law") == "Frictionless" ? 0.0 : contact.get<double>("Slip Bound Traction");
   return pc;
+}
+
+std::vector<Feti::ContactPair> contactPairs(const ParameterList& params, const Mesh::Mesh& mesh) {
+  const auto& contact = params.sublist("Contact");
+  if (!contact.get<bool>("Enabled")) return {};
+  const auto& pairs = contact.sublist("Pairs");
+  if (pairs.numParams() == 0)
+    return {Feti::planeBeyondFace(mesh, contact.get<std::string>("Face"), contact.get<double>("Gap"))};
+  std::vector<Feti::ContactPair> out;
+  for (auto it = pairs.begin(); it != pairs.end(); ++it) {
+    const auto& p = pairs.sublist(pairs.name(it));
+    Feti::ContactPair pair;
+    pair.name = pairs.name(it);
+    pair.slave = p.get<std::string>("Slave Surface");
+    pair.master = p.get<std::string>("Master Surface");
+    pair.glued = p.get<std::string>("Type") == "Glued";
+    const auto& x = p.get<Array<double>>("Plane Point");
+    const auto& n = p.get<Array<double>>("Plane Normal");
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int d = 0; d < 3; ++d) pair.planePoint[d] = x[d], pair.planeNormal[d] = n[d] / length;
+    const double reach = p.get<double>("Search Distance");
+    if (reach > 0) pair.searchDistance = reach;
+    out.push_back(pair);
+  }
+  return out;
+}
+
+Contact::PairFriction pairFriction(const ParameterList& params) {
+  auto spec = [](const ParameterList& list) {
+    Contact::FrictionSpec f;
+    f.law = list.get<std::string>("Friction Law");
+    f.coefficient = list.get<double>("Friction Coefficient");
+    f.slipBoundTraction = list.get<double>("Slip Bound Traction");
+    return f;
+  };
+  const auto& contact = params.sublist("Contact");
+  const auto& pairs = contact.sublist("Pairs");
+  if (pairs.numParams() == 0) return {spec(contact)};
+  Contact::PairFriction out;
+  for (auto it = pairs.begin(); it != pairs.end(); ++it) {
+    const auto& p = pairs.sublist(pairs.name(it));
+    out.push_back(p.get<std::string>("Type") == "Glued" ? Contact::FrictionSpec() : spec(p));
+  }
+  return out;
+}
+
+Fem::BodyMaterials materials(const ParameterList& params, const Mesh::Mesh& mesh) {
+  const auto& bodies = params.sublist("Bodies");
+  std::vector<Fem::Material> perBody(mesh.numBodies(), material(params));
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    const auto& m = bodies.sublist(bodies.name(it)).sublist("Material");
+    Fem::Material& mat = perBody[mesh.bodyIndex(bodies.name(it))];
+    mat.E = m.get<double>("Young's Modulus");
+    mat.nu = m.get<double>("Poisson's Ratio");
+  }
+  return Fem::BodyMaterials(std::move(perBody));
 }
 
 Semismooth::MeshContactProblem semismoothProblem(const ParameterList& params) {

@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "Tribos_ContactSearch.hpp"
 #include "Tribos_Discretization.hpp"
+#include "Tribos_FetiContact.hpp"
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_Monolithic.hpp"
@@ -25,6 +27,10 @@ namespace Input {
 RCP<const Teuchos::ParameterList> validParameters();
 const Teuchos::ParameterList& dirichletItem();
 const Teuchos::ParameterList& tractionItem();
+// The items of "Contact/Pairs" (friction defaults taken from the Contact
+// list given) and of "Bodies" (material defaults from the Material given).
+Teuchos::ParameterList pairItem(const Teuchos::ParameterList& contact);
+Teuchos::ParameterList bodyItem(const Teuchos::ParameterList& material);
 
 // Reads the file, applies "Sublist/Key=value" overrides typed as in the valid
 // list, validates and fills defaults. Throws Tribos::Error naming the file,
@@ -56,6 +62,14 @@ Mesh::Mesh mesh(const Teuchos::ParameterList& params, std::vector<std::string>* 
 void checkMeshFaces(const Mesh::Mesh& mesh, const Teuchos::ParameterList& params);
 Mesh::DecompositionSpec decompositionSpec(const Teuchos::ParameterList& params);
 Fem::Material material(const Teuchos::ParameterList& params);
+// The material of every body of the mesh: Bodies/NAME/Material, or Material
+// for the bodies not named.
+Fem::BodyMaterials materials(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
+// The contact pairs of the run: Contact/Pairs, or the rigid plane beyond
+// Contact/Face (planeBeyondFace) when there are none; empty without contact.
+std::vector<Feti::ContactPair> contactPairs(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
+// The friction of each pair of contactPairs() (glued pairs: frictionless).
+Contact::PairFriction pairFriction(const Teuchos::ParameterList& params);
 Fem::LoadCase loadCase(const Teuchos::ParameterList& params);
 
 // The rigid-plane contact of the semismooth* method: Contact/Face, Gap and

@@ -19,6 +19,7 @@
 #include "Tribos_FetiDual.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_GmshReader.hpp"
+#include "Tribos_MeshBroadcast.hpp"
 #include "Tribos_ProjectedCG.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_InputXml.hpp"
@@ -50,19 +51,21 @@ double maxOverRanks(double v, const Comm& comm) {
 }
 
 // Von Mises stress, subdomain and rank of every local cell.
-std::vector<IO::Field> cellFields(const Mesh::Discretization& disc, const Fem::Material& mat,
+std::vector<IO::Field> cellFields(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
                                   const std::vector<double>& u) {
-  IO::Field vm{"von_mises", 1, {}}, sub{"subdomain", 1, {}}, rank{"rank", 1, {}};
+  IO::Field vm{"von_mises", 1, {}}, sub{"subdomain", 1, {}}, rank{"rank", 1, {}}, body{"body", 1, {}};
   const int npc = disc.mesh.nodesPerCell();
   for (int c : disc.localCells()) {
     std::vector<double> ue(3 * npc);
     for (int a = 0; a < npc; ++a)
       for (int d = 0; d < 3; ++d) ue[3 * a + d] = u[3 * disc.mesh.cell(c)[a] + d];
-    vm.values.push_back(Fem::vonMises(Fem::cellStress(disc.mesh.type, Fem::cellCoordinates(disc.mesh, c), ue, mat)));
+    vm.values.push_back(Fem::vonMises(
+        Fem::cellStress(disc.mesh.type, Fem::cellCoordinates(disc.mesh, c), ue, mat.ofCell(disc.mesh, c))));
     sub.values.push_back(disc.cellPart[c]);
     rank.values.push_back(disc.myRank);
+    body.values.push_back(disc.mesh.bodyOf(c));
   }
-  return {vm, sub, rank};
+  return {vm, sub, rank, body};
 }
 
 // Contact nodes with their forces, slip and status, as a ParaView point set.
@@ -70,10 +73,23 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
   IO::PointSet ps;
   ps.name = "contact";
   IO::Field normal{"normal_force", 1, r.normalForce}, tangential{"tangential_force", 3, r.tangentialForce},
-      slip{"slip", 3, r.slip}, status{"status", 1, {}}, gap{"gap", 1, r.gap};
+      slip{"slip", 3, r.slip}, status{"status", 1, {}}, gap{"gap", 1, r.gap}, direction{"normal", 3, {}},
+      pair{"pair", 1, {}}, masterNode{"master_node", 4, {}}, masterWeight{"master_weight", 4, {}},
+      node{"node", 1, {}};
   for (int s : r.status) status.values.push_back(s);
+  for (int n : r.nodes) node.values.push_back(disc.nodeIndex()[n]);  // its row in /nodes
   for (int n : r.nodes) ps.coords.push_back(disc.mesh.coords[n]);
-  ps.fields = {normal, tangential, slip, status, gap};
+  // The partner of each slave node: up to 4 master nodes (a facet's) and
+  // their weights, -1 and 0 where there are fewer (none: a rigid plane).
+  for (const auto& c : r.constraint) {
+    direction.values.insert(direction.values.end(), c.normal.begin(), c.normal.end());
+    pair.values.push_back(c.pair);
+    for (size_t i = 0; i < 4; ++i) {
+      masterNode.values.push_back(i < c.master.size() ? disc.nodeIndex()[c.master[i].first] : -1);
+      masterWeight.values.push_back(i < c.master.size() ? c.master[i].second : 0.0);
+    }
+  }
+  ps.fields = {normal, tangential, slip, status, gap, direction, pair, node, masterNode, masterWeight};
   return ps;
 }
 
@@ -120,6 +136,13 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
     const auto status = Semismooth::contactStatus(r);
     for (size_t i = 0; i < forces.size(); ++i) {
       nodes.nodes.push_back(forces[i].node);
+      Feti::ContactConstraint c;  // the rigid plane of the one contact face
+      c.node = forces[i].node;
+      c.pair = 0;
+      c.normal = forces[i].normal;
+      c.gap = forces[i].gap;
+      nodes.constraint.push_back(c);
+      nodes.frictionCoefficient.push_back(0.0);
       nodes.normalForce.push_back(forces[i].normalForce);
       nodes.slipBound.push_back(forces[i].slipBound);
       nodes.status.push_back(status[i]);
@@ -192,9 +215,10 @@ double requestedTolerance(const Teuchos::ParameterList& params) {
 // its own test AND every KKT residual of the result (Fem::resultKKT) is
 // within Result Check Factor times the requested tolerance.
 // Returns the stop reason written to the summary.
-std::string setResultCheck(const Teuchos::ParameterList& params, bool solverConverged, const std::string& solverReason,
-                           const Fem::ResultKKT& kkt, IO::Summary& summary, bool& converged) {
-  const double tol = requestedTolerance(params);
+std::string setResultCheck(const Teuchos::ParameterList& params, double solverTolerance, bool solverConverged,
+                           const std::string& solverReason, const Fem::ResultKKT& kkt, IO::Summary& summary,
+                           bool& converged) {
+  const double tol = solverTolerance > 0 ? solverTolerance : requestedTolerance(params);
   const auto verdict = Fem::resultVerdict(kkt, solverConverged, solverReason, tol,
                                           params.sublist("Solver").get<double>("Result Check Factor"));
   IO::Summary k;
@@ -252,9 +276,12 @@ struct Solution {
   std::string solverReason;
   Fem::ResultKKT kkt;
   double setupSeconds = 0, solveSeconds = 0;  // the solver's setup (assembly, factorization) and its iterations
+  // The tolerance of the solver that ran, when it says (a contact run whose
+  // pairs are all glued is solved by projected CG); 0: from the parameters.
+  double tolerance = 0;
 };
 
-Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discretization& disc, const Fem::Material& mat,
+Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
                          const Fem::LoadCase& loads, const RCP<const Comm>& comm, IO::Summary& summary) {
   // K restricted to the free dofs is singular when a rigid motion is free.
   const auto dirichlet = Fem::constrainedDofs(disc.mesh, loads.dirichlet);
@@ -290,27 +317,19 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
 }
 
 Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& options, const Mesh::Discretization& disc,
-                   const Fem::Material& mat, const Fem::LoadCase& loads, const RCP<const Comm>& comm,
+                   const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
+                   const std::vector<Feti::ContactConstraint>& constraints, const RCP<const Comm>& comm,
                    IO::Summary& summary) {
   const auto& solverParams = params.sublist("Solver");
   const auto& fetiParams = solverParams.sublist("FETI");
   Teuchos::ParameterList problemParams;
   for (const auto& name : {"Local Solver", "Gluing", "Formulation", "Dual Operator"})
     problemParams.set(name, fetiParams.get<std::string>(name));
-  const auto& contactParams = params.sublist("Contact");
-  Feti::ContactSpec contact;
-  contact.enabled = contactParams.get<bool>("Enabled");
-  contact.face = contactParams.get<std::string>("Face");
-  contact.gap = contactParams.get<double>("Gap");
-  Contact::FrictionSpec friction;
-  if (contact.enabled) {
-    friction.law = contactParams.get<std::string>("Friction Law");
-    friction.coefficient = contactParams.get<double>("Friction Coefficient");
-    friction.slipBoundTraction = contactParams.get<double>("Slip Bound Traction");
-  }
+  const bool contact = params.sublist("Contact").get<bool>("Enabled");
+  const Contact::PairFriction friction = contact ? Input::pairFriction(params) : Contact::PairFriction{{}};
   Progress::stage("FETI setup: assembly, gluing, coarse space");
   const auto t0 = std::chrono::steady_clock::now();
-  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, contact, problemParams, comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, constraints, problemParams, comm));
   Solution sol;
   sol.setupSeconds = seconds(t0);
   // The same solve an application runs on its own subdomains (Tribos_FetiSolve.hpp).
@@ -323,14 +342,15 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
   sol.solverConverged = r.solverConverged;
   sol.solverReason = r.solverReason;
   sol.solveSeconds = r.solveSeconds;
+  sol.tolerance = r.tolerance;
   summary.set("n_A", r.n_A);
-  if (!contact.enabled) {
+  if (!problem->hasContact()) {
     summary.set("outer_iterations", r.iterations);
     summary.set("relative_residual", r.relativeResidual);
   } else {
     const auto& st = r.status;
     summary.set("outer_algorithm", r.outerAlgorithm);
-    summary.set("friction_law", friction.law);
+    summary.set("friction_law", Contact::runLaw(friction));
     summary.set("outer_iterations", st.outer_iterations);
     summary.set("msa_iterations", st.msa_iterations);
     summary.set("inner_iterations", st.inner_iterations);
@@ -345,8 +365,8 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
       // FCLIB global problem: assembled K, contact rows in the local frame, gaps, F (docs/fclib.md).
       Progress::stage("FCLIB export");
       FCLIB::Info info{params.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + r.outerAlgorithm, ""};
-      FCLIB::exportFeti(options.exportFclib, *problem, mat, loads, friction.law, friction.coefficient, *r.primal,
-                        *r.lambda, info);
+      FCLIB::exportFeti(options.exportFclib, *problem, mat, loads, Contact::runLaw(friction), friction[0].coefficient,
+                        *r.primal, *r.lambda, info);
       summary.set("fclib_export", options.exportFclib);
     }
   }
@@ -363,7 +383,7 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
 // directory the run wrote to: the run again) and .json (the summary, written
 // last: a set without it is incomplete).
 void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory& dir, const Mesh::Discretization& disc,
-                 const Fem::Material& mat, const Solution& sol, bool converged, const std::string& stopReason,
+                 const Fem::BodyMaterials& mat, const Solution& sol, bool converged, const std::string& stopReason,
                  IO::Summary& summary,
                  const RCP<const Comm>& comm) {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::output"));
@@ -388,52 +408,6 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   files.commit();
 }
 
-// The mesh read on rank 0 goes to every rank (ranks reading the file on
-// their own could mesh a .geo differently, and would each print warnings).
-void broadcastMesh(Mesh::Mesh& mesh, const Comm& comm) {
-  std::string names;
-  std::vector<int> facetCounts, facets;  // per face; per facet its nodes and cell
-  for (const auto& [name, face] : mesh.faces) {
-    names += name + '\n';
-    facetCounts.push_back(static_cast<int>(face.size()));
-    for (const auto& f : face) {
-      facets.insert(facets.end(), f.nodes.begin(), f.nodes.end());
-      facets.push_back(f.cell);
-    }
-  }
-  int sizes[5] = {mesh.type == Mesh::CellType::Tet4 ? 0 : 1, mesh.numNodes(), static_cast<int>(mesh.connectivity.size()),
-                  static_cast<int>(names.size()), static_cast<int>(facets.size())};
-  Teuchos::broadcast(comm, 0, 5, sizes);
-  mesh.type = sizes[0] == 0 ? Mesh::CellType::Tet4 : Mesh::CellType::Hex8;
-  const int npf = mesh.type == Mesh::CellType::Tet4 ? 3 : 4;  // nodes per facet
-  mesh.coords.resize(sizes[1]);
-  mesh.connectivity.resize(sizes[2]);
-  names.resize(sizes[3]);
-  facets.resize(sizes[4]);
-  if (sizes[1] > 0) Teuchos::broadcast(comm, 0, 3 * sizes[1], mesh.coords[0].data());
-  if (sizes[2] > 0) Teuchos::broadcast(comm, 0, sizes[2], mesh.connectivity.data());
-  if (sizes[3] > 0) Teuchos::broadcast(comm, 0, sizes[3], &names[0]);
-  if (sizes[4] > 0) Teuchos::broadcast(comm, 0, sizes[4], facets.data());
-  std::vector<std::string> faceNames;
-  std::stringstream ss(names);
-  for (std::string name; std::getline(ss, name);) faceNames.push_back(name);
-  facetCounts.resize(faceNames.size());
-  if (!faceNames.empty()) Teuchos::broadcast(comm, 0, static_cast<int>(facetCounts.size()), facetCounts.data());
-  if (comm.getRank() == 0) return;
-  mesh.faces.clear();
-  size_t at = 0;
-  for (size_t k = 0; k < faceNames.size(); ++k) {
-    auto& face = mesh.faces[faceNames[k]];
-    for (int i = 0; i < facetCounts[k]; ++i) {
-      Mesh::Facet f;
-      f.nodes.assign(facets.begin() + at, facets.begin() + at + npf);
-      f.cell = facets[at + npf];
-      at += npf + 1;
-      face.push_back(std::move(f));
-    }
-  }
-}
-
 // The mesh of Mesh/File, read on rank 0 and checked before any work: the
 // faces the input names exist (the message lists the file's names), the
 // contact face is planar, there are enough cells for the subdomains. A
@@ -448,7 +422,8 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
       mesh = Input::mesh(params, &warnings);
       Input::checkMeshFaces(mesh, params);
       const auto& contact = params.sublist("Contact");
-      if (contact.get<bool>("Enabled")) Feti::faceNormal(mesh, contact.get<std::string>("Face"));
+      if (contact.get<bool>("Enabled") && contact.sublist("Pairs").numParams() == 0)
+        Feti::faceNormal(mesh, contact.get<std::string>("Face"));
       TRIBOS_REQUIRE(requestedSubdomains(decomposition) <= mesh.numCells(),
                      "Mesh asks for " << requestedSubdomains(decomposition) << " subdomains but mesh file \""
                                       << Input::meshFile(params) << "\" has " << mesh.numCells() << " cells");
@@ -459,8 +434,29 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
   error = agreeOnError(comm, error);
   if (!error.empty()) throw CollectiveError(error);
   for (const auto& w : warnings) std::cerr << "tribos: warning: " << w << std::endl;
-  broadcastMesh(mesh, comm);
+  // Every rank gets the mesh of rank 0 (ranks reading the file on their
+  // own could mesh a .geo differently, and would each print warnings).
+  Mesh::broadcastMesh(mesh, comm);
   return mesh;
+}
+
+// The contact constraints of the run's pairs (node-to-segment search on the
+// replicated mesh: every rank finds the same). A pair that the mesh cannot
+// make (no partner for any slave node, a node in two pairs) is an input
+// error on every rank alike (exit 1); slave nodes left out are warned of.
+std::vector<Feti::ContactConstraint> contactConstraints(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh,
+                                                        const Comm& comm) {
+  Progress::stage("contact search");
+  std::vector<std::string> notes;
+  std::vector<Feti::ContactConstraint> constraints;
+  try {
+    constraints = Feti::contactConstraints(mesh, Input::contactPairs(params, mesh), &notes);
+  } catch (const Error& e) {
+    throw CollectiveError(std::string("Contact: ") + e.what());
+  }
+  if (comm.getRank() == 0)
+    for (const auto& n : notes) std::cerr << "tribos: warning: " << n << std::endl;
+  return constraints;
 }
 
 }  // namespace
@@ -477,6 +473,18 @@ void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& optio
       TRIBOS_REQUIRE(spec.cells[a] % decomposition.grid[a] == 0,
                      "Mesh/Subdomain Grid: " << decomposition.grid[a] << " boxes along " << "xyz"[a]
                                              << " do not divide the " << spec.cells[a] << " cells of the mesh");
+  if (!options.exportFclib.empty() && Input::method(params) == Input::Method::FetiContact) {
+    // FCLIB has one coefficient per contact and no bonded contact: one
+    // friction for all pairs, none glued.
+    const auto& pairs = params.sublist("Contact").sublist("Pairs");
+    const auto friction = Input::pairFriction(params);
+    for (auto it = pairs.begin(); it != pairs.end(); ++it)
+      TRIBOS_REQUIRE(pairs.sublist(pairs.name(it)).get<std::string>("Type") != "Glued",
+                     "--export-fclib: Contact/Pairs/" << pairs.name(it) << " is glued; FCLIB problems have contacts only");
+    for (const auto& f : friction)
+      TRIBOS_REQUIRE(f.law == friction[0].law && f.coefficient == friction[0].coefficient,
+                     "--export-fclib: the contact pairs differ in friction; the export takes one law and coefficient");
+  }
   TRIBOS_REQUIRE(options.exportFclib.empty() || Input::method(params) == Input::Method::FetiContact,
                  "--export-fclib writes a FETI contact problem; this run is "
                      << (params.sublist("Contact").get<bool>("Enabled") ? "solved by the semismooth* method"
@@ -504,7 +512,6 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   summary.set("problem", params.get<std::string>("Problem Name"));
   if (!options.inputName.empty()) summary.set("input", options.inputName);
   Progress::stage("mesh and decomposition");
-  const auto mat = Input::material(params);
   const auto loads = Input::loadCase(params);
   // A mesh from a file is described by its bounding box where a BoxSpec is
   // asked for (one structured subdomain, e.g. the FCLIB export's).
@@ -512,7 +519,10 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   const auto spec = fileMesh ? Mesh::boundingBox(mesh) : Input::boxSpec(params);
   if (!fileMesh) Input::checkMeshFaces(mesh, params);  // the box's names were validated with the input
   Mesh::Discretization disc(std::move(mesh), spec, decomposition, comm->getSize(), comm->getRank());
+  const Fem::BodyMaterials mat = Input::materials(params, disc.mesh);
   const Input::Method method = Input::method(params);
+  const auto constraints = method == Input::Method::FetiContact ? contactConstraints(params, disc.mesh, *comm)
+                                                                  : std::vector<Feti::ContactConstraint>();
   const bool semismooth = method == Input::Method::Semismooth;
   const std::string type = semismooth ? "SemismoothStarNewton" : params.sublist("Solver").get<std::string>("Type");
   summary.set("algorithm", type);
@@ -528,18 +538,18 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   if (semismooth) {
     Progress::stage("semismooth* Newton");
     const auto t2 = std::chrono::steady_clock::now();
-    sol.u = solveSemismooth(params, disc, mat, loads, *comm, options.verbose, summary, sol.contactNodes,
+    sol.u = solveSemismooth(params, disc, Input::material(params), loads, *comm, options.verbose, summary, sol.contactNodes,
                             sol.solverConverged, sol.kkt);
     sol.solveSeconds = seconds(t2);
     if (!sol.solverConverged) sol.solverReason = "semismooth*: maximum Newton iterations";
   } else if (method == Input::Method::Monolithic) {
     sol = solveMonolithic(params, disc, mat, loads, comm, summary);
   } else {
-    sol = solveFeti(params, options, disc, mat, loads, comm, summary);
+    sol = solveFeti(params, options, disc, mat, loads, constraints, comm, summary);
   }
   requireRepresentable(sol.u, sol.kkt, semismooth ? "the semismooth* method" : "the " + type + " solve");
   bool converged = false;
-  const std::string stopReason = setResultCheck(params, sol.solverConverged, sol.solverReason, sol.kkt, summary, converged);
+  const std::string stopReason = setResultCheck(params, sol.tolerance, sol.solverConverged, sol.solverReason, sol.kkt, summary, converged);
   if (options.verify && (method == Input::Method::FetiContact || semismooth)) {
     summary.set("verify_note", "--verify compares with the monolithic linear solve; it does not apply to contact problems");
   } else if (options.verify) {

@@ -301,6 +301,27 @@ std::vector<Fem::ContactNodeForce> ContactNodeResults::forces() const {
     out[k].gap = constraint[k].gap;
     out[k].master = constraint[k].master;
   }
+  out.insert(out.end(), bonded.begin(), bonded.end());
+  return out;
+}
+
+std::vector<Fem::ContactNodeForce> bondedForces(const Feti::FetiProblem& p, const Vector& lambda) {
+  const auto& lc = p.contact();
+  auto l = lambda.getData();
+  std::vector<Fem::ContactNodeForce> out;
+  for (size_t k = 0; k < lc.bondedConstraint.size(); ++k) {
+    const Feti::ContactConstraint& cc = lc.bondedConstraint[k];
+    double m[3];
+    for (int j = 0; j < 3; ++j) m[j] = lc.bondedRows[3 * k + j] >= 0 ? l[lc.bondedRows[3 * k + j]] : 0.0;
+    Fem::ContactNodeForce f;
+    f.node = cc.node;
+    f.bonded = true;
+    f.normal = cc.normal;
+    f.master = cc.master;
+    f.normalForce = m[0];  // the force on the slave node is -B'lambda
+    for (int d = 0; d < 3; ++d) f.tangentialForce[d] = -(m[1] * cc.t1[d] + m[2] * cc.t2[d]);
+    out.push_back(f);
+  }
   return out;
 }
 

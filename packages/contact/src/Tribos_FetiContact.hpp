@@ -106,7 +106,10 @@ struct ContactNodeResults {
   std::vector<double> normalForce, tangentialForce /*3 per node*/, slip /*3 per node*/, gap;
   std::vector<double> slipBound;  // g of the solution (Tresca, Coulomb F lambda_N), 0 when frictionless
   std::vector<int> status;        // 0 no contact, 1 stick, 2 slip
-  // The forces as the result check takes them.
+  // The nodes of glued pairs with their forces (not written: their relative
+  // displacement is zero).
+  std::vector<Fem::ContactNodeForce> bonded;
+  // The forces as the result check takes them (contact and bonded nodes).
   std::vector<Fem::ContactNodeForce> forces() const;
 };
 
@@ -116,6 +119,9 @@ struct ContactNodeResults {
 ContactNodeResults contactResults(const Feti::FetiProblem& problem, const std::vector<double>& uNodal,
                                   const Vector& lambda, const std::vector<double>& g, const PairFriction& friction,
                                   ContactCounts& counts);
+
+// The forces between glued bodies at the local bonded nodes, from lambda.
+std::vector<Fem::ContactNodeForce> bondedForces(const Feti::FetiProblem& problem, const Vector& lambda);
 
 // The KKT residuals (Fem::resultKKT) of the written result: the nodal
 // displacement and the contact forces (none for a problem without contact).

@@ -100,6 +100,7 @@ FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const Pai
   r.u = problem->nodalDisplacement(*r.primal);
   if (problem->hasContact())
     r.contact = contactResults(*problem, r.u, *r.lambda, r.status.slipBound, friction, r.counts);
+  r.contact.bonded = bondedForces(*problem, *r.lambda);
   r.kkt = resultKKT(*problem, r.u, r.contact, law);
   r.verdict = Fem::resultVerdict(r.kkt, r.solverConverged, r.solverReason, r.tolerance,
                                  p.get<double>("Result Check Factor"));

@@ -106,6 +106,7 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
 
   // Contact node by node (rank-local nodes, then the maximum over ranks).
   Friction::ContactKKT kkt(P, U);
+  double bondedGap = 0;
   for (const auto& c : contact) {
     // w: the relative displacement of the slave node and its partner.
     double w[3];
@@ -113,6 +114,10 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
     for (const auto& [node, weight] : c.master)
       for (int d = 0; d < 3; ++d) w[d] -= weight * u[3 * static_cast<size_t>(node) + d];
     const double wn = dot(c.normal, w);
+    if (c.bonded) {
+      bondedGap = std::max({bondedGap, std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});
+      continue;
+    }
     double g = 0;
     if (law.kind == FrictionLaw::Tresca) g = c.slipBound;
     if (law.kind == FrictionLaw::Coulomb) g = c.frictionCoefficient * std::max(c.normalForce, 0.0);
@@ -127,7 +132,7 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
     }
     kkt.add(c.normalForce, c.gap - wn /* d - w.n */, phiT, s, 3, g);
   }
-  res.nonpenetration = maxOver(kkt.nonpenetration(), comm);
+  res.nonpenetration = maxOver(std::max(kkt.nonpenetration(), bondedGap / U), comm);
   res.complementarity = maxOver(kkt.complementarity(), comm);
   res.frictionLaw = maxOver(kkt.frictionLaw(), comm);
   return res;

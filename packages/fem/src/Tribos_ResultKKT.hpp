@@ -62,6 +62,9 @@ struct ContactNodeForce {
   std::array<double, 3> normal{0, 0, -1};  // n, unit, pointing from the slave node into its partner
   double gap = 0.0;                     // d
   std::vector<std::pair<int, double>> master;  // master nodes and weights N_i; empty: a rigid plane
+  // A glued pair's node: w = 0 (its violation max|w|/U counts as
+  // non-penetration), no complementarity, no friction law.
+  bool bonded = false;
 };
 
 struct ResultKKT {

@@ -166,7 +166,7 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
       return true;
     };
     if (!cc.glued && fixedAtAll(cc.normal)) continue;
-    DualRow r{cc.glued ? DualRow::Gluing : DualRow::Normal};
+    DualRow r{cc.glued ? DualRow::Bonded : DualRow::Normal};
     r.node = cc.node;
     r.copies = {copyOf(copies[cc.node].front(), cc.node, 1.0)};
     for (const auto& [node, weight] : cc.master) r.copies.push_back(copyOf(copies[node].front(), node, -weight));
@@ -174,7 +174,7 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
     const DualRow::Kind kinds[3] = {DualRow::Normal, DualRow::Tangent1, DualRow::Tangent2};
     for (int j = 0; j < 3; ++j) {
       if ((j > 0 || cc.glued) && fixedAtAll(*dirs[j])) continue;
-      r.kind = cc.glued ? DualRow::Gluing : kinds[j];
+      r.kind = cc.glued ? DualRow::Bonded : kinds[j];
       r.dir = *dirs[j];
       r.c = j == 0 && !cc.glued ? cc.gap : 0.0;
       rows.push_back(r);
@@ -221,7 +221,7 @@ DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<
     }
     dc.B->insertGlobalValues(gid, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const SC>(vals));
     cv[gid - first] = r.c;
-    dc.isEquality.push_back(r.kind == DualRow::Gluing || r.kind == DualRow::Dirichlet);
+    dc.isEquality.push_back(r.kind == DualRow::Gluing || r.kind == DualRow::Dirichlet || r.kind == DualRow::Bonded);
     ++gid;
   }
   dc.B->fillComplete(primalMap, dc.dualMap);
@@ -245,6 +245,16 @@ DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<
       lc.tangentRows.insert(lc.tangentRows.end(), {-1, -1});
     } else if (r.kind == DualRow::Tangent1 || r.kind == DualRow::Tangent2) {
       lc.tangentRows[2 * contactIndex.at(r.node) + (r.kind == DualRow::Tangent2)] = lid;
+    } else if (r.kind == DualRow::Bonded) {
+      const ContactConstraint& cc = *constraintOf.at(r.node);
+      if (lc.bondedConstraint.empty() || lc.bondedConstraint.back().node != r.node) {
+        lc.bondedConstraint.push_back(cc);
+        lc.bondedRows.insert(lc.bondedRows.end(), {-1, -1, -1});
+      }
+      // Which of n, t1, t2 the row follows.
+      const std::array<double, 3>* frame[3] = {&cc.normal, &cc.t1, &cc.t2};
+      for (int j = 0; j < 3; ++j)
+        if (*frame[j] == r.dir) lc.bondedRows[lc.bondedRows.size() - 3 + j] = lid;
     }
     ++lid;
   }

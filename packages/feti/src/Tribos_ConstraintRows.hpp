@@ -42,7 +42,9 @@ struct RowCopy {
 // node (Normal: u.dir <= c, c the gap) and its tangential rows (Tangent1,
 // Tangent2: friction directions, c = 0).
 struct DualRow {
-  enum Kind { Gluing, Dirichlet, Normal, Tangent1, Tangent2 } kind;
+  // Bonded: an equality row of a glued contact pair (its node's constraint
+  // frame: n, t1, t2), whose multiplier is a force between two bodies.
+  enum Kind { Gluing, Dirichlet, Normal, Tangent1, Tangent2, Bonded } kind;
   int node = -1;            // global node number (the mesh node)
   std::vector<RowCopy> copies;  // ascending subdomains
   std::array<double, 3> dir{0, 0, 0};  // direction on the 3 dofs (unit vector for gluing and Dirichlet)
@@ -59,6 +61,10 @@ struct LocalContact {
   std::vector<int> nodes;           // mesh node of each local contact node
   std::vector<double> nodalArea;    // contact-face area attached to the node
   std::vector<ContactConstraint> constraint;  // of each local contact node
+  // Glued pairs: per local bonded node its constraint and its rows along
+  // n, t1, t2 (-1: a direction Dirichlet conditions fix at all its nodes).
+  std::vector<ContactConstraint> bondedConstraint;
+  std::vector<LO> bondedRows;  // 3 per bonded node
 };
 
 // This rank's part of the constraints: B (rows of this rank, columns the

@@ -231,7 +231,8 @@ void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOf
     TRIBOS_REQUIRE(it != constraintOf.end(), "FetiProblem: contact row " << i << " of node " << r.node
                                                                          << " has no contact constraint");
     const ContactConstraint& cc = *it->second;
-    const int f = r.kind == DualRow::Normal ? 0 : (r.kind == DualRow::Tangent1 ? 1 : 2);
+    int f = r.kind == DualRow::Normal ? 0 : (r.kind == DualRow::Tangent1 ? 1 : 2);
+    if (r.kind == DualRow::Bonded) f = r.dir == cc.normal ? 0 : (r.dir == cc.t1 ? 1 : 2);
     const std::array<double, 3>& frame = f == 0 ? cc.normal : (f == 1 ? cc.t1 : cc.t2);
     double d = 0;
     for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(r.dir[c] - frame[c]));
@@ -239,7 +240,7 @@ void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOf
                                    << i << " of node " << r.node << " has the direction (" << r.dir[0] << ", "
                                    << r.dir[1] << ", " << r.dir[2] << "), expected (" << frame[0] << ", " << frame[1]
                                    << ", " << frame[2] << ") of the node's contact frame (normal, t1, t2)");
-    TRIBOS_REQUIRE(f > 0 || std::abs(r.c - cc.gap) <= 1e-12 * std::max(1.0, std::abs(cc.gap)),
+    TRIBOS_REQUIRE(f > 0 || r.kind == DualRow::Bonded || std::abs(r.c - cc.gap) <= 1e-12 * std::max(1.0, std::abs(cc.gap)),
                    "FetiProblem: normal row " << i << " of node " << r.node << " has the gap " << r.c
                                               << ", its contact constraint " << cc.gap);
     TRIBOS_REQUIRE(r.copies.size() == 1 + cc.master.size(),
