@@ -119,6 +119,20 @@ std::string firstIds(const std::vector<int>& ids) {
   return os.str();
 }
 
+// The constraint of slave node s of pair `index` along the unit normal n
+// (pointing from the node into its partner) with the gap and master weights.
+ContactConstraint constraint(int s, int index, const ContactPair& pair, const Vec3& n, double gap,
+                             std::vector<std::pair<int, double>> master) {
+  ContactConstraint c;
+  c.node = s;
+  c.pair = index;
+  c.glued = pair.glued;
+  c.master = std::move(master);
+  c.normal = n;
+  c.gap = gap;
+  return c;
+}
+
 // Node-to-segment constraints of the slave nodes of one pair.
 void slaveOnMaster(const Mesh::Mesh& mesh, const ContactPair& pair, int index, const std::vector<int>& slaveNodes,
                    std::vector<ContactConstraint>& out, std::vector<int>& leftOut) {
@@ -153,14 +167,8 @@ void slaveOnMaster(const Mesh::Mesh& mesh, const ContactPair& pair, int index, c
       leftOut.push_back(s);
       continue;
     }
-    ContactConstraint c;
-    c.node = s;
-    c.pair = index;
-    c.glued = pair.glued;
-    c.master = significant(best.weights);
-    c.normal = {-best.outwardNormal[0], -best.outwardNormal[1], -best.outwardNormal[2]};
-    c.gap = dot(sub(best.point, x), c.normal);
-    out.push_back(std::move(c));
+    const Vec3 n = {-best.outwardNormal[0], -best.outwardNormal[1], -best.outwardNormal[2]};
+    out.push_back(constraint(s, index, pair, n, dot(sub(best.point, x), n), significant(best.weights)));
   }
 }
 
@@ -173,13 +181,7 @@ void slaveOnPlane(const Mesh::Mesh& mesh, const ContactPair& pair, int index, co
       leftOut.push_back(s);
       continue;
     }
-    ContactConstraint c;
-    c.node = s;
-    c.pair = index;
-    c.glued = pair.glued;
-    c.normal = {-m[0], -m[1], -m[2]};
-    c.gap = gap;
-    out.push_back(std::move(c));
+    out.push_back(constraint(s, index, pair, {-m[0], -m[1], -m[2]}, gap, {}));
   }
 }
 
