@@ -19,6 +19,7 @@
 #include "Tribos_FetiDual.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_GmshReader.hpp"
+#include "Tribos_History.hpp"
 #include "Tribos_MeshBroadcast.hpp"
 #include "Tribos_ProjectedCG.hpp"
 #include "Tribos_Input.hpp"
@@ -100,7 +101,7 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
 std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Discretization& disc,
                                     const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
                                     IO::Summary& summary, Contact::ContactNodeResults& nodes, bool& converged,
-                                    Fem::ResultKKT& kkt) {
+                                    Fem::ResultKKT& kkt, IO::IterationHistory& history) {
   const std::string law = params.sublist("Contact").get<std::string>("Friction Law");
   const Input::PlaneContact contact = Input::planeContact(params);
   // Every rank refuses a body the Dirichlet conditions do not hold, before
@@ -173,6 +174,17 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
   summary.set("newton_iterations", static_cast<long long>(info[1]));
   summary.set("outer_iterations", static_cast<long long>(info[1]));
   summary.set("residuals", residuals);
+  // One row per residual, the last one after the last Newton step (the list
+  // may start with the residual of the initial approximation, step 0); the
+  // method times its whole solve only (the last row gets it) and makes no
+  // Hessian multiplications of a dual.
+  for (size_t k = 0; k < residuals.size(); ++k) {
+    IO::HistoryRow row;
+    row.iteration = static_cast<long long>(info[1]) - static_cast<long long>(residuals.size() - 1 - k);
+    row.relativeResidual = residuals[k];
+    row.n_A = 0;
+    history.rows.push_back(row);
+  }
   summary.set("primal_dofs", 3LL * disc.mesh.numNodes());
   summary.set("dual_dofs", 0);
   summary.set("n_A", 0);
@@ -279,7 +291,20 @@ struct Solution {
   // The tolerance of the solver that ran, when it says (a contact run whose
   // pairs are all glued is solved by projected CG); 0: from the parameters.
   double tolerance = 0;
+  IO::IterationHistory history;  // BASE.history.csv
 };
+
+// The history row of a solver that reports its final state only (projected
+// CG and the monolithic CG keep no residual per iteration): the iterations,
+// the final relative residual and the work of the whole solve.
+IO::HistoryRow finalRow(long long iterations, double relativeResidual, long long n_A, double seconds) {
+  IO::HistoryRow row;
+  row.iteration = iterations;
+  row.relativeResidual = relativeResidual;
+  row.n_A = static_cast<double>(n_A);
+  row.seconds = seconds;
+  return row;
+}
 
 Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
                          const Fem::LoadCase& loads, const RCP<const Comm>& comm, IO::Summary& summary) {
@@ -305,6 +330,7 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
   summary.set("outer_iterations", res.iterations);
   summary.set("n_A", static_cast<long long>(res.iterations));
   summary.set("relative_residual", res.relativeResidual);
+  sol.history.rows.push_back(finalRow(res.iterations, res.relativeResidual, res.iterations, sol.solveSeconds));
   // The residuals of the result from K and f assembled anew, as for FETI.
   Progress::stage("result check");
   std::vector<Fem::SubdomainSystem> systems;
@@ -347,6 +373,7 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
   if (!problem->hasContact()) {
     summary.set("outer_iterations", r.iterations);
     summary.set("relative_residual", r.relativeResidual);
+    sol.history.rows.push_back(finalRow(r.iterations, r.relativeResidual, r.n_A, r.solveSeconds));
   } else {
     const auto& st = r.status;
     summary.set("outer_algorithm", r.outerAlgorithm);
@@ -358,6 +385,16 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
     summary.set("n_A_qpq", static_cast<long long>(st.n_A_qpq));
     summary.set("slip_bound_change", st.slip_bound_change);
     summary.set("history", st.history);
+    for (const auto& step : st.steps) {
+      IO::HistoryRow row;
+      row.iteration = step.iteration;
+      row.relativeResidual = step.projectedGradient;
+      row.gLambda = step.normGx;
+      row.slipBoundChange = step.slipBoundChange;
+      row.n_A = static_cast<double>(step.n_A);
+      row.seconds = step.seconds;
+      sol.history.rows.push_back(row);
+    }
     IO::Summary c;
     c.set("nodes", r.counts.nodes).set("active", r.counts.active).set("stick", r.counts.stick).set("slip", r.counts.slip);
     summary.set("contact", c);
@@ -380,8 +417,9 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
 
 // The result files: Base Name .h5 (with the verdict as root attributes),
 // .xmf, .parameters.xml (the effective parameters, defaults filled and the
-// directory the run wrote to: the run again) and .json (the summary, written
-// last: a set without it is incomplete).
+// directory the run wrote to: the run again), .history.csv (one row per outer
+// iteration, Tribos_History.hpp) and .json (the summary, written last: a set
+// without it is incomplete).
 void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory& dir, const Mesh::Discretization& disc,
                  const Fem::BodyMaterials& mat, const Solution& sol, bool converged, const std::string& stopReason,
                  IO::Summary& summary,
@@ -391,9 +429,11 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   const std::string base = params.sublist("Output").get<std::string>("Base Name");
   summary.set("output", dir.path() + "/" + base + ".xmf");
   summary.set("parameters", dir.path() + "/" + base + ".parameters.xml");
+  summary.set("history_file", dir.path() + "/" + base + ".history.csv");
   IO::ResultSet files(dir, comm);
   const std::string h5 = files.add(base + ".h5"), xmf = files.add(base + ".xmf"),
-                    xml = files.add(base + ".parameters.xml"), json = files.add(base + ".json");
+                    xml = files.add(base + ".parameters.xml"), csv = files.add(base + ".history.csv"),
+                    json = files.add(base + ".json");
   std::vector<IO::PointSet> points;
   if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.contactNodes));
   IO::ResultAttributes attributes;
@@ -404,6 +444,7 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   Teuchos::ParameterList effective = params;
   effective.sublist("Output").set("Directory", dir.path());
   IO::writeTextFile(xml, Input::toXml(effective), comm);
+  IO::writeTextFile(csv, sol.history.toCsv(), comm);
   IO::writeTextFile(json, summary.toJson() + "\n", comm);
   files.commit();
 }
@@ -539,8 +580,9 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     Progress::stage("semismooth* Newton");
     const auto t2 = std::chrono::steady_clock::now();
     sol.u = solveSemismooth(params, disc, Input::material(params), loads, *comm, options.verbose, summary, sol.contactNodes,
-                            sol.solverConverged, sol.kkt);
+                            sol.solverConverged, sol.kkt, sol.history);
     sol.solveSeconds = seconds(t2);
+    if (!sol.history.rows.empty()) sol.history.rows.back().seconds = sol.solveSeconds;
     if (!sol.solverConverged) sol.solverReason = "semismooth*: maximum Newton iterations";
   } else if (method == Input::Method::Monolithic) {
     sol = solveMonolithic(params, disc, mat, loads, comm, summary);
@@ -548,6 +590,13 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     sol = solveFeti(params, options, disc, mat, loads, constraints, comm, summary);
   }
   requireRepresentable(sol.u, sol.kkt, semismooth ? "the semismooth* method" : "the " + type + " solve");
+  // A solver that stopped before its first step still has a history: the
+  // solve as one row, so that every result's file has a row to read.
+  if (sol.history.rows.empty()) {
+    IO::HistoryRow row;
+    row.seconds = sol.solveSeconds;
+    sol.history.rows.push_back(row);
+  }
   bool converged = false;
   const std::string stopReason = setResultCheck(params, sol.tolerance, sol.solverConverged, sol.solverReason, sol.kkt, summary, converged);
   if (options.verify && (method == Input::Method::FetiContact || semismooth)) {

@@ -36,7 +36,8 @@ struct RunResult {
 // Runs the problem and writes the result (also when it did not converge,
 // marked so). Before any work: the memory the run needs is estimated and
 // every output path is checked (Tribos::CollectiveError). The result files
-// (Output/Base Name .h5, .xmf, .parameters.xml and .json, the summary last)
+// (Output/Base Name .h5, .xmf, .parameters.xml, .history.csv and .json, the
+// summary last)
 // replace an earlier set only when all are written. Numerical breakdown (non-finite or
 // overflowing values) and failed writes throw Tribos::RunFailure.
 RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm);

@@ -3,8 +3,10 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Tpetra_Vector.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "Tribos_BlockGaussSeidel.hpp"
@@ -41,6 +43,22 @@ RCP<QP::QPSolver> makeQPSolver(const std::string& type, const ParameterList& par
 }
 
 SC estimateHessianNorm(const Operator& A, long& n_A) { return QP::estimateNorm(A, 20, n_A); }
+
+// The record of one outer step (FrictionStatus::steps): residuals relative to
+// ||b||, as the stopping tests measure them, so that runs of different sizes
+// and loads share the axes of a convergence plot.
+OuterStep outerStep(const FrictionStatus& st, const ContactDual& dual, SC slipBoundChange,
+                    std::chrono::steady_clock::time_point start) {
+  const SC normB = dual.normB() > 0 ? dual.normB() : 1.0;
+  OuterStep s;
+  s.iteration = st.msa_iterations > 0 ? st.msa_iterations : st.outer_iterations;
+  s.projectedGradient = st.norm_gP / normB;
+  s.normGx = st.norm_Gx / normB;
+  s.slipBoundChange = slipBoundChange;
+  s.n_A = st.n_A;
+  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return s;
+}
 
 // The sublists "MPRGP" and "MPGP" of the block solvers, with their defaults.
 void addInnerSolverLists(ParameterList& pl) {
@@ -86,6 +104,7 @@ FrictionStatus Algorithm1::solve(const ContactDual& dual, Vector& x) { return so
 
 FrictionStatus Algorithm1::solve(const ContactDual& dual, const std::vector<SC>& g, Vector& x) {
   dual.check();
+  const auto start = std::chrono::steady_clock::now();
   FrictionStatus st;
   const auto Omega = dual.constraintSet(g);
   // Inner solvers: the bound block by MPRGP, the circle block by MPGP.
@@ -144,6 +163,9 @@ FrictionStatus Algorithm1::solve(const ContactDual& dual, const std::vector<SC>&
   st.norm_Gx = qs.norm_Gx;
   st.slipBound = g;
   st.history.push_back(qs.norm_gP);
+  // SMALBE reports its final state only: one step, no slip-bound change
+  // (the bound is given).
+  st.steps.push_back(outerStep(st, dual, std::numeric_limits<SC>::quiet_NaN(), start));
   return st;
 }
 
@@ -203,6 +225,7 @@ MSA::MSA(const ParameterList& params, const ParameterList& algorithm1) : params_
 }
 
 FrictionStatus MSA::solve(const ContactDual& dual, Vector& x) {
+  const auto start = std::chrono::steady_clock::now();
   FrictionStatus st;
   const auto& comm = *dual.map()->getComm();
   if (!out_.is_null()) tresca_.setOutputStream(out_);
@@ -234,6 +257,7 @@ FrictionStatus MSA::solve(const ContactDual& dual, Vector& x) {
     st.slip_bound_change = globalDistance(gNew, g, comm) / (norm > 0 ? norm : 1.0);
     st.history.push_back(st.slip_bound_change);
     st.msa_iterations = l;
+    st.steps.push_back(outerStep(st, dual, st.slip_bound_change, start));
     st.slipBound = g;
     if (!out_.is_null())
       *out_ << "MSA " << std::setw(3) << l << "  ||g(l+1) - g(l)||/||g(l+1)|| = " << std::scientific << std::setprecision(3)
@@ -360,6 +384,7 @@ struct RhoBalancing {
 
 FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   dual.check();
+  const auto start = std::chrono::steady_clock::now();
   FrictionStatus st;
   const auto& comm = *dual.map()->getComm();
   const RCP<const QP::EqualityConstraint> G =
@@ -437,6 +462,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
     st.outer_iterations = l;
     st.norm_Gx = normGx;
     st.slipBound = gNew;
+    st.steps.push_back(outerStep(st, dual, st.slip_bound_change, start));
     if (!out_.is_null())
       *out_ << "Algorithm 2 " << std::setw(3) << l << "  tol " << std::scientific << std::setprecision(3) << tol
             << "  ||g^P|| " << st.norm_gP << "  ||G lambda|| " << normGx << "  dg " << st.slip_bound_change << "  rho " << rho

@@ -17,6 +17,18 @@
 namespace Tribos {
 namespace Friction {
 
+// One outer step of an algorithm, as a convergence plot needs it. The
+// residuals are relative to ||b|| (the scale of the stopping tests); NaN
+// where the algorithm has no such quantity (slip-bound change of Tresca).
+struct OuterStep {
+  int iteration = 0;          // the algorithm's own count: Algorithm 2 loop, MSA step, SMALBE outer iterations
+  SC projectedGradient = 0;   // ||g^P|| / ||b||
+  SC normGx = 0;              // ||G lambda|| / ||b||
+  SC slipBoundChange = 0;     // ||g(l+1) - g(l)|| / ||g||
+  long n_A = 0;               // Hessian multiplications of the solve so far
+  double seconds = 0;         // since the start of the solve
+};
+
 struct FrictionStatus {
   bool converged = false;
   std::string reason;
@@ -29,6 +41,7 @@ struct FrictionStatus {
   SC norm_gP = 0, norm_Gx = 0;
   SC slip_bound_change = 0;  // last relative change of g (Coulomb)
   std::vector<SC> history;   // per outer step: relative change of g (Coulomb) or ||g^P|| (Tresca)
+  std::vector<OuterStep> steps;  // one per entry of history, with every residual, n_A and time
   std::vector<SC> slipBound; // the slip bound of the returned solution (local)
 };
 

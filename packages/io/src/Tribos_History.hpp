@@ -1,0 +1,43 @@
+// Tribos_History.hpp: the iteration history of a run as CSV (BASE.history.csv
+// beside the summary), one row per outer iteration, for convergence plots
+// (scripts/plot_convergence.py) and spreadsheets.
+//
+// Columns, in this order (the header row names them with their units):
+//   outer_iteration       the algorithm's count at the end of the row's step
+//   relative_residual     the solver's main residual relative to its right-hand
+//                         side: ||g^P||/||b|| (contact), ||P(h - F lambda)||/||P h||
+//                         (projected CG), ||f - K u||/||f|| (monolithic CG), the
+//                         Newton residual (semismooth*)
+//   G_lambda_rel          ||G lambda||/||b|| (FETI contact)
+//   slip_bound_change     ||g(l+1) - g(l)||/||g|| (Coulomb)
+//   n_A                   Hessian multiplications (applications of F) so far
+//   time_s                seconds since the start of the solve
+// A value a solver does not have is an empty field (not 0: a plot must not
+// draw it).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace Tribos {
+namespace IO {
+
+struct HistoryRow {
+  long long iteration = 0;
+  double relativeResidual;  // NaN (an empty field) unless set
+  double gLambda;
+  double slipBoundChange;
+  double n_A;
+  double seconds;
+  HistoryRow();
+};
+
+struct IterationHistory {
+  std::vector<HistoryRow> rows;
+  // The header line and one line per row; numbers with 10 significant digits
+  // (as the summary), NaN and infinities as empty fields.
+  std::string toCsv() const;
+};
+
+}  // namespace IO
+}  // namespace Tribos
