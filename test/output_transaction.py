@@ -46,13 +46,13 @@ def command(mpi, tribos, np_, out, *sets, name="run"):
 
 
 def check_sets(out):
-    """Every summary in out comes with the h5, xmf and parameters of the same run."""
+    """Every summary in out comes with the h5, xmf, parameters and history of the same run."""
     import h5py
     for summary in glob.glob(os.path.join(out, "*.json")):
         base = summary[:-5]
         with open(summary) as f:
             s = json.load(f)
-        for ext in (".h5", ".xmf", ".parameters.xml"):
+        for ext in (".h5", ".xmf", ".parameters.xml", ".history.csv"):
             if not os.path.exists(base + ext):
                 fail("%s without its %s" % (summary, ext))
         with h5py.File(base + ".h5", "r") as h5:
@@ -68,6 +68,13 @@ def check_sets(out):
         names = [p.get("value") for p in root.findall("Parameter") if p.get("name") == "Problem Name"]
         if names != [s["problem"]]:
             fail("%s and its parameters come from different runs (%s, %s)" % (summary, s["problem"], names))
+        # The history has the summary's outer iterations (one row per
+        # Algorithm 2 loop: the run's input) and ends at its n_A.
+        with open(base + ".history.csv") as f:
+            rows = [line.split(",") for line in f.read().splitlines()[1:]]
+        if len(rows) != s["outer_iterations"] or float(rows[-1][4]) != s["n_A"]:
+            fail("%s and its history come from different runs (%d rows, n_A %s; summary %d, %d)"
+                 % (summary, len(rows), rows[-1][4] if rows else "-", s["outer_iterations"], s["n_A"]))
 
 
 def temporaries(out):
