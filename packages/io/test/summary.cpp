@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "IoTestSupport.hpp"
+#include "Tribos_History.hpp"
 #include "Tribos_Summary.hpp"
 
 using namespace Tribos;
@@ -84,4 +85,19 @@ TEUCHOS_UNIT_TEST(SummaryJson, NestedObject) {
   outer.set("kkt", inner).set("ok", true);
   const std::string json = outer.toJson();
   TEST_EQUALITY(json, "{\n  \"kkt\": {\n    \"reason\": \"tol\\treached\",\n    \"value\": null\n  },\n  \"ok\": true\n}");
+}
+
+// The iteration history as CSV: the header, one line per row, a value the
+// solver does not have (NaN, the default) as an empty field, never "nan".
+TEUCHOS_UNIT_TEST(HistoryCsv, RowsAndEmptyFields) {
+  IO::IterationHistory h;
+  IO::HistoryRow a, b;
+  a.iteration = 1, a.relativeResidual = 1e-3, a.gLambda = 2.5e-4, a.slipBoundChange = 1, a.n_A = 79, a.seconds = 0.5;
+  b.iteration = 24, b.relativeResidual = 6.5e-11, b.n_A = 25, b.seconds = std::numeric_limits<double>::infinity();
+  h.rows = {a, b};
+  TEST_EQUALITY(h.toCsv(),
+                "outer_iteration,relative_residual,G_lambda_rel,slip_bound_change,n_A,time_s\n"
+                "1,0.001,0.00025,1,79,0.5\n"
+                "24,6.5e-11,,,25,\n");
+  TEST_EQUALITY(IO::IterationHistory().toCsv(), "outer_iteration,relative_residual,G_lambda_rel,slip_bound_change,n_A,time_s\n");
 }
