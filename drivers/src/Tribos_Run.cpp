@@ -349,7 +349,7 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
   const auto& solverParams = params.sublist("Solver");
   const auto& fetiParams = solverParams.sublist("FETI");
   Teuchos::ParameterList problemParams;
-  for (const auto& name : {"Local Solver", "Gluing", "Formulation", "Dual Operator"})
+  for (const auto& name : {"Local Solver", "Gluing", "Formulation", "Dual Operator", "Dense Block Precision"})
     problemParams.set(name, fetiParams.get<std::string>(name));
   const bool contact = params.sublist("Contact").get<bool>("Enabled");
   const Contact::PairFriction friction = contact ? Input::pairFriction(params) : Contact::PairFriction{{}};

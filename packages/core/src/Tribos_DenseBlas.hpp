@@ -8,6 +8,8 @@
 extern "C" {
 void dspmv_(const char* uplo, const int* n, const double* alpha, const double* ap, const double* x, const int* incx,
             const double* beta, double* y, const int* incy);
+void sspmv_(const char* uplo, const int* n, const float* alpha, const float* ap, const float* x, const int* incx,
+            const float* beta, float* y, const int* incy);
 void dpotri_(const char* uplo, const int* n, double* a, const int* lda, int* info);
 }
 
@@ -20,6 +22,13 @@ inline void spmv(int n, double alpha, const double* Ap, const double* x, double 
   const char uplo = 'L';
   const int one = 1;
   dspmv_(&uplo, &n, &alpha, Ap, x, &one, &beta, y, &one);
+}
+
+// The same in single precision: half the bytes per stored value.
+inline void spmv(int n, float alpha, const float* Ap, const float* x, float beta, float* y) {
+  const char uplo = 'L';
+  const int one = 1;
+  sspmv_(&uplo, &n, &alpha, Ap, x, &one, &beta, y, &one);
 }
 
 // The packed lower triangle of the column-major n x n matrix A.

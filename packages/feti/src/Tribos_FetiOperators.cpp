@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <sstream>
 
 #include "Tribos_Error.hpp"
@@ -35,8 +36,17 @@ void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp,
   for (size_t j = 0; j < X.getNumVectors(); ++j) {
     auto x = X.getVector(j);
     auto y = Y.getVectorNonConst(j);
-    problem_->B()->apply(*x, *p_, Teuchos::TRANS);  // B' x
-    problem_->applyDualKplus(*p_, *z_);             // K+ B' x
+    static const auto bt = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::F apply: B");
+    static const auto kt = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::F apply: K+");
+    {
+      Teuchos::TimeMonitor t(*bt);
+      problem_->B()->apply(*x, *p_, Teuchos::TRANS);  // B' x
+    }
+    {
+      Teuchos::TimeMonitor t(*kt);
+      problem_->applyDualKplus(*p_, *z_);  // K+ B' x
+    }
+    Teuchos::TimeMonitor t(*bt);
     problem_->B()->apply(*z_, *y, Teuchos::NO_TRANS, alpha, beta);
     ++n_A_;
   }
@@ -127,7 +137,8 @@ CoarseSpace::CoarseSpace(RCP<const FetiProblem> problem) : problem_(problem) {
     rowptr_.push_back(static_cast<int>(col_.size()));
   }
   // GG' is regular unless some rigid motion touches no row of B at all.
-  if (!GGt_.tryFactor(gramian(nullptr), n_)) {
+  GGt_ = factorGramian(nullptr);
+  if (GGt_.is_null()) {
     const auto motions = freeMotions(nullptr);
     std::string list;
     for (const auto& m : motions) list += (list.empty() ? "" : ", ") + m;
@@ -135,19 +146,109 @@ CoarseSpace::CoarseSpace(RCP<const FetiProblem> problem) : problem_(problem) {
                 "): no Dirichlet condition or contact holds this motion, so the displacement is not determined; "
                 "add a Dirichlet condition that holds it");
   }
-  equalityHoldsKernel_ = GEGEt_.tryFactor(gramian(&problem->isEqualityRow()), n_);
+  GEGEt_ = factorGramian(&problem->isEqualityRow());
+  equalityHoldsKernel_ = !GEGEt_.is_null();
 }
 
-std::vector<double> CoarseSpace::gramian(const std::vector<char>* rows) const {
-  std::vector<double> A(static_cast<size_t>(n_) * n_, 0.0);
+namespace {
+
+// The 6 x 6 blocks (s, t) of G_S G_S', keyed by s * S + t; row-major r_s x r_t
+// values in a slot of 36.
+using GramBlocks = std::map<long long, std::array<double, 36>>;
+
+// Every rank's blocks summed on every rank (the coarse problem is replicated).
+GramBlocks gatherBlocks(const GramBlocks& local, MPI_Comm comm) {
+  std::vector<long long> keys;
+  std::vector<double> values;
+  for (const auto& [key, block] : local) {
+    keys.push_back(key);
+    values.insert(values.end(), block.begin(), block.end());
+  }
+  int size = 0;
+  MPI_Comm_size(comm, &size);
+  const int count = static_cast<int>(keys.size());
+  std::vector<int> counts(size), displs(size, 0), vcounts(size), vdispls(size, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  for (int r = 0; r < size; ++r) vcounts[r] = 36 * counts[r], vdispls[r] = 36 * displs[r];
+  const int total = displs[size - 1] + counts[size - 1];
+  std::vector<long long> allKeys(total);
+  std::vector<double> allValues(36 * static_cast<size_t>(total));
+  MPI_Allgatherv(keys.data(), count, MPI_LONG_LONG, allKeys.data(), counts.data(), displs.data(), MPI_LONG_LONG, comm);
+  MPI_Allgatherv(values.data(), 36 * count, MPI_DOUBLE, allValues.data(), vcounts.data(), vdispls.data(), MPI_DOUBLE,
+                 comm);
+  GramBlocks all;
+  for (int k = 0; k < total; ++k) {
+    auto [it, inserted] = all.try_emplace(allKeys[k]);
+    if (inserted) it->second.fill(0.0);
+    for (int v = 0; v < 36; ++v) it->second[v] += allValues[36 * static_cast<size_t>(k) + v];
+  }
+  return all;
+}
+
+}  // namespace
+
+LocalCsr CoarseSpace::gramian(const std::vector<char>* rows) const {
+  const auto& ko = problem_->kernelOffsets();
+  const long long S = static_cast<long long>(ko.size()) - 1;
+  // The coarse columns of a row of G' are sorted, so each subdomain's
+  // columns form one segment [begin, end) of the row.
+  GramBlocks local;
+  std::vector<std::array<int, 3>> segments;  // (subdomain, begin, end)
   for (size_t i = 0; i + 1 < rowptr_.size(); ++i) {
     if (rows && !(*rows)[i]) continue;
-    for (int a = rowptr_[i]; a < rowptr_[i + 1]; ++a)
-      for (int b = rowptr_[i]; b < rowptr_[i + 1]; ++b)
-        A[static_cast<size_t>(col_[a]) * n_ + col_[b]] += val_[a] * val_[b];
+    segments.clear();
+    for (int a = rowptr_[i]; a < rowptr_[i + 1]; ++a) {
+      const int s = static_cast<int>(std::upper_bound(ko.begin(), ko.end(), col_[a]) - ko.begin()) - 1;
+      if (segments.empty() || segments.back()[0] != s) segments.push_back({s, a, a});
+      segments.back()[2] = a + 1;
+    }
+    for (const auto& p : segments)
+      for (const auto& q : segments) {
+        auto [it, inserted] = local.try_emplace(p[0] * S + q[0]);
+        if (inserted) it->second.fill(0.0);
+        for (int a = p[1]; a < p[2]; ++a)
+          for (int b = q[1]; b < q[2]; ++b)
+            it->second[6 * (col_[a] - ko[p[0]]) + (col_[b] - ko[q[0]])] += val_[a] * val_[b];
+      }
   }
-  MPI_Allreduce(MPI_IN_PLACE, A.data(), static_cast<int>(A.size()), MPI_DOUBLE, MPI_SUM, rawComm(*problem_->comm()));
+  const GramBlocks all = gatherBlocks(local, rawComm(*problem_->comm()));
+  // CSR row by row: the blocks of block row s are consecutive in `all`.
+  LocalCsr A;
+  A.rows = A.cols = n_;
+  A.rowptr.assign(1, 0);
+  auto it = all.begin();
+  for (long long s = 0; s < S; ++s) {
+    auto end = it;
+    while (end != all.end() && end->first / S == s) ++end;
+    for (int a = 0; a < ko[s + 1] - ko[s]; ++a) {
+      for (auto b = it; b != end; ++b) {
+        const long long t = b->first % S;
+        for (int c = 0; c < ko[t + 1] - ko[t]; ++c) A.col.push_back(ko[t] + c), A.val.push_back(b->second[6 * a + c]);
+      }
+      A.rowptr.push_back(static_cast<int>(A.col.size()));
+    }
+    it = end;
+  }
   return A;
+}
+
+RCP<LocalSolver> CoarseSpace::factorGramian(const std::vector<char>* rows) const {
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::coarse factor"));
+  const LocalCsr A = gramian(rows);
+  // A row of zeros (a rigid motion that no row touches) is singular before
+  // any pivot is taken; CHOLMOD would stop on it, or succeed on round-off.
+  for (int i = 0; i < A.rows; ++i)
+    if (A.rowptr[i] == A.rowptr[i + 1]) return Teuchos::null;
+  auto factor = createLocalSolver("CHOLMOD");
+  try {
+    factor->factor(A);
+  } catch (const Error&) {
+    return Teuchos::null;  // not positive definite: singular
+  }
+  // A pivot far below the largest is a singular Gram matrix in floating
+  // point (the factorization succeeds on round-off).
+  return factor->pivotRatio() > 1e-12 ? factor : Teuchos::null;
 }
 
 void CoarseSpace::applyG(const Vector& x, std::vector<double>& y, const std::vector<char>* rows) const {
@@ -171,31 +272,30 @@ void CoarseSpace::applyGt(const std::vector<double>& y, Vector& x, const std::ve
 }
 
 void CoarseSpace::project(const Vector& x, Vector& Px) const {
-  std::vector<double> y;
-  applyG(x, y);
-  GGt_.solve(y);
-  applyGt(y, Px);
+  applyG(x, work_);
+  GGt_->solve(work_.data(), work_.data(), 1);
+  applyGt(work_, Px);
   Px.update(1.0, x, -1.0);
 }
 
 void CoarseSpace::applyOrthonormal(const Vector& x, std::vector<double>& y) const {
   applyG(x, y);
-  GGt_.solveLower(y);
+  GGt_->solveFactor(y.data(), false);
 }
 
 void CoarseSpace::applyOrthonormalTranspose(const std::vector<double>& y, Vector& x) const {
-  std::vector<double> z(y);
-  GGt_.solveUpperT(z);
-  applyGt(z, x);
+  work_ = y;
+  GGt_->solveFactor(work_.data(), true);
+  applyGt(work_, x);
 }
 
 void CoarseSpace::particularSolution(const std::vector<double>& e, Vector& lambdaTilde) const {
   std::vector<double> y(e);
   if (equalityHoldsKernel_) {
-    GEGEt_.solve(y);
+    GEGEt_->solve(y.data(), y.data(), 1);
     applyGt(y, lambdaTilde, &problem_->isEqualityRow());
   } else {
-    GGt_.solve(y);
+    GGt_->solve(y.data(), y.data(), 1);
     applyGt(y, lambdaTilde);
   }
 }
@@ -206,14 +306,14 @@ std::vector<double> CoarseSpace::amplitudes(const Vector& r, const std::vector<c
     TRIBOS_REQUIRE(equalityHoldsKernel_, "rigid-body amplitudes: the Dirichlet and gluing rows do not fix every "
                                          "rigid motion; the rows where the contact holds are needed");
     applyG(r, y, &problem_->isEqualityRow());
-    GEGEt_.solve(y);
+    GEGEt_->solve(y.data(), y.data(), 1);
     return y;
   }
-  DenseCholesky GSGSt;
-  TRIBOS_REQUIRE(GSGSt.tryFactor(gramian(rows), n_),
+  const auto GSGSt = factorGramian(rows);
+  TRIBOS_REQUIRE(!GSGSt.is_null(),
                  "rigid-body amplitudes: the constraints active at the solution do not fix every rigid motion");
   applyG(r, y, rows);
-  GSGSt.solve(y);
+  GSGSt->solve(y.data(), y.data(), 1);
   return y;
 }
 
@@ -291,7 +391,10 @@ std::string CoarseSpace::describeMotion(const std::vector<double>& alpha) const 
 }
 
 std::vector<std::vector<double>> CoarseSpace::nullSpace(const std::vector<char>* rows) const {
-  auto A = gramian(rows);
+  const LocalCsr sparse = gramian(rows);
+  std::vector<double> A(static_cast<size_t>(n_) * n_, 0.0);
+  for (int i = 0; i < n_; ++i)
+    for (int k = sparse.rowptr[i]; k < sparse.rowptr[i + 1]; ++k) A[static_cast<size_t>(sparse.col[k]) * n_ + i] = sparse.val[k];
   Teuchos::LAPACK<int, double> lapack;
   std::vector<double> w(n_);
   int info = 0, lwork = -1;
@@ -309,8 +412,7 @@ std::vector<std::vector<double>> CoarseSpace::nullSpace(const std::vector<char>*
 }
 
 std::vector<std::string> CoarseSpace::freeMotions(const std::vector<char>* rows) const {
-  DenseCholesky test;
-  if (test.tryFactor(gramian(rows), n_)) return {};
+  if (!factorGramian(rows).is_null()) return {};
   const auto nullVectors = nullSpace(rows);
   // Name the global motions that lie in the null space; a null space that
   // holds none of them is described by its vectors' fitted motions.

@@ -306,6 +306,13 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
             "every subdomain whose block has at most 4000 rows; Implicit without contact, where projected CG "
             "applies F tens of times)",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Auto", "Explicit", "Implicit"))));
+    pl->set("Dense Block Precision", "Double",
+            "precision in which the explicit operator stores its dense blocks (K+)_bb: Double, or Single (formed "
+            "in double and rounded; half the memory and half the bytes read per application of F, which is "
+            "bound by memory bandwidth; each application then has a relative error of about 1e-7 times the "
+            "square root of the block size, so it suits tolerances down to about 1e-5; the written result is "
+            "still recovered and checked in double)",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Double", "Single"))));
   }
   return pl;
 }
@@ -406,7 +413,8 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
     denseRowLimit = std::numeric_limits<long>::max();
   else if (dualOperator == "Auto" && contact)
     denseRowLimit = static_cast<long>(kAutoExplicitRows);
-  Kplus_ = std::make_unique<SubdomainPseudoInverse>(systems_, boundary_, localSolverName_, denseRowLimit);
+  Kplus_ = std::make_unique<SubdomainPseudoInverse>(systems_, boundary_, localSolverName_, denseRowLimit,
+                                                    p.get<std::string>("Dense Block Precision") == "Single");
 }
 
 std::vector<std::vector<int>> FetiProblem::boundaryDofs() const {

@@ -34,6 +34,12 @@ std::vector<double> LocalSolver::inverseBlock(const std::vector<int>& dofs) cons
   return Z;
 }
 
+void LocalSolver::solveFactor(double*, bool) const {
+  throw Error(name() + ": no Cholesky factor to solve with (use CHOLMOD)");
+}
+
+double LocalSolver::pivotRatio() const { throw Error(name() + ": no Cholesky factor (use CHOLMOD)"); }
+
 namespace {
 
 // A CHOLMOD view (no copy) of a symmetric CSR matrix: it is its own CSC, and
@@ -60,6 +66,9 @@ class CholmodSolver : public LocalSolver {
   CholmodSolver() {
     cholmod_start(&common_);
     common_.print = 0;
+    // Simplicial factors (small matrices) are kept as LL', not LDL', so that
+    // solveFactor's L is the Cholesky factor whatever the factor's kind.
+    common_.final_ll = 1;
   }
   ~CholmodSolver() override {
     for (cholmod_dense** d : {&X_, &Y_, &E_})
@@ -128,7 +137,21 @@ class CholmodSolver : public LocalSolver {
     TRIBOS_REQUIRE(info == 0, "CHOLMOD: inverse of the trailing Cholesky block failed (LAPACK info " << info << ")");
     return Z;
   }
-  void solve(const double* b, double* x, int nrhs) const override {
+  void solveFactor(double* x, bool transpose) const override {
+    // P then L^-1, or L^-T then P': two calls of cholmod_solve2.
+    const int first = transpose ? CHOLMOD_Lt : CHOLMOD_P, second = transpose ? CHOLMOD_Pt : CHOLMOD_L;
+    solveSystem(first, x, x, 1);
+    solveSystem(second, x, x, 1);
+  }
+  double pivotRatio() const override {
+    if (!L_ || n_ == 0) return 1.0;
+    return cholmod_rcond(L_, &common_);
+  }
+  void solve(const double* b, double* x, int nrhs) const override { solveSystem(CHOLMOD_A, b, x, nrhs); }
+  std::string name() const override { return "CHOLMOD"; }
+
+ private:
+  void solveSystem(int system, const double* b, double* x, int nrhs) const {
     cholmod_dense B;
     std::memset(&B, 0, sizeof B);
     B.nrow = n_;
@@ -140,14 +163,11 @@ class CholmodSolver : public LocalSolver {
     B.dtype = CHOLMOD_DOUBLE;
     // cholmod_solve2 keeps its result and workspaces between calls: the
     // F = B K+ B' application solves once per subdomain, many times.
-    const int ok = cholmod_solve2(CHOLMOD_A, L_, &B, nullptr, &X_, nullptr, &Y_, &E_, &common_);
+    const int ok = cholmod_solve2(system, L_, &B, nullptr, &X_, nullptr, &Y_, &E_, &common_);
     requireCholmodOk(common_, "solve");
     TRIBOS_REQUIRE(ok && X_ != nullptr, "CHOLMOD: solve failed");
     std::copy(static_cast<double*>(X_->x), static_cast<double*>(X_->x) + static_cast<size_t>(n_) * nrhs, x);
   }
-  std::string name() const override { return "CHOLMOD"; }
-
- private:
   void numericFactor(cholmod_sparse& S) {
     cholmod_factorize(&S, L_, &common_);
     requireCholmodOk(common_, "factorization", L_);

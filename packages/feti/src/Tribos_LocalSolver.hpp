@@ -35,6 +35,15 @@ class LocalSolver {
   // (A^-1) restricted to the rows and columns `dofs`: dense, symmetric,
   // column-major |dofs| x |dofs|. By default |dofs| solves with unit vectors.
   virtual std::vector<double> inverseBlock(const std::vector<int>& dofs) const;
+  // For A = P'LL'P (a Cholesky factor with its fill-reducing permutation P):
+  // x <- L^-1 P x, or x <- P'L^-T x when transpose. These halves of A^-1
+  // orthonormalize: with A = GG', the rows of L^-1 P G are orthonormal.
+  // Only Cholesky backends have them (CHOLMOD); the others throw.
+  virtual void solveFactor(double* x, bool transpose) const;
+  // (min_i L_ii / max_i L_ii)^2, a cheap estimate of the reciprocal condition
+  // number: a tiny value means A is singular in floating point although the
+  // factorization succeeded on round-off. Cholesky backends only.
+  virtual double pivotRatio() const;
   virtual std::string name() const = 0;
   virtual int size() const = 0;
   // Memory held by the factor, MB (0 when the backend does not report it).

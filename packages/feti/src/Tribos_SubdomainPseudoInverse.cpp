@@ -61,13 +61,14 @@ void removeKernel(const std::vector<double>& R, int n, double* x) {
 
 SubdomainPseudoInverse::SubdomainPseudoInverse(const std::vector<Fem::SubdomainSystem>& systems,
                                                std::vector<std::vector<int>> boundary, const std::string& localSolver,
-                                               long denseRowLimit)
-    : systems_(systems), boundary_(std::move(boundary)) {
+                                               long denseRowLimit, bool singleBlocks)
+    : systems_(systems), boundary_(std::move(boundary)), singleBlocks_(singleBlocks) {
   TRIBOS_REQUIRE(boundary_.size() == systems_.size(),
                  "K+: " << boundary_.size() << " boundary dof lists for " << systems_.size() << " subdomains");
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg"));
   const auto t0 = std::chrono::steady_clock::now();
   KplusBB_.assign(systems_.size(), {});
+  KplusBBf_.assign(systems_.size(), {});
   Progress::stage("factorization of " + std::to_string(systems_.size()) + " subdomain matrices");
   for (size_t k = 0; k < systems_.size(); ++k) {
     Progress::iteration([&] { return "subdomain " + std::to_string(k + 1) + " of " + std::to_string(systems_.size()); });
@@ -96,6 +97,7 @@ double SubdomainPseudoInverse::memoryMb() const {
   double mb = 0;
   for (const auto& s : Kreg_) mb += s->factorMemoryMb();
   for (const auto& Z : KplusBB_) mb += Z.size() * 8.0 / 1048576.0;
+  for (const auto& Z : KplusBBf_) mb += Z.size() * 4.0 / 1048576.0;
   return mb;
 }
 
@@ -132,6 +134,10 @@ void SubdomainPseudoInverse::formDenseBlock(size_t k) {
     blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, nb, nb, r, 1.0, V.data(), nb, Rb.data(), nb, 1.0, Z.data(), nb);
   }
   KplusBB_[k] = Blas::packLower(nb, Z);
+  if (singleBlocks_) {
+    KplusBBf_[k].assign(KplusBB_[k].begin(), KplusBB_[k].end());
+    std::vector<double>().swap(KplusBB_[k]);
+  }
 }
 
 // K+ = (I - RR') K_reg^-1 (I - RR') is still a generalized inverse (R'K = 0),
@@ -158,8 +164,21 @@ void SubdomainPseudoInverse::applySubdomain(size_t k, const double* p, double* z
 
 bool SubdomainPseudoInverse::hasDenseBlocks() const {
   bool any = false;
-  for (const auto& Z : KplusBB_) any = any || !Z.empty();
+  for (size_t k = 0; k < KplusBB_.size(); ++k) any = any || hasDenseBlock(k);
   return any;
+}
+
+// z_b = (K+)_bb p_b with the packed block in the precision T it is stored in.
+template <class T>
+void SubdomainPseudoInverse::applyDenseBlock(const std::vector<T>& block, const std::vector<int>& b, const double* p,
+                                             double* z, std::vector<T>& work) {
+  const int nb = static_cast<int>(b.size());
+  work.resize(2 * static_cast<size_t>(nb));
+  T* pb = work.data();
+  T* zb = pb + nb;
+  for (int i = 0; i < nb; ++i) pb[i] = static_cast<T>(p[b[i]]);
+  Blas::spmv(nb, T(1), block.data(), pb, T(0), zb);
+  for (int i = 0; i < nb; ++i) z[b[i]] = zb[i];
 }
 
 void SubdomainPseudoInverse::applyOnBoundary(const Vector& p, Vector& z) const {
@@ -167,19 +186,13 @@ void SubdomainPseudoInverse::applyOnBoundary(const Vector& p, Vector& z) const {
   auto zv = z.getDataNonConst();
   size_t offset = 0;
   for (size_t k = 0; k < systems_.size(); ++k) {
-    if (KplusBB_[k].empty()) {
+    if (!hasDenseBlock(k)) {
       applySubdomain(k, pv.getRawPtr() + offset, zv.getRawPtr() + offset);
-      offset += systems_[k].numDofs();
-      continue;
+    } else if (singleBlocks_) {
+      applyDenseBlock(KplusBBf_[k], boundary_[k], pv.getRawPtr() + offset, zv.getRawPtr() + offset, workBf_);
+    } else {
+      applyDenseBlock(KplusBB_[k], boundary_[k], pv.getRawPtr() + offset, zv.getRawPtr() + offset, workB_);
     }
-    const auto& b = boundary_[k];
-    const int nb = static_cast<int>(b.size());
-    workB_.resize(2 * static_cast<size_t>(nb));
-    double* pb = workB_.data();
-    double* zb = pb + nb;
-    for (int i = 0; i < nb; ++i) pb[i] = pv[offset + b[i]];
-    Blas::spmv(nb, 1.0, KplusBB_[k].data(), pb, 0.0, zb);
-    for (int i = 0; i < nb; ++i) zv[offset + b[i]] = zb[i];
     offset += systems_[k].numDofs();
   }
 }

@@ -22,10 +22,13 @@ class SubdomainPseudoInverse {
  public:
   // systems: this rank's subdomains (K, R; kept by reference); boundary[k]:
   // the dofs of subdomain k that B touches (ascending); subdomains with at
-  // most denseRowLimit of them get a dense block (K+)_bb (-1: none).
+  // most denseRowLimit of them get a dense block (K+)_bb (-1: none), stored
+  // in single precision when singleBlocks (formed in double, then rounded:
+  // the application of F then moves half the bytes, and its relative error
+  // is that of float, about 1e-7 times the block size's square root).
   // Factors every subdomain (collective only through the progress display).
   SubdomainPseudoInverse(const std::vector<Fem::SubdomainSystem>& systems, std::vector<std::vector<int>> boundary,
-                         const std::string& localSolver, long denseRowLimit);
+                         const std::string& localSolver, long denseRowLimit, bool singleBlocks = false);
 
   // z = K+ p on this rank's subdomains.
   void apply(const Vector& p, Vector& z) const;
@@ -41,13 +44,20 @@ class SubdomainPseudoInverse {
 
  private:
   void applySubdomain(size_t k, const double* p, double* z) const;
+  bool hasDenseBlock(size_t k) const { return !KplusBB_[k].empty() || !KplusBBf_[k].empty(); }
+  template <class T>
+  static void applyDenseBlock(const std::vector<T>& block, const std::vector<int>& b, const double* p, double* z,
+                              std::vector<T>& work);
   void formDenseBlock(size_t k);
 
   const std::vector<Fem::SubdomainSystem>& systems_;
   std::vector<std::vector<int>> boundary_;
   std::vector<RCP<LocalSolver>> Kreg_;           // factors of K_reg
   std::vector<std::vector<double>> KplusBB_;     // packed lower triangle of (K+)_bb, or empty
+  std::vector<std::vector<float>> KplusBBf_;     // the same in single precision (singleBlocks)
+  bool singleBlocks_ = false;
   mutable std::vector<double> work_, workB_;
+  mutable std::vector<float> workBf_;
   double factorSeconds_ = 0;
 };
 

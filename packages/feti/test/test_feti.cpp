@@ -12,6 +12,7 @@
 
 #include "Tribos_ConstraintRows.hpp"
 #include "Tribos_FetiDual.hpp"
+#include "Tribos_FetiOperators.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_ProjectedCG.hpp"
 #include "Tribos_TestSupport.hpp"
@@ -210,6 +211,107 @@ TEUCHOS_UNIT_TEST(FetiVsMonolithic, Hex8NonRedundantStructuredFeti1DirichletExpl
   checkCase({Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, true, "FETI-1", "Dirichlet",
              "Explicit"},
             out, success);
+}
+
+namespace {
+
+// The sparse GG' (assembled from 6 x 6 blocks on every rank) against G G'
+// column by column through applyG(applyGt(e_j)); the projector and the
+// orthonormalized constraint built on its sparse Cholesky factor:
+// G P x = 0, P P x = P x, G^ G^' = I.
+void checkCoarseSpace(const Case& c, Teuchos::FancyOStream& out, bool& success) {
+  auto comm = Tpetra::getDefaultComm();
+  auto disc = makeDisc(c, *comm);
+  Teuchos::ParameterList p;
+  p.set("Gluing", c.gluing);
+  p.set("Formulation", c.formulation);
+  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), Feti::ContactSpec{}, p, comm));
+  Feti::CoarseSpace coarse(problem);
+  const int n = coarse.size();
+  const LocalCsr A = coarse.gramian(nullptr);
+  TEST_EQUALITY(A.rows, n);
+  double worst = 0, scale = 0;
+  Vector v(problem->dualMap());
+  std::vector<double> e(n), col;
+  for (int j = 0; j < n; ++j) {
+    std::fill(e.begin(), e.end(), 0.0);
+    e[j] = 1.0;
+    coarse.applyGt(e, v);
+    coarse.applyG(v, col);
+    // Column j of the sparse matrix (symmetric: row j).
+    std::vector<double> sparseCol(n, 0.0);
+    for (int k = A.rowptr[j]; k < A.rowptr[j + 1]; ++k) sparseCol[A.col[k]] = A.val[k];
+    for (int i = 0; i < n; ++i) worst = std::max(worst, std::abs(col[i] - sparseCol[i])), scale = std::max(scale, std::abs(col[i]));
+  }
+  out << Mesh::cellTypeName(c.type) << " " << c.formulation << ": coarse size " << n << ", nnz(GG') " << A.val.size()
+      << ", |GG'_sparse - G G'| = " << worst / scale << "\n";
+  TEST_COMPARE(worst, <=, 1e-13 * scale);
+  TEST_COMPARE(static_cast<double>(A.val.size()), <, 1.0 * n * n);  // sparse: not every pair of subdomains couples
+  Vector x(problem->dualMap()), Px(problem->dualMap()), PPx(problem->dualMap());
+  auto xv = x.getDataNonConst();
+  for (size_t i = 0; i < xv.size(); ++i) xv[i] = std::cos(0.37 * (i + 11 * comm->getRank()) + 0.5);
+  xv = Teuchos::null;
+  coarse.project(x, Px);
+  coarse.project(Px, PPx);
+  std::vector<double> GPx, Gx;
+  coarse.applyG(Px, GPx);
+  coarse.applyG(x, Gx);
+  double gpx = 0, gx = 0;
+  for (int i = 0; i < n; ++i) gpx = std::max(gpx, std::abs(GPx[i])), gx = std::max(gx, std::abs(Gx[i]));
+  PPx.update(-1.0, Px, 1.0);
+  out << "|G P x| / |G x| = " << gpx / gx << ", |P P x - P x| / |P x| = " << PPx.norm2() / Px.norm2() << "\n";
+  TEST_COMPARE(gpx, <, 1e-12 * gx);
+  TEST_COMPARE(PPx.norm2(), <, 1e-12 * Px.norm2());
+  // G^ G^' y = y for the orthonormalized constraint G^ = L^-1 P G.
+  std::vector<double> y(n), Gy;
+  for (int i = 0; i < n; ++i) y[i] = std::sin(1.3 * i + 0.2);
+  coarse.applyOrthonormalTranspose(y, v);
+  coarse.applyOrthonormal(v, Gy);
+  double orth = 0, ynorm = 0;
+  for (int i = 0; i < n; ++i) orth = std::max(orth, std::abs(Gy[i] - y[i])), ynorm = std::max(ynorm, std::abs(y[i]));
+  out << "|G^ G^' y - y| / |y| = " << orth / ynorm << "\n";
+  TEST_COMPARE(orth, <, 1e-10 * ynorm);
+}
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(CoarseSpace, SparseGramianTFETI) {
+  checkCoarseSpace({Mesh::CellType::Tet4, {8, 4, 4}, 8, "Orthonormal", "Structured", {4, 2, 1}}, out, success);
+}
+
+// FETI-1: the subdomains at the clamped end keep fewer than six rigid modes,
+// so the blocks of GG' are not all 6 x 6.
+TEUCHOS_UNIT_TEST(CoarseSpace, SparseGramianFETI1) {
+  checkCoarseSpace({Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, false, "FETI-1"}, out,
+                   success);
+}
+
+// Single-precision dense blocks: B (K+)_bb B' x agrees with the sparse solves
+// to float accuracy, and is not the double product (the blocks are rounded).
+TEUCHOS_UNIT_TEST(DualOperator, SinglePrecisionBlocks) {
+  auto comm = Tpetra::getDefaultComm();
+  const Case c{Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal"};
+  auto disc = makeDisc(c, *comm);
+  Teuchos::ParameterList p;
+  p.set("Dual Operator", "Explicit");
+  p.set("Dense Block Precision", "Single");
+  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), Feti::ContactSpec{}, p, comm));
+  TEST_ASSERT(problem->explicitDualOperator());
+  Vector x(problem->dualMap()), q(problem->primalMap()), z1(problem->primalMap()), z2(problem->primalMap());
+  Vector F1(problem->dualMap()), F2(problem->dualMap());
+  auto xv = x.getDataNonConst();
+  for (size_t i = 0; i < xv.size(); ++i) xv[i] = std::cos(0.61 * (i + 7 * comm->getRank()));
+  xv = Teuchos::null;
+  problem->B()->apply(x, q, Teuchos::TRANS);
+  problem->applyKplus(q, z1);
+  problem->applyDualKplus(q, z2);
+  problem->B()->apply(z1, F1);
+  problem->B()->apply(z2, F2);
+  F2.update(-1.0, F1, 1.0);
+  const double diff = F2.norm2() / F1.norm2();
+  out << "single-precision explicit vs implicit F x: relative difference " << diff << "\n";
+  TEST_COMPARE(diff, <, 1e-5);
+  TEST_COMPARE(diff, >, 1e-12);
 }
 
 // The rigid plane's normal from the contact face's facets: the box table's
