@@ -327,7 +327,8 @@ def plot_pair(base, r, out, n_views, unit="Pa", zoom=False, length="m"):
 
     fig, ax = figure(head + "Contact status (arrows: slip)", u, v, labels, limits)
     colours = {0: ("lightgrey", "no contact"), 1: ("tab:blue", "stick"), 2: ("tab:orange", "slip")}
-    size = 18 if shown.sum() < 400 else max(2, 18 * 400 / shown.sum())
+    # Dots as large as the node spacing allows: few nodes, large dots.
+    size = float(np.clip(3000.0 / max(shown.sum(), 1), 2, 50))
     for s, (c, label) in colours.items():
         sel = r["status"] == s
         ax.scatter(u[sel], v[sel], c=c, s=size, label="%s (%d)" % (label, sel.sum()), zorder=2)
