@@ -6,6 +6,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,9 @@ Mesh::Mesh mesh(const Teuchos::ParameterList& params, std::vector<std::string>* 
 // naming the parameter, the file and the names the mesh has.
 void checkMeshFaces(const Mesh::Mesh& mesh, const Teuchos::ParameterList& params);
 Mesh::DecompositionSpec decompositionSpec(const Teuchos::ParameterList& params);
+// The grid of boxes along x, y, z whose boxes have about H cells per edge:
+// along each axis the divisor of the cell count nearest (in ratio) to cells / H.
+std::array<int, 3> subdomainGridOfSize(const std::array<int, 3>& cells, int H);
 Fem::Material material(const Teuchos::ParameterList& params);
 // The material of every body of the mesh: Bodies/NAME/Material, or Material
 // for the bodies not named.

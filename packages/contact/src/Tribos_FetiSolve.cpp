@@ -96,6 +96,10 @@ FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const Pai
     r.primal = sol.u;
   }
   r.solveSeconds = secondsSince(t0);
+  r.F_applications = dual->F()->applications();
+  r.F_seconds = dual->F()->seconds();
+  r.coarseSize = dual->coarse().size();
+  r.coarseFactorMb = dual->coarse().factorMemoryMb();
   Progress::stage("result check");
   r.u = problem->nodalDisplacement(*r.primal);
   if (problem->hasContact())

@@ -43,6 +43,14 @@ struct FetiSolveResult {
   long long n_A = 0;                     // applications of F in the solve
   double relativeResidual = 0;           // projected CG
   double solveSeconds = 0;
+  // The dual operator and the coarse problem, for performance reports: all
+  // applications of F (the solver's n_A, the power iterations, the setup's)
+  // and their wall time on this rank; the coarse dimension (6S in TFETI) and
+  // the memory of its sparse Cholesky factors on this rank.
+  long long F_applications = 0;
+  double F_seconds = 0;
+  int coarseSize = 0;
+  double coarseFactorMb = 0;
 };
 
 // The parameters solveFeti reads, with defaults and documentation:

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <map>
 #include <sstream>
 
@@ -33,6 +34,7 @@ DualOperator::DualOperator(RCP<const FetiProblem> problem) : problem_(problem) {
 void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp, SC alpha, SC beta) const {
   static const auto counter = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::F apply");
   Teuchos::TimeMonitor timer(*counter);
+  const auto t0 = std::chrono::steady_clock::now();
   for (size_t j = 0; j < X.getNumVectors(); ++j) {
     auto x = X.getVector(j);
     auto y = Y.getVectorNonConst(j);
@@ -50,6 +52,7 @@ void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp,
     problem_->B()->apply(*z_, *y, Teuchos::NO_TRANS, alpha, beta);
     ++n_A_;
   }
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 bool DenseCholesky::tryFactor(std::vector<double> A, int n) {
@@ -231,6 +234,10 @@ LocalCsr CoarseSpace::gramian(const std::vector<char>* rows) const {
     it = end;
   }
   return A;
+}
+
+double CoarseSpace::factorMemoryMb() const {
+  return (GGt_.is_null() ? 0.0 : GGt_->factorMemoryMb()) + (GEGEt_.is_null() ? 0.0 : GEGEt_->factorMemoryMb());
 }
 
 RCP<LocalSolver> CoarseSpace::factorGramian(const std::vector<char>* rows) const {

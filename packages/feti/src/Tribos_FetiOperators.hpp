@@ -31,11 +31,14 @@ class DualOperator : public Operator {
   // Applications since construction; a user's work is the difference of
   // two snapshots.
   long long applications() const { return n_A_; }
+  // Wall time spent in apply since construction, on this rank.
+  double seconds() const { return seconds_; }
 
  private:
   RCP<const FetiProblem> problem_;
   mutable RCP<Vector> p_, z_;
   mutable long long n_A_ = 0;
+  mutable double seconds_ = 0;
 };
 
 // Dense symmetric positive definite matrix factored by Cholesky (LAPACK).
@@ -59,6 +62,8 @@ class CoarseSpace {
   explicit CoarseSpace(RCP<const FetiProblem> problem);
 
   int size() const { return n_; }  // total kernel dimension (6S in TFETI)
+  // Memory of the sparse Cholesky factors of GG' and G_E G_E' on this rank, MB.
+  double factorMemoryMb() const;
   // y = G x (replicated), x = G' y (local rows); rows restricted to a mask when given.
   void applyG(const Vector& x, std::vector<double>& y, const std::vector<char>* rows = nullptr) const;
   void applyGt(const std::vector<double>& y, Vector& x, const std::vector<char>* rows = nullptr) const;

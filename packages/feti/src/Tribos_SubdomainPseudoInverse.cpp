@@ -83,12 +83,18 @@ SubdomainPseudoInverse::SubdomainPseudoInverse(const std::vector<Fem::SubdomainS
     // than the applications it saves: the caller's limit decides.
     const bool dense = denseRowLimit >= 0 && static_cast<long>(boundary_[k].size()) <= denseRowLimit;
     auto solver = createLocalSolver(localSolver);
-    if (dense)
-      solver->factor(Kreg, boundary_[k]);
-    else
-      solver->factor(Kreg);
+    {
+      Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: sparse factor"));
+      if (dense)
+        solver->factor(Kreg, boundary_[k]);
+      else
+        solver->factor(Kreg);
+    }
     Kreg_.push_back(solver);
-    if (dense) formDenseBlock(k);
+    if (dense) {
+      Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: dense block"));
+      formDenseBlock(k);
+    }
   }
   factorSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -108,7 +114,11 @@ void SubdomainPseudoInverse::formDenseBlock(size_t k) {
   const auto& sys = systems_[k];
   const auto& b = boundary_[k];
   const int n = sys.numDofs(), nb = static_cast<int>(b.size()), r = n > 0 ? static_cast<int>(sys.R.size() / n) : 0;
-  std::vector<double> Z = Kreg_[k]->inverseBlock(b);
+  std::vector<double> Z;
+  {
+    Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: inverse block"));
+    Z = Kreg_[k]->inverseBlock(b);
+  }
   std::vector<double> W(static_cast<size_t>(n) * r);
   if (r > 0) Kreg_[k]->solve(sys.R.data(), W.data(), r);
   std::vector<double> RtW(static_cast<size_t>(r) * r, 0.0), Rb(static_cast<size_t>(nb) * r), Wb(Rb.size());
