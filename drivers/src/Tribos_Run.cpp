@@ -412,6 +412,7 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
   summary.set("local_solver", problem->localSolverName());
   summary.set("time_factor_s", maxOverRanks(problem->factorTime(), *comm));
   summary.set("factor_memory_mb", maxOverRanks(problem->factorMemoryMb(), *comm));
+  summary.set("dense_block_memory_mb", maxOverRanks(problem->denseBlockMemoryMb(), *comm));
   summary.set("F_applications", r.F_applications);
   summary.set("time_F_apply_s", maxOverRanks(r.F_seconds, *comm));
   summary.set("coarse_size", static_cast<long long>(r.coarseSize));

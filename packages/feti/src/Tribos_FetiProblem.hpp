@@ -145,6 +145,7 @@ class FetiProblem {
 
   double factorTime() const { return Kplus_->factorSeconds(); }
   double factorMemoryMb() const { return Kplus_->memoryMb(); }
+  double denseBlockMemoryMb() const { return Kplus_->denseBlockMemoryMb(); }
   const std::string& localSolverName() const { return localSolverName_; }
   // True when some local subdomain applies F from its dense block (K+)_bb.
   bool explicitDualOperator() const { return Kplus_->hasDenseBlocks(); }

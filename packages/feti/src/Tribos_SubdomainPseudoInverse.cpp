@@ -99,11 +99,16 @@ SubdomainPseudoInverse::SubdomainPseudoInverse(const std::vector<Fem::SubdomainS
   factorSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-double SubdomainPseudoInverse::memoryMb() const {
+double SubdomainPseudoInverse::denseBlockMemoryMb() const {
   double mb = 0;
-  for (const auto& s : Kreg_) mb += s->factorMemoryMb();
   for (const auto& Z : KplusBB_) mb += Z.size() * 8.0 / 1048576.0;
   for (const auto& Z : KplusBBf_) mb += Z.size() * 4.0 / 1048576.0;
+  return mb;
+}
+
+double SubdomainPseudoInverse::memoryMb() const {
+  double mb = denseBlockMemoryMb();
+  for (const auto& s : Kreg_) mb += s->factorMemoryMb();
   return mb;
 }
 

@@ -41,6 +41,8 @@ class SubdomainPseudoInverse {
   bool hasDenseBlocks() const;
   double factorSeconds() const { return factorSeconds_; }
   double memoryMb() const;
+  // The dense blocks alone: the bytes one application of F reads from them.
+  double denseBlockMemoryMb() const;
 
  private:
   void applySubdomain(size_t k, const double* p, double* z) const;
