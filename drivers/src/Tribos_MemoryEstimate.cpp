@@ -67,7 +67,11 @@ double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec
   // double inverse and its packed copy coexist (counted as 16 b^2 per
   // subdomain in double, 12 b^2 when the copy is rounded to float).
   const bool single = params.sublist("Solver").sublist("FETI").get<std::string>("Dense Block Precision") == "Single";
-  return mine * (4000.0 * s.nodes + factorBytes(d) + (explicitF ? (single ? 12.0 : 16.0) * b * b : 0.0));
+  // The coarse problem, replicated: two sparse Cholesky factors (GG' and
+  // G_E G_E') of order 6S; their fill was measured as 4.8 (6S)^1.5 values
+  // each on box decompositions (docs/scaling.md).
+  const double coarseBytes = 2.0 * 8.0 * 4.8 * std::pow(6.0 * S, 1.5);
+  return mine * (4000.0 * s.nodes + factorBytes(d) + (explicitF ? (single ? 12.0 : 16.0) * b * b : 0.0)) + coarseBytes;
 }
 
 double monolithicBytes(const Teuchos::ParameterList& params, double nodes, int numRanks) {
