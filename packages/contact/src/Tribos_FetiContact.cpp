@@ -130,7 +130,7 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
     if (f.law == "Coulomb") cd_.frictionCoefficient[k] = f.coefficient;
   }
   transforms_.add(rcp(new Friction::HomogenizationTransform(Teuchos::rcpFromRef(dual->lambdaTilde()))))
-      .add(rcp(new Friction::ProjectionTransform(rcp(new CoarseProjector(dual)))))
+      .add(rcp(new Friction::ProjectionTransform(rcp(new CoarseProjector(dual)), true)))
       .add(scaling_)
       .forward(cd_);
   if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact();

@@ -20,6 +20,7 @@
 
 #include <vector>
 
+#include "Tribos_QP_AugmentedHessian.hpp"
 #include "Tribos_QP_ConstraintSet.hpp"
 #include "Tribos_QP_EqualityConstraint.hpp"
 #include "Tribos_Types.hpp"
@@ -43,6 +44,10 @@ struct ContactDual {
   // active contact never feels: a large gap must not loosen the solve. The
   // transforms (Tribos_DualTransform.hpp) map it as they map b.
   RCP<const Vector> bReference;
+  // A's joint application of A + rho G'G when G'G = I - P for the projector
+  // P inside A (set by ProjectionTransform for FETI's orthonormal coarse
+  // constraint, kept consistent by every later transform); null: none.
+  RCP<const QP::ProjectorComplement> jointHessian;
 
   RCP<const Map> map() const { return b->getMap(); }
   SC normB() const { return (bReference.is_null() ? b : bReference)->norm2(); }

@@ -27,11 +27,33 @@ class ScaledOperator : public Operator {
   SC s_;
 };
 
-// PAP x = P(A(P x)): one application of A per column.
-class ProjectedOperator : public Operator {
+// s C for the joint application C of A + rho G'G: s A + rho G'G = s (A +
+// (rho / s) G'G).
+class ScaledComplement : public QP::ProjectorComplement {
+ public:
+  ScaledComplement(RCP<const QP::ProjectorComplement> C, SC s) : C_(C), s_(s) {}
+  void applyWithComplement(const Vector& x, SC rho, Vector& y) const override {
+    C_->applyWithComplement(x, rho / s_, y);
+    y.scale(s_);
+  }
+
+ private:
+  RCP<const QP::ProjectorComplement> C_;
+  SC s_;
+};
+
+// PAP x = P(A(P x)): one application of A per column. With a projector whose
+// complement is G'G, also PAP x + rho (I - P) x from the same P x.
+class ProjectedOperator : public Operator, public QP::ProjectorComplement {
  public:
   ProjectedOperator(RCP<const Operator> A, RCP<const Operator> P)
       : A_(A), P_(P), Px_(A->getDomainMap()), APx_(A->getRangeMap()) {}
+  void applyWithComplement(const Vector& x, SC rho, Vector& y) const override {
+    P_->apply(x, Px_);
+    A_->apply(Px_, APx_);
+    P_->apply(APx_, y);
+    y.update(rho, x, -rho, Px_, 1.0);  // + rho (x - P x)
+  }
   RCP<const Map> getDomainMap() const override { return A_->getDomainMap(); }
   RCP<const Map> getRangeMap() const override { return A_->getRangeMap(); }
   void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
@@ -112,7 +134,9 @@ void HomogenizationTransform::back(Vector& x) const { x.update(1.0, *lambdaTilde
 void ProjectionTransform::forward(ContactDual& dual) {
   TRIBOS_REQUIRE(!dual.A.is_null() && !dual.b.is_null(), "ProjectionTransform: the problem has no A or no b");
   TRIBOS_REQUIRE(!P_.is_null(), "ProjectionTransform: the projector is null");
-  dual.A = rcp(new ProjectedOperator(dual.A, P_));
+  auto PAP = rcp(new ProjectedOperator(dual.A, P_));
+  dual.A = PAP;
+  dual.jointHessian = complementIsGtG_ ? RCP<const QP::ProjectorComplement>(PAP) : Teuchos::null;
   dual.b = applied(*P_, *dual.b);
   if (!dual.bReference.is_null()) dual.bReference = applied(*P_, *dual.bReference);
 }
@@ -123,6 +147,7 @@ void ScalingTransform::forward(ContactDual& dual) {
   norm_ = QP::estimateNorm(*dual.A, powerSteps_, ignored);
   scale_ = 1.0 / norm_;
   dual.A = rcp(new ScaledOperator(dual.A, scale_));
+  if (!dual.jointHessian.is_null()) dual.jointHessian = rcp(new ScaledComplement(dual.jointHessian, scale_));
   auto b = rcp(new Vector(*dual.b, Teuchos::Copy));
   b->scale(scale_);
   dual.b = b;

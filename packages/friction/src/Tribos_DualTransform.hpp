@@ -64,14 +64,20 @@ class HomogenizationTransform : public DualTransform {
 // not change; PAP is what FETI's projected Hessian is, and its spectrum on
 // ker G is what the solvers' rates see. Each application of PAP costs one of
 // A. back is the identity.
+//
+// complementIsGtG: the caller's G has orthonormal rows and P = I - G'G (FETI's
+// orthonormalized coarse constraint); then the transformed dual carries
+// jointHessian, which applies PAP + rho G'G with one projection less.
 class ProjectionTransform : public DualTransform {
  public:
-  explicit ProjectionTransform(RCP<const Operator> P) : P_(P) {}
+  explicit ProjectionTransform(RCP<const Operator> P, bool complementIsGtG = false)
+      : P_(P), complementIsGtG_(complementIsGtG) {}
   void forward(ContactDual& dual) override;
   void back(Vector&) const override {}
 
  private:
   RCP<const Operator> P_;
+  bool complementIsGtG_;
 };
 
 // A <- s A, b <- s b, bReference <- s bReference, s = 1/||A|| from

@@ -412,7 +412,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   const auto normalMask = dual.normalBlockMask(), tangentMask = dual.tangentBlockMask();
   // ||A + rho G'G|| <= ||A|| + rho ||G'G||; ||G'G|| by the power method once
   // (1 for the orthonormal FETI constraint), not counted as Hessian work.
-  QP::AugmentedLagrangian al(*dual.A, *G);
+  QP::AugmentedLagrangian al(*dual.A, *G, dual.jointHessian.get());
   const SC normGtG = dual.G.is_null() ? 0 : al.normGtG(20);
   Vector grad(dual.map()), gP(dual.map());
   std::vector<SC> g = dual.coulombSlipBound(x);

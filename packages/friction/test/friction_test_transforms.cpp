@@ -144,6 +144,38 @@ TEUCHOS_UNIT_TEST(Transforms, ProjectionKeepsTheProblemOnKerG) {
   checkSolution(m.problem, x, m.x, m.mu, m.problem.slipBound, checkTolerance, out, success);
 }
 
+// With complementIsGtG the projected and scaled dual carries the joint
+// application s PAP x + rho (I - P) x, equal to the chain's A x plus the
+// penalty on the projector's complement; without it, none.
+TEUCHOS_UNIT_TEST(Transforms, JointHessianIsPAPPlusComplement) {
+  ManufacturedOptions opt;
+  opt.equalityRows = 2;
+  opt.seed = 7;
+  const auto m = manufacture(stickSlipSeparated, opt);
+  auto plain = buildDual(m.problem, Tpetra::getDefaultComm());
+  Friction::DualTransformChain().add(rcp(new Friction::ProjectionTransform(rcp(new DenseProjector(m.problem, plain.map)))))
+      .forward(plain.dual);
+  TEST_ASSERT(plain.dual.jointHessian.is_null());
+  auto d = buildDual(m.problem, Tpetra::getDefaultComm());
+  auto P = rcp(new DenseProjector(m.problem, d.map));
+  Friction::DualTransformChain()
+      .add(rcp(new Friction::ProjectionTransform(P, true)))
+      .add(rcp(new Friction::ScalingTransform(20)))
+      .forward(d.dual);
+  TEST_ASSERT(!d.dual.jointHessian.is_null());
+  const SC rho = 0.7;
+  Vector x(d.map), Ax(d.map), Px(d.map), joint(d.map), expected(d.map);
+  x.randomize();
+  d.dual.A->apply(x, Ax);  // s PAP x
+  P->apply(x, Px);
+  expected.update(1.0, Ax, rho, x, 0.0);
+  expected.update(-rho, Px, 1.0);
+  d.dual.jointHessian->applyWithComplement(x, rho, joint);
+  joint.update(-1.0, expected, 1.0);
+  out << "|joint - (s PAP x + rho (I - P) x)| / |expected| = " << joint.norm2() / expected.norm2() << "\n";
+  TEST_COMPARE(joint.norm2(), <=, 1e-13 * expected.norm2());
+}
+
 TEUCHOS_UNIT_TEST(Transforms, ChainForwardInOrderBackInReverse) {
   ManufacturedOptions opt;
   opt.equalityRows = 1;

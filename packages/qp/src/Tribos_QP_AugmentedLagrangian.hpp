@@ -50,8 +50,9 @@ class AugmentedLagrangian {
     bool grewTooLittle = false;
   };
 
-  AugmentedLagrangian(const Operator& A, const EqualityConstraint& G)
-      : G_(G), H_(A, G, 0.0), mu_(rcp(new Vector(G.rangeMap()))), Gx_(G.rangeMap()),
+  // joint: see AugmentedHessian (null: A, then G and G').
+  AugmentedLagrangian(const Operator& A, const EqualityConstraint& G, const ProjectorComplement* joint = nullptr)
+      : G_(G), H_(A, G, 0.0, joint), mu_(rcp(new Vector(G.rangeMap()))), Gx_(G.rangeMap()),
         Gtmu_(A.getDomainMap()), bIn_(A.getDomainMap()) {}
 
   // The multiplier mu (set it for a warm start).
