@@ -67,6 +67,23 @@ struct FetiResult {
   double kernelError;
 };
 
+// ||B (K+)_bb B' x - B K+ B' x|| / ||B K+ B' x||: the dense blocks against
+// the sparse solves, for one x.
+double explicitVsImplicit(const Feti::FetiProblem& problem, const Comm& comm) {
+  Vector x(problem.dualMap()), p(problem.primalMap()), z1(problem.primalMap()), z2(problem.primalMap());
+  Vector F1(problem.dualMap()), F2(problem.dualMap());
+  auto xv = x.getDataNonConst();
+  for (size_t i = 0; i < xv.size(); ++i) xv[i] = std::cos(0.61 * (i + 7 * comm.getRank()));
+  xv = Teuchos::null;
+  problem.B()->apply(x, p, Teuchos::TRANS);
+  problem.applyKplus(p, z1);
+  problem.applyDualKplus(p, z2);
+  problem.B()->apply(z1, F1);
+  problem.B()->apply(z2, F2);
+  F2.update(-1.0, F1, 1.0);
+  return F2.norm2() / F1.norm2();
+}
+
 FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm, Teuchos::FancyOStream& out, bool& success) {
   auto disc = makeDisc(c, *comm);
   Teuchos::ParameterList p;
@@ -75,19 +92,7 @@ FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm, Teuchos::FancyO
   p.set("Dual Operator", c.dualOperator);
   auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), Feti::ContactSpec{}, p, comm));
   if (problem->explicitDualOperator()) {
-    // B (K+)_bb B' x from the dense blocks equals B K+ B' x by sparse solves.
-    Vector x(problem->dualMap()), p(problem->primalMap()), z1(problem->primalMap()), z2(problem->primalMap());
-    Vector F1(problem->dualMap()), F2(problem->dualMap());
-    auto xv = x.getDataNonConst();
-    for (size_t i = 0; i < xv.size(); ++i) xv[i] = std::cos(0.61 * (i + 7 * comm->getRank()));
-    xv = Teuchos::null;
-    problem->B()->apply(x, p, Teuchos::TRANS);
-    problem->applyKplus(p, z1);
-    problem->applyDualKplus(p, z2);
-    problem->B()->apply(z1, F1);
-    problem->B()->apply(z2, F2);
-    F2.update(-1.0, F1, 1.0);
-    const double diff = F2.norm2() / F1.norm2();
+    const double diff = explicitVsImplicit(*problem, *comm);
     out << "explicit vs implicit F x: relative difference " << diff << "\n";
     TEST_COMPARE(diff, <, 1e-10);
   }
@@ -297,18 +302,7 @@ TEUCHOS_UNIT_TEST(DualOperator, SinglePrecisionBlocks) {
   p.set("Dense Block Precision", "Single");
   auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), Feti::ContactSpec{}, p, comm));
   TEST_ASSERT(problem->explicitDualOperator());
-  Vector x(problem->dualMap()), q(problem->primalMap()), z1(problem->primalMap()), z2(problem->primalMap());
-  Vector F1(problem->dualMap()), F2(problem->dualMap());
-  auto xv = x.getDataNonConst();
-  for (size_t i = 0; i < xv.size(); ++i) xv[i] = std::cos(0.61 * (i + 7 * comm->getRank()));
-  xv = Teuchos::null;
-  problem->B()->apply(x, q, Teuchos::TRANS);
-  problem->applyKplus(q, z1);
-  problem->applyDualKplus(q, z2);
-  problem->B()->apply(z1, F1);
-  problem->B()->apply(z2, F2);
-  F2.update(-1.0, F1, 1.0);
-  const double diff = F2.norm2() / F1.norm2();
+  const double diff = explicitVsImplicit(*problem, *comm);
   out << "single-precision explicit vs implicit F x: relative difference " << diff << "\n";
   TEST_COMPARE(diff, <, 1e-5);
   TEST_COMPARE(diff, >, 1e-12);
