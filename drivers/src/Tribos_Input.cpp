@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_Validators.hpp"
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_GmshReader.hpp"
 #include "Tribos_MeshFile.hpp"
@@ -42,10 +43,6 @@ const Array<std::string> kFaces = tuple<std::string>("xmin", "xmax", "ymin", "ym
 
 RCP<Teuchos::StringValidator> choice(const Array<std::string>& names) {
   return rcp(new Teuchos::StringValidator(names));
-}
-template <class T>
-RCP<Teuchos::EnhancedNumberValidator<T>> range(T lo, T hi) {
-  return rcp(new Teuchos::EnhancedNumberValidator<T>(lo, hi));
 }
 
 // "xyz", "z", "xz": which displacement components a Dirichlet condition fixes.

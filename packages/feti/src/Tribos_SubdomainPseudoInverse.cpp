@@ -69,6 +69,8 @@ SubdomainPseudoInverse::SubdomainPseudoInverse(const std::vector<Fem::SubdomainS
   const auto t0 = std::chrono::steady_clock::now();
   KplusBB_.assign(systems_.size(), {});
   KplusBBf_.assign(systems_.size(), {});
+  static const auto sparseTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: sparse factor");
+  static const auto denseTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: dense block");
   Progress::stage("factorization of " + std::to_string(systems_.size()) + " subdomain matrices");
   for (size_t k = 0; k < systems_.size(); ++k) {
     Progress::iteration([&] { return "subdomain " + std::to_string(k + 1) + " of " + std::to_string(systems_.size()); });
@@ -84,7 +86,7 @@ SubdomainPseudoInverse::SubdomainPseudoInverse(const std::vector<Fem::SubdomainS
     const bool dense = denseRowLimit >= 0 && static_cast<long>(boundary_[k].size()) <= denseRowLimit;
     auto solver = createLocalSolver(localSolver);
     {
-      Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: sparse factor"));
+      Teuchos::TimeMonitor t(*sparseTimer);
       if (dense)
         solver->factor(Kreg, boundary_[k]);
       else
@@ -92,7 +94,7 @@ SubdomainPseudoInverse::SubdomainPseudoInverse(const std::vector<Fem::SubdomainS
     }
     Kreg_.push_back(solver);
     if (dense) {
-      Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: dense block"));
+      Teuchos::TimeMonitor t(*denseTimer);
       formDenseBlock(k);
     }
   }
@@ -121,7 +123,8 @@ void SubdomainPseudoInverse::formDenseBlock(size_t k) {
   const int n = sys.numDofs(), nb = static_cast<int>(b.size()), r = n > 0 ? static_cast<int>(sys.R.size() / n) : 0;
   std::vector<double> Z;
   {
-    Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: inverse block"));
+    static const auto inverseTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: inverse block");
+    Teuchos::TimeMonitor t(*inverseTimer);
     Z = Kreg_[k]->inverseBlock(b);
   }
   std::vector<double> W(static_cast<size_t>(n) * r);

@@ -12,6 +12,7 @@
 #include "Tribos_BlockGaussSeidel.hpp"
 #include "Tribos_SemismoothNewton.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_Validators.hpp"
 #include "Tribos_QP.hpp"
 #include "Tribos_QP_AugmentedLagrangian.hpp"
 #include "Tribos_Progress.hpp"
@@ -22,11 +23,6 @@ namespace Friction {
 using Teuchos::ParameterList;
 
 namespace {
-
-template <class T>
-RCP<Teuchos::EnhancedNumberValidator<T>> range(T lo, T hi) {
-  return rcp(new Teuchos::EnhancedNumberValidator<T>(lo, hi));
-}
 
 // Solver sublist validated against the solver's own valid parameters.
 RCP<ParameterList> solverList(const ParameterList& parent, const std::string& name, const QP::QPSolver& solver) {

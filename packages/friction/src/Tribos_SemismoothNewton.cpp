@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_Validators.hpp"
 #include "Tribos_Progress.hpp"
 
 namespace Tribos {
@@ -18,11 +19,6 @@ namespace Friction {
 using Teuchos::ParameterList;
 
 namespace {
-
-template <class T>
-RCP<Teuchos::EnhancedNumberValidator<T>> range(T lo, T hi) {
-  return rcp(new Teuchos::EnhancedNumberValidator<T>(lo, hi));
-}
 
 double norm2(const std::vector<double>& a) {
   double s = 0;

@@ -88,6 +88,14 @@ TEUCHOS_UNIT_TEST(Transforms, ScalingMakesNormOneAndKeepsTheSolution) {
   checkSolution(m.problem, x, m.x, m.mu, m.problem.slipBound, checkTolerance, out, success);
 }
 
+// The stick/slip/separated problem with `rows` equality rows.
+Manufactured withEqualityRows(int rows, unsigned seed) {
+  ManufacturedOptions opt;
+  opt.equalityRows = rows;
+  opt.seed = seed;
+  return manufacture(stickSlipSeparated, opt);
+}
+
 // P = I - G'(GG')^-1 G on the dense side, as an operator on the test's map.
 class DenseProjector : public Operator {
  public:
@@ -120,10 +128,7 @@ class DenseProjector : public Operator {
 };
 
 TEUCHOS_UNIT_TEST(Transforms, ProjectionKeepsTheProblemOnKerG) {
-  ManufacturedOptions opt;
-  opt.equalityRows = 2;
-  opt.seed = 5;
-  const auto m = manufacture(stickSlipSeparated, opt);
+  const auto m = withEqualityRows(2, 5);
   auto d = buildDual(m.problem, Tpetra::getDefaultComm());
   const RCP<const Operator> A = d.dual.A;
   auto P = rcp(new DenseProjector(m.problem, d.map));
@@ -148,10 +153,7 @@ TEUCHOS_UNIT_TEST(Transforms, ProjectionKeepsTheProblemOnKerG) {
 // application s PAP x + rho (I - P) x, equal to the chain's A x plus the
 // penalty on the projector's complement; without it, none.
 TEUCHOS_UNIT_TEST(Transforms, JointHessianIsPAPPlusComplement) {
-  ManufacturedOptions opt;
-  opt.equalityRows = 2;
-  opt.seed = 7;
-  const auto m = manufacture(stickSlipSeparated, opt);
+  const auto m = withEqualityRows(2, 7);
   auto plain = buildDual(m.problem, Tpetra::getDefaultComm());
   Friction::DualTransformChain().add(rcp(new Friction::ProjectionTransform(rcp(new DenseProjector(m.problem, plain.map)))))
       .forward(plain.dual);
@@ -177,10 +179,7 @@ TEUCHOS_UNIT_TEST(Transforms, JointHessianIsPAPPlusComplement) {
 }
 
 TEUCHOS_UNIT_TEST(Transforms, ChainForwardInOrderBackInReverse) {
-  ManufacturedOptions opt;
-  opt.equalityRows = 1;
-  opt.seed = 3;
-  const auto m = manufacture(stickSlipSeparated, opt);
+  const auto m = withEqualityRows(1, 3);
   Problem big = m.problem;
   for (double& a : big.A.a) a *= 50.0;
   for (double& v : big.b) v *= 50.0;

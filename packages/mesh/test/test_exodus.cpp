@@ -14,11 +14,12 @@
 #include "Tribos_ExodusReader.hpp"
 #include "Tribos_Mesh.hpp"
 #include "Tribos_MeshFile.hpp"
+#include "MeshTestGeometry.hpp"
 
 namespace {
 
 using namespace Tribos::Mesh;
-using P = std::array<double, 3>;
+using namespace Tribos::Mesh::Test;
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
@@ -122,29 +123,6 @@ std::string readError(const std::string& path) {
     return e.what();
   }
   return "";
-}
-
-P sub(const P& a, const P& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-P cross(const P& a, const P& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
-double dot(const P& a, const P& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-double cellVolume(const Mesh& m, int c) {
-  const int* n = m.cell(c);
-  auto tet = [&](int a, int b, int d, int e) {
-    return dot(sub(m.coords[n[b]], m.coords[n[a]]), cross(sub(m.coords[n[d]], m.coords[n[a]]), sub(m.coords[n[e]], m.coords[n[a]]))) / 6;
-  };
-  if (m.type == CellType::Tet4) return tet(0, 1, 2, 3);
-  return tet(0, 1, 2, 6) + tet(0, 2, 3, 6) + tet(0, 3, 7, 6) + tet(0, 7, 4, 6) + tet(0, 4, 5, 6) + tet(0, 5, 1, 6);
-}
-
-// Area vector of a planar facet by its nodes' order.
-P areaVector(const Mesh& m, const Facet& f) {
-  P s{0, 0, 0};
-  for (size_t k = 1; k + 1 < f.nodes.size(); ++k) {
-    const P c = cross(sub(m.coords[f.nodes[k]], m.coords[f.nodes[0]]), sub(m.coords[f.nodes[k + 1]], m.coords[f.nodes[0]]));
-    for (int d = 0; d < 3; ++d) s[d] += c[d] / 2;
-  }
-  return s;
 }
 
 // Two boxes, [0,2]x[0,1]x[0,1] of 4x2x2 cells ("lower") and
