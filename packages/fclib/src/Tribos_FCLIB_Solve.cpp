@@ -542,8 +542,7 @@ std::vector<std::string> coulombAlgorithms() {
   const auto& registry = Friction::frictionSolvers();
   std::vector<std::string> out;
   for (const auto& name : registry.names())
-    if (registry.accepts(name, "Coulomb") || registry.accepts(name, Friction::kCoulombWithoutEquality))
-      out.push_back(name);
+    if (registry.accepts(name, "Coulomb")) out.push_back(name);
   return out;
 }
 

@@ -509,8 +509,9 @@ const FrictionSolverRegistry& frictionSolvers() {
           [=](const ParameterList& p) -> RCP<FrictionSolver> {
             return rcp(new SemismoothNewton(sub(p, "Semismooth Newton")));
           },
-          "Newton on the Alart-Curnier function with an Armijo line search (serial, no equality constraint)",
-          {kCoulombWithoutEquality});
+          "Newton on the Alart-Curnier function with an Armijo line search (dense: up to its Dense Limit of "
+          "dual rows)",
+          {"Coulomb"});
     return r;
   }();
   return registry;
@@ -524,6 +525,7 @@ void FrictionSolverFactory::addValidParameters(ParameterList& solverList) {
   solverList.sublist("Algorithm 1").setParameters(*Algorithm1::validParameters());
   solverList.sublist("MSA").setParameters(*MSA::validParameters());
   solverList.sublist("Algorithm 2").setParameters(*Algorithm2::validParameters());
+  solverList.sublist("Semismooth Newton").setParameters(*SemismoothNewton::validParameters());
 }
 
 }  // namespace Friction

@@ -3,6 +3,7 @@
 //   "Tresca"          Algorithm 1 (SMALBE over Lambda_t(g) x Lambda_c) with the given slip bound g
 //   "MSA+Algorithm1"  Coulomb by successive approximations g <- F lambda_N, each a Tresca solve
 //   "Algorithm2"      Coulomb by the fused loop of Kucera's Algorithm 2
+//   "Semismooth Newton"  Coulomb by Newton's method on the Alart-Curnier function
 #pragma once
 
 #include <Teuchos_FancyOStream.hpp>
@@ -127,11 +128,10 @@ class Algorithm2 : public FrictionSolver {
 // Each accepts the friction laws it solves ("Frictionless", "Tresca",
 // "Coulomb"); the maker takes the list with sublists "Algorithm 1", "MSA",
 // "Algorithm 2" (missing ones take defaults).
-// "Semismooth Newton" (Tribos_SemismoothNewton.hpp) accepts only
-// kCoulombWithoutEquality: Coulomb problems without G x = 0 on one rank (FCLIB
-// local and global problems), not FETI's; its list is the sublist
+// "Semismooth Newton" (Tribos_SemismoothNewton.hpp) solves Coulomb problems
+// up to its Dense Limit of dual rows (FETI's, with G x = 0, reduced to the
+// contact rows; FCLIB's with their explicit W); its list is the sublist
 // "Semismooth Newton".
-inline const char* const kCoulombWithoutEquality = "Coulomb without equality constraint";
 using FrictionSolverRegistry = Registry<FrictionSolver, const Teuchos::ParameterList&>;
 const FrictionSolverRegistry& frictionSolvers();
 

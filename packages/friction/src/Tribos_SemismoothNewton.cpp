@@ -5,10 +5,14 @@
 #include <Tpetra_Vector.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <limits>
+#include <memory>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
+#include "Tribos_ContactRowReduction.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Validators.hpp"
 #include "Tribos_Progress.hpp"
@@ -50,28 +54,6 @@ class DenseLu : public NewtonLinearSolver {
   std::vector<double> lu_;
   std::vector<int> pivots_;
 };
-
-// A of the dual, formed column by column from n applications.
-LocalCsr formDense(const Operator& A, const RCP<const Map>& map) {
-  const int n = static_cast<int>(map->getGlobalNumElements());
-  std::vector<double> D(static_cast<size_t>(n) * n);
-  Vector e(map), Ae(map);
-  for (int j = 0; j < n; ++j) {
-    e.putScalar(0.0);
-    e.replaceLocalValue(j, 1.0);
-    A.apply(e, Ae);
-    auto col = Ae.getData();
-    for (int i = 0; i < n; ++i) D[static_cast<size_t>(i) * n + j] = col[i];
-  }
-  LocalCsr M;
-  M.rows = M.cols = n;
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j)
-      if (D[static_cast<size_t>(i) * n + j] != 0.0 || i == j) M.col.push_back(j), M.val.push_back(D[static_cast<size_t>(i) * n + j]);
-    M.rowptr.push_back(static_cast<int>(M.col.size()));
-  }
-  return M;
-}
 
 double diagonalEntry(const LocalCsr& A, int i) {
   for (int k = A.rowptr[i]; k < A.rowptr[i + 1]; ++k)
@@ -188,11 +170,12 @@ void AlartCurnier::jacobian(const std::vector<double>& x, const std::vector<doub
                             LocalCsr& J) const {
   // The pattern, once: per contact row the union of A's rows of the contact
   // and the contact's own columns (sorted).
-  std::vector<int> mark(n_, -1);
-  const bool buildPattern = J.rows != n_;
+  std::vector<int> mark(A.cols, -1);
+  const bool buildPattern = J.rows != n_ || J.cols != A.cols;
   if (buildPattern) {
     J = LocalCsr();
-    J.rows = J.cols = n_;
+    J.rows = n_;
+    J.cols = A.cols;
     std::vector<std::vector<int>> rowCols(n_);
     auto addRows = [&](const std::vector<int>& rows) {
       std::vector<int> cols;
@@ -315,32 +298,90 @@ void SemismoothNewton::setHessianMatrix(const LocalCsr* A, double scale) {
   explicitScale_ = scale;
 }
 
+// The Newton system of a contact problem: v = A z - b for z = (x, alpha),
+// x on the contact structure's rows (n), alpha the r multipliers of the
+// border rows h = border z - e (r = 0: none).
+struct SemismoothNewton::NewtonSystem {
+  const ContactDual* structure;
+  LocalCsr A;       // n x (n + r)
+  std::vector<double> b, bReference;
+  LocalCsr border;  // r x (n + r)
+  std::vector<double> e;
+};
+
+namespace {
+
+std::vector<double> data(const Vector& v) {
+  auto d = v.getData();
+  return std::vector<double>(d.begin(), d.end());
+}
+
+// J (n x (n + r), from the Alart-Curnier Jacobian) with the border rows and
+// -mu on their diagonal appended.
+void appendBorder(const LocalCsr& J, const LocalCsr& border, double mu, LocalCsr& out) {
+  out = J;
+  out.rows = J.rows + border.rows;
+  for (int i = 0; i < border.rows; ++i) {
+    for (int k = border.rowptr[i]; k < border.rowptr[i + 1]; ++k) {
+      out.col.push_back(border.col[k]);
+      out.val.push_back(border.val[k] - (border.col[k] == J.rows + i ? mu : 0.0));
+    }
+    out.rowptr.push_back(static_cast<int>(out.col.size()));
+  }
+}
+
+}  // namespace
+
 FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector) {
   dual.check();
-  const auto map = dual.map();
-  TRIBOS_REQUIRE(dual.G.is_null(),
-                 "Semismooth Newton: the dual has an equality constraint G x = 0, which this method does not "
-                 "handle (FETI contact problems: use Algorithm2)");
-  TRIBOS_REQUIRE(map->getComm()->getSize() == 1,
-                 "Semismooth Newton: serial only, the dual lives on " << map->getComm()->getSize() << " ranks");
   TRIBOS_REQUIRE(dual.frictionCoefficient.size() == dual.normalRows.size(),
                  "Semismooth Newton: Coulomb friction needs a friction coefficient per contact");
-  const int n = static_cast<int>(map->getNodeNumElements());
   FrictionStatus st;
-  // A (scaled as dual.A) as a CSR matrix.
-  LocalCsr A;
+  const auto start = std::chrono::steady_clock::now();
   if (explicitA_) {
+    // The caller's matrix (FCLIB's W): the problem as given, on one rank.
+    const auto map = dual.map();
+    TRIBOS_REQUIRE(dual.G.is_null() && map->getComm()->getSize() == 1,
+                   "Semismooth Newton: an explicit matrix is taken for a serial problem without equality constraint");
+    const int n = static_cast<int>(map->getNodeNumElements());
     TRIBOS_REQUIRE(explicitA_->rows == n && explicitA_->cols == n,
                    "Semismooth Newton: the explicit matrix is " << explicitA_->rows << " x " << explicitA_->cols
                                                                 << ", the dual has " << n << " rows");
-    A = *explicitA_;
-    for (double& a : A.val) a *= explicitScale_;
+    NewtonSystem sys{&dual, *explicitA_, data(*dual.b), data(dual.bReference.is_null() ? *dual.b : *dual.bReference),
+                     LocalCsr(), {}};
+    for (double& a : sys.A.val) a *= explicitScale_;
+    sys.border.cols = n;
+    std::vector<double> z = data(xVector);
+    iterate(sys, z, st, start);
+    auto xv = xVector.getDataNonConst();
+    std::copy(z.begin(), z.end(), xv.begin());
   } else {
-    const int limit = params_.get<int>("Dense Limit");
-    TRIBOS_REQUIRE(n <= limit, "Semismooth Newton: " << n << " rows and no explicit matrix; Dense Limit is " << limit);
-    A = formDense(*dual.A, map);
-    st.n_A += n;
+    // Dense, reduced to the contact rows: free rows and G x = 0 eliminated
+    // (Tribos_ContactRowReduction.hpp), the same on every rank.
+    TRIBOS_REQUIRE(!measure_, "Semismooth Newton: a stopping measure needs the explicit matrix");
+    std::unique_ptr<ContactRowReduction> reduction;
+    try {
+      reduction.reset(new ContactRowReduction(dual, params_.get<int>("Dense Limit")));
+    } catch (const Error& e) {
+      throw Error(std::string("Semismooth Newton: ") + e.what());
+    }
+    const ReducedContactProblem& p = reduction->reduced();
+    st.n_A += reduction->applications();
+    NewtonSystem sys{&p.contacts, p.A, data(*p.contacts.b), data(*p.contacts.bReference), p.border, p.e};
+    std::vector<double> z = reduction->restrict(xVector);
+    iterate(sys, z, st, start);
+    reduction->expand(z, xVector);
   }
+  st.slipBound = dual.coulombSlipBound(xVector);
+  st.n_A_qpp = st.n_A;
+  return st;
+}
+
+void SemismoothNewton::iterate(const NewtonSystem& sys, std::vector<double>& z, FrictionStatus& st,
+                               std::chrono::steady_clock::time_point start) const {
+  const ContactDual& dual = *sys.structure;
+  const int n = sys.A.rows, r = sys.border.rows, nz = n + r;
+  const LocalCsr& A = sys.A;
   const double rhoFactor = params_.get<double>("rho Factor");
   double maxDiag = A.maxAbsDiagonal();
   if (!(maxDiag > 0)) maxDiag = 1.0;
@@ -353,24 +394,30 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
   }
   const AlartCurnier ac(dual, rho);
 
-  std::vector<double> b(n), x(n), v(n), phi(n), d(n), w(n), xt(n), vt(n), phit(n), rhs(n);
-  {
-    auto bv = dual.b->getData();
-    std::copy(bv.begin(), bv.end(), b.begin());
-    auto xv = xVector.getData();
-    std::copy(xv.begin(), xv.end(), x.begin());
-  }
+  const std::vector<double>& b = sys.b;
+  std::vector<double> v(n), phi(n), d(nz), w(n), zt(nz), vt(n), phit(n), rhs(nz), h(r), ht(r);
   auto velocity = [&](const std::vector<double>& y, std::vector<double>& out) {
     A.multiply(y.data(), out.data());
     for (int i = 0; i < n; ++i) out[i] -= b[i];
     ++st.n_A;
   };
+  auto borderResidual = [&](const std::vector<double>& y, std::vector<double>& out) {
+    if (r == 0) return;
+    sys.border.multiply(y.data(), out.data());
+    for (int i = 0; i < r; ++i) out[i] -= sys.e[i];
+  };
   double normRhoB = 0;
-  for (int i = 0; i < n; ++i) normRhoB += rho[i] * b[i] * rho[i] * b[i];
+  for (int i = 0; i < n; ++i) normRhoB += rho[i] * sys.bReference[i] * rho[i] * sys.bReference[i];
   normRhoB = std::sqrt(normRhoB);
   if (!(normRhoB > 0)) normRhoB = 1.0;
-  const Measure measure =
-      measure_ ? measure_ : Measure([&](const std::vector<double>&, const std::vector<double>&) { return norm2(phi) / normRhoB; });
+  // ||(Phi, h)||: the Alart-Curnier residual and that of the border rows.
+  auto residualNorm = [&](const std::vector<double>& p, const std::vector<double>& q) {
+    const double a = norm2(p), c = norm2(q);
+    return std::sqrt(a * a + c * c);
+  };
+  const Measure measure = measure_ ? measure_ : Measure([&](const std::vector<double>&, const std::vector<double>&) {
+    return residualNorm(phi, h) / normRhoB;
+  });
 
   RCP<NewtonLinearSolver> linear = linear_.is_null() ? denseLuSolver() : linear_;
   const double tol = params_.get<double>("Relative Tolerance");
@@ -380,18 +427,28 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
   const int maxBack = params_.get<int>("Maximum Backtracking Steps");
   const double regularization = params_.get<double>("Regularization");
 
-  velocity(x, v);
-  ac.value(x, v, phi);
-  const double phi0 = std::max(norm2(phi), 1e-300);
-  LocalCsr J;
+  velocity(z, v);
+  ac.value(z, v, phi);
+  borderResidual(z, h);
+  const double phi0 = std::max(residualNorm(phi, h), 1e-300);
+  LocalCsr J0, J;
   int lineSearchFailures = 0;
   const double kMaxLambda = 1e2;
   double lambda = regularization;
   for (int it = 0;; ++it) {
-    const double normPhi = norm2(phi);
-    const double m = measure(x, v);
+    const double normPhi = residualNorm(phi, h);
+    const double m = measure(z, v);
     st.history.push_back(m);
     st.norm_gP = normPhi;
+    st.norm_Gx = norm2(h);
+    OuterStep step;
+    step.iteration = it;
+    step.projectedGradient = m;
+    step.normGx = st.norm_Gx / normRhoB;
+    step.slipBoundChange = std::numeric_limits<double>::quiet_NaN();
+    step.n_A = st.n_A;
+    step.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    st.steps.push_back(step);
     if (!out_.is_null())
       *out_ << "Semismooth Newton " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << m
             << "  ||Phi|| " << normPhi << "\n";
@@ -416,8 +473,9 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
     double mu = lambda * std::min(1.0, normPhi / phi0);
     bool factored = false;
     for (int attempt = 0; attempt < 4 && !factored; ++attempt) {
-      ac.jacobian(x, v, A, mu, J);
-      factored = linear->factor(J);
+      ac.jacobian(z, v, A, mu, J0);
+      if (r > 0) appendBorder(J0, sys.border, mu, J);
+      factored = linear->factor(r > 0 ? J : J0);
       mu = std::max(mu * 1e3, 1e-10);
     }
     if (!factored) {
@@ -425,6 +483,7 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
       break;
     }
     for (int i = 0; i < n; ++i) rhs[i] = -phi[i];
+    for (int i = 0; i < r; ++i) rhs[n + i] = -h[i];
     linear->solve(rhs.data(), d.data());
     A.multiply(d.data(), w.data());
     ++st.n_A;
@@ -432,9 +491,11 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
     double t = 1.0;
     bool accepted = false;
     for (int k = 0; k <= (armijo ? maxBack : 0); ++k) {
-      for (int i = 0; i < n; ++i) xt[i] = x[i] + t * d[i], vt[i] = v[i] + t * w[i];
-      ac.value(xt, vt, phit);
-      const double nt = norm2(phit);
+      for (int i = 0; i < nz; ++i) zt[i] = z[i] + t * d[i];
+      for (int i = 0; i < n; ++i) vt[i] = v[i] + t * w[i];
+      ac.value(zt, vt, phit);
+      borderResidual(zt, ht);
+      const double nt = residualNorm(phit, ht);
       if (!armijo || 0.5 * nt * nt <= (1.0 - 2.0 * sigma * t) * psi) {
         accepted = true;
         break;
@@ -455,18 +516,12 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
       lambda = std::max(regularization, 0.1 * lambda);
     }
     if (!accepted) ++lineSearchFailures;
-    x.swap(xt);
-    velocity(x, v);  // exact, not v + t w, so that round-off does not accumulate
-    ac.value(x, v, phi);
+    z.swap(zt);
+    velocity(z, v);  // exact, not v + t w, so that round-off does not accumulate
+    ac.value(z, v, phi);
+    borderResidual(z, h);
   }
   if (lineSearchFailures > 0) st.reason += " (" + std::to_string(lineSearchFailures) + " line-search failures)";
-  {
-    auto xv = xVector.getDataNonConst();
-    std::copy(x.begin(), x.end(), xv.begin());
-  }
-  st.slipBound = dual.coulombSlipBound(xVector);
-  st.n_A_qpp = st.n_A;
-  return st;
 }
 
 }  // namespace Friction

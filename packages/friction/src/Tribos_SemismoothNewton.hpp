@@ -29,6 +29,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 
+#include <chrono>
 #include <functional>
 #include <vector>
 
@@ -102,6 +103,10 @@ class SemismoothNewton : public FrictionSolver {
   void setStoppingMeasure(Measure m) { measure_ = std::move(m); }
 
  private:
+  struct NewtonSystem;
+  void iterate(const NewtonSystem& sys, std::vector<double>& z, FrictionStatus& st,
+               std::chrono::steady_clock::time_point start) const;
+
   Teuchos::ParameterList params_;
   const LocalCsr* explicitA_ = nullptr;
   double explicitScale_ = 1.0;
