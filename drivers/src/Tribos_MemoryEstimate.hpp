@@ -15,6 +15,8 @@
 //                    subdomain's surface dofs)
 //   Monolithic     8000 per owned node (matrix, MueLu hierarchy, vectors);
 //                  a direct solve adds 300 d^(4/3) for the whole mesh
+//   Newton         Semismooth Newton on FETI, on every rank: 24 n^2 for n dual
+//                  rows (0.65 S b), at most its Dense Limit
 //   semismooth*    on rank 0: 28000 per node + 150 d^(4/3) for the whole mesh
 // It is meant to be right within a factor of two, which is what a refusal needs.
 #pragma once

@@ -58,6 +58,17 @@ RCP<const Teuchos::ParameterList> fetiSolveParameters() {
 FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const PairFriction& friction,
                           const Teuchos::ParameterList& params, RCP<Teuchos::FancyOStream> out) {
   const Teuchos::ParameterList p = validatedSolveParameters(params);
+  if (problem->hasContact()) {
+    // A dense algorithm's size limit, before the coarse space and the solve
+    // (the same dual size, hence the same refusal, on every rank).
+    try {
+      Friction::FrictionSolverFactory()
+          .create(p.get<std::string>("Outer Algorithm"), p)
+          ->checkDualRows(static_cast<long long>(problem->dualMap()->getGlobalNumElements()));
+    } catch (const Error& e) {
+      throw CollectiveError(e.what());
+    }
+  }
   auto dual = rcp(new Feti::FetiDual(problem));
   FetiSolveResult r;
   r.lambda = rcp(new Vector(problem->dualMap()));

@@ -90,12 +90,9 @@ LocalCsr denseRows(const std::vector<double>& M, int rows, int cols) {  // M col
 
 }  // namespace
 
-ContactRowReduction::ContactRowReduction(const ContactDual& dual, int denseLimit) : map_(dual.map()) {
+ContactRowReduction::ContactRowReduction(const ContactDual& dual) : map_(dual.map()) {
   dual.check();
   const size_t n = map_->getGlobalNumElements();
-  TRIBOS_REQUIRE(static_cast<long>(n) <= denseLimit,
-                 "the dual has " << n << " rows; the dense reduction to the contact rows is limited to Dense Limit = "
-                                 << denseLimit);
   TRIBOS_REQUIRE(n == 0 || (map_->getMinAllGlobalIndex() == 0 && map_->getMaxAllGlobalIndex() == static_cast<GO>(n) - 1),
                  "the dual's map does not number its rows 0.." << n - 1);
   const auto comm = map_->getComm();

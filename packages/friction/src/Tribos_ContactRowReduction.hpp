@@ -39,9 +39,9 @@ struct ReducedContactProblem {
 
 class ContactRowReduction {
  public:
-  // Forms A densely from n applications (collective); refuses more than
-  // denseLimit rows, and free rows plus G that leave A~_EE singular.
-  ContactRowReduction(const ContactDual& dual, int denseLimit);
+  // Forms A densely from n applications (collective); refuses free rows
+  // and G that leave A~_EE singular.
+  explicit ContactRowReduction(const ContactDual& dual);
   const ReducedContactProblem& reduced() const { return reduced_; }
   // (x_C, alpha = 0) of a distributed x.
   std::vector<double> restrict(const Vector& x) const;

@@ -63,6 +63,9 @@ class FrictionSolver {
   virtual void setRequestedTolerance(double tolerance) = 0;
   virtual void setMaximumIterations(int iterations) = 0;
   void setOutputStream(RCP<Teuchos::FancyOStream> out) { out_ = out; }
+  // Throws Error when this algorithm refuses a dual of that many rows (a
+  // dense method's limit), so that a caller can refuse before the setup.
+  virtual void checkDualRows(long long /*rows*/) const {}
 
  protected:
   RCP<Teuchos::FancyOStream> out_;

@@ -293,6 +293,14 @@ void SemismoothNewton::setMaximumIterations(int iterations) {
   params_.set("Maximum Iterations", iterations);
 }
 
+void SemismoothNewton::checkDualRows(long long rows) const {
+  const int limit = params_.get<int>("Dense Limit");
+  TRIBOS_REQUIRE(explicitA_ || rows <= limit,
+                 "Semismooth Newton: the dual has " << rows << " rows, more than its Dense Limit = " << limit
+                     << " (it holds the dual densely on every rank, about 24 n^2 bytes for n rows); raise "
+                        "Semismooth Newton/Dense Limit or use Algorithm2");
+}
+
 void SemismoothNewton::setHessianMatrix(const LocalCsr* A, double scale) {
   explicitA_ = A;
   explicitScale_ = scale;
@@ -359,12 +367,8 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
     // Dense, reduced to the contact rows: free rows and G x = 0 eliminated
     // (Tribos_ContactRowReduction.hpp), the same on every rank.
     TRIBOS_REQUIRE(!measure_, "Semismooth Newton: a stopping measure needs the explicit matrix");
-    std::unique_ptr<ContactRowReduction> reduction;
-    try {
-      reduction.reset(new ContactRowReduction(dual, params_.get<int>("Dense Limit")));
-    } catch (const Error& e) {
-      throw Error(std::string("Semismooth Newton: ") + e.what());
-    }
+    checkDualRows(static_cast<long long>(dual.map()->getGlobalNumElements()));
+    auto reduction = std::make_unique<ContactRowReduction>(dual);
     const ReducedContactProblem& p = reduction->reduced();
     st.n_A += reduction->applications();
     NewtonSystem sys{&p.contacts, p.A, data(*p.contacts.b), data(*p.contacts.bReference), p.border, p.e};

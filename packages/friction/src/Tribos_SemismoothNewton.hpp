@@ -91,6 +91,7 @@ class SemismoothNewton : public FrictionSolver {
   double requestedTolerance() const override;
   void setRequestedTolerance(double tolerance) override;  // Relative Tolerance
   void setMaximumIterations(int iterations) override;     // Maximum Iterations
+  void checkDualRows(long long rows) const override;      // at most Dense Limit without an explicit matrix
 
   // A of the dual as an explicit sparse matrix: dual.A = scale * A.
   void setHessianMatrix(const LocalCsr* A, double scale);
