@@ -129,6 +129,12 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
     if (f.law == "Tresca") cd_.slipBound[k] = f.slipBoundTraction * lc.nodalArea[k];
     if (f.law == "Coulomb") cd_.frictionCoefficient[k] = f.coefficient;
   }
+  // F from the dense blocks, for the methods that need it densely.
+  cd_.denseA = [dual] {
+    std::vector<double> D;
+    dual->problem().formDenseF(D);
+    return D;
+  };
   transforms_.add(rcp(new Friction::HomogenizationTransform(Teuchos::rcpFromRef(dual->lambdaTilde()))))
       .add(rcp(new Friction::ProjectionTransform(rcp(new CoarseProjector(dual)), true)))
       .add(scaling_)

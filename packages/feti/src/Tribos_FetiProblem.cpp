@@ -2,12 +2,15 @@
 
 #include <mpi.h>
 
+#include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_LAPACK.hpp>
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Vector.hpp>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -443,6 +446,67 @@ std::vector<std::vector<int>> FetiProblem::boundaryDofs() const {
     offset += sys.numDofs();
   }
   return b;
+}
+
+bool FetiProblem::formDenseF(std::vector<double>& D) const {
+  D.clear();
+  int allDense = 1, everywhere = 0;
+  for (size_t k = 0; k < systems_.size(); ++k) allDense = allDense && Kplus_->hasDenseBlock(k);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, allDense, Teuchos::outArg(everywhere));
+  if (!everywhere) return false;
+  // Every rank's entries of B as (dual row, primal column, value), on every
+  // rank: a subdomain's columns may meet rows that another rank owns.
+  const auto& B = constraints_.B;
+  const auto rowMap = B->getRowMap(), colMap = B->getColMap();
+  std::vector<long long> keys;
+  std::vector<double> values;
+  for (LO i = 0; i < static_cast<LO>(B->getNodeNumRows()); ++i) {
+    typename CrsMatrix::local_inds_host_view_type cols;
+    typename CrsMatrix::values_host_view_type vals;
+    B->getLocalRowView(i, cols, vals);
+    for (size_t k = 0; k < cols.extent(0); ++k) {
+      keys.push_back(rowMap->getGlobalElement(i));
+      keys.push_back(colMap->getGlobalElement(cols(k)));
+      values.push_back(vals(k));
+    }
+  }
+  MPI_Comm mpi = *dynamic_cast<const Teuchos::MpiComm<int>&>(*comm_).getRawMpiComm();
+  int size = 0;
+  MPI_Comm_size(mpi, &size);
+  const int count = static_cast<int>(values.size());
+  std::vector<int> counts(size), displs(size, 0), kcounts(size), kdispls(size, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, mpi);
+  for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  for (int r = 0; r < size; ++r) kcounts[r] = 2 * counts[r], kdispls[r] = 2 * displs[r];
+  const int total = displs[size - 1] + counts[size - 1];
+  std::vector<long long> allKeys(2 * static_cast<size_t>(total));
+  std::vector<double> allValues(total);
+  MPI_Allgatherv(keys.data(), 2 * count, MPI_LONG_LONG, allKeys.data(), kcounts.data(), kdispls.data(), MPI_LONG_LONG, mpi);
+  MPI_Allgatherv(values.data(), count, MPI_DOUBLE, allValues.data(), counts.data(), displs.data(), MPI_DOUBLE, mpi);
+  // Per local subdomain, the entries of B_k: (boundary position, dual row, value).
+  std::vector<size_t> firstDof(systems_.size() + 1, 0);
+  for (size_t k = 0; k < systems_.size(); ++k) firstDof[k + 1] = firstDof[k] + systems_[k].numDofs();
+  std::vector<std::vector<std::array<double, 3>>> entries(systems_.size());
+  for (int t = 0; t < total; ++t) {
+    const LO local = primalMap_->getLocalElement(allKeys[2 * static_cast<size_t>(t) + 1]);
+    if (local == Teuchos::OrdinalTraits<LO>::invalid()) continue;
+    const size_t k = std::upper_bound(firstDof.begin(), firstDof.end(), static_cast<size_t>(local)) - firstDof.begin() - 1;
+    const auto& b = boundary_[k];
+    const int dof = static_cast<int>(local - firstDof[k]);
+    const int pos = static_cast<int>(std::lower_bound(b.begin(), b.end(), dof) - b.begin());
+    entries[k].push_back({double(pos), double(allKeys[2 * static_cast<size_t>(t)]), allValues[t]});
+  }
+  // D = sum_k B_k (K+)_bb B_k', summed over the ranks.
+  const size_t n = dualMap()->getGlobalNumElements();
+  std::vector<double> local(n * n, 0.0);
+  for (size_t k = 0; k < systems_.size(); ++k)
+    for (const auto& a : entries[k])
+      for (const auto& c : entries[k])
+        local[static_cast<size_t>(c[1]) * n + static_cast<size_t>(a[1])] +=
+            a[2] * Kplus_->denseBlockEntry(k, static_cast<int>(a[0]), static_cast<int>(c[0])) * c[2];
+  D.resize(n * n);
+  MPI_Allreduce(local.data(), D.data(), static_cast<int>(n * n), MPI_DOUBLE, MPI_SUM, mpi);
+  return true;
 }
 
 void FetiProblem::applyK(const Vector& p, Vector& z) const {

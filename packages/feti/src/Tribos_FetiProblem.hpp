@@ -149,6 +149,11 @@ class FetiProblem {
   const std::string& localSolverName() const { return localSolverName_; }
   // True when some local subdomain applies F from its dense block (K+)_bb.
   bool explicitDualOperator() const { return Kplus_->hasDenseBlocks(); }
+  // F = B K+ B' as a dense n x n column-major matrix on every rank (n dual
+  // rows), summed from the dense blocks (K+)_bb: far cheaper than n
+  // applications of F. False (D empty) when some subdomain has no dense
+  // block. Collective.
+  bool formDenseF(std::vector<double>& D) const;
   // "Auto" forms dense blocks only up to this many rows.
   static constexpr size_t kAutoExplicitRows = 4000;
 

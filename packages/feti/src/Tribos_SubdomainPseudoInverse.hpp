@@ -39,6 +39,15 @@ class SubdomainPseudoInverse {
 
   // True when some local subdomain has a dense block (K+)_bb.
   bool hasDenseBlocks() const;
+  bool hasDenseBlock(size_t k) const { return !KplusBB_[k].empty() || !KplusBBf_[k].empty(); }
+  // Entry (i, j) of the dense block (K+)_bb of local subdomain k, i and j
+  // positions in its boundary list; hasDenseBlock(k) must hold.
+  double denseBlockEntry(size_t k, int i, int j) const {
+    if (i < j) std::swap(i, j);
+    const size_t nb = boundary_[k].size();
+    const size_t at = static_cast<size_t>(i) + static_cast<size_t>(j) * (2 * nb - j - 1) / 2;  // packed lower
+    return singleBlocks_ ? static_cast<double>(KplusBBf_[k][at]) : KplusBB_[k][at];
+  }
   double factorSeconds() const { return factorSeconds_; }
   double memoryMb() const;
   // The dense blocks alone: the bytes one application of F reads from them.
@@ -46,7 +55,6 @@ class SubdomainPseudoInverse {
 
  private:
   void applySubdomain(size_t k, const double* p, double* z) const;
-  bool hasDenseBlock(size_t k) const { return !KplusBB_[k].empty() || !KplusBBf_[k].empty(); }
   template <class T>
   static void applyDenseBlock(const std::vector<T>& block, const std::vector<int>& b, const double* p, double* z,
                               std::vector<T>& work);

@@ -3,11 +3,13 @@
 // K K+ K = K, and rank independence: every run also solves the problem on
 // rank 0 alone (split communicator) and compares iteration counts and
 // displacements.
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 #include <Tpetra_Vector.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "Tribos_ConstraintRows.hpp"
@@ -306,6 +308,48 @@ TEUCHOS_UNIT_TEST(DualOperator, SinglePrecisionBlocks) {
   out << "single-precision explicit vs implicit F x: relative difference " << diff << "\n";
   TEST_COMPARE(diff, <, 1e-5);
   TEST_COMPARE(diff, >, 1e-12);
+}
+
+// F formed densely from the blocks (K+)_bb equals F applied to every unit
+// vector, in double and single precision, on every number of ranks (the
+// rows of B that meet a subdomain of another rank included).
+TEUCHOS_UNIT_TEST(DualOperator, DenseFormEqualsApplications) {
+  auto comm = Tpetra::getDefaultComm();
+  const Case c{Mesh::CellType::Tet4, {6, 3, 3}, 6, "Orthonormal"};
+  auto disc = makeDisc(c, *comm);
+  for (const char* precision : {"Double", "Single"}) {
+    Teuchos::ParameterList p;
+    p.set("Dual Operator", "Explicit");
+    p.set("Dense Block Precision", precision);
+    auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), Feti::ContactSpec{}, p, comm));
+    std::vector<double> D;
+    TEST_ASSERT(problem->formDenseF(D));
+    const auto map = problem->dualMap();
+    const size_t n = map->getGlobalNumElements();
+    TEST_EQUALITY(D.size(), n * n);
+    if (D.size() != n * n) return;
+    Feti::DualOperator F(problem);
+    Vector e(map), Fe(map);
+    double worst = 0, scale = 0;
+    for (size_t j = 0; j < n; ++j) {
+      e.putScalar(0.0);
+      if (map->isNodeGlobalElement(static_cast<GO>(j))) e.replaceGlobalValue(static_cast<GO>(j), 1.0);
+      F.apply(e, Fe);
+      auto v = Fe.getData();
+      for (size_t l = 0; l < v.size(); ++l) {
+        const double d = D[j * n + static_cast<size_t>(map->getGlobalElement(static_cast<LO>(l)))];
+        worst = std::max(worst, std::abs(d - v[l]));
+        scale = std::max(scale, std::abs(v[l]));
+      }
+    }
+    double all = 0, allScale = 0;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, worst, Teuchos::outArg(all));
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, scale, Teuchos::outArg(allScale));
+    out << precision << ": n = " << n << ", max |D - F e_j| / max |F| = " << all / allScale << "\n";
+    // The same block values: summed in another order (double), or multiplied
+    // in double instead of float arithmetic (single).
+    TEST_COMPARE(all, <=, (std::string(precision) == "Double" ? 1e-12 : 1e-6) * allScale);
+  }
 }
 
 // The rigid plane's normal from the contact face's facets: the box table's

@@ -18,6 +18,7 @@
 // (Tribos_DualTransform.hpp) does that for FETI and FCLIB problems.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "Tribos_QP_AugmentedHessian.hpp"
@@ -48,6 +49,12 @@ struct ContactDual {
   // P inside A (set by ProjectionTransform for FETI's orthonormal coarse
   // constraint, kept consistent by every later transform); null: none.
   RCP<const QP::ProjectorComplement> jointHessian;
+  // A as a dense n x n column-major matrix on every rank (collective), when
+  // its owner forms it faster than n applications (FETI's F from its dense
+  // blocks); any matrix that equals A on ker G will do. Empty function or
+  // empty result: none. ScalingTransform scales it; ProjectionTransform keeps
+  // it (on ker G, PAP = A).
+  std::function<std::vector<double>()> denseA;
 
   RCP<const Map> map() const { return b->getMap(); }
   SC normB() const { return (bReference.is_null() ? b : bReference)->norm2(); }

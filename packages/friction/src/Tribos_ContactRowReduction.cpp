@@ -141,7 +141,10 @@ ContactRowReduction::ContactRowReduction(const ContactDual& dual) : map_(dual.ma
   if (dual.slipBound.empty()) rc.slipBound.clear();
 
   // A~ = A + G'G, dense, and G.
-  std::vector<double> At = denseOperator(*dual.A, map_, replicated_, imp, applications_);
+  std::vector<double> At;
+  if (dual.denseA) At = dual.denseA();
+  if (At.empty()) At = denseOperator(*dual.A, map_, replicated_, imp, applications_);
+  TRIBOS_REQUIRE(At.size() == n * n, "the dense form of A has " << At.size() << " entries, not " << n << "^2");
   size_t r = 0;
   std::vector<double> Gd;
   if (!dual.G.is_null()) Gd = denseConstraint(*dual.G, map_, replicated_, imp, r);

@@ -39,7 +39,8 @@ struct ReducedContactProblem {
 
 class ContactRowReduction {
  public:
-  // Forms A densely from n applications (collective); refuses free rows
+  // Takes A from dual.denseA or forms it from n applications (collective);
+  // refuses free rows
   // and G that leave A~_EE singular.
   explicit ContactRowReduction(const ContactDual& dual);
   const ReducedContactProblem& reduced() const { return reduced_; }
@@ -47,7 +48,7 @@ class ContactRowReduction {
   std::vector<double> restrict(const Vector& x) const;
   // The distributed x of a reduced solution z = (x_C, alpha).
   void expand(const std::vector<double>& z, Vector& x) const;
-  // Applications of dual.A spent forming it.
+  // Applications of dual.A spent forming it (0 with dual.denseA).
   long applications() const { return applications_; }
 
  private:

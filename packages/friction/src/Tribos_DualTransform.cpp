@@ -147,6 +147,13 @@ void ScalingTransform::forward(ContactDual& dual) {
   norm_ = QP::estimateNorm(*dual.A, powerSteps_, ignored);
   scale_ = 1.0 / norm_;
   dual.A = rcp(new ScaledOperator(dual.A, scale_));
+  if (dual.denseA) {
+    dual.denseA = [dense = dual.denseA, s = scale_] {
+      auto D = dense();
+      for (double& d : D) d *= s;
+      return D;
+    };
+  }
   if (!dual.jointHessian.is_null()) dual.jointHessian = rcp(new ScaledComplement(dual.jointHessian, scale_));
   auto b = rcp(new Vector(*dual.b, Teuchos::Copy));
   b->scale(scale_);
