@@ -216,7 +216,8 @@ Row runSiconos(const std::string& name, const FCLIB::LocalProblem& p, const Args
     row.time = std::min(row.time, t);
     row.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
     // Siconos' own measure of its result: the error its solver reported and
-    // fc3d_compute_error on (r, W r + q), which should be our residual.
+    // fc3d_compute_error on (r, W r + q): our natural map, divided by
+    // max(||q||, ||r||, ||u||) instead of ||q|| (docs/benchmarks.md).
     std::vector<double> w(n);
     p.W.multiply(r, w);
     for (int i = 0; i < n; ++i) w[i] = c * (w[i] + p.q[i]);

@@ -104,7 +104,8 @@ struct SolveOptions {
   // problem does not give) are refused before any work, naming the valid ones.
   std::string algorithm = "Algorithm2";
   // > 0: the result must reach ||F_nat|| / ||q|| <= naturalMapTolerance (the
-  // natural-map error relative to q, Siconos' measure). The algorithm is
+  // natural-map error relative to q; Siconos' fc3d_compute_error divides
+  // the same map by max(||q||, ||r||, ||u||)). The algorithm is
   // asked for this relative tolerance (FrictionSolver::setRequestedTolerance);
   // an algorithm whose own stopping test is a different measure is asked
   // again from its result with a tolerance scaled by naturalMapTolerance/err
