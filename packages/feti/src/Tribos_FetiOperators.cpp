@@ -15,6 +15,7 @@
 #include <map>
 #include <sstream>
 
+#include "Tribos_AllGather.hpp"
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -53,44 +54,6 @@ void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp,
     ++n_A_;
   }
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-bool DenseCholesky::tryFactor(std::vector<double> A, int n) {
-  n_ = n;
-  L_ = std::move(A);
-  if (n == 0) return true;
-  Teuchos::LAPACK<int, double> lapack;
-  int info = 0;
-  lapack.POTRF('L', n, L_.data(), n, &info);
-  // A pivot far below the largest diagonal entry is a singular Gram matrix
-  // in floating point (Cholesky succeeds on round-off).
-  double dmax = 0, dmin = 1e300;
-  for (int i = 0; i < n && info == 0; ++i) {
-    const double d = L_[static_cast<size_t>(i) * n + i];
-    dmax = std::max(dmax, d * d), dmin = std::min(dmin, d * d);
-  }
-  return info == 0 && dmin > 1e-12 * dmax;
-}
-
-void DenseCholesky::solve(std::vector<double>& x) const {
-  if (n_ == 0) return;
-  Teuchos::LAPACK<int, double> lapack;
-  int info = 0;
-  lapack.POTRS('L', n_, 1, L_.data(), n_, x.data(), n_, &info);
-}
-
-void DenseCholesky::solveLower(std::vector<double>& x) const {
-  if (n_ == 0) return;
-  Teuchos::LAPACK<int, double> lapack;
-  int info = 0;
-  lapack.TRTRS('L', 'N', 'N', n_, 1, L_.data(), n_, x.data(), n_, &info);
-}
-
-void DenseCholesky::solveUpperT(std::vector<double>& x) const {
-  if (n_ == 0) return;
-  Teuchos::LAPACK<int, double> lapack;
-  int info = 0;
-  lapack.TRTRS('L', 'T', 'N', n_, 1, L_.data(), n_, x.data(), n_, &info);
 }
 
 CoarseSpace::CoarseSpace(RCP<const FetiProblem> problem) : problem_(problem) {
@@ -160,26 +123,16 @@ namespace {
 using GramBlocks = std::map<long long, std::array<double, 36>>;
 
 // Every rank's blocks summed on every rank (the coarse problem is replicated).
-GramBlocks gatherBlocks(const GramBlocks& local, MPI_Comm comm) {
+GramBlocks gatherBlocks(const GramBlocks& local, const Comm& comm) {
   std::vector<long long> keys;
   std::vector<double> values;
   for (const auto& [key, block] : local) {
     keys.push_back(key);
     values.insert(values.end(), block.begin(), block.end());
   }
-  int size = 0;
-  MPI_Comm_size(comm, &size);
-  const int count = static_cast<int>(keys.size());
-  std::vector<int> counts(size), displs(size, 0), vcounts(size), vdispls(size, 0);
-  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-  for (int r = 0; r < size; ++r) vcounts[r] = 36 * counts[r], vdispls[r] = 36 * displs[r];
-  const int total = displs[size - 1] + counts[size - 1];
-  std::vector<long long> allKeys(total);
-  std::vector<double> allValues(36 * static_cast<size_t>(total));
-  MPI_Allgatherv(keys.data(), count, MPI_LONG_LONG, allKeys.data(), counts.data(), displs.data(), MPI_LONG_LONG, comm);
-  MPI_Allgatherv(values.data(), 36 * count, MPI_DOUBLE, allValues.data(), vcounts.data(), vdispls.data(), MPI_DOUBLE,
-                 comm);
+  const std::vector<long long> allKeys = allGatherv(keys, comm);
+  const std::vector<double> allValues = allGatherv(values, comm);
+  const int total = static_cast<int>(allKeys.size());
   GramBlocks all;
   for (int k = 0; k < total; ++k) {
     auto [it, inserted] = all.try_emplace(allKeys[k]);
@@ -215,7 +168,7 @@ LocalCsr CoarseSpace::gramian(const std::vector<char>* rows) const {
             it->second[6 * (col_[a] - ko[p[0]]) + (col_[b] - ko[q[0]])] += val_[a] * val_[b];
       }
   }
-  const GramBlocks all = gatherBlocks(local, rawComm(*problem_->comm()));
+  const GramBlocks all = gatherBlocks(local, *problem_->comm());
   // CSR row by row: the blocks of block row s are consecutive in `all`.
   LocalCsr A;
   A.rows = A.cols = n_;

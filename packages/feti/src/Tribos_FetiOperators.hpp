@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "Tribos_DenseCholesky.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_LocalCsr.hpp"
 #include "Tribos_LocalSolver.hpp"
@@ -41,21 +42,7 @@ class DualOperator : public Operator {
   mutable double seconds_ = 0;
 };
 
-// Dense symmetric positive definite matrix factored by Cholesky (LAPACK).
-class DenseCholesky {
- public:
-  // Cholesky of A (n x n, column-major); false when A is singular (a pivot
-  // below 1e-12 of the largest, squared).
-  bool tryFactor(std::vector<double> A, int n);
-  void solve(std::vector<double>& x) const;        // x <- A^-1 x
-  void solveLower(std::vector<double>& x) const;   // x <- L^-1 x
-  void solveUpperT(std::vector<double>& x) const;  // x <- L^-T x
-  int size() const { return n_; }
-
- private:
-  std::vector<double> L_;
-  int n_ = 0;
-};
+using DenseCholesky = Tribos::DenseCholesky;  // Tribos_DenseCholesky.hpp
 
 class CoarseSpace {
  public:

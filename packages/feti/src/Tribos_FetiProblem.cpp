@@ -2,7 +2,6 @@
 
 #include <mpi.h>
 
-#include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_LAPACK.hpp>
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
@@ -10,12 +9,12 @@
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Vector.hpp>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
 
 #include "Tribos_AgreeOnError.hpp"
+#include "Tribos_AllGather.hpp"
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -470,23 +469,18 @@ bool FetiProblem::formDenseF(std::vector<double>& D) const {
       values.push_back(vals(k));
     }
   }
-  MPI_Comm mpi = *dynamic_cast<const Teuchos::MpiComm<int>&>(*comm_).getRawMpiComm();
-  int size = 0;
-  MPI_Comm_size(mpi, &size);
-  const int count = static_cast<int>(values.size());
-  std::vector<int> counts(size), displs(size, 0), kcounts(size), kdispls(size, 0);
-  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, mpi);
-  for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-  for (int r = 0; r < size; ++r) kcounts[r] = 2 * counts[r], kdispls[r] = 2 * displs[r];
-  const int total = displs[size - 1] + counts[size - 1];
-  std::vector<long long> allKeys(2 * static_cast<size_t>(total));
-  std::vector<double> allValues(total);
-  MPI_Allgatherv(keys.data(), 2 * count, MPI_LONG_LONG, allKeys.data(), kcounts.data(), kdispls.data(), MPI_LONG_LONG, mpi);
-  MPI_Allgatherv(values.data(), count, MPI_DOUBLE, allValues.data(), counts.data(), displs.data(), MPI_DOUBLE, mpi);
+  const std::vector<long long> allKeys = allGatherv(keys, *comm_);
+  const std::vector<double> allValues = allGatherv(values, *comm_);
+  const int total = static_cast<int>(allValues.size());
   // Per local subdomain, the entries of B_k: (boundary position, dual row, value).
   std::vector<size_t> firstDof(systems_.size() + 1, 0);
   for (size_t k = 0; k < systems_.size(); ++k) firstDof[k + 1] = firstDof[k] + systems_[k].numDofs();
-  std::vector<std::vector<std::array<double, 3>>> entries(systems_.size());
+  struct Entry {
+    int position;  // in the subdomain's boundary list
+    size_t row;    // dual row
+    double value;
+  };
+  std::vector<std::vector<Entry>> entries(systems_.size());
   for (int t = 0; t < total; ++t) {
     const LO local = primalMap_->getLocalElement(allKeys[2 * static_cast<size_t>(t) + 1]);
     if (local == Teuchos::OrdinalTraits<LO>::invalid()) continue;
@@ -494,18 +488,16 @@ bool FetiProblem::formDenseF(std::vector<double>& D) const {
     const auto& b = boundary_[k];
     const int dof = static_cast<int>(local - firstDof[k]);
     const int pos = static_cast<int>(std::lower_bound(b.begin(), b.end(), dof) - b.begin());
-    entries[k].push_back({double(pos), double(allKeys[2 * static_cast<size_t>(t)]), allValues[t]});
+    entries[k].push_back({pos, static_cast<size_t>(allKeys[2 * static_cast<size_t>(t)]), allValues[t]});
   }
   // D = sum_k B_k (K+)_bb B_k', summed over the ranks.
   const size_t n = dualMap()->getGlobalNumElements();
-  std::vector<double> local(n * n, 0.0);
+  D.assign(n * n, 0.0);
   for (size_t k = 0; k < systems_.size(); ++k)
     for (const auto& a : entries[k])
       for (const auto& c : entries[k])
-        local[static_cast<size_t>(c[1]) * n + static_cast<size_t>(a[1])] +=
-            a[2] * Kplus_->denseBlockEntry(k, static_cast<int>(a[0]), static_cast<int>(c[0])) * c[2];
-  D.resize(n * n);
-  MPI_Allreduce(local.data(), D.data(), static_cast<int>(n * n), MPI_DOUBLE, MPI_SUM, mpi);
+        D[c.row * n + a.row] += a.value * Kplus_->denseBlockEntry(k, a.position, c.position) * c.value;
+  MPI_Allreduce(MPI_IN_PLACE, D.data(), static_cast<int>(n * n), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
   return true;
 }
 

@@ -2,7 +2,6 @@
 
 #include <Teuchos_BLAS.hpp>
 #include <Teuchos_DefaultSerialComm.hpp>
-#include <Teuchos_LAPACK.hpp>
 #include <Tpetra_Import.hpp>
 #include <Tpetra_MultiVector.hpp>
 #include <Tpetra_Vector.hpp>
@@ -10,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "Tribos_DenseCholesky.hpp"
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -97,7 +97,8 @@ ContactRowReduction::ContactRowReduction(const ContactDual& dual) : map_(dual.ma
                  "the dual's map does not number its rows 0.." << n - 1);
   const auto comm = map_->getComm();
   replicated_ = rcp(new Map(n, 0, comm, Tpetra::LocallyReplicated));
-  const Import imp(map_, replicated_);
+  toReplicated_ = rcp(new Import(map_, replicated_));
+  const Import& imp = *toReplicated_;
 
   // The contact structure on every rank: per row its kind (0 free, 1 normal,
   // 2 tangential) and, on normal rows, the contact's data.
@@ -149,7 +150,6 @@ ContactRowReduction::ContactRowReduction(const ContactDual& dual) : map_(dual.ma
   std::vector<double> Gd;
   if (!dual.G.is_null()) Gd = denseConstraint(*dual.G, map_, replicated_, imp, r);
   Teuchos::BLAS<int, double> blas;
-  Teuchos::LAPACK<int, double> lapack;
   const int N = static_cast<int>(n), R = static_cast<int>(r);
   if (r > 0) blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, N, N, R, 1.0, Gd.data(), R, Gd.data(), R, 1.0, At.data(), N);
   const auto bv = gatherColumns(*dual.b, replicated_, imp)[0];
@@ -165,14 +165,8 @@ ContactRowReduction::ContactRowReduction(const ContactDual& dual) : map_(dual.ma
   std::vector<double> AEE(static_cast<size_t>(e) * e);
   for (int b = 0; b < e; ++b)
     for (int a = 0; a < e; ++a) AEE[static_cast<size_t>(b) * e + a] = at(E[a], E[b]);
-  int info_ = 0;
-  if (e > 0) lapack.POTRF('L', e, AEE.data(), e, &info_);
-  double dmin = 1e300, dmax = 0;
-  for (int a = 0; a < e && info_ == 0; ++a) {
-    const double d = AEE[static_cast<size_t>(a) * e + a];
-    dmin = std::min(dmin, d * d), dmax = std::max(dmax, d * d);
-  }
-  TRIBOS_REQUIRE(info_ == 0 && (e == 0 || dmin > 1e-12 * dmax),
+  DenseCholesky K;
+  TRIBOS_REQUIRE(K.tryFactor(std::move(AEE), e),
                  "the " << e << " rows without contact and the equality constraint leave the multipliers undetermined "
                         "(A + G'G is singular on those rows): the contact alone holds part of the problem");
   Z_.assign(static_cast<size_t>(e) * (m + R), 0.0);
@@ -183,11 +177,9 @@ ContactRowReduction::ContactRowReduction(const ContactDual& dual) : map_(dual.ma
   Kb_.resize(e);
   std::vector<double> KbRef(e);
   for (int a = 0; a < e; ++a) Kb_[a] = bv[E[a]], KbRef[a] = bRef[E[a]];
-  if (e > 0) {
-    lapack.POTRS('L', e, m + R, AEE.data(), e, Z_.data(), e, &info_);
-    lapack.POTRS('L', e, 1, AEE.data(), e, Kb_.data(), e, &info_);
-    lapack.POTRS('L', e, 1, AEE.data(), e, KbRef.data(), e, &info_);
-  }
+  K.solve(Z_.data(), m + R);
+  K.solve(Kb_);
+  K.solve(KbRef);
 
   // T = [A~_CC G_C'] - A~_CE Z = [W Gh'] (m x (m + r)).
   std::vector<double> T(static_cast<size_t>(m) * (m + R)), ACE(static_cast<size_t>(m) * e);
@@ -232,8 +224,7 @@ ContactRowReduction::ContactRowReduction(const ContactDual& dual) : map_(dual.ma
 }
 
 std::vector<double> ContactRowReduction::restrict(const Vector& x) const {
-  const Import imp(map_, replicated_);
-  const auto full = gatherColumns(x, replicated_, imp)[0];
+  const auto full = gatherColumns(x, replicated_, *toReplicated_)[0];
   std::vector<double> z(contactRows_.size() + reduced_.e.size(), 0.0);
   for (size_t i = 0; i < contactRows_.size(); ++i) z[i] = full[contactRows_[i]];
   return z;

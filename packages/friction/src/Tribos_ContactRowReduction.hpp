@@ -53,6 +53,7 @@ class ContactRowReduction {
 
  private:
   RCP<const Map> map_, replicated_;
+  RCP<const Import> toReplicated_;
   std::vector<int> contactRows_, freeRows_;  // global row indices
   std::vector<double> Z_;                    // K [A~_EC G_E'], e x (m + r), column-major
   std::vector<double> Kb_;                   // K b_E
