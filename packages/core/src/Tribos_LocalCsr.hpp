@@ -7,6 +7,15 @@
 
 namespace Tribos {
 
+// Compressed rows held elsewhere (a LocalCsr, an FCLIB matrix): read-only
+// arrays, no copy.
+struct CsrView {
+  int rows = 0, cols = 0;
+  const int* rowptr = nullptr;  // rows + 1
+  const int* col = nullptr;
+  const double* val = nullptr;
+};
+
 struct LocalCsr {
   int rows = 0, cols = 0;
   std::vector<int> rowptr{0}, col;
@@ -40,6 +49,7 @@ struct LocalCsr {
         if (col[k] == i && (val[k] > m || -val[k] > m)) m = val[k] > 0 ? val[k] : -val[k];
     return m;
   }
+  CsrView view() const { return {rows, cols, rowptr.data(), col.data(), val.data()}; }
 };
 
 }  // namespace Tribos

@@ -15,6 +15,7 @@
 #include "Tribos_ContactKKT.hpp"
 #include "Tribos_DualTransform.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_NonsmoothGaussSeidel.hpp"
 #include "Tribos_SemismoothNewton.hpp"
 
 #include <klu.h>
@@ -289,12 +290,6 @@ Teuchos::ParameterList solverList(const SolveOptions& options) {
   return params;
 }
 
-// What 'converged' is checked against: the requested tolerance and the limit
-// Result Check Factor times it. Checked before any work.
-struct ResultLimit {
-  double tolerance, limit;
-};
-
 double resultCheckFactor(const Teuchos::ParameterList& params, const SolveOptions& options) {
   const double factor = params.isParameter("Result Check Factor") ? params.get<double>("Result Check Factor")
                                                                    : options.resultCheckFactor;
@@ -463,6 +458,27 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   return rep;
 }
 
+// NSGS on W's entries: no Tpetra map, no scaling (the local solves use
+// W_cc as it is), the natural-map error ||F_nat|| / ||q|| as its stopping
+// measure. rep.u = W r + q of the returned r (NSGS forms it from W's entries
+// after its last sweep); err and the KKT residuals are the caller's.
+SolveReport solveExplicit(const CsrView& W, const std::vector<double>& q, const std::vector<double>& mu,
+                          const SolveOptions& options, Friction::NonsmoothGaussSeidel& nsgs) {
+  SolveReport rep;
+  rep.algorithm = options.algorithm;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (options.verbose) nsgs.setOutputStream(Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout)));
+  nsgs.setStoppingMeasure([&q, &mu](const std::vector<double>& r, const std::vector<double>& u) {
+    return naturalMapError(r, u, mu, q).relativeToQ;
+  });
+  rep.r.assign(q.size(), 0.0);
+  rep.status = nsgs.solve({W, q.data(), mu.data(), static_cast<int>(mu.size())}, rep.r, rep.u);
+  nsgs.setStoppingMeasure(nullptr);  // it refers to q and mu of this call
+  rep.n_A = rep.status.n_A;
+  rep.timeSolve = seconds(t0);
+  return rep;
+}
+
 // The Tresca QP of the slip bound g: A = W, b = -q, normal row 3k,
 // tangential rows 3k+1, 3k+2, no equality constraint.
 ContactDualPtr contactDual(const Operator& A, const std::vector<double>& q, const std::vector<double>& mu,
@@ -490,20 +506,18 @@ ContactDualPtr contactDual(const Operator& A, const std::vector<double>& q, cons
 }
 
 RCP<const Map> serialMap(int n, const RCP<const Comm>& comm) {
-  if (comm->getSize() != 1)
-    throw Error("FCLIB solve: use a communicator of one rank (got " + std::to_string(comm->getSize()) + ")");
   return rcp(new Map(static_cast<Tpetra::global_size_t>(n), 0, comm));
 }
 
 const char* kContext = "FCLIB solve";
 
-// The method, its parameters and the result check, validated before any work.
-struct Setup {
-  SolverPtr solver;
-  ResultLimit limit;
-};
+}  // namespace
 
-Setup setup(const SolveOptions& options) {
+// The method, its parameters and the result check, validated before any work.
+Solver::Solver(const SolveOptions& options, const RCP<const Comm>& serialComm)
+    : options_(options), comm_(serialComm) {
+  if (comm_->getSize() != 1)
+    throw Error("FCLIB solve: use a communicator of one rank (got " + std::to_string(comm_->getSize()) + ")");
   const Teuchos::ParameterList params = solverList(options);
   const auto& registry = Friction::frictionSolvers();
   const auto coulomb = coulombAlgorithms();
@@ -521,17 +535,24 @@ Setup setup(const SolveOptions& options) {
   if (options.toleranceRounds < 1)
     throw Error("FCLIB solve: tolerance rounds " + std::to_string(options.toleranceRounds) + ", expected >= 1");
   const double factor = resultCheckFactor(params, options);
-  SolverPtr solver = registry.create(options.algorithm, params);
-  if (options.naturalMapTolerance > 0) solver->setRequestedTolerance(std::max(options.naturalMapTolerance, 1e-15));
-  if (options.maxIterations > 0) solver->setMaximumIterations(options.maxIterations);
-  const double tolerance =
-      options.naturalMapTolerance > 0 ? options.naturalMapTolerance : solver->requestedTolerance();
-  return {solver, {tolerance, factor * tolerance}};
+  solver_ = registry.create(options.algorithm, params);
+  resetLimits();
+  tolerance_ = options.naturalMapTolerance > 0 ? options.naturalMapTolerance : solver_->requestedTolerance();
+  limit_ = factor * tolerance_;
 }
 
-void finish(const ResultLimit& limit, const SolveOptions& options, SolveReport& rep) {
-  rep.tolerance = limit.tolerance;
-  rep.limit = limit.limit;
+// The tolerance and iteration limit the options set (the rounds of a solve
+// tighten them; every solve starts from these).
+void Solver::resetLimits() const {
+  if (options_.naturalMapTolerance > 0) solver_->setRequestedTolerance(std::max(options_.naturalMapTolerance, 1e-15));
+  if (options_.maxIterations > 0) solver_->setMaximumIterations(options_.maxIterations);
+}
+
+namespace {
+
+void finish(double tolerance, double limit, const SolveOptions& options, SolveReport& rep) {
+  rep.tolerance = tolerance;
+  rep.limit = limit;
   rep.naturalMapTolerance = options.naturalMapTolerance;
   judgeResult(rep);
 }
@@ -542,62 +563,73 @@ std::vector<std::string> coulombAlgorithms() {
   const auto& registry = Friction::frictionSolvers();
   std::vector<std::string> out;
   for (const auto& name : registry.names())
-    if (registry.accepts(name, "Coulomb")) out.push_back(name);
+    if (registry.accepts(name, "Coulomb") || registry.accepts(name, Friction::kExplicitCoulomb)) out.push_back(name);
   return out;
 }
 
 void judgeResult(SolveReport& rep) {
   const bool finite = allFinite(rep.r) && allFinite(rep.u) && allFinite(rep.v);
-  const std::vector<std::pair<const char*, double>> figures = {
+  const std::pair<const char*, double> figures[] = {
       {"natural-map error (relative to max(||q||, ||r||, ||u||))", rep.err.relativeToMax},
       {"non-penetration", rep.kktNormal},
       {"complementarity", rep.kktComplementarity},
       {"friction law", rep.kktFriction}};
+  const auto* over = std::find_if(std::begin(figures), std::end(figures),
+                                  [&](const auto& f) { return !(f.second <= rep.limit); });  // a nan fails too
+  const bool naturalMapMissed = rep.naturalMapTolerance > 0 && !(rep.err.relativeToQ <= rep.naturalMapTolerance);
+  rep.converged = rep.status.converged && finite && !naturalMapMissed && over == std::end(figures);
+  if (rep.converged) {  // no text to build in the common case
+    rep.stopReason = rep.status.reason.empty() ? "converged" : rep.status.reason;
+    return;
+  }
   std::ostringstream reason;
   if (!rep.status.converged)
     reason << (rep.status.reason.empty() ? "the solver did not converge" : rep.status.reason);
   else if (!finite)
     reason << "the result has non-finite entries";
-  else if (rep.naturalMapTolerance > 0 && !(rep.err.relativeToQ <= rep.naturalMapTolerance))
+  else if (naturalMapMissed)
     reason << "the natural-map error ||F_nat||/||q|| of the result, " << rep.err.relativeToQ
            << ", exceeds the requested tolerance " << rep.naturalMapTolerance;
   else
-    for (const auto& [name, value] : figures)
-      if (!(value <= rep.limit)) {  // a nan fails too
-        reason << "the " << name << " of the result, " << value << ", exceeds " << rep.limit
-               << " (Result Check Factor times the requested tolerance " << rep.tolerance << ")";
-        break;
-      }
-  rep.converged = reason.str().empty();
-  rep.stopReason = rep.converged ? (rep.status.reason.empty() ? "converged" : rep.status.reason) : reason.str();
+    reason << "the " << over->first << " of the result, " << over->second << ", exceeds " << rep.limit
+           << " (Result Check Factor times the requested tolerance " << rep.tolerance << ")";
+  rep.stopReason = reason.str();
 }
 
-SolveReport solve(const LocalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm) {
+SolveReport Solver::solve(const LocalProblem& problem) const {
   validate(problem, kContext);
   if (problem.V || problem.R || problem.s)
     throw Error("FCLIB solve: mixed local problems (V, R, s) are not supported");
   if (problem.spacedim != 3) throw Error("FCLIB solve: only spacedim = 3 is supported");
-  const Setup s = setup(options);
-  const auto map = serialMap(3 * problem.numberOfContacts(), serialComm);
+  resetLimits();
+  const int n = 3 * problem.numberOfContacts();
   SolveReport rep;
-  if (problem.W.maxAbs() == 0.0) {
-    rep = solveWithZeroW(problem.q, problem.mu, options);
+  if (problem.W.isZero()) {
+    rep = solveWithZeroW(problem.q, problem.mu, options_);
+  } else if (auto* nsgs = dynamic_cast<Friction::NonsmoothGaussSeidel*>(solver_.get())) {
+    const CsrView W{problem.W.m, problem.W.n, problem.W.rowptr.data(), problem.W.col.data(), problem.W.val.data()};
+    rep = solveExplicit(W, problem.q, problem.mu, options_, *nsgs);
+    if (n <= options_.denseSpectrumLimit) spectrum(DelassusOperator(problem.W, serialMap(n, comm_)), n, rep);
+    rep.err = naturalMapError(rep.r, rep.u, problem.mu, problem.q);
+    kktResiduals(rep.r, rep.u, problem.mu, problem.q, rep);
   } else {
+    const auto map = serialMap(n, comm_);
     DelassusOperator op(problem.W, map);
-    rep = solveReduced(op, problem.q, problem.mu, options, *s.solver, map, s.limit.limit);
+    rep = solveReduced(op, problem.q, problem.mu, options_, *solver_, map, limit_);
   }
-  finish(s.limit, options, rep);
+  finish(tolerance_, limit_, options_, rep);
   return rep;
 }
 
-SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm) {
+SolveReport Solver::solve(const GlobalProblem& problem) const {
   validate(problem, kContext);
   if (problem.G) throw Error("FCLIB solve: global problems with equality constraints G are not supported");
   if (problem.spacedim != 3) throw Error("FCLIB solve: only spacedim = 3 is supported");
-  const Setup s = setup(options);
-  const auto map = serialMap(3 * problem.numberOfContacts(), serialComm);
+  resetLimits();
+  const int n = 3 * problem.numberOfContacts();
+  const auto map = serialMap(n, comm_);
   const auto t0 = std::chrono::steady_clock::now();
-  auto M = std::make_shared<const MassSolver>(problem.M, options.massSolver);
+  auto M = std::make_shared<const MassSolver>(problem.M, options_.massSolver);
   // q = H' M^-1 f + w: the contact velocities at r = 0.
   std::vector<double> vFree, q;
   M->solve(problem.f, vFree);
@@ -605,11 +637,19 @@ SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, con
   for (size_t i = 0; i < q.size(); ++i) q[i] += problem.w[i];
   const double reduction = seconds(t0);
   SolveReport rep;
-  if (problem.H.maxAbs() == 0.0) {  // W = H'M^-1 H = 0
-    rep = solveWithZeroW(q, problem.mu, options);
+  if (problem.H.isZero()) {  // W = H'M^-1 H = 0
+    rep = solveWithZeroW(q, problem.mu, options_);
+  } else if (auto* nsgs = dynamic_cast<Friction::NonsmoothGaussSeidel*>(solver_.get())) {
+    DelassusOperator op(problem.H, M, map);
+    const auto t1 = std::chrono::steady_clock::now();
+    const LocalCsr W = op.explicitMatrix();  // H' M^-1 H, from n solves with M
+    const double formW = seconds(t1);
+    rep = solveExplicit(W.view(), q, problem.mu, options_, *nsgs);
+    rep.timeSetup += formW;
+    if (n <= options_.denseSpectrumLimit) spectrum(op, n, rep);
   } else {
     DelassusOperator op(problem.H, M, map);
-    rep = solveReduced(op, q, problem.mu, options, *s.solver, map, s.limit.limit);
+    rep = solveReduced(op, q, problem.mu, options_, *solver_, map, limit_);
   }
   rep.timeSetup += reduction;
   // v = M^-1 (H r + f), and u = H' v + w from it (the same as W r + q up to round-off).
@@ -622,8 +662,16 @@ SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, con
   rep.err = naturalMapError(rep.r, rep.u, problem.mu, q);
   kktResiduals(rep.r, rep.u, problem.mu, q, rep);
   rep.massSolves = M->solves();
-  finish(s.limit, options, rep);
+  finish(tolerance_, limit_, options_, rep);
   return rep;
+}
+
+SolveReport solve(const LocalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm) {
+  return Solver(options, serialComm).solve(problem);
+}
+
+SolveReport solve(const GlobalProblem& problem, const SolveOptions& options, const RCP<const Comm>& serialComm) {
+  return Solver(options, serialComm).solve(problem);
 }
 
 }  // namespace FCLIB

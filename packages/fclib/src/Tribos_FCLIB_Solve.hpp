@@ -96,11 +96,12 @@ class DelassusOperator : public Operator {
 
 // "Semismooth Newton" (Friction::SemismoothNewton) is given W explicitly,
 // KLU for its Newton systems, and stops on ||F_nat|| / ||q|| <= its Relative
-// Tolerance (the natural-map error of Tribos_FCLIB_Accuracy.hpp).
+// Tolerance (the natural-map error of Tribos_FCLIB_Accuracy.hpp); so does
+// "NSGS" (Friction::NonsmoothGaussSeidel), given W's entries.
 struct SolveOptions {
   // A registered friction algorithm that solves Coulomb problems
-  // (Friction::frictionSolvers().accepting("Coulomb"): "MSA+Algorithm1",
-  // "Algorithm2", ...); others (the Tresca solver, whose slip bound an FCLIB
+  // (coulombAlgorithms(): "MSA+Algorithm1", "Algorithm2", "Semismooth
+  // Newton", "NSGS"); others (the Tresca solver, whose slip bound an FCLIB
   // problem does not give) are refused before any work, naming the valid ones.
   std::string algorithm = "Algorithm2";
   // > 0: the result must reach ||F_nat|| / ||q|| <= naturalMapTolerance (the
@@ -179,6 +180,28 @@ std::vector<std::string> coulombAlgorithms();
 // rep.err and the KKT residuals against rep.limit (see SolveReport).
 void judgeResult(SolveReport& rep);
 
+// Solves FCLIB problems with one set of options. The method and its
+// parameters are checked and the algorithm made once, by the constructor, so
+// that a code that solves a problem per time step pays for them once; each
+// solve() starts from the options' tolerance and iteration limit.
+// "NSGS" works on W's entries directly (the local problem's stored W; a
+// global problem's H' M^-1 H formed from 3nc solves with M), without the
+// Tpetra dual of the other methods.
+class Solver {
+ public:
+  Solver(const SolveOptions& options, const RCP<const Comm>& serialComm);
+  SolveReport solve(const LocalProblem& problem) const;
+  SolveReport solve(const GlobalProblem& problem) const;
+
+ private:
+  void resetLimits() const;
+  SolveOptions options_;
+  RCP<const Comm> comm_;
+  RCP<Friction::FrictionSolver> solver_;
+  double tolerance_ = 0, limit_ = 0;  // the requested tolerance, Result Check Factor times it
+};
+
+// Solver(options, serialComm).solve(problem).
 // The problem is validated (validate() of Tribos_FCLIB.hpp) and the method
 // and its parameters checked before any work. Zero contacts is a valid
 // problem: r and u are empty (global: v = M^-1 f). More generally W = 0

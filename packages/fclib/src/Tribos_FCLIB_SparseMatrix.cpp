@@ -173,6 +173,10 @@ double SparseMatrix::asymmetry() const {
   return worst;
 }
 
+bool SparseMatrix::isZero() const {
+  return std::all_of(val.begin(), val.end(), [](double v) { return v == 0.0; });
+}
+
 double SparseMatrix::maxAbs() const {
   double worst = 0.0;
   for (double v : val) worst = std::max(worst, std::abs(v));

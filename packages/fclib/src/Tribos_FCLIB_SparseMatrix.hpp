@@ -45,6 +45,8 @@ struct SparseMatrix {
   // measure). Requires a square matrix.
   double asymmetry() const;
   double maxAbs() const;
+  // Every stored entry is 0 (stops at the first that is not).
+  bool isZero() const;
 };
 
 bool bitwiseEqual(const SparseMatrix& a, const SparseMatrix& b);

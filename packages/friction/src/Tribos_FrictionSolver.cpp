@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "Tribos_BlockGaussSeidel.hpp"
+#include "Tribos_NonsmoothGaussSeidel.hpp"
 #include "Tribos_SemismoothNewton.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Validators.hpp"
@@ -182,29 +183,6 @@ RCP<const ParameterList> MSA::validParameters() {
 RCP<const ParameterList> MSA::getValidParameters() const { return validParameters(); }
 
 double Algorithm1::requestedTolerance() const { return params_.sublist("SMALBE").get<double>("Relative Tolerance"); }
-
-namespace {
-// pl[name] = value after the check of the entry's validator in 'valid' (the
-// range documented for the parameter); the message names the parameter.
-template <class T>
-void setValidated(ParameterList& pl, const ParameterList& valid, const std::string& name, T value,
-                  const std::string& context) {
-  const auto validator = valid.getEntry(name).validator();
-  if (!validator.is_null()) {
-    ParameterList probe(valid.name());
-    probe.set(name, value);
-    try {
-      validator->validate(probe.getEntry(name), name, valid.name());
-    } catch (const std::exception&) {
-      std::ostringstream s;
-      s << context << ": " << name << " = " << value << " is outside the valid range ("
-        << valid.getEntry(name).docString() << ")";
-      throw Error(s.str());
-    }
-  }
-  pl.set(name, value);
-}
-}  // namespace
 
 void Algorithm1::setRequestedTolerance(double tolerance) {
   setValidated(params_.sublist("SMALBE"), validParameters()->sublist("SMALBE"), "Relative Tolerance", tolerance,
@@ -512,6 +490,11 @@ const FrictionSolverRegistry& frictionSolvers() {
           "Newton on the Alart-Curnier function with an Armijo line search (dense: up to its Dense Limit of "
           "dual rows)",
           {"Coulomb"});
+    r.add("NSGS",
+          [=](const ParameterList& p) -> RCP<FrictionSolver> { return rcp(new NonsmoothGaussSeidel(sub(p, "NSGS"))); },
+          "nonsmooth Gauss-Seidel: sweeps over the contacts, each solved exactly (needs W explicitly: FCLIB "
+          "problems)",
+          {kExplicitCoulomb});
     return r;
   }();
   return registry;
@@ -526,6 +509,7 @@ void FrictionSolverFactory::addValidParameters(ParameterList& solverList) {
   solverList.sublist("MSA").setParameters(*MSA::validParameters());
   solverList.sublist("Algorithm 2").setParameters(*Algorithm2::validParameters());
   solverList.sublist("Semismooth Newton").setParameters(*SemismoothNewton::validParameters());
+  solverList.sublist("NSGS").setParameters(*NonsmoothGaussSeidel::validParameters());
 }
 
 }  // namespace Friction

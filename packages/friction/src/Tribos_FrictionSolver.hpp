@@ -4,6 +4,7 @@
 //   "MSA+Algorithm1"  Coulomb by successive approximations g <- F lambda_N, each a Tresca solve
 //   "Algorithm2"      Coulomb by the fused loop of Kucera's Algorithm 2
 //   "Semismooth Newton"  Coulomb by Newton's method on the Alart-Curnier function
+//   "NSGS"            Coulomb by nonsmooth Gauss-Seidel over the contacts (explicit W only)
 #pragma once
 
 #include <Teuchos_FancyOStream.hpp>
@@ -134,7 +135,9 @@ class Algorithm2 : public FrictionSolver {
 // "Semismooth Newton" (Tribos_SemismoothNewton.hpp) solves Coulomb problems
 // up to its Dense Limit of dual rows (FETI's, with G x = 0, reduced to the
 // contact rows; FCLIB's with their explicit W); its list is the sublist
-// "Semismooth Newton".
+// "Semismooth Newton". "NSGS" (Tribos_NonsmoothGaussSeidel.hpp) reads W's
+// entries, so it accepts "Coulomb (explicit W)" only (FCLIB problems); its
+// list is the sublist "NSGS".
 using FrictionSolverRegistry = Registry<FrictionSolver, const Teuchos::ParameterList&>;
 const FrictionSolverRegistry& frictionSolvers();
 

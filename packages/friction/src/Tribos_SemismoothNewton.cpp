@@ -92,22 +92,8 @@ AlartCurnier::AlartCurnier(const ContactDual& dual, std::vector<double> rho)
     if (!used[i]) freeRows_.push_back(i);
 }
 
-namespace {
-
-// The case of one contact: Phi on its rows and the blocks D_x, D_v (m x m,
-// m = 1 + tangents; index 0 normal, 1.. tangential).
-struct ContactBlocks {
-  double phi[3];
-  double Dx[3][3], Dv[3][3];
-};
-
-}  // namespace
-
-namespace {
-
-// Phi on the rows of one contact and the blocks D_x, D_v of its case.
-void contactBlocks(const AlartCurnier::Contact& c, const std::vector<double>& x, const std::vector<double>& v,
-                   double rhoN, double rhoT, ContactBlocks& out) {
+void AlartCurnier::blocks(const Contact& c, const double* x, const double* v, double rhoN, double rhoT,
+                          Blocks& out) {
   const int m = 1 + c.tangents;
   for (int p = 0; p < 3; ++p)
     for (int q = 0; q < 3; ++q) out.Dx[p][q] = out.Dv[p][q] = 0.0;
@@ -152,14 +138,12 @@ void contactBlocks(const AlartCurnier::Contact& c, const std::vector<double>& x,
   }
 }
 
-}  // namespace
-
 void AlartCurnier::value(const std::vector<double>& x, const std::vector<double>& v, std::vector<double>& phi) const {
   phi.assign(n_, 0.0);
-  ContactBlocks b;
+  Blocks b;
   for (const Contact& c : contacts_) {
     const double rhoN = rho_[c.normal], rhoT = c.tangents > 0 ? rho_[c.tangent[0]] : 0.0;
-    contactBlocks(c, x, v, rhoN, rhoT, b);
+    blocks(c, x.data(), v.data(), rhoN, rhoT, b);
     phi[c.normal] = b.phi[0];
     for (int j = 0; j < c.tangents; ++j) phi[c.tangent[j]] = b.phi[j + 1];
   }
@@ -213,10 +197,10 @@ void AlartCurnier::jacobian(const std::vector<double>& x, const std::vector<doub
   auto close = [&](int r) {
     for (int k = J.rowptr[r]; k < J.rowptr[r + 1]; ++k) mark[J.col[k]] = -1;
   };
-  ContactBlocks b;
+  Blocks b;
   for (const Contact& c : contacts_) {
     const double rhoN = rho_[c.normal], rhoT = c.tangents > 0 ? rho_[c.tangent[0]] : 0.0;
-    contactBlocks(c, x, v, rhoN, rhoT, b);
+    blocks(c, x.data(), v.data(), rhoN, rhoT, b);
     const int m = 1 + c.tangents;
     int rows[3] = {c.normal, c.tangents > 0 ? c.tangent[0] : -1, c.tangents > 1 ? c.tangent[1] : -1};
     for (int p = 0; p < m; ++p) {

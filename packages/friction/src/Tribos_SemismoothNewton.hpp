@@ -74,6 +74,15 @@ class AlartCurnier {
     int tangents;      // 0, 1 or 2
     double lower, offset, centre[2], friction;
   };
+  // Phi on the rows of one contact and the blocks D_x, D_v of its case
+  // (m x m, m = 1 + tangents; index 0 normal, 1.. tangential), from x and
+  // v indexed by the contact's rows. Every Alart-Curnier computation of
+  // Tribos (this Newton method, the local solves of NSGS) goes through it.
+  struct Blocks {
+    double phi[3];
+    double Dx[3][3], Dv[3][3];
+  };
+  static void blocks(const Contact& c, const double* x, const double* v, double rhoN, double rhoT, Blocks& out);
 
  private:
   std::vector<Contact> contacts_;
