@@ -8,8 +8,11 @@
 //   u = W r + q and the error elsewhere;
 // - superlinear convergence: the ratio of successive residuals falls over
 //   the last steps (on the sample whose W is nonsingular with 9 contacts).
-// PerioBox (W of rank 72 of 180, forces 1e5 times q) is left out: the Newton
-// method does not reach 1e-10 there within 200 steps (docs/semismooth.md).
+// PerioBox (W of rank 72 of 180, forces 1e5 times q) is left out for Newton:
+// it does not reach 1e-10 there within 200 steps (docs/semismooth.md).
+// NSGS (Friction::NonsmoothGaussSeidel) gets the same checks, against
+// Newton's solution, and against Algorithm 2's on PerioBox, which it solves.
+// One FCLIB::Solver reused over problems gives what fresh ones give.
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
@@ -88,27 +91,34 @@ void checkCoulombContacts(const Solved& s, double tol, Teuchos::FancyOStream& ou
   TEST_COMPARE(worstSlip, <=, tol);
 }
 
-void newtonAgainstAlgorithm2(const std::string& file, bool uniqueR, Teuchos::FancyOStream& out, bool& success) {
+// 'method' to tol, Coulomb's law contact by contact, and agreement with
+// 'reference' solved to the same tolerance.
+void againstReference(const std::string& file, const std::string& method, const std::string& reference, bool uniqueR,
+                      Teuchos::FancyOStream& out, bool& success) {
   const double tol = 1e-10;
-  const Solved n = solveSample(file, "Semismooth Newton", tol);
-  out << file << ": Newton steps " << n.rep.status.outer_iterations << ", err " << n.rep.err.relativeToQ << ", "
-      << n.rep.stopReason << "\n";
+  const Solved n = solveSample(file, method, tol);
+  out << file << ": " << method << " iterations " << n.rep.status.outer_iterations << ", err "
+      << n.rep.err.relativeToQ << ", " << n.rep.stopReason << "\n";
   TEST_ASSERT(n.rep.converged);
   TEST_COMPARE(n.rep.err.relativeToQ, <=, tol);
   checkCoulombContacts(n, 1e-6, out, success);
-  const Solved a = solveSample(file, "Algorithm2", tol);
+  const Solved a = solveSample(file, reference, tol);
   TEST_ASSERT(a.rep.converged);
   // Velocities relative to max(|u|, |q|): where every contact sticks u is
   // round-off and no scale.
   const double du = relDiff(n.rep.u, a.rep.u, maxAbs(n.q)), dr = relDiff(n.rep.r, a.rep.r);
-  out << "Algorithm 2: err " << a.rep.err.relativeToQ << ", max|r_N - r_A|/max|r_A| " << dr
-      << ", max|u_N - u_A|/max(|u_A|, |q|) " << du << "\n";
+  out << reference << ": err " << a.rep.err.relativeToQ << ", max|r - r_ref|/max|r_ref| " << dr
+      << ", max|u - u_ref|/max(|u_ref|, |q|) " << du << "\n";
   if (uniqueR) {
     TEST_COMPARE(dr, <=, 1e-6);
     TEST_COMPARE(du, <=, 1e-6);
   } else {  // W singular: r is not unique; the velocities of the two solutions agree
     TEST_COMPARE(du, <=, 1e-8);
   }
+}
+
+void newtonAgainstAlgorithm2(const std::string& file, bool uniqueR, Teuchos::FancyOStream& out, bool& success) {
+  againstReference(file, "Semismooth Newton", "Algorithm2", uniqueR, out, success);
 }
 
 TEUCHOS_UNIT_TEST(SemismoothNewton, LocalProblemTest) {
@@ -139,6 +149,51 @@ TEUCHOS_UNIT_TEST(SemismoothNewton, SuperlinearConvergence) {
   TEST_COMPARE(r3, <, 1e-3);
 }
 
+// NSGS against Newton where both converge (the global samples through W =
+// H'M^-1 H formed), and against Algorithm 2 on PerioBox, where NSGS
+// converges and Newton does not.
+TEUCHOS_UNIT_TEST(NSGS, BoxStacks) {
+  againstReference("Box_Stacks-i0122-82-5.hdf5", "NSGS", "Semismooth Newton", false, out, success);
+}
+TEUCHOS_UNIT_TEST(NSGS, CubeH8) {
+  againstReference("LMGC_GFC3D_CubeH8.hdf5", "NSGS", "Semismooth Newton", true, out, success);
+}
+TEUCHOS_UNIT_TEST(NSGS, GlobalFrictionContact00046) {
+  againstReference("LMGC_GlobalFrictionContactProblem00046.hdf5", "NSGS", "Semismooth Newton", true, out, success);
+}
+TEUCHOS_UNIT_TEST(NSGS, PerioBox) {
+  againstReference("LMGC_100_PR_PerioBox-i00361-60-03000.hdf5", "NSGS", "Algorithm2", false, out, success);
+}
+
+// One FCLIB::Solver for several problems: each solve starts from the
+// options' tolerance (a solve's rounds do not carry over) and gives what
+// FCLIB::solve gives.
+TEUCHOS_UNIT_TEST(FCLIBSolver, ReusedAcrossProblems) {
+  auto comm = Tpetra::getDefaultComm();
+  FCLIB::SolveOptions opt;
+  opt.algorithm = "Algorithm2";
+  opt.naturalMapTolerance = 1e-10;
+  const FCLIB::Solver solver(opt, comm);
+  for (const char* file : {"Box_Stacks-i0122-82-5.hdf5", "local_problem_test.hdf5", "Box_Stacks-i0122-82-5.hdf5"}) {
+    const std::string path = fclib_test::sampleDir() + "/" + file;
+    FCLIB::SolveReport reused, fresh;
+    if (FCLIB::problemKind(path) == FCLIB::ProblemKind::Local) {
+      const auto p = FCLIB::readLocal(path);
+      reused = solver.solve(p);
+      fresh = FCLIB::solve(p, opt, comm);
+    } else {
+      const auto p = FCLIB::readGlobal(path);
+      reused = solver.solve(p);
+      fresh = FCLIB::solve(p, opt, comm);
+    }
+    out << file << ": rounds " << reused.rounds << " / " << fresh.rounds << ", err " << reused.err.relativeToQ << "\n";
+    TEST_ASSERT(reused.converged);
+    TEST_EQUALITY(reused.rounds, fresh.rounds);
+    TEST_EQUALITY(reused.status.outer_iterations, fresh.status.outer_iterations);
+    TEST_COMPARE(relDiff(reused.r, fresh.r), <=, 0.0);
+  }
+}
+
 TEUCHOS_UNIT_TEST(SemismoothNewton, TrescaRefused) {
   auto comm = Tpetra::getDefaultComm();
   const auto p = FCLIB::readLocal(fclib_test::sampleDir() + "/local_problem_test.hdf5");
@@ -147,6 +202,7 @@ TEUCHOS_UNIT_TEST(SemismoothNewton, TrescaRefused) {
   TEST_THROW(FCLIB::solve(p, opt, comm), std::exception);
   const auto names = FCLIB::coulombAlgorithms();
   TEST_ASSERT(std::find(names.begin(), names.end(), "Semismooth Newton") != names.end());
+  TEST_ASSERT(std::find(names.begin(), names.end(), "NSGS") != names.end());
   TEST_ASSERT(std::find(names.begin(), names.end(), "Tresca") == names.end());
 }
 
