@@ -4,8 +4,8 @@
 # every file of the development set, then the seed brick (F = 0.3) exported
 # by tribos --export-fclib at Mesh/Level = 4, 8, 12.
 #   scripts/bench_fclib.sh [BUILD_DIR] [OUT_DIR]     (defaults: build, output/bench_fclib)
-# Environment: TOL (1e-8), REPEAT (3), LEVELS ("4 8 12"), DEV (the dev set
-# directory), TRIBOS_ALGORITHMS ("Semismooth Newton,Algorithm2,MSA+Algorithm1")
+# Environment: TOL (1e-8), REPEAT (5), LEVELS ("4 8 12"), DEV (the dev set
+# directory), TRIBOS_ALGORITHMS ("Semismooth Newton,NSGS,Algorithm2,MSA+Algorithm1")
 # for the dev set; BRICK_REPEAT (1) and BRICK_ALGORITHMS ("Semismooth
 # Newton,Algorithm2": MSA + Algorithm 1 does not reach 1e-8 there) for the bricks.
 # Needs the build configured with Siconos numerics (libsiconos-numerics-dev).
@@ -14,10 +14,10 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$here/build}
 out=${2:-$here/output/bench_fclib}
 tol=${TOL:-1e-8}
-repeat=${REPEAT:-3}
+repeat=${REPEAT:-5}
 levels=${LEVELS:-"4 8 12"}
 dev=${DEV:-$here/../shared/fclib/dev}
-algorithms=${TRIBOS_ALGORITHMS:-"Semismooth Newton,Algorithm2,MSA+Algorithm1"}
+algorithms=${TRIBOS_ALGORITHMS:-"Semismooth Newton,NSGS,Algorithm2,MSA+Algorithm1"}
 brick_repeat=${BRICK_REPEAT:-1}
 brick_algorithms=${BRICK_ALGORITHMS:-"Semismooth Newton,Algorithm2"}
 bench=$build/drivers/bench/tribos_fclib_vs_siconos
