@@ -19,6 +19,11 @@ using Teuchos::ParameterList;
 
 namespace {
 
+// y += sign * M x, M 3 x 3 row-major: every product with a contact block.
+inline void addProduct(const double* M, const double* x, double* y, double sign = 1.0) {
+  for (int a = 0; a < 3; ++a) y[a] += sign * (M[3 * a] * x[0] + M[3 * a + 1] * x[1] + M[3 * a + 2] * x[2]);
+}
+
 // W read by contact: rows 3c, 3c+1, 3c+2 of the CSR arrays as they are (no
 // copy: a problem solved in a few sweeps would pay more for a blocked copy
 // than for its sweeps), and the diagonal blocks W_cc (row-major, 9 values),
@@ -50,9 +55,7 @@ struct ContactRows {
   // y = sum_{d != c} W_cd r_d + q_c: the velocity of contact c without its own force.
   void offDiagonal(int c, const double* r, const double* q, double y[3]) const {
     velocity(c, r, q, y);
-    const double* w = &diag[9 * static_cast<size_t>(c)];
-    const double* x = r + 3 * c;
-    for (int a = 0; a < 3; ++a) y[a] -= w[3 * a] * x[0] + w[3 * a + 1] * x[1] + w[3 * a + 2] * x[2];
+    addProduct(&diag[9 * static_cast<size_t>(c)], r + 3 * c, y, -1.0);
   }
 
   // u = W r + q.
@@ -63,21 +66,20 @@ struct ContactRows {
   }
 };
 
-// W copied by contact: the diagonal 3 x 3 blocks W_cc and, per contact, its
-// off-diagonal blocks W_cd (row-major, 9 values each), so that a sweep reads
-// each r_d once per block instead of once per entry: a quarter faster per
-// sweep than ContactRows, for the price of about three sweeps to build.
+// W copied by contact: per contact its off-diagonal blocks W_cd (row-major,
+// 9 values each; the diagonal blocks are ContactRows'), so that a sweep
+// reads each r_d once per block instead of once per entry: a quarter faster
+// per sweep than ContactRows, for the price of about three sweeps to build.
 struct BlockRows {
-  std::vector<double> diag;   // 9 per contact
-  std::vector<int> ptr{0};    // blocks of contact c: ptr[c] .. ptr[c+1]
-  std::vector<int> col;       // the contact d of each block
-  std::vector<double> val;    // 9 per block
+  const std::vector<double>& diag;  // W_cc, 9 per contact (ContactRows::diag)
+  std::vector<int> ptr;             // blocks of contact c: ptr[c] .. ptr[c+1]
+  std::vector<int> col;             // the contact d of each block
+  std::vector<double> val;          // 9 per block
 
   // Rows 3c, 3c+1, 3c+2 of W merged by block column d = column / 3: two
   // passes over the indices (count, then fill), no search.
-  BlockRows(const CsrView& W, int nc) : diag(9 * static_cast<size_t>(nc), 0.0) {
-    ptr.resize(nc + 1);
-    ptr[0] = 0;
+  BlockRows(const CsrView& W, const std::vector<double>& diagonal) : diag(diagonal), ptr(diagonal.size() / 9 + 1, 0) {
+    const int nc = static_cast<int>(diagonal.size() / 9);
     for (int c = 0; c < nc; ++c) ptr[c + 1] = ptr[c] + merge(W, c, nullptr);
     col.resize(ptr[nc]);
     val.assign(9 * static_cast<size_t>(ptr[nc]), 0.0);
@@ -85,8 +87,8 @@ struct BlockRows {
   }
 
   // The off-diagonal blocks of contact c in ascending d (rows sorted by
-  // column, as CSR holds them); with 'fill', their values and W_cc are
-  // stored. Returns their number.
+  // column, as CSR holds them); with 'fill', their values are stored.
+  // Returns their number.
   static int merge(const CsrView& W, int c, BlockRows* fill) {
     int k[3], end[3];
     for (int a = 0; a < 3; ++a) k[a] = W.rowptr[3 * c + a], end[a] = W.rowptr[3 * c + a + 1];
@@ -97,9 +99,9 @@ struct BlockRows {
         if (k[a] < end[a] && (d < 0 || W.col[k[a]] / 3 < d)) d = W.col[k[a]] / 3;
       if (d < 0) return blocks;
       double* block = nullptr;
-      if (fill) {
-        block = d == c ? &fill->diag[9 * static_cast<size_t>(c)] : &fill->val[9 * static_cast<size_t>(fill->ptr[c] + blocks)];
-        if (d != c) fill->col[fill->ptr[c] + blocks] = d;
+      if (fill && d != c) {
+        block = &fill->val[9 * static_cast<size_t>(fill->ptr[c] + blocks)];
+        fill->col[fill->ptr[c] + blocks] = d;
       }
       for (int a = 0; a < 3; ++a)
         for (; k[a] < end[a] && W.col[k[a]] / 3 == d; ++k[a])
@@ -110,15 +112,8 @@ struct BlockRows {
 
   // y = sum_{d != c} W_cd r_d + q_c (the velocity of contact c without its own force).
   void offDiagonal(int c, const double* r, const double* q, double y[3]) const {
-    double y0 = q[3 * c], y1 = q[3 * c + 1], y2 = q[3 * c + 2];
-    for (int j = ptr[c]; j < ptr[c + 1]; ++j) {
-      const double* w = &val[9 * static_cast<size_t>(j)];
-      const double* x = r + 3 * col[j];
-      y0 += w[0] * x[0] + w[1] * x[1] + w[2] * x[2];
-      y1 += w[3] * x[0] + w[4] * x[1] + w[5] * x[2];
-      y2 += w[6] * x[0] + w[7] * x[1] + w[8] * x[2];
-    }
-    y[0] = y0, y[1] = y1, y[2] = y2;
+    y[0] = q[3 * c], y[1] = q[3 * c + 1], y[2] = q[3 * c + 2];
+    for (int j = ptr[c]; j < ptr[c + 1]; ++j) addProduct(&val[9 * static_cast<size_t>(j)], r + 3 * col[j], y);
   }
 
   // u = W r + q.
@@ -126,11 +121,8 @@ struct BlockRows {
     const int nc = static_cast<int>(ptr.size()) - 1;
     u.resize(3 * static_cast<size_t>(nc));
     for (int c = 0; c < nc; ++c) {
-      double y[3];
-      offDiagonal(c, r.data(), q, y);
-      const double* w = &diag[9 * static_cast<size_t>(c)];
-      const double* x = &r[3 * c];
-      for (int a = 0; a < 3; ++a) u[3 * c + a] = y[a] + w[3 * a] * x[0] + w[3 * a + 1] * x[1] + w[3 * a + 2] * x[2];
+      offDiagonal(c, r.data(), q, &u[3 * c]);
+      addProduct(&diag[9 * static_cast<size_t>(c)], &r[3 * c], &u[3 * c]);
     }
   }
 };
@@ -165,14 +157,15 @@ bool solve3(double A[3][3], double b[3], double x[3]) {
   return true;
 }
 
-// One contact's Coulomb problem: r in the cone with u = W r + qt (W = W_cc).
+// One contact's Coulomb problem: r in the cone with u = W r + qt (W = W_cc,
+// held by ContactRows).
 class LocalCoulomb {
  public:
   LocalCoulomb(const double* W, double mu, double tolerance, int maxIterations)
-      : tol_(tolerance), maxIt_(maxIterations) {
+      : W_(W), tol_(tolerance), maxIt_(maxIterations) {
     contact_ = {0, {1, 2}, 2, 0.0, 0.0, {0.0, 0.0}, mu};
     double wmax = 0;
-    for (int i = 0; i < 9; ++i) W_[i] = W[i], wmax = std::max(wmax, std::abs(W[i]));
+    for (int i = 0; i < 9; ++i) wmax = std::max(wmax, std::abs(W[i]));
     // rho as the global Newton method takes it (1 / diagonal), 1 / max|W|
     // where the diagonal is not positive.
     const double fallback = wmax > 0 ? 1.0 / wmax : 1.0;
@@ -200,8 +193,8 @@ class LocalCoulomb {
       return 0;
     }
     if (invertible_) {  // stick: u = 0
-      double s[3];
-      for (int i = 0; i < 3; ++i) s[i] = -(inverse_[3 * i] * qt[0] + inverse_[3 * i + 1] * qt[1] + inverse_[3 * i + 2] * qt[2]);
+      double s[3] = {0, 0, 0};
+      addProduct(inverse_, qt, s, -1.0);
       if (s[0] > 0 && std::hypot(s[1], s[2]) <= contact_.friction * s[0]) {
         std::copy(s, s + 3, r);
         return 0;
@@ -221,8 +214,8 @@ class LocalCoulomb {
 
  private:
   void residualAt(const double qt[3], const double x[3], AlartCurnier::Blocks& b) const {
-    double v[3];
-    for (int i = 0; i < 3; ++i) v[i] = W_[3 * i] * x[0] + W_[3 * i + 1] * x[1] + W_[3 * i + 2] * x[2] + qt[i];
+    double v[3] = {qt[0], qt[1], qt[2]};
+    addProduct(W_, x, v);
     residual(x, v, b);
   }
   static double norm2(const double a[3]) { return a[0] * a[0] + a[1] * a[1] + a[2] * a[2]; }
@@ -260,7 +253,8 @@ class LocalCoulomb {
   }
 
   AlartCurnier::Contact contact_;
-  double W_[9], inverse_[9];
+  const double* W_;
+  double inverse_[9];
   bool invertible_ = false;
   double rhoN_ = 1, rhoT_ = 1, tol_;
   int maxIt_;
@@ -399,7 +393,7 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   while (std::isfinite(m) && m > tol && sweep < maxSweeps) {
     ++sweep;
     ++st.n_A;
-    if (sweep == kBlockedAfter) blocked = std::make_unique<const BlockRows>(p.W, nc);
+    if (sweep == kBlockedAfter) blocked = std::make_unique<const BlockRows>(p.W, rows.diag);
     const bool settled = blocked ? sweepWith(*blocked, st) : sweepWith(rows, st);
     // The measure needs u = W r + q, another pass over W: when the sweep
     // moved r by at most the tolerance (the light test), at growing
