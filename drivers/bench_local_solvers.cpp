@@ -31,6 +31,7 @@
 #include "Tribos_Discretization.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_LocalSolver.hpp"
+#include "Tribos_MpiStartup.hpp"
 
 using namespace Tribos;
 
@@ -128,6 +129,7 @@ std::vector<std::string> split(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  Tribos::prepareMpiStartup();  // before MPI_Init
   // Kokkos (used by Amesos2 and Tacho) is initialized by the Tpetra guard.
   Tpetra::ScopeGuard guard(&argc, &argv);
   std::string element = "both", solvers = "CHOLMOD,KLU2,Tacho";

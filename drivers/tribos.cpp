@@ -27,6 +27,7 @@
 #include "Tribos_Progress.hpp"
 #include "Tribos_ResultWriter.hpp"
 #include "Tribos_Run.hpp"
+#include "Tribos_MpiStartup.hpp"
 
 namespace {
 
@@ -136,6 +137,7 @@ int runAndReport(const Args& args, const Teuchos::ParameterList& params, const T
 }  // namespace
 
 int main(int argc, char** argv) {
+  Tribos::prepareMpiStartup();  // before MPI_Init
   // Line-buffered stdout, so that --verbose lines reach a pipe as they happen.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   // Kokkos answers --help itself: keep it from seeing ours.

@@ -30,6 +30,7 @@
 #include "Tribos_FCLIB_Solve.hpp"
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_Summary.hpp"
+#include "Tribos_MpiStartup.hpp"
 
 namespace {
 
@@ -340,6 +341,7 @@ bool helpRequested(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  Tribos::prepareMpiStartup();  // before MPI_Init
   if (helpRequested(argc, argv)) {
     std::cout << usage();
     return kConverged;

@@ -45,6 +45,8 @@ extern "C" {
 #include "fc3d_compute_error.h"
 }
 
+#include "Tribos_MpiStartup.hpp"
+
 namespace {
 
 using namespace Tribos;
@@ -274,6 +276,7 @@ Row runTribos(const std::string& name, const FCLIB::LocalProblem& p, const Args&
 }  // namespace
 
 int main(int argc, char** argv) {
+  Tribos::prepareMpiStartup();  // before MPI_Init
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   try {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "Tribos_FetiDual.hpp"
+#include "Tribos_MpiStartup.hpp"
 
 using namespace Tribos;
 
@@ -111,6 +112,7 @@ Dense sandwich(const Dense& P, const Dense& A, int m) { return multiply(P, multi
 }  // namespace
 
 int main(int argc, char** argv) {
+  Tribos::prepareMpiStartup();  // before MPI_Init
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   std::string element = "Hex8";

@@ -25,6 +25,7 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
+#include "Tribos_MpiStartup.hpp"
 
 namespace {
 
@@ -39,6 +40,7 @@ void setParameter(Teuchos::ParameterList& pl, const std::string& name, const std
 }  // namespace
 
 int main(int argc, char** argv) {
+  Tribos::prepareMpiStartup();  // before MPI_Init
   Tpetra::ScopeGuard scope(&argc, &argv);
   using namespace Tribos;
   std::string input;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "Tribos_DenseBlas.hpp"
+#include "Tribos_MpiStartup.hpp"
 
 namespace {
 
@@ -65,6 +66,7 @@ double bestTime(int repeat, Kernel kernel) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  Tribos::prepareMpiStartup();  // before MPI_Init
   MPI_Init(&argc, &argv);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

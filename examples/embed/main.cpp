@@ -29,6 +29,7 @@
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_FetiSolve.hpp"
 #include "Tribos_Loads.hpp"
+#include "Tribos_MpiStartup.hpp"
 
 using namespace Tribos;
 
@@ -187,6 +188,7 @@ std::vector<double> referenceSolve(int n, const RCP<const Comm>& comm, std::vect
 }  // namespace
 
 int main(int argc, char** argv) {
+  Tribos::prepareMpiStartup();  // before MPI_Init
   Tpetra::ScopeGuard scope(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   const int n = argc > 1 ? std::atoi(argv[1]) : 4;

@@ -3,8 +3,10 @@
 #include <Teuchos_GlobalMPISession.hpp>
 #include <Teuchos_UnitTestRepository.hpp>
 #include <Tpetra_Core.hpp>
+#include "Tribos_MpiStartup.hpp"
 
 int main(int argc, char* argv[]) {
+  Tribos::prepareMpiStartup();  // before MPI_Init
   Teuchos::GlobalMPISession mpi(&argc, &argv);
   Tpetra::ScopeGuard tpetra(&argc, &argv);
   // A check that fails on one rank fails the test on every rank.
