@@ -31,9 +31,11 @@ inline void spmv(int n, float alpha, const float* Ap, const float* x, float beta
   sspmv_(&uplo, &n, &alpha, Ap, x, &one, &beta, y, &one);
 }
 
-// The packed lower triangle of the column-major n x n matrix A.
-inline std::vector<double> packLower(int n, const std::vector<double>& A) {
-  std::vector<double> Ap;
+// The packed lower triangle of the column-major n x n matrix A, in the
+// precision T of the result (double, or float for half the bytes).
+template <class T>
+std::vector<T> packLower(int n, const std::vector<double>& A) {
+  std::vector<T> Ap;
   Ap.reserve(static_cast<size_t>(n) * (n + 1) / 2);
   for (int j = 0; j < n; ++j) Ap.insert(Ap.end(), A.begin() + static_cast<size_t>(j) * n + j, A.begin() + static_cast<size_t>(j + 1) * n);
   return Ap;

@@ -79,28 +79,37 @@ CoarseSpace::CoarseSpace(RCP<const FetiProblem> problem) : problem_(problem) {
   std::vector<Teuchos::ArrayRCP<const SC>> Rc(6);
   for (int j = 0; j < 6; ++j) Rc[j] = Rcol.getData(j);
   const auto& offsets = problem->primalOffsets();
-  rowptr_.push_back(0);
+  const auto& ko = problem->kernelOffsets();
+  blockLength_.assign(static_cast<size_t>(n_), 0);
+  for (size_t s = 0; s + 1 < ko.size(); ++s)
+    if (ko[s + 1] > ko[s]) blockLength_[ko[s]] = ko[s + 1] - ko[s];
+  segPtr_.push_back(0);
+  valPtr_.push_back(0);
+  std::vector<std::pair<int, int>> entries;  // (subdomain, column of B) of one row
   for (LO i = 0; i < static_cast<LO>(B.getNodeNumRows()); ++i) {
     typename CrsMatrix::local_inds_host_view_type cols;
     typename CrsMatrix::values_host_view_type vals;
     B.getLocalRowView(i, cols, vals);
-    std::vector<std::pair<int, double>> entries;
+    entries.clear();
     for (size_t k = 0; k < cols.extent(0); ++k) {
       const GO gid = colMap->getGlobalElement(cols(k));
       const int s = static_cast<int>(std::upper_bound(offsets.begin(), offsets.end(), gid) - offsets.begin()) - 1;
-      const auto& ko = problem->kernelOffsets();
-      for (int j = 0; j < ko[s + 1] - ko[s]; ++j) entries.emplace_back(ko[s] + j, vals(k) * Rc[j][cols(k)]);
+      if (ko[s + 1] > ko[s]) entries.emplace_back(s, static_cast<int>(k));
     }
     std::sort(entries.begin(), entries.end());
-    for (size_t k = 0; k < entries.size(); ++k) {
-      if (k > 0 && entries[k].first == entries[k - 1].first) {
-        val_.back() += entries[k].second;
-        continue;
+    // One segment per subdomain: the sum over its entries of B_ik R_s(k, :).
+    for (size_t e = 0; e < entries.size(); ++e) {
+      const int s = entries[e].first, r = ko[s + 1] - ko[s];
+      if (e == 0 || entries[e - 1].first != s) {
+        segStart_.push_back(ko[s]);
+        segVal_.resize(segVal_.size() + r, 0.0);
       }
-      col_.push_back(entries[k].first);
-      val_.push_back(entries[k].second);
+      double* v = segVal_.data() + segVal_.size() - r;
+      const int k = entries[e].second;
+      for (int j = 0; j < r; ++j) v[j] += vals(k) * Rc[j][cols(k)];
     }
-    rowptr_.push_back(static_cast<int>(col_.size()));
+    segPtr_.push_back(static_cast<int>(segStart_.size()));
+    valPtr_.push_back(static_cast<int>(segVal_.size()));
   }
   // GG' is regular unless some rigid motion touches no row of B at all.
   GGt_ = factorGramian(nullptr);
@@ -147,25 +156,29 @@ GramBlocks gatherBlocks(const GramBlocks& local, const Comm& comm) {
 LocalCsr CoarseSpace::gramian(const std::vector<char>* rows) const {
   const auto& ko = problem_->kernelOffsets();
   const long long S = static_cast<long long>(ko.size()) - 1;
-  // The coarse columns of a row of G' are sorted, so each subdomain's
-  // columns form one segment [begin, end) of the row.
   GramBlocks local;
-  std::vector<std::array<int, 3>> segments;  // (subdomain, begin, end)
-  for (size_t i = 0; i + 1 < rowptr_.size(); ++i) {
+  struct Segment {
+    long long subdomain;
+    const double* values;  // r values
+    int r;
+  };
+  std::vector<Segment> segments;
+  const size_t numRows = segPtr_.size() - 1;
+  for (size_t i = 0; i < numRows; ++i) {
     if (rows && !(*rows)[i]) continue;
     segments.clear();
-    for (int a = rowptr_[i]; a < rowptr_[i + 1]; ++a) {
-      const int s = static_cast<int>(std::upper_bound(ko.begin(), ko.end(), col_[a]) - ko.begin()) - 1;
-      if (segments.empty() || segments.back()[0] != s) segments.push_back({s, a, a});
-      segments.back()[2] = a + 1;
+    const double* v = segVal_.data() + valPtr_[i];
+    for (int p = segPtr_[i]; p < segPtr_[i + 1]; ++p) {
+      const int r = blockLength_[segStart_[p]];
+      segments.push_back({std::upper_bound(ko.begin(), ko.end(), segStart_[p]) - ko.begin() - 1, v, r});
+      v += r;
     }
     for (const auto& p : segments)
       for (const auto& q : segments) {
-        auto [it, inserted] = local.try_emplace(p[0] * S + q[0]);
+        auto [it, inserted] = local.try_emplace(p.subdomain * S + q.subdomain);
         if (inserted) it->second.fill(0.0);
-        for (int a = p[1]; a < p[2]; ++a)
-          for (int b = q[1]; b < q[2]; ++b)
-            it->second[6 * (col_[a] - ko[p[0]]) + (col_[b] - ko[q[0]])] += val_[a] * val_[b];
+        for (int a = 0; a < p.r; ++a)
+          for (int b = 0; b < q.r; ++b) it->second[6 * a + b] += p.values[a] * q.values[b];
       }
   }
   const GramBlocks all = gatherBlocks(local, *problem_->comm());
@@ -214,19 +227,43 @@ RCP<LocalSolver> CoarseSpace::factorGramian(const std::vector<char>* rows) const
 void CoarseSpace::applyG(const Vector& x, std::vector<double>& y, const std::vector<char>* rows) const {
   y.assign(n_, 0.0);
   auto xv = x.getData();
-  for (size_t i = 0; i + 1 < rowptr_.size(); ++i) {
+  const size_t numRows = segPtr_.size() - 1;
+  for (size_t i = 0; i < numRows; ++i) {
     if (rows && !(*rows)[i]) continue;
-    for (int a = rowptr_[i]; a < rowptr_[i + 1]; ++a) y[col_[a]] += val_[a] * xv[i];
+    const double xi = xv[i];
+    const double* v = segVal_.data() + valPtr_[i];
+    for (int p = segPtr_[i]; p < segPtr_[i + 1]; ++p) {
+      double* yp = y.data() + segStart_[p];
+      const int r = blockLength_[segStart_[p]];
+      if (r == 6) {  // a floating subdomain: the common case, unrolled
+        for (int j = 0; j < 6; ++j) yp[j] += v[j] * xi;
+      } else {
+        for (int j = 0; j < r; ++j) yp[j] += v[j] * xi;
+      }
+      v += r;
+    }
   }
   MPI_Allreduce(MPI_IN_PLACE, y.data(), n_, MPI_DOUBLE, MPI_SUM, rawComm(*problem_->comm()));
 }
 
 void CoarseSpace::applyGt(const std::vector<double>& y, Vector& x, const std::vector<char>* rows) const {
   auto xv = x.getDataNonConst();
-  for (size_t i = 0; i + 1 < rowptr_.size(); ++i) {
+  const size_t numRows = segPtr_.size() - 1;
+  for (size_t i = 0; i < numRows; ++i) {
     double s = 0;
-    if (!rows || (*rows)[i])
-      for (int a = rowptr_[i]; a < rowptr_[i + 1]; ++a) s += val_[a] * y[col_[a]];
+    if (!rows || (*rows)[i]) {
+      const double* v = segVal_.data() + valPtr_[i];
+      for (int p = segPtr_[i]; p < segPtr_[i + 1]; ++p) {
+        const double* yp = y.data() + segStart_[p];
+        const int r = blockLength_[segStart_[p]];
+        if (r == 6) {
+          for (int j = 0; j < 6; ++j) s += v[j] * yp[j];
+        } else {
+          for (int j = 0; j < r; ++j) s += v[j] * yp[j];
+        }
+        v += r;
+      }
+    }
     xv[i] = s;
   }
 }

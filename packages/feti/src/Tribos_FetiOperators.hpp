@@ -97,8 +97,16 @@ class CoarseSpace {
   bool equalityHoldsKernel_ = true;
   RCP<const FetiProblem> problem_;
   int n_ = 0;
-  std::vector<int> rowptr_, col_;  // G' rows on this rank's dual rows
-  std::vector<double> val_;
+  // G' on this rank's dual rows, one segment per subdomain a row touches:
+  // the segment holds that subdomain's r_s values (the row of B R_s), which
+  // are G' entries in the consecutive coarse columns segStart_ ...
+  // segStart_ + r_s - 1. Row i has the segments segPtr_[i] .. segPtr_[i+1]-1
+  // and its values start at valPtr_[i]. Against a CSR of G' this stores one
+  // column index per subdomain instead of one per entry, and the products
+  // run over contiguous blocks of r_s (docs/scaling.md).
+  std::vector<int> segPtr_, segStart_, valPtr_;
+  std::vector<double> segVal_;
+  std::vector<int> blockLength_;  // r_s at coarse column ko[s]
   RCP<LocalSolver> GGt_, GEGEt_;  // factors of GG' and G_E G_E' (null: singular)
   mutable std::vector<double> work_;
 };

@@ -17,9 +17,9 @@
 
 namespace Tribos {
 
-std::vector<double> LocalSolver::inverseBlock(const std::vector<int>& dofs) const {
+void LocalSolver::inverseBlock(const std::vector<int>& dofs, std::vector<double>& Z) const {
   const int n = size(), nb = static_cast<int>(dofs.size());
-  std::vector<double> Z(static_cast<size_t>(nb) * nb);
+  Z.resize(static_cast<size_t>(nb) * nb);
   const int chunk = 64;  // unit right-hand sides per solve
   std::vector<double> E, X;
   for (int j0 = 0; j0 < nb; j0 += chunk) {
@@ -31,7 +31,6 @@ std::vector<double> LocalSolver::inverseBlock(const std::vector<int>& dofs) cons
     for (int j = 0; j < m; ++j)
       for (int i = 0; i < nb; ++i) Z[static_cast<size_t>(j0 + j) * nb + i] = X[static_cast<size_t>(j) * n + dofs[i]];
   }
-  return Z;
 }
 
 void LocalSolver::solveFactor(double*, bool) const {
@@ -129,13 +128,12 @@ class CholmodSolver : public LocalSolver {
     cholmod_sparse S = cholmodView(A, true);
     numericFactor(S);
   }
-  std::vector<double> inverseBlock(const std::vector<int>& dofs) const override {
-    if (dofs != last_ || dofs.empty()) return LocalSolver::inverseBlock(dofs);
-    std::vector<double> Z = trailingFactor();
+  void inverseBlock(const std::vector<int>& dofs, std::vector<double>& Z) const override {
+    if (dofs != last_ || dofs.empty()) return LocalSolver::inverseBlock(dofs, Z);
+    trailingFactor(Z);
     const int nb = static_cast<int>(dofs.size());
     const int info = Blas::choleskyInverse(nb, Z.data());
     TRIBOS_REQUIRE(info == 0, "CHOLMOD: inverse of the trailing Cholesky block failed (LAPACK info " << info << ")");
-    return Z;
   }
   void solveFactor(double* x, bool transpose) const override {
     // P then L^-1, or L^-T then P': two calls of cholmod_solve2.
@@ -172,10 +170,11 @@ class CholmodSolver : public LocalSolver {
     cholmod_factorize(&S, L_, &common_);
     requireCholmodOk(common_, "factorization", L_);
   }
-  // The last |last_| rows and columns of L, dense column-major (lower triangle).
-  std::vector<double> trailingFactor() const {
+  // The last |last_| rows and columns of L into Z, dense column-major (lower
+  // triangle; the strict upper triangle is zero).
+  void trailingFactor(std::vector<double>& Z) const {
     const int nb = static_cast<int>(last_.size()), first = n_ - nb;
-    std::vector<double> Z(static_cast<size_t>(nb) * nb, 0.0);
+    Z.assign(static_cast<size_t>(nb) * nb, 0.0);
     if (L_->is_super) {
       // Supernode s holds columns super[s]..super[s+1]-1 as a dense
       // nsrow x nscol block at x + px[s], its row indices at s + pi[s].
@@ -192,7 +191,7 @@ class CholmodSolver : public LocalSolver {
             Z[static_cast<size_t>(j - first) * nb + (rows[pi[s] + r] - first)] =
                 x[px[s] + static_cast<size_t>(j - super[s]) * nsrow + r];
       }
-      return Z;
+      return;
     }
     // Simplicial (small matrices): an LL' copy, since the factor may be LDL'.
     cholmod_factor* L = cholmod_copy_factor(L_, &common_);
@@ -204,7 +203,6 @@ class CholmodSolver : public LocalSolver {
     for (int j = first; j < n_; ++j)
       for (int k = Lp[j]; k < Lp[j + 1]; ++k) Z[static_cast<size_t>(j - first) * nb + (Li[k] - first)] = Lx[k];
     cholmod_free_factor(&L, &common_);
-    return Z;
   }
 
  public:

@@ -33,8 +33,15 @@ class LocalSolver {
   // x = A^-1 b for nrhs right-hand sides stored column after column (length n each).
   virtual void solve(const double* b, double* x, int nrhs = 1) const = 0;
   // (A^-1) restricted to the rows and columns `dofs`: dense, symmetric,
-  // column-major |dofs| x |dofs|. By default |dofs| solves with unit vectors.
-  virtual std::vector<double> inverseBlock(const std::vector<int>& dofs) const;
+  // column-major |dofs| x |dofs|, written to Z (resized; its memory is reused,
+  // so a caller forming many blocks keeps one buffer and touches no fresh
+  // pages). By default |dofs| solves with unit vectors.
+  virtual void inverseBlock(const std::vector<int>& dofs, std::vector<double>& Z) const;
+  std::vector<double> inverseBlock(const std::vector<int>& dofs) const {
+    std::vector<double> Z;
+    inverseBlock(dofs, Z);
+    return Z;
+  }
   // For A = P'LL'P (a Cholesky factor with its fill-reducing permutation P):
   // x <- L^-1 P x, or x <- P'L^-T x when transpose. These halves of A^-1
   // orthonormalize: with A = GG', the rows of L^-1 P G are orthonormal.

@@ -98,6 +98,7 @@ SubdomainPseudoInverse::SubdomainPseudoInverse(const std::vector<Fem::SubdomainS
       formDenseBlock(k);
     }
   }
+  std::vector<double>().swap(blockWork_);
   factorSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -121,11 +122,11 @@ void SubdomainPseudoInverse::formDenseBlock(size_t k) {
   const auto& sys = systems_[k];
   const auto& b = boundary_[k];
   const int n = sys.numDofs(), nb = static_cast<int>(b.size()), r = n > 0 ? static_cast<int>(sys.R.size() / n) : 0;
-  std::vector<double> Z;
+  std::vector<double>& Z = blockWork_;  // one buffer for every subdomain's block
   {
     static const auto inverseTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: inverse block");
     Teuchos::TimeMonitor t(*inverseTimer);
-    Z = Kreg_[k]->inverseBlock(b);
+    Kreg_[k]->inverseBlock(b, Z);
   }
   std::vector<double> W(static_cast<size_t>(n) * r);
   if (r > 0) Kreg_[k]->solve(sys.R.data(), W.data(), r);
@@ -151,11 +152,10 @@ void SubdomainPseudoInverse::formDenseBlock(size_t k) {
     blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, nb, nb, r, 1.0, Rb.data(), nb, V.data(), nb, 1.0, Z.data(), nb);
     blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, nb, nb, r, 1.0, V.data(), nb, Rb.data(), nb, 1.0, Z.data(), nb);
   }
-  KplusBB_[k] = Blas::packLower(nb, Z);
-  if (singleBlocks_) {
-    KplusBBf_[k].assign(KplusBB_[k].begin(), KplusBB_[k].end());
-    std::vector<double>().swap(KplusBB_[k]);
-  }
+  if (singleBlocks_)
+    KplusBBf_[k] = Blas::packLower<float>(nb, Z);
+  else
+    KplusBB_[k] = Blas::packLower<double>(nb, Z);
 }
 
 // K+ = (I - RR') K_reg^-1 (I - RR') is still a generalized inverse (R'K = 0),

@@ -67,6 +67,7 @@ class SubdomainPseudoInverse {
   std::vector<std::vector<float>> KplusBBf_;     // the same in single precision (singleBlocks)
   bool singleBlocks_ = false;
   mutable std::vector<double> work_, workB_;
+  std::vector<double> blockWork_;  // the dense block being formed (setup only)
   mutable std::vector<float> workBf_;
   double factorSeconds_ = 0;
 };
