@@ -72,6 +72,7 @@ SubdomainPseudoInverse::SubdomainPseudoInverse(const std::vector<Fem::SubdomainS
   static const auto sparseTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: sparse factor");
   static const auto denseTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: dense block");
   Progress::stage("factorization of " + std::to_string(systems_.size()) + " subdomain matrices");
+  std::vector<double> block;  // the unpacked dense block, one buffer for all
   for (size_t k = 0; k < systems_.size(); ++k) {
     Progress::iteration([&] { return "subdomain " + std::to_string(k + 1) + " of " + std::to_string(systems_.size()); });
     const auto& sys = systems_[k];
@@ -95,10 +96,9 @@ SubdomainPseudoInverse::SubdomainPseudoInverse(const std::vector<Fem::SubdomainS
     Kreg_.push_back(solver);
     if (dense) {
       Teuchos::TimeMonitor t(*denseTimer);
-      formDenseBlock(k);
+      formDenseBlock(k, block);
     }
   }
-  std::vector<double>().swap(blockWork_);
   factorSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -118,11 +118,10 @@ double SubdomainPseudoInverse::memoryMb() const {
 // (K+)_bb for K+ = (I - RR') Z (I - RR'), Z = K_reg^-1:
 //   (K+)_bb = Z_bb - R_b W_b' - W_b R_b' + R_b (R'W) R_b',  W = Z R,
 // with Z_bb from the local solver and W from r solves.
-void SubdomainPseudoInverse::formDenseBlock(size_t k) {
+void SubdomainPseudoInverse::formDenseBlock(size_t k, std::vector<double>& Z) {
   const auto& sys = systems_[k];
   const auto& b = boundary_[k];
   const int n = sys.numDofs(), nb = static_cast<int>(b.size()), r = n > 0 ? static_cast<int>(sys.R.size() / n) : 0;
-  std::vector<double>& Z = blockWork_;  // one buffer for every subdomain's block
   {
     static const auto inverseTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::factor K_reg: inverse block");
     Teuchos::TimeMonitor t(*inverseTimer);

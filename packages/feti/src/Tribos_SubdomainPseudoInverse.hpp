@@ -58,7 +58,9 @@ class SubdomainPseudoInverse {
   template <class T>
   static void applyDenseBlock(const std::vector<T>& block, const std::vector<int>& b, const double* p, double* z,
                               std::vector<T>& work);
-  void formDenseBlock(size_t k);
+  // Z: the caller's buffer for the unpacked block, reused from one
+  // subdomain to the next so that no block touches fresh pages.
+  void formDenseBlock(size_t k, std::vector<double>& Z);
 
   const std::vector<Fem::SubdomainSystem>& systems_;
   std::vector<std::vector<int>> boundary_;
@@ -67,7 +69,6 @@ class SubdomainPseudoInverse {
   std::vector<std::vector<float>> KplusBBf_;     // the same in single precision (singleBlocks)
   bool singleBlocks_ = false;
   mutable std::vector<double> work_, workB_;
-  std::vector<double> blockWork_;  // the dense block being formed (setup only)
   mutable std::vector<float> workBf_;
   double factorSeconds_ = 0;
 };

@@ -266,15 +266,11 @@ SemismoothNewton::SemismoothNewton(const ParameterList& params) : params_(params
 double SemismoothNewton::requestedTolerance() const { return params_.get<double>("Relative Tolerance"); }
 
 void SemismoothNewton::setRequestedTolerance(double tolerance) {
-  TRIBOS_REQUIRE(tolerance >= 1e-15 && tolerance <= 1.0,
-                 "Semismooth Newton: Relative Tolerance = " << tolerance << " is outside [1e-15, 1]");
-  params_.set("Relative Tolerance", tolerance);
+  setValidated(params_, *validParameters(), "Relative Tolerance", tolerance, "Semismooth Newton");
 }
 
 void SemismoothNewton::setMaximumIterations(int iterations) {
-  TRIBOS_REQUIRE(iterations >= 1 && iterations <= 1000000,
-                 "Semismooth Newton: Maximum Iterations = " << iterations << " is outside [1, 1000000]");
-  params_.set("Maximum Iterations", iterations);
+  setValidated(params_, *validParameters(), "Maximum Iterations", iterations, "Semismooth Newton");
 }
 
 void SemismoothNewton::checkDualRows(long long rows) const {
