@@ -104,10 +104,14 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
                                     Fem::ResultKKT& kkt, IO::IterationHistory& history) {
   const std::string law = params.sublist("Contact").get<std::string>("Friction Law");
   const Input::PlaneContact contact = Input::planeContact(params);
-  // Every rank refuses a body the Dirichlet conditions do not hold, before
-  // rank 0 starts (the method eliminates them and factors K_rr).
-  Fem::requireRigidMotionsHeld(disc.mesh.coords, Fem::constrainedDofs(disc.mesh, loads.dirichlet), "semismooth*",
-                               Semismooth::kSemicoerciveAdvice);
+  // Every rank refuses, before rank 0 starts, a body the Dirichlet
+  // conditions do not hold (the method eliminates them and factors K_rr) and
+  // Dirichlet values the contact face cannot take.
+  checkOnEveryRank(comm, [&] {
+    const auto dirichlet = Fem::constrainedDofs(disc.mesh, loads.dirichlet);
+    Fem::requireRigidMotionsHeld(disc.mesh.coords, dirichlet, "semismooth*", Semismooth::kSemicoerciveAdvice);
+    Semismooth::contactFaceNodes(disc.mesh, dirichlet, contact.face, contact.gap, contact.slipBoundTraction);
+  });
   std::vector<double> u(3 * static_cast<size_t>(disc.mesh.numNodes()), 0.0);
   double info[5] = {0};
   std::vector<double> residuals;
@@ -565,6 +569,9 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   const auto spec = fileMesh ? Mesh::boundingBox(mesh) : Input::boxSpec(params);
   if (!fileMesh) Input::checkMeshFaces(mesh, params);  // the box's names were validated with the input
   Mesh::Discretization disc(std::move(mesh), spec, decomposition, comm->getSize(), comm->getRank());
+  // Dirichlet conditions that disagree at a node: refused by every rank
+  // alike, before any solver starts.
+  checkOnEveryRank(*comm, [&] { Fem::constrainedDofs(disc.mesh, loads.dirichlet); });
   const Fem::BodyMaterials mat = Input::materials(params, disc.mesh);
   const Input::Method method = Input::method(params);
   const auto constraints = method == Input::Method::FetiContact ? contactConstraints(params, disc.mesh, *comm)

@@ -138,6 +138,52 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
   return res;
 }
 
+void requireAdmissiblePrescribedMotion(const std::map<long long, double>& dirichlet, int node,
+                                       const std::array<double, 3>& x, const std::array<double, 3>& normal,
+                                       double gap, const std::vector<std::pair<int, double>>& master) {
+  // Per axis: fixed at the slave node and every master node, and then the
+  // prescribed relative displacement w_d = ubar_s - sum N_i ubar_i.
+  std::array<bool, 3> fixed{};
+  std::array<double, 3> w{}, scale{};
+  for (int d = 0; d < 3; ++d) {
+    auto value = [&](int n) {
+      const auto it = dirichlet.find(3LL * n + d);
+      return it == dirichlet.end() ? std::nan("") : it->second;
+    };
+    fixed[d] = !std::isnan(value(node));
+    w[d] = fixed[d] ? value(node) : 0.0;
+    scale[d] = std::abs(w[d]);
+    for (const auto& [m, weight] : master) {
+      fixed[d] = fixed[d] && !std::isnan(value(m));
+      if (fixed[d]) w[d] -= weight * value(m), scale[d] = std::max(scale[d], std::abs(value(m)));
+    }
+  }
+  auto where = [&] {
+    std::ostringstream os;
+    os << "contact node " << node << " at (" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+    return os.str();
+  };
+  const double nn = std::sqrt(dot(normal, normal.data()));
+  bool normalFixed = true;
+  double wn = 0, wnScale = 0;
+  for (int d = 0; d < 3; ++d) {
+    if (std::abs(normal[d]) <= 1e-12 * nn) {
+      // A tangential axis: the prescribed slip along it must vanish.
+      TRIBOS_REQUIRE(!fixed[d] || std::abs(w[d]) <= 1e-10 * scale[d],
+                     where() << ": its Dirichlet values make it slide " << w[d] << " along " << "xyz"[d]
+                             << " against the surface it contacts; friction against a prescribed sliding is not "
+                                "modelled: prescribe the motion away from the contact surface, or the same value "
+                                "on both sides");
+      continue;
+    }
+    normalFixed = normalFixed && fixed[d];
+    wn += normal[d] / nn * w[d];
+    wnScale = std::max(wnScale, scale[d]);
+  }
+  TRIBOS_REQUIRE(!normalFixed || wn <= gap + 1e-10 * std::max(wnScale, std::abs(gap)),
+                 where() << ": its Dirichlet values move it " << wn - gap << " through the surface it contacts");
+}
+
 ResultVerdict resultVerdict(const ResultKKT& kkt, bool solverConverged, const std::string& solverReason,
                             double tolerance, double factor) {
   ResultVerdict v;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_ResultKKT.hpp"
 
 namespace Tribos {
 namespace Feti {
@@ -165,6 +166,8 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
         if (!fixedAt(m.first, dir)) return false;
       return true;
     };
+    // Leaving out fixed directions is right only for admissible values.
+    if (!cc.glued) Fem::requireAdmissiblePrescribedMotion(bc, cc.node, mesh.coords[cc.node], cc.normal, cc.gap, cc.master);
     if (!cc.glued && fixedAtAll(cc.normal)) continue;
     DualRow r{cc.glued ? DualRow::Bonded : DualRow::Normal};
     r.node = cc.node;
@@ -172,12 +175,29 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
     for (const auto& [node, weight] : cc.master) r.copies.push_back(copyOf(copies[node].front(), node, -weight));
     const std::array<double, 3>* dirs[3] = {&cc.normal, &cc.t1, &cc.t2};
     const DualRow::Kind kinds[3] = {DualRow::Normal, DualRow::Tangent1, DualRow::Tangent2};
+    std::vector<int> copyNodes{cc.node};
+    for (const auto& m : cc.master) copyNodes.push_back(m.first);
     for (int j = 0; j < 3; ++j) {
       if ((j > 0 || cc.glued) && fixedAtAll(*dirs[j])) continue;
-      r.kind = cc.glued ? DualRow::Bonded : kinds[j];
-      r.dir = *dirs[j];
-      r.c = j == 0 && !cc.glued ? cc.gap : 0.0;
-      rows.push_back(r);
+      DualRow row = r;
+      row.kind = cc.glued ? DualRow::Bonded : kinds[j];
+      row.dir = *dirs[j];
+      row.c = j == 0 && !cc.glued ? cc.gap : 0.0;
+      // FETI-1 has eliminated the Dirichlet dofs from the subdomains, so the
+      // row must not act on them (K+ would move them by B'lambda): a copy
+      // whose node has the direction fixed (wholly, by fixedDirection) takes
+      // weight 0 and its known part, weight * dir . ubar, moves to c.
+      for (size_t k = 0; eliminateDirichlet && k < row.copies.size(); ++k) {
+        if (!fixedAt(copyNodes[k], row.dir)) continue;
+        double known = 0;
+        for (int c = 0; c < 3; ++c) {
+          const auto it = bc.find(3LL * copyNodes[k] + c);
+          if (it != bc.end()) known += row.dir[c] * it->second;
+        }
+        row.c -= row.copies[k].weight * known;
+        row.copies[k].weight = 0.0;
+      }
+      rows.push_back(row);
     }
   }
   return rows;
@@ -215,6 +235,7 @@ DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<
     std::vector<GO> cols;
     std::vector<SC> vals;
     for (const auto& copy : r.copies) {
+      if (copy.weight == 0.0) continue;  // a FETI-1 copy at eliminated dofs
       const GO base = primalOffsets[copy.subdomain] + 3 * static_cast<GO>(copy.localNode);
       for (int c = 0; c < 3; ++c)
         if (r.dir[c] != 0.0) cols.push_back(base + c), vals.push_back(copy.weight * r.dir[c]);

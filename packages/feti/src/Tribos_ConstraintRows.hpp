@@ -84,7 +84,9 @@ struct DualConstraints {
 // normal row and the tangential rows, on the slave node's first copy and
 // the first copies of its master nodes (weights -N_i), leaving out the
 // directions that Dirichlet conditions fix at the slave node and at every
-// master node; a glued constraint gives three equality rows instead.
+// master node; a glued constraint gives three equality rows instead. With
+// eliminateDirichlet a copy whose node has the row's direction fixed gets
+// weight 0 and its prescribed part moves to c (B acts on free dofs only).
 std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const std::map<long long, double>& dirichlet,
                                         const std::vector<ContactConstraint>& contact, const std::string& gluing,
                                         bool eliminateDirichlet);

@@ -332,7 +332,11 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMateri
     systems_.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, loads));
     if (feti1) eliminateDirichlet(systems_.back(), fc.dirichlet);
   }
-  fc.rows = meshConstraintRows(disc, fc.dirichlet, contact, p.get<std::string>("Gluing"), feti1);
+  // The rows are built alike on every rank; a refusal (a Dirichlet value
+  // that moves a contact node through its partner) is the input's fault.
+  checkOnEveryRank(*comm_, [&] {
+    fc.rows = meshConstraintRows(disc, fc.dirichlet, contact, p.get<std::string>("Gluing"), feti1);
+  });
   fc.contact = contact;
   bool hasContact = false;
   for (const auto& c : contact) hasContact = hasContact || !c.glued;

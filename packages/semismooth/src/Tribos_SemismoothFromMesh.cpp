@@ -6,29 +6,19 @@
 #include <cmath>
 #include <set>
 
+#include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Assembly.hpp"
 #include "Tribos_Decomposition.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_ResultKKT.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
 
 namespace Tribos {
 namespace Semismooth {
 
-ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
-                                   const std::string& contactFace, double gap, double slipBoundTraction) {
-  TRIBOS_REQUIRE(slipBoundTraction >= 0, "semismooth*: negative slip bound traction " << slipBoundTraction);
-  // One subdomain covering the mesh: its K and f are the global ones.
-  const Mesh::Subdomain whole = Mesh::extractSubdomains(mesh, std::vector<int>(mesh.numCells(), 0), 1)[0];
-  Fem::SubdomainSystem sys = Fem::assembleSubdomain(mesh, whole, material, loads);
-  for (int i = 0; i < static_cast<int>(whole.nodes.size()); ++i)
-    TRIBOS_REQUIRE(whole.nodes[i] == i, "semismooth*: the mesh has unused nodes");
-
-  ContactProblem p;
-  p.K = std::move(sys.K);
-  p.f = std::move(sys.f);
-  p.dirichlet = Fem::constrainedDofs(mesh, loads.dirichlet);
-  p.coords = mesh.coords;
-
+std::vector<ContactNode> contactFaceNodes(const Mesh::Mesh& mesh, const std::map<long long, double>& dirichlet,
+                                          const std::string& contactFace, double gap, double slipBoundTraction) {
+  std::vector<ContactNode> nodes;
   // Outward area-weighted nodal normals (facets are counter-clockwise seen
   // from outside) and nodal areas.
   const int N = mesh.numNodes();
@@ -60,9 +50,10 @@ ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& 
   // do not take the node out of contact, they only remove that friction
   // direction (see RotatedSystem).
   for (int node : mesh.faceNodes(contactFace)) {
-    const std::array<bool, 3> fixed{p.dirichlet.count(3LL * node) > 0, p.dirichlet.count(3LL * node + 1) > 0,
-                                    p.dirichlet.count(3LL * node + 2) > 0};
+    const std::array<bool, 3> fixed{dirichlet.count(3LL * node) > 0, dirichlet.count(3LL * node + 1) > 0,
+                                    dirichlet.count(3LL * node + 2) > 0};
     const PrescribedDirections kind = classifyPrescribed(normal[node], fixed);
+    Fem::requireAdmissiblePrescribedMotion(dirichlet, node, mesh.coords[node], normal[node], gap, {});
     if (kind == PrescribedDirections::Normal) continue;
     if (kind == PrescribedDirections::Oblique) {
       const auto& X = mesh.coords[node];
@@ -83,8 +74,27 @@ ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& 
     cn.normal = normal[node];
     cn.g = slipBoundTraction * area[node];
     cn.d = gap;
-    p.contact.push_back(cn);
+    nodes.push_back(cn);
   }
+  return nodes;
+}
+
+ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
+                                   const std::string& contactFace, double gap, double slipBoundTraction) {
+  TRIBOS_REQUIRE(slipBoundTraction >= 0, "semismooth*: negative slip bound traction " << slipBoundTraction);
+  // One subdomain covering the mesh: its K and f are the global ones.
+  const Mesh::Subdomain whole = Mesh::extractSubdomains(mesh, std::vector<int>(mesh.numCells(), 0), 1)[0];
+  Fem::SubdomainSystem sys = Fem::assembleSubdomain(mesh, whole, material, loads);
+  for (int i = 0; i < static_cast<int>(whole.nodes.size()); ++i)
+    TRIBOS_REQUIRE(whole.nodes[i] == i, "semismooth*: the mesh has unused nodes");
+
+  ContactProblem p;
+  p.K = std::move(sys.K);
+  p.f = std::move(sys.f);
+  p.dirichlet = Fem::constrainedDofs(mesh, loads.dirichlet);
+  p.coords = mesh.coords;
+
+  p.contact = contactFaceNodes(mesh, p.dirichlet, contactFace, gap, slipBoundTraction);
   TRIBOS_REQUIRE(!p.contact.empty(),
                  "semismooth*: face \"" << contactFace << "\" has no node whose normal displacement is free");
   return p;
@@ -96,7 +106,12 @@ SemismoothResult solveFromMesh(const Mesh::Mesh& mesh, const Fem::Material& mate
                                const RCP<const Comm>& comm) {
   Teuchos::Time timer("assembly");
   timer.start();
-  ContactProblem problem = buildContactProblem(mesh, material, loads, contactFace, gap, slipBoundTraction);
+  // Built alike on every rank from the whole mesh: a refusal is the input's
+  // fault, agreed on so that no rank aborts the others.
+  ContactProblem problem;
+  auto build = [&] { problem = buildContactProblem(mesh, material, loads, contactFace, gap, slipBoundTraction); };
+  if (comm.is_null()) build();
+  else checkOnEveryRank(*comm, build);
   problem.comm = comm;
   timer.stop();
   SemismoothStarNewton solver(problem, params);

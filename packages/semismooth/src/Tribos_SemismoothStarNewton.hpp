@@ -187,6 +187,14 @@ SemismoothResult solveFromMesh(const Mesh::Mesh& mesh, const Fem::Material& mate
                                const Teuchos::ParameterList& params, std::ostream* log,
                                const RCP<const Comm>& comm = Teuchos::null);
 
+// The contact nodes of a face against the rigid plane at distance gap: the
+// face's nodes whose normal displacement is free, with their outward
+// area-weighted normals and slip bounds (traction x nodal area). Refuses
+// Dirichlet conditions at a node that are oblique to its frame or that
+// prescribe a slip or a penetration (Fem::requireAdmissiblePrescribedMotion).
+std::vector<ContactNode> contactFaceNodes(const Mesh::Mesh& mesh, const std::map<long long, double>& dirichlet,
+                                          const std::string& contactFace, double gap, double slipBoundTraction);
+
 // The contact problem solveFromMesh() solves (for tests and other drivers).
 ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
                                    const std::string& contactFace, double gap, double slipBoundTraction);
