@@ -266,10 +266,16 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
     const auto motions = dual_->coarse().freeMotions(&active);
     std::string list;
     for (const auto& m : motions) list += (list.empty() ? "" : ", ") + m;
+    const std::string unheld = "no Dirichlet condition and no sticking or closed contact holds " +
+                               (list.empty() ? std::string("the rigid motion") : list);
+    // Only a converged solve says something about the problem; a solve that
+    // stopped early keeps its own reason.
+    if (sol.status.converged)
+      sol.status.reason = "no equilibrium: at the solution " + unheld +
+                          " (the load exceeds what the contact and its friction can carry)";
+    else
+      sol.status.reason += "; at its last iterate " + unheld;
     sol.status.converged = false;
-    sol.status.reason = "no equilibrium: at the solution no Dirichlet condition and no sticking or closed contact holds " +
-                        (list.empty() ? std::string("the rigid motion") : list) +
-                        " (the load exceeds what the contact and its friction can carry)";
   }
   return sol;
 }

@@ -242,6 +242,11 @@ FrictionStatus MSA::solve(const ContactDual& dual, Vector& x) {
     });
     if (!s.converged) {
       st.reason = "Tresca step " + std::to_string(l) + " did not converge: " + s.reason;
+      // A rigid motion that only friction holds has no frictionless
+      // equilibrium, so MSA cannot start from the slip bound 0.
+      if (globalNorm(g, comm) == 0)
+        st.reason += " (its slip bound is 0: a body that only friction holds in some direction has no "
+                     "frictionless equilibrium; solve it by Algorithm2)";
       return st;
     }
     if (st.slip_bound_change <= eps || norm == 0) {
