@@ -116,7 +116,10 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
   cd_.A = dual->F();
   cd_.b = Teuchos::rcpFromRef(dual->h());
   cd_.bReference = loadPart(*dual);
-  cd_.G = rcp(new OrthonormalCoarseConstraint(dual->coarsePtr(), dual->problem().comm()));
+  // No coarse space (FETI-1 with every subdomain held by Dirichlet
+  // conditions): no equality constraint, and the projector is I.
+  if (dual->coarse().size() > 0)
+    cd_.G = rcp(new OrthonormalCoarseConstraint(dual->coarsePtr(), dual->problem().comm()));
   cd_.normalRows = lc.normalRows;
   cd_.tangentRows = lc.tangentRows;
   const size_t nc = lc.normalRows.size();
@@ -135,10 +138,10 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
     dual->problem().formDenseF(D);
     return D;
   };
-  transforms_.add(rcp(new Friction::HomogenizationTransform(Teuchos::rcpFromRef(dual->lambdaTilde()))))
-      .add(rcp(new Friction::ProjectionTransform(rcp(new CoarseProjector(dual)), true)))
-      .add(scaling_)
-      .forward(cd_);
+  if (!cd_.G.is_null())
+    transforms_.add(rcp(new Friction::HomogenizationTransform(Teuchos::rcpFromRef(dual->lambdaTilde()))))
+        .add(rcp(new Friction::ProjectionTransform(rcp(new CoarseProjector(dual)), true)));
+  transforms_.add(scaling_).forward(cd_);
   if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact();
 }
 

@@ -206,8 +206,26 @@ double CoarseSpace::factorMemoryMb() const {
   return (GGt_.is_null() ? 0.0 : GGt_->factorMemoryMb()) + (GEGEt_.is_null() ? 0.0 : GEGEt_->factorMemoryMb());
 }
 
+namespace {
+
+// The factor of the 0 x 0 Gram matrix of an empty coarse space (FETI-1
+// with every subdomain held by Dirichlet conditions): regular, and every
+// solve is empty.
+class EmptyFactor : public LocalSolver {
+ public:
+  void factor(const LocalCsr&) override {}
+  void solve(const double*, double*, int) const override {}
+  void solveFactor(double*, bool) const override {}
+  double pivotRatio() const override { return 1.0; }
+  std::string name() const override { return "empty"; }
+  int size() const override { return 0; }
+};
+
+}  // namespace
+
 RCP<LocalSolver> CoarseSpace::factorGramian(const std::vector<char>* rows) const {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::coarse factor"));
+  if (n_ == 0) return rcp(new EmptyFactor);
   const LocalCsr A = gramian(rows);
   // A row of zeros (a rigid motion that no row touches) is singular before
   // any pivot is taken; CHOLMOD would stop on it, or succeed on round-off.
@@ -388,6 +406,7 @@ std::string CoarseSpace::describeMotion(const std::vector<double>& alpha) const 
 }
 
 std::vector<std::vector<double>> CoarseSpace::nullSpace(const std::vector<char>* rows) const {
+  if (n_ == 0) return {};  // no floating subdomain (FETI-1, Dirichlet everywhere)
   const LocalCsr sparse = gramian(rows);
   std::vector<double> A(static_cast<size_t>(n_) * n_, 0.0);
   for (int i = 0; i < n_; ++i)

@@ -59,6 +59,7 @@ class AugmentedLagrangian {
   const RCP<Vector>& multiplier() const { return mu_; }
   // ||G'G|| by power iterations (not Hessian work).
   SC normGtG(int powerIterations) const {
+    if (G_.rangeMap()->getGlobalNumElements() == 0) return 0;  // no constraint rows: G'G = 0
     long notCounted = 0;
     return estimateNorm(NormalOperator(G_, bIn_.getMap()), powerIterations, notCounted);
   }
