@@ -576,6 +576,12 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   const Input::Method method = Input::method(params);
   const auto constraints = method == Input::Method::FetiContact ? contactConstraints(params, disc.mesh, *comm)
                                                                   : std::vector<Feti::ContactConstraint>();
+  // Before the FETI setup: no prescribed sliding against friction.
+  if (method == Input::Method::FetiContact)
+    checkOnEveryRank(*comm, [&] {
+      Contact::requireNoPrescribedSlip(constraints, Input::pairFriction(params),
+                                       Fem::constrainedDofs(disc.mesh, loads.dirichlet), disc.mesh.coords);
+    });
   const bool semismooth = method == Input::Method::Semismooth;
   const std::string type = semismooth ? "SemismoothStarNewton" : params.sublist("Solver").get<std::string>("Type");
   summary.set("algorithm", type);

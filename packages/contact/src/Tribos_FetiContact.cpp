@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -107,10 +108,26 @@ std::string runLaw(const PairFriction& friction) {
   return coulomb ? "Coulomb" : (tresca ? "Tresca" : "Frictionless");
 }
 
+void requireNoPrescribedSlip(const std::vector<Feti::ContactConstraint>& contact, const PairFriction& friction,
+                             const std::map<long long, double>& dirichlet,
+                             const std::vector<std::array<double, 3>>& coords) {
+  if (dirichlet.empty()) return;
+  for (const auto& c : contact)
+    if (!c.glued && frictionOfPair(friction, c.pair).law != "Frictionless")
+      Fem::requireNoPrescribedSlip(dirichlet, c.node, coords.at(c.node), c.normal, c.master);
+}
+
 FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const PairFriction& friction)
     : scaling_(rcp(new Friction::ScalingTransform(20))), dual_(dual) {
   runLaw(friction);  // checks every pair's law
   const auto& lc = dual->problem().contact();
+  // A problem from a mesh: its Dirichlet values must not make a contact
+  // with friction slide (the driver checks this before the FETI setup).
+  checkOnEveryRank(*dual->problem().comm(), [&] {
+    if (!dual->problem().dirichlet().empty())
+      requireNoPrescribedSlip(lc.constraint, friction, dual->problem().dirichlet(),
+                              dual->problem().discretization().mesh.coords);
+  });
   // The dual problem as TFETI gives it: min 1/2 lambda'F lambda - lambda'h
   // s.t. G^ lambda = L^-1 e, lambda_N >= 0, ||lambda_T,k|| <= g_k.
   cd_.A = dual->F();

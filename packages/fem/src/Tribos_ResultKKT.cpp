@@ -138,50 +138,71 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
   return res;
 }
 
-void requireAdmissiblePrescribedMotion(const std::map<long long, double>& dirichlet, int node,
-                                       const std::array<double, 3>& x, const std::array<double, 3>& normal,
-                                       double gap, const std::vector<std::pair<int, double>>& master) {
-  // Per axis: fixed at the slave node and every master node, and then the
-  // prescribed relative displacement w_d = ubar_s - sum N_i ubar_i.
+namespace {
+
+// Per axis d: whether Dirichlet conditions fix it at the slave node and
+// every master node, and then the prescribed relative displacement
+// w_d = ubar_s - sum N_i ubar_i and the size of the values (for round-off).
+struct PrescribedRelativeMotion {
   std::array<bool, 3> fixed{};
   std::array<double, 3> w{}, scale{};
+  std::string where;  // "contact node N at (x, y, z)"
+};
+
+PrescribedRelativeMotion prescribedRelativeMotion(const std::map<long long, double>& dirichlet, int node,
+                                                  const std::array<double, 3>& x,
+                                                  const std::vector<std::pair<int, double>>& master) {
+  PrescribedRelativeMotion m;
   for (int d = 0; d < 3; ++d) {
     auto value = [&](int n) {
       const auto it = dirichlet.find(3LL * n + d);
       return it == dirichlet.end() ? std::nan("") : it->second;
     };
-    fixed[d] = !std::isnan(value(node));
-    w[d] = fixed[d] ? value(node) : 0.0;
-    scale[d] = std::abs(w[d]);
-    for (const auto& [m, weight] : master) {
-      fixed[d] = fixed[d] && !std::isnan(value(m));
-      if (fixed[d]) w[d] -= weight * value(m), scale[d] = std::max(scale[d], std::abs(value(m)));
+    m.fixed[d] = !std::isnan(value(node));
+    m.w[d] = m.fixed[d] ? value(node) : 0.0;
+    m.scale[d] = std::abs(m.w[d]);
+    for (const auto& [mn, weight] : master) {
+      m.fixed[d] = m.fixed[d] && !std::isnan(value(mn));
+      if (m.fixed[d]) m.w[d] -= weight * value(mn), m.scale[d] = std::max(m.scale[d], std::abs(value(mn)));
     }
   }
-  auto where = [&] {
-    std::ostringstream os;
-    os << "contact node " << node << " at (" << x[0] << ", " << x[1] << ", " << x[2] << ")";
-    return os.str();
-  };
+  std::ostringstream os;
+  os << "contact node " << node << " at (" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+  m.where = os.str();
+  return m;
+}
+
+bool tangentialAxis(const std::array<double, 3>& normal, int d) {
+  return std::abs(normal[d]) <= 1e-12 * std::sqrt(dot(normal, normal.data()));
+}
+
+}  // namespace
+
+void requireNoPrescribedPenetration(const std::map<long long, double>& dirichlet, int node,
+                                    const std::array<double, 3>& x, const std::array<double, 3>& normal, double gap,
+                                    const std::vector<std::pair<int, double>>& master) {
+  const auto m = prescribedRelativeMotion(dirichlet, node, x, master);
   const double nn = std::sqrt(dot(normal, normal.data()));
-  bool normalFixed = true;
-  double wn = 0, wnScale = 0;
+  double wn = 0, scale = std::abs(gap);
   for (int d = 0; d < 3; ++d) {
-    if (std::abs(normal[d]) <= 1e-12 * nn) {
-      // A tangential axis: the prescribed slip along it must vanish.
-      TRIBOS_REQUIRE(!fixed[d] || std::abs(w[d]) <= 1e-10 * scale[d],
-                     where() << ": its Dirichlet values make it slide " << w[d] << " along " << "xyz"[d]
-                             << " against the surface it contacts; friction against a prescribed sliding is not "
-                                "modelled: prescribe the motion away from the contact surface, or the same value "
-                                "on both sides");
-      continue;
-    }
-    normalFixed = normalFixed && fixed[d];
-    wn += normal[d] / nn * w[d];
-    wnScale = std::max(wnScale, scale[d]);
+    if (tangentialAxis(normal, d)) continue;
+    if (!m.fixed[d]) return;  // the normal motion is free: the contact rows decide
+    wn += normal[d] / nn * m.w[d];
+    scale = std::max(scale, m.scale[d]);
   }
-  TRIBOS_REQUIRE(!normalFixed || wn <= gap + 1e-10 * std::max(wnScale, std::abs(gap)),
-                 where() << ": its Dirichlet values move it " << wn - gap << " through the surface it contacts");
+  TRIBOS_REQUIRE(wn <= gap + 1e-10 * scale,
+                 m.where << ": its Dirichlet values move it " << wn - gap << " through the surface it contacts");
+}
+
+void requireNoPrescribedSlip(const std::map<long long, double>& dirichlet, int node, const std::array<double, 3>& x,
+                             const std::array<double, 3>& normal, const std::vector<std::pair<int, double>>& master) {
+  const auto m = prescribedRelativeMotion(dirichlet, node, x, master);
+  for (int d = 0; d < 3; ++d)
+    TRIBOS_REQUIRE(!tangentialAxis(normal, d) || !m.fixed[d] || std::abs(m.w[d]) <= 1e-10 * m.scale[d],
+                   m.where << ": its Dirichlet values make it slide " << m.w[d] << " along " << "xyz"[d]
+                           << " against the surface it contacts, with friction; friction against a prescribed "
+                              "sliding is not modelled: prescribe the motion away from the contact surface, the "
+                              "same value on both sides, or no friction");
 }
 
 ResultVerdict resultVerdict(const ResultKKT& kkt, bool solverConverged, const std::string& solverReason,

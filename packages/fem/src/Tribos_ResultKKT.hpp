@@ -81,16 +81,21 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
                     const std::vector<ContactNodeForce>& contact, const Comm& comm);
 
 // The Dirichlet values at a contact node (at x) and its partners must leave
-// its contact conditions meaningful. A tangential axis fixed at the slave
-// node and every master node leaves the friction law (above): right only
-// if the values prescribe no slip along it (a symmetry plane), since
-// friction would oppose a prescribed slip with a force that the reaction
-// hides. A normal fixed there takes the node out of the contact set: right
-// only if the values keep it from passing through its partner. Throws
-// Tribos::Error naming the node and its position otherwise.
-void requireAdmissiblePrescribedMotion(const std::map<long long, double>& dirichlet, int node,
-                                       const std::array<double, 3>& x, const std::array<double, 3>& normal,
-                                       double gap, const std::vector<std::pair<int, double>>& master);
+// its contact conditions meaningful; both throw Tribos::Error naming the
+// node and its position otherwise.
+//  - A normal fixed at the slave node and every master node takes the node
+//    out of the contact set: right only if the values keep it from passing
+//    through its partner (requireNoPrescribedPenetration).
+//  - A tangential axis fixed there leaves the friction law (above): right
+//    only if the values prescribe no slip along it (a symmetry plane) or the
+//    contact has no friction, since friction would oppose a prescribed slip
+//    with a force that the Dirichlet reaction hides (requireNoPrescribedSlip,
+//    for contacts with friction).
+void requireNoPrescribedPenetration(const std::map<long long, double>& dirichlet, int node,
+                                    const std::array<double, 3>& x, const std::array<double, 3>& normal, double gap,
+                                    const std::vector<std::pair<int, double>>& master);
+void requireNoPrescribedSlip(const std::map<long long, double>& dirichlet, int node, const std::array<double, 3>& x,
+                             const std::array<double, 3>& normal, const std::vector<std::pair<int, double>>& master);
 
 // The contact force phi (3 per node, replicated) of the rank-local contact
 // nodes and their reactions on the master nodes, summed over the ranks.

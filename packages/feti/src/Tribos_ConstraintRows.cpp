@@ -166,8 +166,8 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
         if (!fixedAt(m.first, dir)) return false;
       return true;
     };
-    // Leaving out fixed directions is right only for admissible values.
-    if (!cc.glued) Fem::requireAdmissiblePrescribedMotion(bc, cc.node, mesh.coords[cc.node], cc.normal, cc.gap, cc.master);
+    // Out of the contact set (below) only if the values keep it out.
+    if (!cc.glued) Fem::requireNoPrescribedPenetration(bc, cc.node, mesh.coords[cc.node], cc.normal, cc.gap, cc.master);
     if (!cc.glued && fixedAtAll(cc.normal)) continue;
     DualRow r{cc.glued ? DualRow::Bonded : DualRow::Normal};
     r.node = cc.node;

@@ -53,7 +53,8 @@ std::vector<ContactNode> contactFaceNodes(const Mesh::Mesh& mesh, const std::map
     const std::array<bool, 3> fixed{dirichlet.count(3LL * node) > 0, dirichlet.count(3LL * node + 1) > 0,
                                     dirichlet.count(3LL * node + 2) > 0};
     const PrescribedDirections kind = classifyPrescribed(normal[node], fixed);
-    Fem::requireAdmissiblePrescribedMotion(dirichlet, node, mesh.coords[node], normal[node], gap, {});
+    Fem::requireNoPrescribedPenetration(dirichlet, node, mesh.coords[node], normal[node], gap, {});
+    if (slipBoundTraction > 0) Fem::requireNoPrescribedSlip(dirichlet, node, mesh.coords[node], normal[node], {});
     if (kind == PrescribedDirections::Normal) continue;
     if (kind == PrescribedDirections::Oblique) {
       const auto& X = mesh.coords[node];

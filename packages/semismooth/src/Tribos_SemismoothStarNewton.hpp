@@ -191,7 +191,8 @@ SemismoothResult solveFromMesh(const Mesh::Mesh& mesh, const Fem::Material& mate
 // face's nodes whose normal displacement is free, with their outward
 // area-weighted normals and slip bounds (traction x nodal area). Refuses
 // Dirichlet conditions at a node that are oblique to its frame or that
-// prescribe a slip or a penetration (Fem::requireAdmissiblePrescribedMotion).
+// prescribe a penetration, or a slip against friction (Fem::requireNoPrescribedPenetration,
+// requireNoPrescribedSlip).
 std::vector<ContactNode> contactFaceNodes(const Mesh::Mesh& mesh, const std::map<long long, double>& dirichlet,
                                           const std::string& contactFace, double gap, double slipBoundTraction);
 
