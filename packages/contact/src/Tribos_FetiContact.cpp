@@ -122,9 +122,10 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
   runLaw(friction);  // checks every pair's law
   const auto& lc = dual->problem().contact();
   // A problem from a mesh: its Dirichlet values must not make a contact
-  // with friction slide (the driver checks this before the FETI setup).
+  // with friction slide (the driver checks this before the FETI setup; an
+  // application's contact rows may not touch its Dirichlet rows at all).
   checkOnEveryRank(*dual->problem().comm(), [&] {
-    if (!dual->problem().dirichlet().empty())
+    if (dual->problem().hasDiscretization())
       requireNoPrescribedSlip(lc.constraint, friction, dual->problem().dirichlet(),
                               dual->problem().discretization().mesh.coords);
   });

@@ -110,6 +110,7 @@ class FetiProblem {
   const std::vector<GO>& primalOffsets() const { return primalOffsets_; }
   // The decomposed mesh of the first constructor (throws for the second).
   const Mesh::Discretization& discretization() const;
+  bool hasDiscretization() const { return disc_ != nullptr; }
 
   // z = K+ p on this rank's subdomains (generalized inverse by fixing nodes).
   void applyKplus(const Vector& p, Vector& z) const { Kplus_->apply(p, z); }
