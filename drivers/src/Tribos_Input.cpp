@@ -17,6 +17,7 @@
 #include "Tribos_MeshFile.hpp"
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_FetiProblem.hpp"
+#include "Tribos_FetiSolve.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
 #include "Tribos_ProjectedCG.hpp"
@@ -192,10 +193,9 @@ RCP<const ParameterList> validParameters() {
              "contact problems: " + Friction::frictionSolvers().documentation() + "; " + kSemismooth +
                  " (Tresca or frictionless by the semismooth* Newton method)",
              choice(outer));
-  solver.set("Result Check Factor", 100.0,
-             "converged means every KKT residual of the written result (docs/friction.md) is at most this factor "
-             "times the solver's requested tolerance",
-             range<double>(1.0, 1e300));
+  // The result check's parameters, as the FETI solve defines them.
+  for (const char* name : {"Result Check Factor", "Result Check Rounds"})
+    solver.setEntry(name, Contact::fetiSolveParameters()->getEntry(name));
   Friction::FrictionSolverFactory::addValidParameters(solver);
   solver.sublist("SemismoothStarNewton").setParameters(*Semismooth::SemismoothStarNewton::getValidParameters());
   solver.sublist("Monolithic").setParameters(*Fem::MonolithicSystem::getValidParameters());

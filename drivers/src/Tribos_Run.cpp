@@ -382,6 +382,7 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
     const auto& st = r.status;
     summary.set("outer_algorithm", r.outerAlgorithm);
     summary.set("friction_law", Contact::runLaw(friction));
+    summary.set("result_check_rounds", r.rounds);
     summary.set("outer_iterations", st.outer_iterations);
     summary.set("msa_iterations", st.msa_iterations);
     summary.set("inner_iterations", st.inner_iterations);

@@ -256,12 +256,15 @@ RCP<const Teuchos::ParameterList> FetiContactProblem::getValidParameters() {
 
 FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
                                               const Teuchos::ParameterList& solverParams,
-                                              RCP<Teuchos::FancyOStream> out) const {
+                                              RCP<Teuchos::FancyOStream> out, const Vector* start,
+                                              double tolerance) const {
   auto solver = Friction::FrictionSolverFactory().create(outerAlgorithm, solverParams);
   if (!out.is_null()) solver->setOutputStream(out);
+  if (tolerance > 0) solver->setRequestedTolerance(tolerance);
   FetiContactSolution sol;
   sol.requestedTolerance = solver->requestedTolerance();
   sol.x = rcp(new Vector(dual_->problem().dualMap()));
+  if (start) sol.x->assign(*start);
   // n_A: the solver's applications of F only; the setup's (A lambda~ of the
   // homogenization, the power iterations of the scaling) and recoverPrimal's
   // fall outside the snapshot.

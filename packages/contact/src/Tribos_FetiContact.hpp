@@ -75,9 +75,12 @@ class FetiContactProblem {
   // lambda = lambda~ + x (the chain's back map)
   RCP<Vector> multipliers(const Vector& x) const;
   // Solves by the outer algorithm named (FrictionSolverFactory) from x = 0,
-  // with the sublists "Algorithm 1", "MSA", "Algorithm 2" of solverParams.
+  // with the sublists "Algorithm 1", "MSA", "Algorithm 2" of solverParams;
+  // or from start (a previous solution's x) with the requested tolerance
+  // tolerance instead of the list's (when > 0).
   FetiContactSolution solve(const std::string& outerAlgorithm, const Teuchos::ParameterList& solverParams,
-                            RCP<Teuchos::FancyOStream> out = Teuchos::null) const;
+                            RCP<Teuchos::FancyOStream> out = Teuchos::null, const Vector* start = nullptr,
+                            double tolerance = 0) const;
   // The solverParams solve() accepts: the outer algorithms' sublists with
   // their defaults and documentation (FrictionSolverFactory::addValidParameters).
   static RCP<const Teuchos::ParameterList> getValidParameters();

@@ -33,7 +33,8 @@ struct FetiSolveResult {
   ContactCounts counts;         // over all ranks
   Fem::ResultKKT kkt;           // of u and the contact forces
   Fem::ResultVerdict verdict;   // converged, limit, stop reason
-  double tolerance = 0;         // the solver's requested tolerance
+  double tolerance = 0;         // the solver's requested tolerance (of the first round)
+  int rounds = 1;               // contact: solves until the result met the check (Result Check Rounds)
   // The solver's own report.
   bool solverConverged = false;
   std::string solverReason;

@@ -394,19 +394,8 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   int iterationsLeft = options.maxIterations;
   for (int round = 1; round <= rounds; ++round) {
     const Friction::FrictionStatus s = solver.solve(*cd, x);
-    if (round == 1) {
-      rep.status = s;
-    } else {  // the counts of every round, the state of the last
-      Friction::FrictionStatus sum = s;
-      sum.outer_iterations += rep.status.outer_iterations;
-      sum.msa_iterations += rep.status.msa_iterations;
-      sum.inner_iterations += rep.status.inner_iterations;
-      sum.n_A += rep.status.n_A;
-      sum.n_A_qpp += rep.status.n_A_qpp;
-      sum.n_A_qpq += rep.status.n_A_qpq;
-      sum.history.insert(sum.history.begin(), rep.status.history.begin(), rep.status.history.end());
-      rep.status = sum;
-    }
+    // The counts of every round, the state of the last.
+    rep.status = round == 1 ? s : Friction::followedBy(rep.status, s);
     rep.rounds = round;
     transforms.back(x);
     {
@@ -438,7 +427,7 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
       solver.setMaximumIterations(iterationsLeft);
     }
     if (requested <= 1.0001e-15) break;
-    requested = std::max(1e-15, requested * std::min(0.1, 0.5 * target / std::max(rep.err.relativeToQ, target)));
+    requested = Friction::tightenedTolerance(requested, target, rep.err.relativeToQ);
     solver.setRequestedTolerance(requested);
   }
   if (target > 0 && rep.status.converged && rep.err.relativeToQ > target)

@@ -21,6 +21,24 @@
 namespace Tribos {
 namespace Friction {
 
+FrictionStatus followedBy(const FrictionStatus& earlier, const FrictionStatus& next) {
+  FrictionStatus sum = next;
+  sum.outer_iterations += earlier.outer_iterations;
+  sum.msa_iterations += earlier.msa_iterations;
+  sum.inner_iterations += earlier.inner_iterations;
+  sum.n_A += earlier.n_A;
+  sum.n_A_qpp += earlier.n_A_qpp;
+  sum.n_A_qpq += earlier.n_A_qpq;
+  sum.history.insert(sum.history.begin(), earlier.history.begin(), earlier.history.end());
+  sum.steps.insert(sum.steps.begin(), earlier.steps.begin(), earlier.steps.end());
+  return sum;
+}
+
+double tightenedTolerance(double requested, double target, double achieved) {
+  return std::max(1e-15, requested * std::min(0.1, 0.5 * target / std::max(achieved, target)));
+}
+
+
 using Teuchos::ParameterList;
 
 namespace {

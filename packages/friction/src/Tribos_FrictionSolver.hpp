@@ -47,6 +47,17 @@ struct FrictionStatus {
   std::vector<SC> slipBound; // the slip bound of the returned solution (local)
 };
 
+// The status of a solve repeated from its result (a next round): the counts
+// of both, the history and steps of both in order, the state of the next.
+FrictionStatus followedBy(const FrictionStatus& earlier, const FrictionStatus& next);
+
+// The tolerance of a next solve when a solve met its own stopping test but
+// its result missed the target by the factor achieved / target (> 1): the
+// requested tolerance scaled by half that miss, at least tenfold, down to
+// 1e-15 (a solver's stopping test and the result's residuals are in a
+// roughly fixed ratio, so one or two such rounds meet the target).
+double tightenedTolerance(double requested, double target, double achieved);
+
 class FrictionSolver {
  public:
   virtual ~FrictionSolver() = default;
