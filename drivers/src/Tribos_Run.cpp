@@ -572,7 +572,8 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   Mesh::Discretization disc(std::move(mesh), spec, decomposition, comm->getSize(), comm->getRank());
   // Dirichlet conditions that disagree at a node: refused by every rank
   // alike, before any solver starts.
-  checkOnEveryRank(*comm, [&] { Fem::constrainedDofs(disc.mesh, loads.dirichlet); });
+  std::map<long long, double> dirichlet;
+  checkOnEveryRank(*comm, [&] { dirichlet = Fem::constrainedDofs(disc.mesh, loads.dirichlet); });
   const Fem::BodyMaterials mat = Input::materials(params, disc.mesh);
   const Input::Method method = Input::method(params);
   const auto constraints = method == Input::Method::FetiContact ? contactConstraints(params, disc.mesh, *comm)
@@ -580,8 +581,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   // Before the FETI setup: no prescribed sliding against friction.
   if (method == Input::Method::FetiContact)
     checkOnEveryRank(*comm, [&] {
-      Contact::requireNoPrescribedSlip(constraints, Input::pairFriction(params),
-                                       Fem::constrainedDofs(disc.mesh, loads.dirichlet), disc.mesh.coords);
+      Contact::requireNoPrescribedSlip(constraints, Input::pairFriction(params), dirichlet, disc.mesh.coords);
     });
   const bool semismooth = method == Input::Method::Semismooth;
   const std::string type = semismooth ? "SemismoothStarNewton" : params.sublist("Solver").get<std::string>("Type");

@@ -136,7 +136,7 @@ FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const Pai
       r.primal = sol.u;
       r.rounds = round;
       checkResult(*problem, friction, p, r);
-      if (!r.solverConverged || r.verdict.converged || round == rounds || requested <= 1.0001e-15) break;
+      if (!r.solverConverged || r.verdict.converged || round == rounds || requested <= Friction::kTightestTolerance * (1 + 1e-4)) break;
       requested = Friction::tightenedTolerance(requested, r.verdict.limit, r.kkt.worst());
       start = sol.x;
     }

@@ -426,7 +426,7 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
       }
       solver.setMaximumIterations(iterationsLeft);
     }
-    if (requested <= 1.0001e-15) break;
+    if (requested <= Friction::kTightestTolerance * (1 + 1e-4)) break;
     requested = Friction::tightenedTolerance(requested, target, rep.err.relativeToQ);
     solver.setRequestedTolerance(requested);
   }

@@ -35,7 +35,7 @@ FrictionStatus followedBy(const FrictionStatus& earlier, const FrictionStatus& n
 }
 
 double tightenedTolerance(double requested, double target, double achieved) {
-  return std::max(1e-15, requested * std::min(0.1, 0.5 * target / std::max(achieved, target)));
+  return std::max(kTightestTolerance, requested * std::min(0.1, 0.5 * target / std::max(achieved, target)));
 }
 
 

@@ -57,6 +57,8 @@ FrictionStatus followedBy(const FrictionStatus& earlier, const FrictionStatus& n
 // 1e-15 (a solver's stopping test and the result's residuals are in a
 // roughly fixed ratio, so one or two such rounds meet the target).
 double tightenedTolerance(double requested, double target, double achieved);
+// The floor of tightenedTolerance: a solve asked for it cannot be tightened.
+constexpr double kTightestTolerance = 1e-15;
 
 class FrictionSolver {
  public:
