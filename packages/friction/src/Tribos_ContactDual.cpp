@@ -1,5 +1,7 @@
 #include "Tribos_ContactDual.hpp"
 
+#include "Tribos_QP_Utils.hpp"
+
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Vector.hpp>
 
@@ -48,6 +50,11 @@ QP::ConstraintSet ContactDual::constraintSet(const std::vector<SC>& g) const {
   }
   Omega.setRadii(r);
   return Omega;
+}
+
+SC ContactDual::hessianNorm(int powerSteps, long& n_A) const {
+  if (normAEstimate > 0 && normAOf.get() == A.get()) return normAEstimate;
+  return QP::estimateNorm(*A, powerSteps, n_A);
 }
 
 std::vector<SC> ContactDual::normalForce(const Vector& x) const {

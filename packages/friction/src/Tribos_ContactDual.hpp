@@ -55,10 +55,20 @@ struct ContactDual {
   // empty result: none. ScalingTransform scales it; ProjectionTransform keeps
   // it (on ker G, PAP = A).
   std::function<std::vector<double>()> denseA;
+  // An estimate of ||A|| from above (QP::estimateNorm's, its safety factor
+  // included) and the operator it belongs to: ScalingTransform has it for the
+  // A it leaves, so the solvers need not repeat its power iterations. It
+  // counts only while normAOf is A: a transform that replaces A leaves it
+  // stale, and hessianNorm estimates again.
+  RCP<const Operator> normAOf;
+  SC normAEstimate = 0;
 
   RCP<const Map> map() const { return b->getMap(); }
   SC normB() const { return (bReference.is_null() ? b : bReference)->norm2(); }
   int numLocalContacts() const { return static_cast<int>(normalRows.size()); }
+  // ||A|| from above: the estimate above while it belongs to A, else
+  // `powerSteps` power iterations (collective; n_A counts them).
+  SC hessianNorm(int powerSteps, long& n_A) const;
 
   // Omega(g): the product set with slip bounds g (local, one per contact).
   QP::ConstraintSet constraintSet(const std::vector<SC>& g) const;

@@ -147,6 +147,9 @@ void ScalingTransform::forward(ContactDual& dual) {
   norm_ = QP::estimateNorm(*dual.A, powerSteps_, ignored);
   scale_ = 1.0 / norm_;
   dual.A = rcp(new ScaledOperator(dual.A, scale_));
+  // ||s A|| <= s norm_ = 1 by the same estimate: the solvers reuse it.
+  dual.normAOf = dual.A;
+  dual.normAEstimate = scale_ * norm_;
   if (dual.denseA) {
     dual.denseA = [dense = dual.denseA, s = scale_] {
       auto D = dense();

@@ -57,7 +57,7 @@ RCP<QP::QPSolver> makeQPSolver(const std::string& type, const ParameterList& par
   return solver;
 }
 
-SC estimateHessianNorm(const Operator& A, long& n_A) { return QP::estimateNorm(A, 20, n_A); }
+SC estimateHessianNorm(const ContactDual& dual, long& n_A) { return dual.hessianNorm(20, n_A); }
 
 // The record of one outer step (FrictionStatus::steps): residuals relative to
 // ||b||, as the stopping tests measure them, so that runs of different sizes
@@ -135,7 +135,7 @@ FrictionStatus Algorithm1::solve(const ContactDual& dual, const std::vector<SC>&
   }
   if (!out_.is_null()) inner->setOutputStream(out_);
   long powerN_A = 0;
-  if (normA_ <= 0) normA_ = estimateHessianNorm(*dual.A, powerN_A);
+  if (normA_ <= 0) normA_ = estimateHessianNorm(dual, powerN_A);
   const auto& sp = params_.sublist("SMALBE");
   const SC tol = std::max(sp.get<double>("Relative Tolerance") * dual.normB(), sp.get<double>("Absolute Tolerance"));
   QP::QPStatus qs;
@@ -223,7 +223,7 @@ FrictionStatus MSA::solve(const ContactDual& dual, Vector& x) {
   if (!out_.is_null()) tresca_.setOutputStream(out_);
   tresca_.setWarmStart(true);
   long powerN_A = 0;
-  tresca_.setHessianNorm(estimateHessianNorm(*dual.A, powerN_A));
+  tresca_.setHessianNorm(estimateHessianNorm(dual, powerN_A));
   st.n_A = powerN_A;
   auto accumulate = [&](const FrictionStatus& s) {
     st.outer_iterations += s.outer_iterations;
@@ -293,9 +293,10 @@ RCP<const ParameterList> Algorithm2::validParameters() {
             "iterates stalls near the noise of the inner solves and adds iterations, not accuracy)",
             range<double>(0.0, 1.0));
     pl->set("Maximum Iterations", 1000, "outer iterations", range<int>(1, 100000));
-    pl->set("Sweeps", 4,
+    pl->set("Sweeps", 1,
             "block Gauss-Seidel sweeps (lambda_c, then lambda_t in Lambda_t(F lambda_N)) per outer iteration, fewer "
-            "when the inner tolerance is met; one sweep leaves the coupling of the blocks to the outer loop",
+            "when the inner tolerance is met; one sweep (the default) leaves the coupling of the blocks to the outer "
+            "loop, which costs fewer applications of F in all than repeated sweeps (docs/friction.md)",
             range<int>(1, 1000));
     pl->set("Inner Tolerance Floor", 0.5,
             "inner solves stop no lower than this times the outer tolerance (below 1, so that a sweep can bring the "
@@ -318,7 +319,7 @@ RCP<const ParameterList> Algorithm2::validParameters() {
     pl->set("Maximum rho", 8.0, "upper limit of residual balancing, as a multiple of the initial rho",
             range<double>(1.0, 1e12));
     pl->set("M", 0.0, "inner precision control; 0 means 0.3 ||A||", range<double>(0.0, 1e300));
-    pl->set("eta", 1e-3,
+    pl->set("eta", 1e-2,
             "inner precision cap, as a multiple of ||b||; it is the precision of the first outer iteration, whose "
             "iterate sets the first slip bound and the scale of ||G lambda||",
             range<double>(1e-300, 1e300));
@@ -389,7 +390,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   auto mprgp = makeQPSolver("MPRGP", params_, "MPRGP");
   auto mpgp = makeQPSolver("MPGP", params_, "MPGP");
   if (!out_.is_null()) mprgp->setOutputStream(out_), mpgp->setOutputStream(out_);
-  const SC normA = estimateHessianNorm(*dual.A, st.n_A);
+  const SC normA = estimateHessianNorm(dual, st.n_A);
   const SC normB = dual.normB();
   SC rho = params_.get<double>("rho") > 0 ? params_.get<double>("rho") : normA;
   // Limits with a little slack, so that rho0 * factor^k hits them exactly.
