@@ -14,6 +14,7 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_Input.hpp"
+#include "Tribos_LocalSolver.hpp"
 
 namespace Tribos {
 
@@ -83,7 +84,12 @@ double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec
   // G_E G_E') of order 6S; their fill was measured as 4.8 (6S)^1.5 values
   // each on box decompositions (docs/scaling.md).
   const double coarseBytes = 2.0 * 8.0 * 4.8 * std::pow(6.0 * S, 1.5);
-  return mine * (4000.0 * s.nodes + factorBytes(d) + (explicitF ? (single ? 12.0 : 16.0) * b * b : 0.0)) + coarseBytes +
+  // CHOLMOD factors small subdomains densely when it forms their blocks
+  // (packed: d^2/2 doubles).
+  const bool denseFactor = explicitF && d <= kDenseFactorRows &&
+                           params.sublist("Solver").sublist("FETI").get<std::string>("Local Solver") == "CHOLMOD";
+  const double factor = denseFactor ? 4.0 * d * d : factorBytes(d);
+  return mine * (4000.0 * s.nodes + factor + (explicitF ? (single ? 12.0 : 16.0) * b * b : 0.0)) + coarseBytes +
          newtonBytes(params, S, b);
 }
 

@@ -11,6 +11,9 @@ void dspmv_(const char* uplo, const int* n, const double* alpha, const double* a
 void sspmv_(const char* uplo, const int* n, const float* alpha, const float* ap, const float* x, const int* incx,
             const float* beta, float* y, const int* incy);
 void dpotri_(const char* uplo, const int* n, double* a, const int* lda, int* info);
+void dpptrs_(const char* uplo, const int* n, const int* nrhs, const double* ap, double* b, const int* ldb, int* info);
+void dtpsv_(const char* uplo, const char* trans, const char* diag, const int* n, const double* ap, double* x,
+            const int* incx);
 }
 
 namespace Tribos {
@@ -51,6 +54,21 @@ inline int choleskyInverse(int n, double* A) {
   for (int j = 0; j < n; ++j)
     for (int i = j + 1; i < n; ++i) A[static_cast<size_t>(i) * n + j] = A[static_cast<size_t>(j) * n + i];
   return info;
+}
+
+// B <- (L L')^-1 B for nrhs columns of length n, L the packed lower Cholesky
+// factor (packLower's layout).
+inline void packedCholeskySolve(int n, int nrhs, const double* Lp, double* B) {
+  const char uplo = 'L';
+  int info = 0;
+  if (n > 0 && nrhs > 0) dpptrs_(&uplo, &n, &nrhs, Lp, B, &n, &info);
+}
+
+// x <- L^-1 x, or L^-T x when transpose, L packed lower triangular.
+inline void packedTriangularSolve(int n, bool transpose, const double* Lp, double* x) {
+  const char uplo = 'L', trans = transpose ? 'T' : 'N', diag = 'N';
+  const int one = 1;
+  if (n > 0) dtpsv_(&uplo, &trans, &diag, &n, Lp, x, &one);
 }
 
 }  // namespace Blas

@@ -19,7 +19,8 @@ class DenseCholesky {
     n_ = n;
     L_ = std::move(A);
     if (n == 0) return true;
-    int info = 0;
+    int& info = info_;
+    info = 0;
     Teuchos::LAPACK<int, double>().POTRF('L', n, L_.data(), n, &info);
     // A pivot far below the largest diagonal entry is a singular matrix in
     // floating point (Cholesky succeeds on round-off).
@@ -40,6 +41,28 @@ class DenseCholesky {
   void solveLower(std::vector<double>& x) const { triangular('N', x); }   // x <- L^-1 x
   void solveUpperT(std::vector<double>& x) const { triangular('T', x); }  // x <- L^-T x
   int size() const { return n_; }
+  // LAPACK's Cholesky went through (A positive definite in floating point),
+  // whatever tryFactor's stricter pivot test said.
+  bool positiveDefinite() const { return info_ == 0; }
+  // The trailing nb x nb block of L into Z, column-major, the strict upper
+  // triangle zero: the Cholesky factor of the Schur complement on the last
+  // nb rows.
+  void trailingFactor(int nb, std::vector<double>& Z) const {
+    const int first = n_ - nb;
+    Z.assign(static_cast<size_t>(nb) * nb, 0.0);
+    for (int j = 0; j < nb; ++j)
+      std::copy(L_.begin() + static_cast<size_t>(first + j) * n_ + first + j,
+                L_.begin() + static_cast<size_t>(first + j + 1) * n_, Z.begin() + static_cast<size_t>(j) * nb + j);
+  }
+  // (min_i L_ii / max_i L_ii)^2.
+  double pivotRatio() const {
+    double dmax = 0, dmin = 1e300;
+    for (int i = 0; i < n_; ++i) {
+      const double d = L_[static_cast<size_t>(i) * n_ + i];
+      dmax = std::max(dmax, d * d), dmin = std::min(dmin, d * d);
+    }
+    return n_ == 0 ? 1.0 : dmin / dmax;
+  }
 
  private:
   void triangular(char trans, std::vector<double>& x) const {
@@ -49,7 +72,7 @@ class DenseCholesky {
   }
 
   std::vector<double> L_;
-  int n_ = 0;
+  int n_ = 0, info_ = 0;
 };
 
 }  // namespace Tribos

@@ -14,6 +14,11 @@
 
 namespace Tribos {
 
+// The CHOLMOD backend factors a matrix of at most this many rows densely
+// (LAPACK) when asked for rows ordered last, and keeps the factor packed
+// (n(n+1)/2 doubles; Tribos_LocalSolver.cpp, DenseBoundaryLast).
+constexpr int kDenseFactorRows = 600;
+
 class LocalSolver {
  public:
   virtual ~LocalSolver() = default;

@@ -120,3 +120,6 @@ TEUCHOS_UNIT_TEST(LocalSolver, InverseBlockHex8Small) { checkInverseBlocks(Mesh:
 TEUCHOS_UNIT_TEST(LocalSolver, SolvesTet4) { checkSolves(Mesh::CellType::Tet4, out, success); }
 TEUCHOS_UNIT_TEST(LocalSolver, InverseBlockTet4Large) { checkInverseBlocks(Mesh::CellType::Tet4, 7, out, success); }
 TEUCHOS_UNIT_TEST(LocalSolver, InverseBlockTet4Small) { checkInverseBlocks(Mesh::CellType::Tet4, 2, out, success); }
+// 4^3 cells (375 dofs): CHOLMOD factors it densely (DenseBoundaryLast), the
+// other backends by unit-vector solves, and the blocks must agree.
+TEUCHOS_UNIT_TEST(LocalSolver, InverseBlockTet4Dense) { checkInverseBlocks(Mesh::CellType::Tet4, 4, out, success); }
