@@ -82,7 +82,7 @@ class DenseBoundaryLast {
     std::vector<double> D(static_cast<size_t>(n_) * n_, 0.0);
     for (int i = 0; i < n_; ++i)
       for (int a = A.rowptr[i]; a < A.rowptr[i + 1]; ++a)
-        D[static_cast<size_t>(position[A.col[a]]) * n_ + position[i]] = A.val[a];
+        D[static_cast<size_t>(position[A.col[a]]) * n_ + position[i]] += A.val[a];  // duplicates add up
     DenseCholesky chol;
     chol.tryFactor(std::move(D), n_);
     // As CHOLMOD: refused only when the factorization breaks down.
