@@ -69,6 +69,7 @@ TEUCHOS_UNIT_TEST(Transforms, ScalingMakesNormOneAndKeepsTheSolution) {
   auto scaling = rcp(new Friction::ScalingTransform(50));
   Friction::DualTransformChain chain;
   const double bBefore = d.dual.b->norm2();
+  const auto unscaled = d.dual.A;
   chain.add(scaling).forward(d.dual);
   TEST_FLOATING_EQUALITY(scaling->scale() * scaling->norm(), 1.0, 1e-15);
   // ||A|| of the dense matrix by many power steps: the transform's estimate
@@ -84,6 +85,17 @@ TEUCHOS_UNIT_TEST(Transforms, ScalingMakesNormOneAndKeepsTheSolution) {
   TEST_COMPARE(scaling->norm(), <=, 1.1 * s * normA * (1 + 1e-10));
   TEST_COMPARE(scaling->norm(), >=, s * normA);
   TEST_FLOATING_EQUALITY(d.dual.b->norm2(), scaling->scale() * bBefore, 1e-12);
+  // The solvers take ||s A|| <= 1 from the transform, without power steps;
+  // once A is replaced, the estimate no longer counts and is made again.
+  long n_A = 0;
+  TEST_FLOATING_EQUALITY(d.dual.hessianNorm(20, n_A), 1.0, 1e-15);
+  TEST_EQUALITY(n_A, 0L);
+  Friction::ContactDual replaced = d.dual;
+  replaced.A = unscaled;
+  const double again = replaced.hessianNorm(20, n_A);
+  TEST_EQUALITY(n_A, 20L);
+  TEST_COMPARE(again, >=, s * normA * 0.9);
+  TEST_COMPARE(again, <=, 1.1 * s * normA * (1 + 1e-10));
   const Vec x = solveDual(d.dual, d.map, chain);
   checkSolution(m.problem, x, m.x, m.mu, m.problem.slipBound, checkTolerance, out, success);
 }
