@@ -688,12 +688,12 @@ Mesh::DecompositionSpec decompositionSpec(const ParameterList& params) {
   dec.partitioner = m.get<std::string>("Partitioner");
   const auto& g = m.get<Array<int>>("Subdomain Grid");
   dec.grid = {g[0], g[1], g[2]};
+  dec.subdomains = m.get<int>("Subdomains");
   const int H = m.get<int>("Subdomain Size");
   if (H > 0 && meshFile(params).empty()) {
     dec.grid = subdomainGridOfSize(boxSpec(params).cells, H);
     dec.subdomains = dec.grid[0] * dec.grid[1] * dec.grid[2];  // METIS: as many subdomains of about that size
   }
-  dec.subdomains = m.get<int>("Subdomains");
   // A grid of boxes splits a box only: a mesh from a file is split by METIS
   // into as many subdomains as the grid has boxes (so that an input file's
   // default, Structured {1, 1, 1}, stays valid).
