@@ -136,7 +136,8 @@ FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const Pai
       r.primal = sol.u;
       r.rounds = round;
       checkResult(*problem, friction, p, r);
-      if (!r.solverConverged || r.verdict.converged || round == rounds || requested <= Friction::kTightestTolerance * (1 + 1e-4)) break;
+      if (!r.solverConverged || r.verdict.converged || round == rounds || Friction::atTightestTolerance(requested))
+        break;
       requested = Friction::tightenedTolerance(requested, r.verdict.limit, r.kkt.worst());
       start = sol.x;
     }

@@ -19,17 +19,11 @@ class DenseCholesky {
     n_ = n;
     L_ = std::move(A);
     if (n == 0) return true;
-    int& info = info_;
-    info = 0;
-    Teuchos::LAPACK<int, double>().POTRF('L', n, L_.data(), n, &info);
+    info_ = 0;
+    Teuchos::LAPACK<int, double>().POTRF('L', n, L_.data(), n, &info_);
     // A pivot far below the largest diagonal entry is a singular matrix in
     // floating point (Cholesky succeeds on round-off).
-    double dmax = 0, dmin = 1e300;
-    for (int i = 0; i < n && info == 0; ++i) {
-      const double d = L_[static_cast<size_t>(i) * n + i];
-      dmax = std::max(dmax, d * d), dmin = std::min(dmin, d * d);
-    }
-    return info == 0 && dmin > 1e-12 * dmax;
+    return info_ == 0 && pivotRatio() > 1e-12;
   }
   // X <- A^-1 X for nrhs columns (column-major, n rows each).
   void solve(double* X, int nrhs) const {
@@ -44,16 +38,9 @@ class DenseCholesky {
   // LAPACK's Cholesky went through (A positive definite in floating point),
   // whatever tryFactor's stricter pivot test said.
   bool positiveDefinite() const { return info_ == 0; }
-  // The trailing nb x nb block of L into Z, column-major, the strict upper
-  // triangle zero: the Cholesky factor of the Schur complement on the last
-  // nb rows.
-  void trailingFactor(int nb, std::vector<double>& Z) const {
-    const int first = n_ - nb;
-    Z.assign(static_cast<size_t>(nb) * nb, 0.0);
-    for (int j = 0; j < nb; ++j)
-      std::copy(L_.begin() + static_cast<size_t>(first + j) * n_ + first + j,
-                L_.begin() + static_cast<size_t>(first + j + 1) * n_, Z.begin() + static_cast<size_t>(j) * nb + j);
-  }
+  // The factor: n x n column-major, L in the lower triangle (the strict
+  // upper triangle holds what A had there).
+  const std::vector<double>& factor() const { return L_; }
   // (min_i L_ii / max_i L_ii)^2.
   double pivotRatio() const {
     double dmax = 0, dmin = 1e300;

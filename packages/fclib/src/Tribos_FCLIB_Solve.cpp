@@ -426,7 +426,7 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
       }
       solver.setMaximumIterations(iterationsLeft);
     }
-    if (requested <= Friction::kTightestTolerance * (1 + 1e-4)) break;
+    if (Friction::atTightestTolerance(requested)) break;
     requested = Friction::tightenedTolerance(requested, target, rep.err.relativeToQ);
     solver.setRequestedTolerance(requested);
   }

@@ -89,9 +89,7 @@ class DenseBoundaryLast {
     TRIBOS_REQUIRE(chol.positiveDefinite(), "dense Cholesky: the matrix is not positive definite");
     pivotRatio_ = chol.pivotRatio();
     // Kept packed: half of n^2, near what a sparse factor of this size holds.
-    std::vector<double> L;
-    chol.trailingFactor(n_, L);
-    Lp_ = Blas::packLower<double>(n_, L);
+    Lp_ = Blas::packLower<double>(n_, chol.factor());
   }
   void solve(const double* b, double* x, int nrhs) const {
     std::vector<double> y(static_cast<size_t>(n_) * nrhs);

@@ -38,7 +38,6 @@ double tightenedTolerance(double requested, double target, double achieved) {
   return std::max(kTightestTolerance, requested * std::min(0.1, 0.5 * target / std::max(achieved, target)));
 }
 
-
 using Teuchos::ParameterList;
 
 namespace {

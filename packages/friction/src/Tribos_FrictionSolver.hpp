@@ -59,6 +59,7 @@ FrictionStatus followedBy(const FrictionStatus& earlier, const FrictionStatus& n
 double tightenedTolerance(double requested, double target, double achieved);
 // The floor of tightenedTolerance: a solve asked for it cannot be tightened.
 constexpr double kTightestTolerance = 1e-15;
+inline bool atTightestTolerance(double requested) { return requested <= kTightestTolerance * (1 + 1e-4); }
 
 class FrictionSolver {
  public:
