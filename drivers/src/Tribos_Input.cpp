@@ -576,7 +576,8 @@ RCP<ParameterList> read(const std::string& file, const std::vector<std::string>&
   auto& mesh = params->sublist("Mesh");
   const std::filesystem::path meshPath = mesh.get<std::string>("File");
   if (!meshPath.empty() && meshPath.is_relative())
-    mesh.set("File", (std::filesystem::absolute(std::filesystem::path(file).parent_path()) / meshPath)
+    // (absolute first: a file named without a directory has an empty parent)
+    mesh.set("File", (std::filesystem::absolute(file).parent_path() / meshPath)
                          .lexically_normal()
                          .string());
   return params;
