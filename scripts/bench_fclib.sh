@@ -7,7 +7,9 @@
 # Environment: TOL (1e-8), REPEAT (5), LEVELS ("4 8 12"), DEV (the dev set
 # directory), TRIBOS_ALGORITHMS ("Semismooth Newton,NSGS,Algorithm2,MSA+Algorithm1")
 # for the dev set; BRICK_REPEAT (1) and BRICK_ALGORITHMS ("Semismooth
-# Newton,Algorithm2": MSA + Algorithm 1 does not reach 1e-8 there) for the bricks.
+# Newton,Algorithm2": MSA + Algorithm 1 does not reach 1e-8 there) for the bricks;
+# REUSE=1: each library's method made once for the repeated solves (--reuse,
+# the time-stepping use) instead of anew for every run.
 # Needs the build configured with Siconos numerics (libsiconos-numerics-dev).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -20,6 +22,7 @@ dev=${DEV:-$here/../shared/fclib/dev}
 algorithms=${TRIBOS_ALGORITHMS:-"Semismooth Newton,NSGS,Algorithm2,MSA+Algorithm1"}
 brick_repeat=${BRICK_REPEAT:-1}
 brick_algorithms=${BRICK_ALGORITHMS:-"Semismooth Newton,Algorithm2"}
+reuse=${REUSE:+--reuse}
 bench=$build/drivers/bench/tribos_fclib_vs_siconos
 if [ ! -x "$bench" ]; then
   echo "bench_fclib.sh: $bench is missing (configure with libsiconos-numerics-dev installed," \
@@ -28,7 +31,7 @@ if [ ! -x "$bench" ]; then
 fi
 mkdir -p "$out"
 for f in "$dev"/*.hdf5; do
-  "$bench" "$f" --tolerance "$tol" --repeat "$repeat" --tribos "$algorithms"
+  "$bench" "$f" --tolerance "$tol" --repeat "$repeat" --tribos "$algorithms" $reuse
   echo
 done
 for k in $levels; do
@@ -37,6 +40,6 @@ for k in $levels; do
     "$build/drivers/tribos" "$here/input/brick_coulomb_F03.xml" --set "Mesh/Level=$k" --quiet \
       --output "$out/brick_F03_L$k" --export-fclib "$file" > /dev/null
   fi
-  "$bench" "$file" --tolerance "$tol" --repeat "$brick_repeat" --tribos "$brick_algorithms"
+  "$bench" "$file" --tolerance "$tol" --repeat "$brick_repeat" --tribos "$brick_algorithms" $reuse
   echo
 done

@@ -7,7 +7,7 @@
 //   tribos_fclib_vs_siconos FILE.hdf5 [--tolerance 1e-8] [--max-iterations N (Siconos, 10000)]
 //                           [--tribos-max-iterations N (default: the algorithms' own)] [--repeat R]
 //                           [--siconos PROX,NSN-AC,NSGS] [--tribos "Semismooth Newton,NSGS,Algorithm2,MSA+Algorithm1"]
-//                           [--storage sparse-block|sparse|dense] [--siconos-scaled]
+//                           [--storage sparse-block|sparse|dense] [--siconos-scaled] [--reuse]
 // Prints one Markdown table row per solver (Siconos' rows note its return
 // code, the error its solver reported, dparam[RESIDU], and its
 // fc3d_compute_error of the returned r with u = c (W r + q), on the
@@ -16,7 +16,11 @@
 // FCLIB::Solver::solve on the read problem with the solver made, without the
 // diagnostic spectrum), iterations (Siconos:
 // iparam[ITER_DONE]; Tribos: Newton steps, Algorithm 2 loops, MSA steps),
-// the residual, and whether it is at most the tolerance.
+// the residual, and whether it is at most the tolerance. By default each run
+// makes its method anew (Siconos' problem and options, Tribos' Solver)
+// outside the timing; with --reuse both are made once and the R solves
+// follow each other, as in a time-stepping code that solves one problem per
+// step with the same method.
 #include <Tpetra_Core.hpp>
 
 #include <algorithm>
@@ -25,6 +29,7 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -61,6 +66,7 @@ struct Args {
   std::vector<std::string> tribos{"Semismooth Newton", "NSGS", "Algorithm2", "MSA+Algorithm1"};
   std::string storage = "sparse-block";
   bool scaleSiconos = false;
+  bool reuse = false;  // the method made once for all R runs
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -115,6 +121,8 @@ Args parse(int argc, char** argv) {
                      "--storage: unknown \"" << a.storage << "\"; valid: sparse-block, sparse, dense");
     } else if (s == "--siconos-scaled") {
       a.scaleSiconos = true;
+    } else if (s == "--reuse") {
+      a.reuse = true;
     } else if (!s.empty() && s[0] == '-') {
       throw Error("unknown option " + s);
     } else {
@@ -122,7 +130,7 @@ Args parse(int argc, char** argv) {
     }
   }
   TRIBOS_REQUIRE(!a.input.empty(), "usage: tribos_fclib_vs_siconos FILE.hdf5 [--tolerance TOL] [--max-iterations N] "
-                                   "[--repeat R] [--siconos PROX,NSN-AC,NSGS] [--tribos NAME,...] [--storage S]");
+                                   "[--repeat R] [--siconos PROX,NSN-AC,NSGS] [--tribos NAME,...] [--storage S] [--reuse]");
   for (const auto& n : a.siconos)
     TRIBOS_REQUIRE(n == "PROX" || n == "NSN-AC" || n == "NSGS",
                    "--siconos: unknown \"" << n << "\"; valid: PROX, NSN-AC, NSGS");
@@ -203,14 +211,29 @@ Row runSiconos(const std::string& name, const FCLIB::LocalProblem& p, const Args
   row.time = std::numeric_limits<double>::infinity();
   std::vector<double> r(n), u(n);
   const double c = args.scaleSiconos ? 1.0 / p.W.maxAbs() : 1.0;
-  for (int rep = 0; rep < args.repeat; ++rep) {
-    NumericsMatrix* W = siconosMatrix(p.W, c, args.storage);
-    std::vector<double> q(p.q), mu(p.mu);
+  NumericsMatrix* W = nullptr;
+  FrictionContactProblem* problem = nullptr;
+  SolverOptions* options = nullptr;
+  std::vector<double> q, mu;
+  auto make = [&] {
+    W = siconosMatrix(p.W, c, args.storage);
+    q = p.q, mu = p.mu;
     for (double& v : q) v *= c;
-    FrictionContactProblem* problem = frictionContactProblem_new_with_data(3, nc, W, q.data(), mu.data());
-    SolverOptions* options = solver_options_create(siconosId(name));
+    problem = frictionContactProblem_new_with_data(3, nc, W, q.data(), mu.data());
+    options = solver_options_create(siconosId(name));
     options->dparam[SICONOS_DPARAM_TOL] = args.tolerance;
     options->iparam[SICONOS_IPARAM_MAX_ITER] = args.maxIterations;
+  };
+  auto release = [&] {
+    solver_options_delete(options);
+    // The problem holds W, q and mu; q and mu are ours (std::vector).
+    problem->q = nullptr;
+    problem->mu = nullptr;
+    frictionContactProblem_free(problem);
+  };
+  if (args.reuse) make();
+  for (int rep = 0; rep < args.repeat; ++rep) {
+    if (!args.reuse) make();
     std::fill(r.begin(), r.end(), 0.0);
     std::fill(u.begin(), u.end(), 0.0);
     const auto t0 = std::chrono::steady_clock::now();
@@ -218,6 +241,7 @@ Row runSiconos(const std::string& name, const FCLIB::LocalProblem& p, const Args
     const double t = seconds(t0);
     row.time = std::min(row.time, t);
     row.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
+    if (args.reuse && rep + 1 < args.repeat) continue;
     // Siconos' own measure of its result: the error its solver reported and
     // fc3d_compute_error on (r, W r + q): our natural map, divided by
     // max(||q||, ||r||, ||u||) instead of ||q|| (docs/benchmarks.md).
@@ -231,12 +255,9 @@ Row runSiconos(const std::string& name, const FCLIB::LocalProblem& p, const Args
     std::snprintf(own, sizeof own, "info %d, reported error %.2e, fc3d_compute_error %.2e", info,
                   options->dparam[SICONOS_DPARAM_RESIDU], recomputed);
     row.note = own;
-    solver_options_delete(options);
-    // The problem holds W, q and mu; q and mu are ours (std::vector).
-    problem->q = nullptr;
-    problem->mu = nullptr;
-    frictionContactProblem_free(problem);
+    if (!args.reuse) release();
   }
+  if (args.reuse) release();
   row.residual = FCLIB::naturalMapError(p, r).relativeToQ;
   return row;
 }
@@ -253,19 +274,20 @@ Row runTribos(const std::string& name, const FCLIB::LocalProblem& p, const Args&
   options.maxIterations = args.tribosMaxIterations;
   options.denseSpectrumLimit = 0;
   FCLIB::SolveReport rep;
-  for (int k = 0; k < args.repeat; ++k) {
-    try {
-      // The method made and its parameters checked outside the timing, as
-      // Siconos' solver_options_create is.
-      const FCLIB::Solver solver(options, comm);
+  try {
+    // The method made and its parameters checked outside the timing, as
+    // Siconos' solver_options_create is.
+    std::unique_ptr<const FCLIB::Solver> solver;
+    for (int k = 0; k < args.repeat; ++k) {
+      if (!solver || !args.reuse) solver = std::make_unique<const FCLIB::Solver>(options, comm);
       const auto t0 = std::chrono::steady_clock::now();
-      rep = solver.solve(p);
+      rep = solver->solve(p);
       row.time = std::min(row.time, seconds(t0));
-    } catch (const std::exception& e) {
-      row.note = e.what();
-      row.residual = std::numeric_limits<double>::quiet_NaN();
-      return row;
     }
+  } catch (const std::exception& e) {
+    row.note = e.what();
+    row.residual = std::numeric_limits<double>::quiet_NaN();
+    return row;
   }
   row.iterations = rep.status.msa_iterations > 0 ? rep.status.msa_iterations : rep.status.outer_iterations;
   row.residual = FCLIB::naturalMapError(p, rep.r).relativeToQ;

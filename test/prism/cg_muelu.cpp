@@ -56,7 +56,7 @@ void checkLevel(int L, Teuchos::FancyOStream& out, bool& success) {
   exact.applyS(c.x, Sx);
   std::vector<double> r(Sx.size());
   for (size_t j = 0; j < r.size(); ++j) r[j] = Sx[j] - exact.l()[j] + c.y[j];
-  const double trueRel = Semismooth::norm2(r) / Semismooth::norm2(exact.l());
+  const double trueRel = Tribos::norm2(r) / Tribos::norm2(exact.l());
   out << "L=" << L << ": true residual " << trueRel << ", reported " << c.residuals.back() << "\n";
   TEST_COMPARE(trueRel, <=, tol);
   TEST_COMPARE(std::abs(trueRel - c.residuals.back()), <=, 0.01 * tol);

@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include "Tribos_FileSystem.hpp"
 #include "Tribos_QuietHdf5Errors.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_ArrayScan.hpp"
 
 namespace Tribos {
 namespace FCLIB {
@@ -461,14 +463,19 @@ class Checker {
       fail(name("spacedim") + " = " + std::to_string(value) + ", expected 2 or 3");
   }
 
+  // 'why' (what an expected size is) is a text or a function that makes it:
+  // messages are composed only when a check fails, since a problem is
+  // validated at every solve.
+  template <class Why>
   void size(const std::vector<double>& v, const std::string& dataset, std::size_t expected,
-            const std::string& why) const {
+            const Why& why) const {
     if (v.size() != expected)
       fail(name(dataset) + " has " + std::to_string(v.size()) + " entries, expected " +
-           std::to_string(expected) + why);
+           std::to_string(expected) + text(why));
   }
 
   void finite(const std::vector<double>& v, const std::string& dataset) const {
+    if (allFinite(v)) return;
     for (std::size_t k = 0; k < v.size(); ++k)
       if (!std::isfinite(v[k]))
         fail(name(dataset) + "[" + std::to_string(k) + "] is not finite (" + kind(v[k]) + ")");
@@ -485,13 +492,15 @@ class Checker {
 
   // Canonical CSR as SparseMatrix documents it, m x n as the problem needs,
   // and finite entries (duplicates summed on reading may overflow).
+  template <class Why>
   void matrix(const SparseMatrix& A, const std::string& dataset, std::size_t m, std::size_t n,
-              const std::string& why) const {
+              const Why& why) const {
     if (A.m < 0 || A.n < 0 || static_cast<std::size_t>(A.m) != m ||
         static_cast<std::size_t>(A.n) != n)
       fail(name(dataset) + " is " + std::to_string(A.m) + " x " + std::to_string(A.n) +
-           ", expected " + std::to_string(m) + " x " + std::to_string(n) + why);
+           ", expected " + std::to_string(m) + " x " + std::to_string(n) + text(why));
     structure(A, dataset);
+    if (allFinite(A.val)) return;
     for (int r = 0; r < A.m; ++r)
       for (int k = A.rowptr[r]; k < A.rowptr[r + 1]; ++k)
         if (!std::isfinite(A.val[k]))
@@ -500,6 +509,10 @@ class Checker {
   }
 
  private:
+  static const std::string& text(const std::string& why) { return why; }
+  static std::string text(const char* why) { return why; }
+  template <class Make>
+  static std::string text(const Make& make) { return make(); }
   static const char* kind(double x) { return std::isnan(x) ? "nan" : "inf"; }
   static std::string number(double x) {
     char buffer[32];
@@ -515,16 +528,44 @@ class Checker {
     if (A.rowptr.size() != static_cast<std::size_t>(A.m) + 1)
       bad(std::to_string(A.rowptr.size()) + " row pointers for " + std::to_string(A.m) + " rows");
     if (A.rowptr[0] != 0) bad("the first row pointer is " + std::to_string(A.rowptr[0]));
-    for (int r = 0; r < A.m; ++r)
+    // Each test first as one flag over the whole array (a loop without a
+    // branch per entry, which vectorizes), then, only when it fails, entry
+    // by entry for the message.
+    bool decreasing = false;
+    for (int r = 0; r < A.m; ++r) decreasing |= A.rowptr[r + 1] < A.rowptr[r];
+    for (int r = 0; decreasing && r < A.m; ++r)
       if (A.rowptr[r + 1] < A.rowptr[r]) bad("row pointers decrease at row " + std::to_string(r));
     const std::size_t nnz = static_cast<std::size_t>(A.rowptr.back());
     if (A.col.size() != nnz || A.val.size() != nnz)
       bad(std::to_string(A.col.size()) + " column indices and " + std::to_string(A.val.size()) +
           " values for " + std::to_string(nnz) + " entries");
-    for (std::size_t k = 0; k < nnz; ++k)
+    // c in [0, n) iff neither c nor (n - 1) - c, as unsigned 32-bit numbers,
+    // has its top bit set (n - 1 < 2^31).
+    std::uint32_t signs = 0;
+    const std::uint32_t last = static_cast<std::uint32_t>(A.n) - 1u;
+    for (std::size_t k = 0; k < nnz; ++k) {
+      const std::uint32_t c = static_cast<std::uint32_t>(A.col[k]);
+      signs |= c | (last - c);
+    }
+    const bool outside = A.n == 0 ? nnz > 0 : (signs >> 31) != 0;
+    for (std::size_t k = 0; outside && k < nnz; ++k)
       if (A.col[k] < 0 || A.col[k] >= A.n)
         bad("column index " + std::to_string(A.col[k]) + " outside [0, " + std::to_string(A.n) +
             ")");
+    // Columns strictly ascending within each row (the solvers search rows):
+    // the steps down over the whole array, less those from one row's last
+    // entry to the next row's first, are the steps down inside rows.
+    int down = 0;
+    for (std::size_t k = 1; k < nnz; ++k) down += A.col[k] <= A.col[k - 1];
+    for (int r = 1; r < A.m; ++r) {  // each boundary once (empty rows repeat it)
+      const int k = A.rowptr[r];
+      if (k > 0 && static_cast<std::size_t>(k) < nnz && k != A.rowptr[r - 1]) down -= A.col[k] <= A.col[k - 1];
+    }
+    for (int r = 0; down > 0 && r < A.m; ++r)
+      for (int k = A.rowptr[r] + 1; k < A.rowptr[r + 1]; ++k)
+        if (A.col[k] <= A.col[k - 1])
+          bad("row " + std::to_string(r) + " has column " + std::to_string(A.col[k]) + " after column " +
+              std::to_string(A.col[k - 1]) + " (columns must be strictly ascending within a row: duplicates summed)");
   }
 
   std::string context_, group_;
@@ -567,7 +608,7 @@ void validate(const LocalProblem& P, const std::string& context) {
   c.spacedim(P.spacedim);
   const std::size_t nc = P.mu.size();
   const std::size_t m = nc * static_cast<std::size_t>(P.spacedim);
-  const std::string why = contactsWhy(nc, P.spacedim, c.name("vectors/mu"));
+  const auto why = [&] { return contactsWhy(nc, P.spacedim, c.name("vectors/mu")); };
   c.matrix(P.W, "W", m, m, why);
   c.size(P.q, "vectors/q", m, why);
   c.frictionCoefficients(P.mu, "vectors/mu");
@@ -586,11 +627,11 @@ void validate(const GlobalProblem& P, const std::string& context) {
   c.spacedim(P.spacedim);
   const std::size_t nc = P.mu.size();
   const std::size_t m = nc * static_cast<std::size_t>(P.spacedim);
-  const std::string why = contactsWhy(nc, P.spacedim, c.name("vectors/mu"));
+  const auto why = [&] { return contactsWhy(nc, P.spacedim, c.name("vectors/mu")); };
   const std::size_t ndof = P.f.size();
-  const std::string fWhy = " (the length of " + c.name("vectors/f") + ")";
+  const auto fWhy = [&] { return " (the length of " + c.name("vectors/f") + ")"; };
   c.matrix(P.M, "M", ndof, ndof, fWhy);
-  c.matrix(P.H, "H", ndof, m, " (rows" + fWhy + ", columns" + why + ")");
+  c.matrix(P.H, "H", ndof, m, [&] { return " (rows" + fWhy() + ", columns" + why() + ")"; });
   c.size(P.w, "vectors/w", m, why);
   c.frictionCoefficients(P.mu, "vectors/mu");
   c.finite(P.f, "vectors/f");
@@ -598,7 +639,7 @@ void validate(const GlobalProblem& P, const std::string& context) {
   if (!P.G && !P.b) return;
   if (!(P.G && P.b)) c.fail(c.name("") + "{G, vectors/b}: G and b come together");
   c.matrix(*P.G, "G", ndof, P.b->size(),
-           " (rows" + fWhy + ", columns the length of " + c.name("vectors/b") + ")");
+           [&] { return " (rows" + fWhy() + ", columns the length of " + c.name("vectors/b") + ")"; });
   c.finite(*P.b, "vectors/b");
 }
 

@@ -15,6 +15,7 @@
 #include "Tribos_ContactKKT.hpp"
 #include "Tribos_DualTransform.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_ArrayScan.hpp"
 #include "Tribos_NonsmoothGaussSeidel.hpp"
 #include "Tribos_SemismoothNewton.hpp"
 
@@ -27,16 +28,6 @@ namespace {
 
 double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-bool allFinite(const std::vector<double>& a) {
-  return std::all_of(a.begin(), a.end(), [](double v) { return std::isfinite(v); });
-}
-
-double normInf(const std::vector<double>& a) {
-  double s = 0;
-  for (double v : a) s = std::max(s, std::abs(v));
-  return s;
 }
 
 // Entries of 'defaults' missing from 'given' are added (sublists recursively),
@@ -450,15 +441,17 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
 // NSGS on W's entries: no Tpetra map, no scaling (the local solves use
 // W_cc as it is), the natural-map error ||F_nat|| / ||q|| as its stopping
 // measure. rep.u = W r + q of the returned r (NSGS forms it from W's entries
-// after its last sweep); err and the KKT residuals are the caller's.
+// after its last sweep) and rep.err its natural-map error (the measure's
+// last call is on the returned r and u); the KKT residuals are the caller's.
 SolveReport solveExplicit(const CsrView& W, const std::vector<double>& q, const std::vector<double>& mu,
                           const SolveOptions& options, Friction::NonsmoothGaussSeidel& nsgs) {
   SolveReport rep;
   rep.algorithm = options.algorithm;
   const auto t0 = std::chrono::steady_clock::now();
   if (options.verbose) nsgs.setOutputStream(Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout)));
-  nsgs.setStoppingMeasure([&q, &mu](const std::vector<double>& r, const std::vector<double>& u) {
-    return naturalMapError(r, u, mu, q).relativeToQ;
+  nsgs.setStoppingMeasure([&q, &mu, &rep](const std::vector<double>& r, const std::vector<double>& u) {
+    rep.err = naturalMapError(r, u, mu, q);
+    return rep.err.relativeToQ;
   });
   rep.r.assign(q.size(), 0.0);
   rep.status = nsgs.solve({W, q.data(), mu.data(), static_cast<int>(mu.size())}, rep.r, rep.u);
@@ -531,10 +524,14 @@ Solver::Solver(const SolveOptions& options, const RCP<const Comm>& serialComm)
 }
 
 // The tolerance and iteration limit the options set (the rounds of a solve
-// tighten them; every solve starts from these).
+// tighten them; every solve starts from these). Set again only after a solve
+// that may have changed them: a validated parameter-list update costs more
+// than NSGS on a small problem.
 void Solver::resetLimits() const {
+  if (limitsAsGiven_) return;
   if (options_.naturalMapTolerance > 0) solver_->setRequestedTolerance(std::max(options_.naturalMapTolerance, 1e-15));
   if (options_.maxIterations > 0) solver_->setMaximumIterations(options_.maxIterations);
+  limitsAsGiven_ = true;
 }
 
 namespace {
@@ -599,11 +596,11 @@ SolveReport Solver::solve(const LocalProblem& problem) const {
     const CsrView W{problem.W.m, problem.W.n, problem.W.rowptr.data(), problem.W.col.data(), problem.W.val.data()};
     rep = solveExplicit(W, problem.q, problem.mu, options_, *nsgs);
     if (n <= options_.denseSpectrumLimit) spectrum(DelassusOperator(problem.W, serialMap(n, comm_)), n, rep);
-    rep.err = naturalMapError(rep.r, rep.u, problem.mu, problem.q);
     kktResiduals(rep.r, rep.u, problem.mu, problem.q, rep);
   } else {
     const auto map = serialMap(n, comm_);
     DelassusOperator op(problem.W, map);
+    limitsAsGiven_ = false;  // its rounds may tighten them
     rep = solveReduced(op, problem.q, problem.mu, options_, *solver_, map, limit_);
   }
   finish(tolerance_, limit_, options_, rep);
@@ -638,6 +635,7 @@ SolveReport Solver::solve(const GlobalProblem& problem) const {
     if (n <= options_.denseSpectrumLimit) spectrum(op, n, rep);
   } else {
     DelassusOperator op(problem.H, M, map);
+    limitsAsGiven_ = false;  // its rounds may tighten them
     rep = solveReduced(op, q, problem.mu, options_, *solver_, map, limit_);
   }
   rep.timeSetup += reduction;

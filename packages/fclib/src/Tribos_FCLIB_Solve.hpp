@@ -198,6 +198,7 @@ class Solver {
   SolveOptions options_;
   RCP<const Comm> comm_;
   RCP<Friction::FrictionSolver> solver_;
+  mutable bool limitsAsGiven_ = false;  // solver_ holds the options' tolerance and iteration limit
   double tolerance_ = 0, limit_ = 0;  // the requested tolerance, Result Check Factor times it
 };
 

@@ -75,6 +75,10 @@ std::vector<Corruption<LocalProblem>> localCorruptions() {
        "/fclib_local/W is not a valid compressed-row matrix: column index 144 outside [0, 144)"},
       {"decreasing pointers", [](LocalProblem& P) { std::swap(P.W.rowptr[1], P.W.rowptr[2]); },
        "/fclib_local/W is not a valid compressed-row matrix: row pointers decrease"},
+      {"columns out of order", [](LocalProblem& P) { std::swap(P.W.col[0], P.W.col[1]); },
+       "/fclib_local/W is not a valid compressed-row matrix: row 0 has column"},
+      {"duplicate column", [](LocalProblem& P) { P.W.col[1] = P.W.col[0]; },
+       "/fclib_local/W is not a valid compressed-row matrix: row 0 has column"},
       {"V without R and s", [](LocalProblem& P) { P.V = P.W; }, "/fclib_local/{V, R, vectors/s}: a mixed problem needs all three"},
   };
 }
@@ -267,3 +271,22 @@ TEUCHOS_UNIT_TEST(Validate, Judgement) { checkJudgement(out, success); }
 TEUCHOS_UNIT_TEST(Validate, NonFiniteAccuracy) { checkNonFiniteAccuracy(out, success); }
 TEUCHOS_UNIT_TEST(Validate, NotConverged) { checkNotConverged(readLocal(localPath()), out, success); }
 TEUCHOS_UNIT_TEST(Validate, StoredSolutionOfWrongSize) { checkStoredSolutionOfWrongSize(localPath(), out, success); }
+
+// Empty rows repeat a row boundary: a matrix whose columns ascend in every
+// row is accepted whatever rows are empty (the ordering test counts each
+// boundary once), and a step down inside a row after empty rows is refused.
+TEUCHOS_UNIT_TEST(Validate, ColumnOrderWithEmptyRows) {
+  LocalProblem P;
+  P.mu = {0.3, 0.5};
+  P.q = {-1, 0, 0, -1, 0, 0};
+  P.W.m = P.W.n = 6;
+  // rows 0 and 4 hold entries; rows 1-3 and 5 are empty; row 0 ends at
+  // column 5 and row 4 starts at column 0 (a step down across the boundary).
+  P.W.rowptr = {0, 2, 2, 2, 2, 4, 4};
+  P.W.col = {3, 5, 0, 4};
+  P.W.val = {1, 2, 3, 4};
+  validate(P, "test");  // accepted
+  P.W.col = {3, 5, 4, 0};  // row 4: column 0 after column 4
+  expectError("step down inside row 4", [&] { validate(P, "test"); },
+              "W is not a valid compressed-row matrix: row 4 has column 0 after column 4", out, success);
+}

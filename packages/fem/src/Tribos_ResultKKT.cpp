@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "Tribos_ArrayScan.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_ContactKKT.hpp"
 
@@ -22,18 +23,6 @@ double maxOver(double v, const Comm& comm) {
 }
 
 double dot(const std::array<double, 3>& a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-double norm2(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s);
-}
-
-double normInf(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s = std::max(s, std::abs(x));
-  return s;
-}
 
 }  // namespace
 

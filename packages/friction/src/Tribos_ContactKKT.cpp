@@ -9,22 +9,24 @@
 namespace Tribos {
 namespace Friction {
 
-ContactKKT::ContactKKT(double forceScale, double displacementScale) : P_(forceScale), U_(displacementScale) {
+ContactKKT::ContactKKT(double forceScale, double displacementScale)
+    : P_(forceScale), U_(displacementScale), invP_(1.0 / forceScale), invU_(1.0 / displacementScale),
+      PoverU_(forceScale / displacementScale) {
   TRIBOS_REQUIRE(P_ > 0 && U_ > 0, "ContactKKT: the force scale P = " << P_ << " and the displacement scale U = " << U_
                                                                       << " must be > 0");
 }
 
 void ContactKKT::add(double lambdaN, double gap, const double* phiT, const double* slip, int dim, double g) {
   TRIBOS_REQUIRE(dim >= 0 && dim <= 3, "ContactKKT::add: dim = " << dim << " outside [0, 3]");
-  nonpenetration_ = std::max(nonpenetration_, std::max(-gap, 0.0) / U_);
-  complementarity_ = std::max(complementarity_, std::abs(std::min(lambdaN / P_, gap / U_)));
+  nonpenetration_ = std::max(nonpenetration_, std::max(-gap, 0.0) * invU_);
+  complementarity_ = std::max(complementarity_, std::abs(std::min(lambdaN * invP_, gap * invU_)));
   // phi_T is the projection of phi_T - (P/U) s onto the disk of radius g.
   double proj[3];
-  for (int d = 0; d < dim; ++d) proj[d] = phiT[d] - (P_ / U_) * slip[d];
+  for (int d = 0; d < dim; ++d) proj[d] = phiT[d] - PoverU_ * slip[d];
   QP::projectBall(proj, dim, g);
   double r2 = 0;
   for (int d = 0; d < dim; ++d) r2 += (phiT[d] - proj[d]) * (phiT[d] - proj[d]);
-  frictionLaw_ = std::max(frictionLaw_, std::sqrt(r2) / P_);
+  frictionLaw2_ = std::max(frictionLaw2_, r2);  // one square root, at the end
 }
 
 }  // namespace Friction

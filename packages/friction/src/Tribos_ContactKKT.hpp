@@ -16,6 +16,8 @@
 //   friction law     max ||phi_T - P_g(phi_T - (P/U) s)|| / P
 #pragma once
 
+#include <cmath>
+
 namespace Tribos {
 namespace Friction {
 
@@ -28,11 +30,12 @@ class ContactKKT {
   // Maxima over the contacts added (local: reduce over ranks where needed).
   double nonpenetration() const { return nonpenetration_; }
   double complementarity() const { return complementarity_; }
-  double frictionLaw() const { return frictionLaw_; }
+  double frictionLaw() const { return std::sqrt(frictionLaw2_) * invP_; }
 
  private:
-  double P_, U_;
-  double nonpenetration_ = 0, complementarity_ = 0, frictionLaw_ = 0;
+  double P_, U_, invP_, invU_, PoverU_;
+  // Maxima of the scaled figures, and of the unscaled squared friction residual.
+  double nonpenetration_ = 0, complementarity_ = 0, frictionLaw2_ = 0;
 };
 
 }  // namespace Friction

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "Tribos_Error.hpp"
 #include "Tribos_Progress.hpp"
@@ -27,40 +28,68 @@ inline void addProduct(const double* M, const double* x, double* y, double sign 
 // W read by contact: rows 3c, 3c+1, 3c+2 of the CSR arrays as they are (no
 // copy: a problem solved in a few sweeps would pay more for a blocked copy
 // than for its sweeps), and the diagonal blocks W_cc (row-major, 9 values),
-// found by binary search in the sorted rows.
+// found by binary search in the sorted rows when first needed: a contact
+// that opens at every sweep (r_c = 0) never needs its own, and on multibody
+// problems most contacts do.
 struct ContactRows {
   const CsrView& W;
-  std::vector<double> diag;  // 9 per contact
+  mutable std::vector<double> diag;         // 9 per contact, valid where 'known'
+  mutable std::vector<unsigned char> known;
 
-  ContactRows(const CsrView& matrix, int nc) : W(matrix), diag(9 * static_cast<size_t>(nc), 0.0) {
-    for (int i = 0; i < 3 * nc; ++i) {
-      const int c = i / 3, a = i % 3;
+  ContactRows(const CsrView& matrix, int nc)
+      : W(matrix), diag(9 * static_cast<size_t>(nc), 0.0), known(static_cast<size_t>(nc), 0) {}
+
+  // W_cc.
+  const double* block(int c) const {
+    double* d = &diag[9 * static_cast<size_t>(c)];
+    if (known[c]) return d;
+    for (int a = 0; a < 3; ++a) {
+      const int i = 3 * c + a;
       const int* first = W.col + W.rowptr[i];
       const int* last = W.col + W.rowptr[i + 1];
       for (const int* k = std::lower_bound(first, last, 3 * c); k != last && *k < 3 * c + 3; ++k)
-        diag[9 * static_cast<size_t>(c) + 3 * a + (*k - 3 * c)] += W.val[k - W.col];
+        d[3 * a + (*k - 3 * c)] += W.val[k - W.col];
     }
+    known[c] = 1;
+    return d;
+  }
+
+  // Every W_cc (for the blocked copy).
+  const std::vector<double>& blocks() const {
+    for (int c = 0; c < static_cast<int>(known.size()); ++c) block(c);
+    return diag;
+  }
+
+  // q_i + sum of W_ik r_k over the entries [k, end) of row i. Four partial
+  // sums: a single one makes each product wait for the previous addition,
+  // which on rows of a few dozen entries costs more than the loads.
+  double rowSum(int k, int end, const double* r, double qi) const {
+    double s0 = qi, s1 = 0, s2 = 0, s3 = 0;
+    for (; k + 3 < end; k += 4) {
+      s0 += W.val[k] * r[W.col[k]];
+      s1 += W.val[k + 1] * r[W.col[k + 1]];
+      s2 += W.val[k + 2] * r[W.col[k + 2]];
+      s3 += W.val[k + 3] * r[W.col[k + 3]];
+    }
+    for (; k < end; ++k) s0 += W.val[k] * r[W.col[k]];
+    return (s0 + s1) + (s2 + s3);
   }
 
   // y = (W r)_c + q_c, the velocity of contact c.
   void velocity(int c, const double* r, const double* q, double y[3]) const {
-    for (int a = 0; a < 3; ++a) {
-      const int i = 3 * c + a;
-      double s = q[i];
-      for (int k = W.rowptr[i]; k < W.rowptr[i + 1]; ++k) s += W.val[k] * r[W.col[k]];
-      y[a] = s;
-    }
+    for (int a = 0; a < 3; ++a) y[a] = rowSum(W.rowptr[3 * c + a], W.rowptr[3 * c + a + 1], r, q[3 * c + a]);
   }
 
   // y = sum_{d != c} W_cd r_d + q_c: the velocity of contact c without its own force.
   void offDiagonal(int c, const double* r, const double* q, double y[3]) const {
     velocity(c, r, q, y);
-    addProduct(&diag[9 * static_cast<size_t>(c)], r + 3 * c, y, -1.0);
+    const double* rc = r + 3 * c;
+    if (rc[0] != 0.0 || rc[1] != 0.0 || rc[2] != 0.0) addProduct(block(c), rc, y, -1.0);
   }
 
   // u = W r + q.
   void velocities(const std::vector<double>& r, const double* q, std::vector<double>& u) const {
-    const int nc = static_cast<int>(diag.size() / 9);
+    const int nc = static_cast<int>(known.size());
     u.resize(3 * static_cast<size_t>(nc));
     for (int c = 0; c < nc; ++c) velocity(c, r.data(), q, &u[3 * c]);
   }
@@ -262,13 +291,15 @@ class LocalCoulomb {
 
 // ||Phi(r)|| / ||rho q||: the Alart-Curnier residual of the whole problem
 // with the contacts' rho (the default stopping measure).
-double alartCurnierMeasure(const std::vector<LocalCoulomb>& local, const std::vector<double>& r,
-                           const std::vector<double>& u, const double* q) {
+template <class LocalOf>
+double alartCurnierMeasure(LocalOf&& localOf, int nc, const std::vector<double>& r, const std::vector<double>& u,
+                           const double* q) {
   double phi2 = 0, q2 = 0;
-  for (size_t c = 0; c < local.size(); ++c) {
+  for (int c = 0; c < nc; ++c) {
     AlartCurnier::Blocks b;
-    local[c].residual(&r[3 * c], &u[3 * c], b);
-    const double rhoN = local[c].rhoN(), rhoT = local[c].rhoT();
+    const LocalCoulomb& local = localOf(c);
+    local.residual(&r[3 * c], &u[3 * c], b);
+    const double rhoN = local.rhoN(), rhoT = local.rhoT();
     phi2 += b.phi[0] * b.phi[0] + b.phi[1] * b.phi[1] + b.phi[2] * b.phi[2];
     q2 += rhoN * rhoN * q[3 * c] * q[3 * c] + rhoT * rhoT * (q[3 * c + 1] * q[3 * c + 1] + q[3 * c + 2] * q[3 * c + 2]);
   }
@@ -328,25 +359,43 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   const double localTol = params_.get<double>("Local Tolerance");
   const int localMaxIt = params_.get<int>("Local Maximum Iterations");
   const ContactRows rows(p.W, nc);
-  std::vector<LocalCoulomb> local;
-  local.reserve(nc);
-  for (int c = 0; c < nc; ++c) local.emplace_back(&rows.diag[9 * static_cast<size_t>(c)], p.mu[c], localTol, localMaxIt);
+  // A contact's local solver, made when a sweep first finds it pressed.
+  std::vector<std::optional<LocalCoulomb>> local(nc);
+  auto localOf = [&](int c) -> const LocalCoulomb& {
+    if (!local[c]) local[c].emplace(rows.block(c), p.mu[c], localTol, localMaxIt);
+    return *local[c];
+  };
   // The blocked copy of W, made once a problem has taken kBlockedAfter sweeps.
   constexpr int kBlockedAfter = 8;
   std::unique_ptr<const BlockRows> blocked;
   auto measure = [&](const std::vector<double>& rr, const std::vector<double>& uu) {
-    return measure_ ? measure_(rr, uu) : alartCurnierMeasure(local, rr, uu, p.q);
+    return measure_ ? measure_(rr, uu) : alartCurnierMeasure(localOf, nc, rr, uu, p.q);
   };
-  // One sweep over the contacts with W read through M; returns whether r
-  // moved by at most the tolerance relative to ||r||.
+  // One sweep over the contacts with W read through M. It also writes each
+  // contact's velocity u_c = q~_c + W_cc r_c as it leaves the contact; when
+  // the sweep changed no force, every u_c saw the final forces of the
+  // others, so u = W r + q without another pass over W (finite termination,
+  // common when contacts open or stick). Returns whether r moved by at most
+  // the tolerance relative to ||r||.
+  bool unchanged = false;
   auto sweepWith = [&](const auto& M, FrictionStatus& st) {
     double change = 0, size = 0;
+    unchanged = true;
+    u.resize(n);
     for (int c = 0; c < nc; ++c) {
       double qt[3], rc[3] = {r[3 * c], r[3 * c + 1], r[3 * c + 2]};
       M.offDiagonal(c, r.data(), p.q, qt);
-      st.inner_iterations += local[c].solve(qt, rc);
+      double* uc = &u[3 * c];
+      uc[0] = qt[0], uc[1] = qt[1], uc[2] = qt[2];
+      if (qt[0] >= 0) {  // take-off, exact: neither W_cc nor the local solver is needed
+        rc[0] = rc[1] = rc[2] = 0.0;
+      } else {
+        st.inner_iterations += localOf(c).solve(qt, rc);
+        addProduct(rows.block(c), rc, uc);
+      }
       for (int a = 0; a < 3; ++a) {
         const double d = rc[a] - r[3 * c + a];
+        unchanged = unchanged && d == 0.0;
         change += d * d;
         size += rc[a] * rc[a];
         r[3 * c + a] = rc[a];
@@ -356,14 +405,16 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   };
 
   FrictionStatus st;
-  // One check: u = W r + q and the measure, recorded as a step.
-  auto check = [&](int sweep) {
-    if (std::any_of(r.begin(), r.end(), [](double v) { return v != 0.0; })) {
+  // One check: u = W r + q (unless the last sweep left it so) and the
+  // measure, recorded as a step.
+  auto check = [&](int sweep, bool uCurrent) {
+    const bool rIsZero = std::all_of(r.begin(), r.end(), [](double v) { return v == 0.0; });
+    if (rIsZero) {  // u = q without a pass over W
+      u.assign(p.q, p.q + n);
+    } else if (!uCurrent) {
       if (blocked) blocked->velocities(r, p.q, u);
       else rows.velocities(r, p.q, u);
       ++st.n_A;
-    } else {  // r = 0: u = q without a pass over W
-      u.assign(p.q, p.q + n);
     }
     const double m = measure(r, u);
     st.history.push_back(m);
@@ -386,14 +437,20 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
     return m;
   };
 
-  // The initial guess may already solve the problem (a warm start, or r = 0
-  // when every contact opens).
-  double m = check(0);
+  // A warm start may already solve the problem: measured. From r = 0 the
+  // measure is taken only when r = 0 can be the solution, i.e. when every
+  // contact opens, q_N >= 0 (r = 0 satisfies De Saxce's law iff
+  // [u_N + mu ||u_T||, u_T] lies in the dual cone, i.e. u_N >= 0); otherwise
+  // the first sweep moves r and the light test decides when to measure.
+  const bool fromZero = std::all_of(r.begin(), r.end(), [](double v) { return v == 0.0; });
+  bool zeroMaySolve = true;
+  for (int c = 0; c < nc; ++c) zeroMaySolve = zeroMaySolve && p.q[3 * c] >= 0;
+  double m = !fromZero || zeroMaySolve ? check(0, false) : std::numeric_limits<double>::max();
   int sweep = 0, gap = 1, nextCheck = 1;
   while (std::isfinite(m) && m > tol && sweep < maxSweeps) {
     ++sweep;
     ++st.n_A;
-    if (sweep == kBlockedAfter) blocked = std::make_unique<const BlockRows>(p.W, rows.diag);
+    if (sweep == kBlockedAfter) blocked = std::make_unique<const BlockRows>(p.W, rows.blocks());
     const bool settled = blocked ? sweepWith(*blocked, st) : sweepWith(rows, st);
     // The measure needs u = W r + q, another pass over W: when the sweep
     // moved r by at most the tolerance (the light test), at growing
@@ -402,7 +459,7 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
     // while u has converged).
     constexpr int kCheckEvery = 64;
     if ((settled && sweep >= nextCheck) || sweep % kCheckEvery == 0 || sweep == maxSweeps) {
-      m = check(sweep);
+      m = check(sweep, unchanged);
       nextCheck = sweep + gap;
       gap = std::min(2 * gap, 16);
     }

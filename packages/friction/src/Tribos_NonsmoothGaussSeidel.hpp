@@ -62,7 +62,8 @@ class NonsmoothGaussSeidel : public FrictionSolver {
   // Refused: the FETI dual is applied, not stored (use Algorithm2 or Semismooth Newton).
   FrictionStatus solve(const ContactDual& dual, Vector& x) override;
   // r: initial guess on input, solution on output; u = W r + q of the
-  // returned r (formed from W at the last check).
+  // returned r (formed from W at the last check). The stopping measure's
+  // last call is on exactly the returned (r, u).
   FrictionStatus solve(const ExplicitCoulombProblem& problem, std::vector<double>& r, std::vector<double>& u) const;
   RCP<const Teuchos::ParameterList> getValidParameters() const override;
   static RCP<const Teuchos::ParameterList> validParameters();

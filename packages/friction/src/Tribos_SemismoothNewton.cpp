@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "Tribos_ContactRowReduction.hpp"
+#include "Tribos_ArrayScan.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Validators.hpp"
 #include "Tribos_Progress.hpp"
@@ -23,12 +24,6 @@ namespace Friction {
 using Teuchos::ParameterList;
 
 namespace {
-
-double norm2(const std::vector<double>& a) {
-  double s = 0;
-  for (double v : a) s += v * v;
-  return std::sqrt(s);
-}
 
 class DenseLu : public NewtonLinearSolver {
  public:

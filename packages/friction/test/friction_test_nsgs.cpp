@@ -175,11 +175,60 @@ TEUCHOS_UNIT_TEST(NSGS, StoppingMeasureAndLimits) {
   const auto st = nsgs.solve(ExplicitCoulombProblem{W.view(), q.data(), mu.data(), 1}, r, u);
   TEST_ASSERT(!st.converged);
   TEST_EQUALITY(st.outer_iterations, 3);
-  TEST_COMPARE(calls, >=, 2);  // the initial guess and the last sweep
+  TEST_COMPARE(calls, >=, 2);  // after the settled sweep and after the last
   TEST_ASSERT(st.reason.find("Maximum Iterations (3) of NSGS") != std::string::npos);
   TEST_THROW(nsgs.setRequestedTolerance(0.0), std::exception);
   TEST_THROW(nsgs.setMaximumIterations(0), std::exception);
   Friction::ContactDual dual;
   Vector x(rcp(new Map(3, 0, Tpetra::getDefaultComm())));
   TEST_THROW(nsgs.solve(dual, x), std::exception);  // the FETI dual is refused
+}
+
+// Finite termination: two uncoupled contacts, one stuck and one opening,
+// are solved exactly by the first sweep; the second changes no force, so
+// its velocities are u = W r + q and no further pass over W is made
+// (n_A counts the two sweeps only). The returned u is W r + q all the same.
+TEUCHOS_UNIT_TEST(NSGS, UnchangedSweepGivesVelocities) {
+  std::vector<double> A(36, 0.0);
+  for (int i = 0; i < 6; ++i) A[i * 6 + i] = 2.0;
+  A[0 * 6 + 1] = A[1 * 6 + 0] = 0.5;  // contact 0's block is not diagonal
+  const LocalCsr W = denseCsr(A, 6);
+  const std::vector<double> q = {-4.0, 0.1, 0.0, 3.0, 1.0, -1.0}, mu = {0.8, 0.3};
+  const Solved s = solveNsgs(W, q, mu);
+  out << s.status.reason << ", sweeps " << s.status.outer_iterations << ", n_A " << s.status.n_A << "\n";
+  TEST_ASSERT(s.status.converged);
+  TEST_EQUALITY(s.status.outer_iterations, 2);
+  TEST_EQUALITY(s.status.n_A, 2L);
+  TEST_COMPARE(s.r[0], >, 0.0);                                     // contact 0 pressed (and stuck)
+  TEST_ASSERT(s.r[3] == 0.0 && s.r[4] == 0.0 && s.r[5] == 0.0);     // contact 1 opens
+  const std::vector<double> u = velocities(W, s.r, q);
+  for (int i = 0; i < 6; ++i) TEST_FLOATING_EQUALITY(s.u[i] + 10.0, u[i] + 10.0, 1e-14);
+  for (int c = 0; c < 2; ++c) TEST_COMPARE(coulombViolation(s.r, s.u, mu[c], c, 4.0, 4.0), <=, 1e-14);
+}
+
+// From r = 0 the measure is taken before any sweep only when r = 0 can be
+// the solution (every q_N >= 0): then no sweep is made. Otherwise the first
+// measure comes after a sweep.
+TEUCHOS_UNIT_TEST(NSGS, InitialMeasureOnlyWhenZeroCanSolve) {
+  const LocalCsr W = denseCsr({2, 0, 0, 0, 2, 0, 0, 0, 2}, 3);
+  const std::vector<double> mu = {0.5};
+  for (const double qN : {1.0, -1.0}) {
+    const std::vector<double> q = {qN, 3.0, -4.0};
+    Teuchos::ParameterList pl;
+    NonsmoothGaussSeidel nsgs(pl);
+    std::vector<int> measuredAfter;
+    int sweepsSeen = 0;
+    nsgs.setStoppingMeasure([&](const std::vector<double>& r, const std::vector<double>& u) {
+      measuredAfter.push_back(sweepsSeen++);
+      double e = 0;
+      for (int i = 0; i < 3; ++i) e = std::max(e, std::abs(u[i] - (2.0 * r[i] + q[i])));
+      return e;  // 0 once u = W r + q: stops at the first measure
+    });
+    std::vector<double> r(3, 0.0), u;
+    const auto st = nsgs.solve(ExplicitCoulombProblem{W.view(), q.data(), mu.data(), 1}, r, u);
+    TEST_ASSERT(st.converged);
+    TEST_EQUALITY(measuredAfter.size(), size_t(1));
+    TEST_EQUALITY(st.outer_iterations, qN >= 0 ? 0 : 2);  // open: r = 0 at once; pressed: a sweep, then the light test
+    if (qN >= 0) TEST_ASSERT(r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0);
+  }
 }

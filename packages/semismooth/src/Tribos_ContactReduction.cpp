@@ -7,18 +7,13 @@
 #include <cmath>
 #include <cstring>
 
+#include "Tribos_ArrayScan.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_LocalSolver.hpp"
 #include "Tribos_RigidMotions.hpp"
 
 namespace Tribos {
 namespace Semismooth {
-
-double norm2(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s);
-}
 
 namespace {
 

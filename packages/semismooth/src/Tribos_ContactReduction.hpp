@@ -8,6 +8,8 @@
 // serves the Newton matrices, so the symbolic analysis is done once.
 #pragma once
 
+#include "Tribos_ArrayScan.hpp"
+
 #include <array>
 #include <map>
 #include <memory>
@@ -24,9 +26,6 @@ namespace Semismooth {
 inline const char* const kSemicoerciveAdvice =
     "the semismooth* method needs every rigid motion held by Dirichlet conditions (the contact alone does not "
     "hold the body); use Solver/Type = FETI";
-
-// Euclidean norm of a replicated vector (contact values, free dofs).
-double norm2(const std::vector<double>& v);
 
 // One contact node i: non-penetration u_i . normal <= d, Tresca slip bound g.
 struct ContactNode {
