@@ -10,10 +10,10 @@ namespace Tribos {
 namespace Friction {
 
 ContactKKT::ContactKKT(double forceScale, double displacementScale)
-    : P_(forceScale), U_(displacementScale), invP_(1.0 / forceScale), invU_(1.0 / displacementScale),
-      PoverU_(forceScale / displacementScale) {
-  TRIBOS_REQUIRE(P_ > 0 && U_ > 0, "ContactKKT: the force scale P = " << P_ << " and the displacement scale U = " << U_
-                                                                      << " must be > 0");
+    : invP_(1.0 / forceScale), invU_(1.0 / displacementScale), PoverU_(forceScale / displacementScale) {
+  TRIBOS_REQUIRE(forceScale > 0 && displacementScale > 0, "ContactKKT: the force scale P = "
+                                                               << forceScale << " and the displacement scale U = "
+                                                               << displacementScale << " must be > 0");
 }
 
 void ContactKKT::add(double lambdaN, double gap, const double* phiT, const double* slip, int dim, double g) {

@@ -33,7 +33,7 @@ class ContactKKT {
   double frictionLaw() const { return std::sqrt(frictionLaw2_) * invP_; }
 
  private:
-  double P_, U_, invP_, invU_, PoverU_;
+  double invP_, invU_, PoverU_;  // 1/P, 1/U, P/U
   // Maxima of the scaled figures, and of the unscaled squared friction residual.
   double nonpenetration_ = 0, complementarity_ = 0, frictionLaw2_ = 0;
 };

@@ -405,11 +405,13 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   };
 
   FrictionStatus st;
+  auto allZero = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0; });
+  };
   // One check: u = W r + q (unless the last sweep left it so) and the
   // measure, recorded as a step.
   auto check = [&](int sweep, bool uCurrent) {
-    const bool rIsZero = std::all_of(r.begin(), r.end(), [](double v) { return v == 0.0; });
-    if (rIsZero) {  // u = q without a pass over W
+    if (allZero(r)) {  // u = q without a pass over W
       u.assign(p.q, p.q + n);
     } else if (!uCurrent) {
       if (blocked) blocked->velocities(r, p.q, u);
@@ -442,7 +444,7 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   // contact opens, q_N >= 0 (r = 0 satisfies De Saxce's law iff
   // [u_N + mu ||u_T||, u_T] lies in the dual cone, i.e. u_N >= 0); otherwise
   // the first sweep moves r and the light test decides when to measure.
-  const bool fromZero = std::all_of(r.begin(), r.end(), [](double v) { return v == 0.0; });
+  const bool fromZero = allZero(r);
   bool zeroMaySolve = true;
   for (int c = 0; c < nc; ++c) zeroMaySolve = zeroMaySolve && p.q[3 * c] >= 0;
   double m = !fromZero || zeroMaySolve ? check(0, false) : std::numeric_limits<double>::max();
