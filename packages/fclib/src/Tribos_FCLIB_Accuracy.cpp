@@ -16,11 +16,14 @@ namespace FCLIB {
 namespace {
 
 // sqrt(a^2 + b^2): the plain formula where its squares can neither
-// overflow nor lose digits to underflow, std::hypot (several times slower)
-// elsewhere. The natural map takes two per contact.
+// overflow nor lose digits to underflow, and 0 for a = b = 0 (a contact
+// without tangential force or slip: most contacts of a multibody problem);
+// std::hypot (several times slower) elsewhere. The natural map takes two
+// per contact.
 inline double length2(double a, double b) {
   const double s = a * a + b * b;
-  return s < 1e300 && s > 1e-300 ? std::sqrt(s) : std::hypot(a, b);
+  if (s < 1e300 && s > 1e-300) return std::sqrt(s);
+  return a == 0.0 && b == 0.0 ? 0.0 : std::hypot(a, b);
 }
 
 }  // namespace

@@ -30,19 +30,6 @@ double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Entries of 'defaults' missing from 'given' are added (sublists recursively),
-// so a user list overrides only what it names.
-void fillDefaults(Teuchos::ParameterList& given, const Teuchos::ParameterList& defaults) {
-  for (auto it = defaults.begin(); it != defaults.end(); ++it) {
-    const std::string& name = defaults.name(it);
-    const auto& entry = defaults.entry(it);
-    if (entry.isList())
-      fillDefaults(given.sublist(name), Teuchos::getValue<Teuchos::ParameterList>(entry));
-    else if (!given.isParameter(name))
-      given.setEntry(name, entry);
-  }
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------- MassSolver
@@ -275,9 +262,18 @@ void kktResiduals(const std::vector<double>& r, const std::vector<double>& u, co
 
 // The friction list with the defaults filled in, and the tolerance the user
 // asked of the chosen method (as Tribos_Run.cpp does for FETI runs).
+// defaultSolverParameters(), made once: building a parameter list takes
+// microseconds, more than NSGS takes to solve a small problem.
+const Teuchos::ParameterList& cachedDefaults() {
+  static const Teuchos::ParameterList defaults = defaultSolverParameters();
+  return defaults;
+}
+
+// The "Solver" list: the defaults with the user's entries set over them
+// (sublists recursively), so a user list overrides only what it names.
 Teuchos::ParameterList solverList(const SolveOptions& options) {
-  Teuchos::ParameterList params(options.solverParams);
-  fillDefaults(params, defaultSolverParameters());
+  Teuchos::ParameterList params(cachedDefaults());
+  params.setParameters(options.solverParams);
   return params;
 }
 
@@ -493,6 +489,13 @@ RCP<const Map> serialMap(int n, const RCP<const Comm>& comm) {
 
 const char* kContext = "FCLIB solve";
 
+// Whether the registered algorithm 'name' solves Coulomb problems (FETI
+// duals or explicit ones).
+bool solvesCoulomb(const std::string& name) {
+  const auto& registry = Friction::frictionSolvers();
+  return registry.accepts(name, "Coulomb") || registry.accepts(name, Friction::kExplicitCoulomb);
+}
+
 }  // namespace
 
 // The method, its parameters and the result check, validated before any work.
@@ -500,11 +503,12 @@ Solver::Solver(const SolveOptions& options, const RCP<const Comm>& serialComm)
     : options_(options), comm_(serialComm) {
   if (comm_->getSize() != 1)
     throw Error("FCLIB solve: use a communicator of one rank (got " + std::to_string(comm_->getSize()) + ")");
-  const Teuchos::ParameterList params = solverList(options);
+  // Without user entries the defaults are the list (no copy).
+  Teuchos::ParameterList merged;
+  const Teuchos::ParameterList& params =
+      options.solverParams.numParams() == 0 ? cachedDefaults() : (merged = solverList(options));
   const auto& registry = Friction::frictionSolvers();
-  const auto coulomb = coulombAlgorithms();
-  if (registry.has(options.algorithm) &&
-      std::find(coulomb.begin(), coulomb.end(), registry.canonical(options.algorithm)) == coulomb.end())
+  if (registry.has(options.algorithm) && !solvesCoulomb(registry.canonical(options.algorithm)))
     throw Error("FCLIB solve: algorithm \"" + options.algorithm +
                 "\" does not solve Coulomb friction, the law of FCLIB problems; valid: " +
                 joinNames(coulombAlgorithms()));
@@ -546,10 +550,9 @@ void finish(double tolerance, double limit, const SolveOptions& options, SolveRe
 }  // namespace
 
 std::vector<std::string> coulombAlgorithms() {
-  const auto& registry = Friction::frictionSolvers();
   std::vector<std::string> out;
-  for (const auto& name : registry.names())
-    if (registry.accepts(name, "Coulomb") || registry.accepts(name, Friction::kExplicitCoulomb)) out.push_back(name);
+  for (const auto& name : Friction::frictionSolvers().names())
+    if (solvesCoulomb(name)) out.push_back(name);
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 
+#include "Tribos_ArrayScan.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Progress.hpp"
 #include "Tribos_SemismoothNewton.hpp"
@@ -330,16 +331,26 @@ RCP<const ParameterList> NonsmoothGaussSeidel::getValidParameters() const { retu
 
 NonsmoothGaussSeidel::NonsmoothGaussSeidel(const ParameterList& params) : params_(params) {
   params_.validateParametersAndSetDefaults(*validParameters());
+  readSettings();
 }
 
-double NonsmoothGaussSeidel::requestedTolerance() const { return params_.get<double>("Relative Tolerance"); }
+void NonsmoothGaussSeidel::readSettings() {
+  tol_ = params_.get<double>("Relative Tolerance");
+  maxSweeps_ = params_.get<int>("Maximum Iterations");
+  localTol_ = params_.get<double>("Local Tolerance");
+  localMaxIt_ = params_.get<int>("Local Maximum Iterations");
+}
+
+double NonsmoothGaussSeidel::requestedTolerance() const { return tol_; }
 
 void NonsmoothGaussSeidel::setRequestedTolerance(double tolerance) {
   setValidated(params_, *validParameters(), "Relative Tolerance", tolerance, "NSGS");
+  readSettings();
 }
 
 void NonsmoothGaussSeidel::setMaximumIterations(int iterations) {
   setValidated(params_, *validParameters(), "Maximum Iterations", iterations, "NSGS");
+  readSettings();
 }
 
 FrictionStatus NonsmoothGaussSeidel::solve(const ContactDual&, Vector&) {
@@ -354,10 +365,10 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   TRIBOS_REQUIRE(p.W.rows == n && p.W.cols == n && static_cast<int>(r.size()) == n,
                  "NSGS: W is " << p.W.rows << " x " << p.W.cols << " and r has " << r.size() << " entries for " << nc
                                << " contacts");
-  const double tol = params_.get<double>("Relative Tolerance");
-  const int maxSweeps = params_.get<int>("Maximum Iterations");
-  const double localTol = params_.get<double>("Local Tolerance");
-  const int localMaxIt = params_.get<int>("Local Maximum Iterations");
+  const double tol = tol_;
+  const int maxSweeps = maxSweeps_;
+  const double localTol = localTol_;
+  const int localMaxIt = localMaxIt_;
   const ContactRows rows(p.W, nc);
   // A contact's local solver, made when a sweep first finds it pressed.
   std::vector<std::optional<LocalCoulomb>> local(nc);
@@ -405,9 +416,6 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   };
 
   FrictionStatus st;
-  auto allZero = [](const std::vector<double>& v) {
-    return std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0; });
-  };
   // One check: u = W r + q (unless the last sweep left it so) and the
   // measure, recorded as a step.
   auto check = [&](int sweep, bool uCurrent) {

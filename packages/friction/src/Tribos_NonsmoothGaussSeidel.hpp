@@ -76,7 +76,12 @@ class NonsmoothGaussSeidel : public FrictionSolver {
   void setStoppingMeasure(Measure m) { measure_ = std::move(m); }
 
  private:
+  // The list's values, read once per change: a lookup by name costs more
+  // than a contact's step, and a solve of a small problem takes a few.
+  void readSettings();
   Teuchos::ParameterList params_;
+  double tol_ = 0, localTol_ = 0;
+  int maxSweeps_ = 0, localMaxIt_ = 0;
   Measure measure_;
 };
 
