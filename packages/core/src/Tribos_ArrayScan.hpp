@@ -1,5 +1,5 @@
 // Tribos_ArrayScan.hpp: the scans of a whole array that every input check
-// and every result check makes: are all entries finite (or zero), the largest
+// and every result check makes: are all entries finite, the largest
 // magnitude and the Euclidean norm (the scales residuals are measured
 // against).
 //
@@ -34,22 +34,6 @@ inline bool allFinite(const double* v, std::size_t n) {
 }
 
 inline bool allFinite(const std::vector<double>& v) { return allFinite(v.data(), v.size()); }
-
-// Whether every entry is 0 (a nan is not): the nonzero entries counted,
-// without an exit per entry.
-inline bool allZero(const double* v, std::size_t n) {
-  std::size_t n0 = 0, n1 = 0, n2 = 0, n3 = 0, k = 0;
-  for (; k + 3 < n; k += 4) {
-    n0 += v[k] != 0.0;
-    n1 += v[k + 1] != 0.0;
-    n2 += v[k + 2] != 0.0;
-    n3 += v[k + 3] != 0.0;
-  }
-  for (; k < n; ++k) n0 += v[k] != 0.0;
-  return n0 + n1 + n2 + n3 == 0;
-}
-
-inline bool allZero(const std::vector<double>& v) { return allZero(v.data(), v.size()); }
 
 // max |v_k| (0 for no entries). A nan entry is ignored (std::max keeps its
 // first argument), so callers that must not trust a nan test allFinite first.

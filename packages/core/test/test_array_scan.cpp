@@ -37,23 +37,6 @@ TEUCHOS_UNIT_TEST(ArrayScan, AllFiniteAtEveryPosition) {
     }
 }
 
-TEUCHOS_UNIT_TEST(ArrayScan, AllZeroAtEveryPosition) {
-  TEST_ASSERT(Tribos::allZero(std::vector<double>{}));
-  for (std::size_t n = 1; n <= 13; ++n) {
-    std::vector<double> zero(n, 0.0);
-    TEST_ASSERT(Tribos::allZero(zero));
-    for (std::size_t p = 0; p < n; ++p) {
-      std::vector<double> v = zero;
-      v[p] = -0.0;  // -0 == 0
-      TEST_ASSERT(Tribos::allZero(v));
-      for (double x : {Limits::denorm_min(), -1.0, Limits::quiet_NaN(), Limits::infinity()}) {
-        v[p] = x;
-        TEST_ASSERT(!Tribos::allZero(v));
-      }
-    }
-  }
-}
-
 TEUCHOS_UNIT_TEST(ArrayScan, NormsAtEveryPosition) {
   for (std::size_t n = 1; n <= 13; ++n)
     for (std::size_t p = 0; p < n; ++p) {

@@ -539,24 +539,27 @@ class Checker {
     if (A.col.size() != nnz || A.val.size() != nnz)
       bad(std::to_string(A.col.size()) + " column indices and " + std::to_string(A.val.size()) +
           " values for " + std::to_string(nnz) + " entries");
-    // c in [0, n) iff neither c nor (n - 1) - c, as unsigned 32-bit numbers,
-    // has its top bit set (n - 1 < 2^31).
+    // One pass over the column indices for two tests:
+    // - c in [0, n) iff neither c nor (n - 1) - c, as unsigned 32-bit
+    //   numbers, has its top bit set (n - 1 < 2^31);
+    // - columns strictly ascending within each row (the solvers search
+    //   rows): the steps down over the whole array, less those from one
+    //   row's last entry to the next row's first, are the steps down inside
+    //   rows.
     std::uint32_t signs = 0;
     const std::uint32_t last = static_cast<std::uint32_t>(A.n) - 1u;
-    for (std::size_t k = 0; k < nnz; ++k) {
+    int down = 0;
+    if (nnz > 0) signs = static_cast<std::uint32_t>(A.col[0]) | (last - static_cast<std::uint32_t>(A.col[0]));
+    for (std::size_t k = 1; k < nnz; ++k) {
       const std::uint32_t c = static_cast<std::uint32_t>(A.col[k]);
       signs |= c | (last - c);
+      down += A.col[k] <= A.col[k - 1];
     }
     const bool outside = A.n == 0 ? nnz > 0 : (signs >> 31) != 0;
     for (std::size_t k = 0; outside && k < nnz; ++k)
       if (A.col[k] < 0 || A.col[k] >= A.n)
         bad("column index " + std::to_string(A.col[k]) + " outside [0, " + std::to_string(A.n) +
             ")");
-    // Columns strictly ascending within each row (the solvers search rows):
-    // the steps down over the whole array, less those from one row's last
-    // entry to the next row's first, are the steps down inside rows.
-    int down = 0;
-    for (std::size_t k = 1; k < nnz; ++k) down += A.col[k] <= A.col[k - 1];
     for (int r = 1; r < A.m; ++r) {  // each boundary once (empty rows repeat it)
       const int k = A.rowptr[r];
       if (k > 0 && static_cast<std::size_t>(k) < nnz && k != A.rowptr[r - 1]) down -= A.col[k] <= A.col[k - 1];

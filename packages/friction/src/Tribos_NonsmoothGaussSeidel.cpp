@@ -8,7 +8,6 @@
 #include <memory>
 #include <optional>
 
-#include "Tribos_ArrayScan.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Progress.hpp"
 #include "Tribos_SemismoothNewton.hpp"
@@ -388,14 +387,21 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   // others, so u = W r + q without another pass over W (finite termination,
   // common when contacts open or stick). Returns whether r moved by at most
   // the tolerance relative to ||r||.
+  // The contacts whose force is not zero are counted: while there are none,
+  // q~_c = q_c and a contact's rows need not be read. From r = 0 the first
+  // sweep reads rows only from the first pressed contact on.
+  auto hasForce = [](const double* f) { return f[0] != 0.0 || f[1] != 0.0 || f[2] != 0.0; };
+  int forced = 0;
+  for (int c = 0; c < nc; ++c) forced += hasForce(&r[3 * c]);
   bool unchanged = false;
   auto sweepWith = [&](const auto& M, FrictionStatus& st) {
     double change = 0, size = 0;
     unchanged = true;
     u.resize(n);
     for (int c = 0; c < nc; ++c) {
-      double qt[3], rc[3] = {r[3 * c], r[3 * c + 1], r[3 * c + 2]};
-      M.offDiagonal(c, r.data(), p.q, qt);
+      double qt[3] = {p.q[3 * c], p.q[3 * c + 1], p.q[3 * c + 2]}, rc[3] = {r[3 * c], r[3 * c + 1], r[3 * c + 2]};
+      const bool hadForce = hasForce(rc);
+      if (forced > 0) M.offDiagonal(c, r.data(), p.q, qt);
       double* uc = &u[3 * c];
       uc[0] = qt[0], uc[1] = qt[1], uc[2] = qt[2];
       if (qt[0] >= 0) {  // take-off, exact: neither W_cc nor the local solver is needed
@@ -411,6 +417,7 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
         size += rc[a] * rc[a];
         r[3 * c + a] = rc[a];
       }
+      forced += int(hasForce(rc)) - int(hadForce);
     }
     return change <= tol * tol * size;
   };
@@ -419,7 +426,7 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   // One check: u = W r + q (unless the last sweep left it so) and the
   // measure, recorded as a step.
   auto check = [&](int sweep, bool uCurrent) {
-    if (allZero(r)) {  // u = q without a pass over W
+    if (forced == 0) {  // u = q without a pass over W
       u.assign(p.q, p.q + n);
     } else if (!uCurrent) {
       if (blocked) blocked->velocities(r, p.q, u);
@@ -452,7 +459,7 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   // contact opens, q_N >= 0 (r = 0 satisfies De Saxce's law iff
   // [u_N + mu ||u_T||, u_T] lies in the dual cone, i.e. u_N >= 0); otherwise
   // the first sweep moves r and the light test decides when to measure.
-  const bool fromZero = allZero(r);
+  const bool fromZero = forced == 0;
   bool zeroMaySolve = true;
   for (int c = 0; c < nc; ++c) zeroMaySolve = zeroMaySolve && p.q[3 * c] >= 0;
   double m = !fromZero || zeroMaySolve ? check(0, false) : std::numeric_limits<double>::max();

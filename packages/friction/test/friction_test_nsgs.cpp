@@ -69,6 +69,49 @@ std::vector<double> velocities(const LocalCsr& W, const std::vector<double>& r, 
   return u;
 }
 
+// A chain of 12 coupled contacts with a manufactured solution r*: contacts
+// c = 0, 3, 6, ... open, 1, 4, ... stuck, 2, 5, ... sliding.
+struct Chain {
+  LocalCsr W;
+  std::vector<double> q, mu, rStar;
+};
+
+Chain manufacturedChain() {
+  const int nc = 12, n = 3 * nc;
+  std::vector<double> A(n * n, 0.0);
+  for (int c = 0; c < nc; ++c) {
+    for (int a = 0; a < 3; ++a) A[(3 * c + a) * n + 3 * c + a] = 2.0 + 0.1 * a;
+    A[(3 * c) * n + 3 * c + 1] = A[(3 * c + 1) * n + 3 * c] = 0.2;
+    if (c + 1 < nc)
+      for (int a = 0; a < 3; ++a) A[(3 * c + a) * n + 3 * (c + 1) + a] = A[(3 * (c + 1) + a) * n + 3 * c + a] = -0.3;
+  }
+  const LocalCsr W = denseCsr(A, n);
+  std::vector<double> rStar(n, 0.0), uStar(n, 0.0), mu(nc);
+  for (int c = 0; c < nc; ++c) {
+    mu[c] = 0.2 + 0.05 * (c % 4);
+    const double angle = 0.7 * c;
+    switch (c % 3) {
+      case 0:  // open: r = 0, u_N > 0
+        uStar[3 * c] = 0.5 + 0.1 * c, uStar[3 * c + 1] = 0.3 * std::cos(angle), uStar[3 * c + 2] = 0.3 * std::sin(angle);
+        break;
+      case 1:  // stick: u = 0, r strictly inside the cone
+        rStar[3 * c] = 1.0 + 0.1 * c, rStar[3 * c + 1] = 0.5 * mu[c] * rStar[3 * c] * std::cos(angle),
+        rStar[3 * c + 2] = 0.5 * mu[c] * rStar[3 * c] * std::sin(angle);
+        break;
+      default: {  // slip: u_N = 0, r_T = -mu r_N u_T / ||u_T||
+        const double rN = 0.8 + 0.05 * c, uT = 0.4;
+        rStar[3 * c] = rN;
+        uStar[3 * c + 1] = uT * std::cos(angle), uStar[3 * c + 2] = uT * std::sin(angle);
+        rStar[3 * c + 1] = -mu[c] * rN * std::cos(angle), rStar[3 * c + 2] = -mu[c] * rN * std::sin(angle);
+      }
+    }
+  }
+  std::vector<double> Wr(n), q(n);
+  W.multiply(rStar.data(), Wr.data());
+  for (int i = 0; i < n; ++i) q[i] = uStar[i] - Wr[i];
+  return {W, q, mu, rStar};
+}
+
 }  // namespace
 
 TEUCHOS_UNIT_TEST(NSGS, OneContactClosedForm) {
@@ -115,38 +158,10 @@ TEUCHOS_UNIT_TEST(NSGS, OneContactFullBlockSlip) {
 // is manufactured: r* chosen contact by contact (open, stick, slip), u* with
 // matching complementarity, q = u* - W r*.
 TEUCHOS_UNIT_TEST(NSGS, ManufacturedChain) {
-  const int nc = 12, n = 3 * nc;
-  std::vector<double> A(n * n, 0.0);
-  for (int c = 0; c < nc; ++c) {
-    for (int a = 0; a < 3; ++a) A[(3 * c + a) * n + 3 * c + a] = 2.0 + 0.1 * a;
-    A[(3 * c) * n + 3 * c + 1] = A[(3 * c + 1) * n + 3 * c] = 0.2;
-    if (c + 1 < nc)
-      for (int a = 0; a < 3; ++a) A[(3 * c + a) * n + 3 * (c + 1) + a] = A[(3 * (c + 1) + a) * n + 3 * c + a] = -0.3;
-  }
-  const LocalCsr W = denseCsr(A, n);
-  std::vector<double> rStar(n, 0.0), uStar(n, 0.0), mu(nc);
-  for (int c = 0; c < nc; ++c) {
-    mu[c] = 0.2 + 0.05 * (c % 4);
-    const double angle = 0.7 * c;
-    switch (c % 3) {
-      case 0:  // open: r = 0, u_N > 0
-        uStar[3 * c] = 0.5 + 0.1 * c, uStar[3 * c + 1] = 0.3 * std::cos(angle), uStar[3 * c + 2] = 0.3 * std::sin(angle);
-        break;
-      case 1:  // stick: u = 0, r strictly inside the cone
-        rStar[3 * c] = 1.0 + 0.1 * c, rStar[3 * c + 1] = 0.5 * mu[c] * rStar[3 * c] * std::cos(angle),
-        rStar[3 * c + 2] = 0.5 * mu[c] * rStar[3 * c] * std::sin(angle);
-        break;
-      default: {  // slip: u_N = 0, r_T = -mu r_N u_T / ||u_T||
-        const double rN = 0.8 + 0.05 * c, uT = 0.4;
-        rStar[3 * c] = rN;
-        uStar[3 * c + 1] = uT * std::cos(angle), uStar[3 * c + 2] = uT * std::sin(angle);
-        rStar[3 * c + 1] = -mu[c] * rN * std::cos(angle), rStar[3 * c + 2] = -mu[c] * rN * std::sin(angle);
-      }
-    }
-  }
-  std::vector<double> Wr(n), q(n);
-  W.multiply(rStar.data(), Wr.data());
-  for (int i = 0; i < n; ++i) q[i] = uStar[i] - Wr[i];
+  const Chain chain = manufacturedChain();
+  const LocalCsr& W = chain.W;
+  const std::vector<double>&q = chain.q, &mu = chain.mu, &rStar = chain.rStar;
+  const int n = static_cast<int>(q.size());
   const Solved s = solveNsgs(W, q, mu, 1e-13);
   out << s.status.reason << ", sweeps " << s.status.outer_iterations << "\n";
   TEST_ASSERT(s.status.converged);
@@ -230,5 +245,39 @@ TEUCHOS_UNIT_TEST(NSGS, InitialMeasureOnlyWhenZeroCanSolve) {
     TEST_EQUALITY(measuredAfter.size(), size_t(1));
     TEST_EQUALITY(st.outer_iterations, qN >= 0 ? 0 : 2);  // open: r = 0 at once; pressed: a sweep, then the light test
     if (qN >= 0) TEST_ASSERT(r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0);
+  }
+}
+
+// Warm starts with forces where the solution has none, on one contact only,
+// or the solution itself: NSGS skips a contact's rows only while no contact
+// carries a force, a count kept through the sweeps as forces appear and
+// vanish. Every start must reach r* with u = W r + q.
+TEUCHOS_UNIT_TEST(NSGS, WarmStartsWithForcesAppearingAndVanishing) {
+  const Chain chain = manufacturedChain();
+  const int nc = static_cast<int>(chain.mu.size()), n = 3 * nc;
+  std::vector<std::pair<const char*, std::vector<double>>> starts;
+  starts.push_back({"zero", std::vector<double>(n, 0.0)});
+  std::vector<double> onOpen(n, 0.0);  // forces on the contacts that open, none elsewhere
+  for (int c = 0; c < nc; c += 3) onOpen[3 * c] = 1.0 + c, onOpen[3 * c + 1] = 0.1;
+  starts.push_back({"forces on the open contacts only", onOpen});
+  std::vector<double> onLast(n, 0.0);
+  onLast[3 * (nc - 1)] = 2.0;
+  starts.push_back({"a force on the last contact only", onLast});
+  starts.push_back({"the solution", chain.rStar});
+  for (const auto& [name, r0] : starts) {
+    Teuchos::ParameterList pl;
+    pl.set("Relative Tolerance", 1e-13);
+    NonsmoothGaussSeidel nsgs(pl);
+    std::vector<double> r = r0, u;
+    const auto st = nsgs.solve(
+        ExplicitCoulombProblem{chain.W.view(), chain.q.data(), chain.mu.data(), nc}, r, u);
+    const auto Wr = velocities(chain.W, r, chain.q);
+    double dr = 0, du = 0;
+    for (int i = 0; i < n; ++i)
+      dr = std::max(dr, std::abs(r[i] - chain.rStar[i])), du = std::max(du, std::abs(u[i] - Wr[i]));
+    out << name << ": " << st.reason << ", max |r - r*| " << dr << ", max |u - (W r + q)| " << du << "\n";
+    TEST_ASSERT(st.converged);
+    TEST_COMPARE(dr, <=, 1e-10);
+    TEST_COMPARE(du, <=, 1e-14);
   }
 }
