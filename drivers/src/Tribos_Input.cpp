@@ -4,6 +4,7 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -147,14 +148,15 @@ RCP<const ParameterList> validParameters() {
   mesh.set("Partitioner", "Structured", "Structured (a grid of boxes) or METIS",
            choice(tuple<std::string>("Structured", "METIS")));
   mesh.set("Subdomain Grid", Array<int>(Teuchos::tuple<int>(1, 1, 1)), "boxes along x, y, z (Structured)");
-  mesh.set("Subdomain Size", 0,
-           "cells along each edge of a subdomain (Structured box mesh): the Subdomain Grid becomes, along each "
-           "axis, the divisor of the cell count nearest to cells / Subdomain Size; 0 uses Subdomain Grid as given. "
+  mesh.set("Subdomain Size", "Grid",
+           "Grid (or 0): the Subdomain Grid (Subdomains for METIS) as given; H, a positive integer: subdomains of "
+           "about H cells per edge (the box: along each axis the divisor of the cell count nearest to cells / H, "
+           "Structured or METIS; a mesh file: METIS parts of about (H+1)^3 nodes, at least one per rank); Auto: "
+           "H = 4 while that gives at most 1000 subdomains, else 6, lowered until every rank has a subdomain. "
            "Small subdomains make the dense blocks of the explicit dual operator cheap (their memory grows like "
            "the size, their setup per dof like its cube) and the coarse problem (6 per subdomain) large; "
            "docs/scaling.md measures 4 as the fastest up to about 1000 subdomains (Tet4 bricks to 0.3 million "
-           "dofs) and 6 beyond (to 1.6 million)",
-           range<int>(0, 1000000));
+           "dofs) and 6 beyond (to 1.6 million)");
   mesh.set("Subdomains", 1, "number of subdomains (METIS)", range<int>(1, 1000000));
   ParameterList& mat = pl->sublist("Material", false, "isotropic linear elastic material");
   mat.set("Young's Modulus", 2.1e11, "E > 0");
@@ -234,13 +236,19 @@ void validateItems(ParameterList& collection, const ParameterList& item, const s
   }
 }
 
-// An int given where a double is expected is promoted (lossless); any other
-// mismatch names the parameter and both types.
+// An int given where a double is expected is promoted (lossless), and where
+// a string is expected written as text (a parameter that takes a number or
+// a word, e.g. Mesh/Subdomain Size); any other mismatch names the parameter
+// and both types.
 void promoteType(ParameterList& user, const std::string& name, const Teuchos::any& wanted, const std::string& full) {
   const Teuchos::any& given = user.getEntry(name).getAny();
   if (given.type() == wanted.type()) return;
   if (given.type() == typeid(int) && wanted.type() == typeid(double)) {
     user.set(name, static_cast<double>(user.get<int>(name)));
+    return;
+  }
+  if (given.type() == typeid(int) && wanted.type() == typeid(std::string)) {  // e.g. Mesh/Subdomain Size = 4
+    user.set(name, std::to_string(user.get<int>(name)));
     return;
   }
   if (given.type() == typeid(Array<int>) && wanted.type() == typeid(Array<double>)) {
@@ -480,9 +488,7 @@ void validate(ParameterList& params, const std::string& source) {
       const auto& r = mesh.get<Array<double>>(key);
       TRIBOS_REQUIRE(r.size() == 2 && r[1] > r[0], "\"Mesh/" << key << "\" must be {lo, hi} with lo < hi");
     }
-    TRIBOS_REQUIRE(mesh.get<int>("Subdomain Size") == 0 || meshFile(params).empty(),
-                   "\"Mesh/Subdomain Size\" sizes the subdomains of the box mesh; with \"Mesh/File\" set the "
-                   "number of subdomains (\"Mesh/Subdomains\", METIS)");
+    subdomainSizing(params);  // a complete value
     for (const char* key : {"Cells", "Subdomain Grid"}) {
       const auto& c = mesh.get<Array<int>>(key);
       TRIBOS_REQUIRE(c.size() == 3 && c[0] > 0 && c[1] > 0 && c[2] > 0, "\"Mesh/" << key << "\" must be 3 positive integers");
@@ -683,17 +689,61 @@ std::array<int, 3> subdomainGridOfSize(const std::array<int, 3>& cells, int H) {
   return grid;
 }
 
-Mesh::DecompositionSpec decompositionSpec(const ParameterList& params) {
+SubdomainSizing subdomainSizing(const ParameterList& params) {
+  const std::string text = params.sublist("Mesh").get<std::string>("Subdomain Size");
+  SubdomainSizing sizing;
+  if (text == "Grid" || text == "0") return sizing;
+  if (text == "Auto") {
+    sizing.kind = SubdomainSizing::Auto;
+    return sizing;
+  }
+  // A positive integer, parsed completely ("4x" and "4.5" are refused).
+  std::size_t end = 0;
+  long long H = 0;
+  try {
+    H = std::stoll(text, &end);
+  } catch (const std::exception&) {
+    end = 0;
+  }
+  TRIBOS_REQUIRE(end == text.size() && end > 0 && H >= 1 && H <= 1000000,
+                 "parameter \"Mesh/Subdomain Size\" = \"" << text
+                                                           << "\": expected Grid, Auto or a whole number of cells in "
+                                                              "[1, 1000000]");
+  sizing.kind = SubdomainSizing::Fixed;
+  sizing.H = static_cast<int>(H);
+  return sizing;
+}
+
+Mesh::DecompositionSpec decompositionSpec(const ParameterList& params, int numRanks, const MeshSize* meshSize) {
   const auto& m = params.sublist("Mesh");
   Mesh::DecompositionSpec dec;
   dec.partitioner = m.get<std::string>("Partitioner");
   const auto& g = m.get<Array<int>>("Subdomain Grid");
   dec.grid = {g[0], g[1], g[2]};
   dec.subdomains = m.get<int>("Subdomains");
-  const int H = m.get<int>("Subdomain Size");
-  if (H > 0 && meshFile(params).empty()) {
-    dec.grid = subdomainGridOfSize(boxSpec(params).cells, H);
+  const SubdomainSizing sizing = subdomainSizing(params);
+  if (sizing.kind != SubdomainSizing::Grid && meshFile(params).empty()) {
+    const auto cells = boxSpec(params).cells;
+    auto countOf = [&](int H) {
+      const auto grid = subdomainGridOfSize(cells, H);
+      return double(grid[0]) * grid[1] * grid[2];
+    };
+    dec.size = sizing.kind == SubdomainSizing::Fixed ? sizing.H : automaticSubdomainSize(countOf, numRanks);
+    dec.grid = subdomainGridOfSize(cells, dec.size);
     dec.subdomains = dec.grid[0] * dec.grid[1] * dec.grid[2];  // METIS: as many subdomains of about that size
+    return dec;
+  }
+  if (sizing.kind != SubdomainSizing::Grid) {
+    // METIS parts of about (H+1)^3 nodes, as the box's subdomains of size H;
+    // at least one per rank and at most one per cell. Unknown (0) until the
+    // file is read.
+    dec.partitioner = "METIS";
+    dec.subdomains = 0;
+    if (!meshSize) return dec;
+    auto countOf = [&](int H) { return std::max(1.0, std::round(meshSize->nodes / std::pow(H + 1.0, 3))); };
+    dec.size = sizing.kind == SubdomainSizing::Fixed ? sizing.H : automaticSubdomainSize(countOf, numRanks);
+    dec.subdomains = static_cast<int>(std::min(std::max(countOf(dec.size), double(numRanks)), meshSize->cells));
+    return dec;
   }
   // A grid of boxes splits a box only: a mesh from a file is split by METIS
   // into as many subdomains as the grid has boxes (so that an input file's

@@ -20,6 +20,13 @@
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
+
+// The size of a mesh that is not the box of the parameters (Mesh/File): the
+// counts of the mesh read.
+struct MeshSize {
+  double nodes = 0, cells = 0;
+};
+
 namespace Input {
 
 // The complete tree of valid parameters with defaults and documentation.
@@ -61,7 +68,32 @@ Mesh::Mesh mesh(const Teuchos::ParameterList& params, std::vector<std::string>* 
 // Every face the conditions and the contact name exists in `mesh`; throws
 // naming the parameter, the file and the names the mesh has.
 void checkMeshFaces(const Mesh::Mesh& mesh, const Teuchos::ParameterList& params);
-Mesh::DecompositionSpec decompositionSpec(const Teuchos::ParameterList& params);
+// Mesh/Subdomain Size: "Grid" (or 0: Subdomain Grid, or Subdomains for
+// METIS, as given), a positive H (subdomains of about H cells per edge: a
+// grid of boxes of the box mesh, or METIS parts of about (H+1)^3 nodes), or
+// "Auto" (H by automaticSubdomainSize). Throws naming the parameter.
+struct SubdomainSizing {
+  enum Kind { Grid, Fixed, Auto } kind = Grid;
+  int H = 0;  // Fixed only
+};
+SubdomainSizing subdomainSizing(const Teuchos::ParameterList& params);
+// The measured rule (docs/scaling.md, Tet4 bricks on 2 ranks): H = 4 is the
+// fastest while it gives at most kAutoSubdomains subdomains, H = 6 beyond
+// (the coarse problem, 6 rows per subdomain, grows and the dense blocks of 6
+// are still cheap); then H is lowered until there are at least numRanks
+// subdomains. subdomainsOfSize(H): the count size H gives.
+constexpr double kAutoSubdomains = 1000;
+template <class Count>
+int automaticSubdomainSize(const Count& subdomainsOfSize, int numRanks) {
+  int H = subdomainsOfSize(4) <= kAutoSubdomains ? 4 : 6;
+  while (H > 1 && subdomainsOfSize(H) < numRanks) --H;
+  return H;
+}
+// The decomposition of the run on numRanks ranks. A mesh file sized by
+// Subdomain Size needs the mesh's counts (*meshSize): without them its
+// METIS subdomain count is left 0 (not known before the file is read).
+Mesh::DecompositionSpec decompositionSpec(const Teuchos::ParameterList& params, int numRanks,
+                                          const MeshSize* meshSize = nullptr);
 // The grid of boxes along x, y, z whose boxes have about H cells per edge:
 // along each axis the divisor of the cell count nearest (in ratio) to cells / H.
 std::array<int, 3> subdomainGridOfSize(const std::array<int, 3>& cells, int H);

@@ -66,8 +66,9 @@ double newtonBytes(const Teuchos::ParameterList& params, int S, double b) {
   return 24.0 * n * n;
 }
 
-double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec, double nodes, int numRanks, int rank) {
-  const auto dec = Input::decompositionSpec(params);
+double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec, double nodes, int numRanks, int rank,
+                 const MeshSize* meshSize) {
+  const auto dec = Input::decompositionSpec(params, numRanks, meshSize);
   const int S = dec.partitioner == "METIS" ? dec.subdomains : dec.grid[0] * dec.grid[1] * dec.grid[2];
   const auto layout = Mesh::makeRankLayout(S, numRanks);
   const int mine = layout.firstSubdomain(rank + 1) - layout.firstSubdomain(rank);
@@ -143,7 +144,7 @@ MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks
   else if (m == Input::Method::Monolithic)
     e.solver = monolithicBytes(params, nodes, numRanks);
   else
-    e.solver = fetiBytes(params, spec, nodes, numRanks, rank);
+    e.solver = fetiBytes(params, spec, nodes, numRanks, rank, meshSize);
   if (verify && (m == Input::Method::Monolithic || m == Input::Method::FetiLinear)) e.solver += monolithicBytes(params, nodes, numRanks);
   return e;
 }

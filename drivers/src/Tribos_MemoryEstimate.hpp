@@ -25,6 +25,7 @@
 
 #include <string>
 
+#include "Tribos_Input.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
@@ -34,12 +35,6 @@ struct MemoryEstimate {
   double solver = 0;  // bytes: matrices, factors, dense blocks
   double total() const { return mesh + solver; }
   std::string describe() const;  // "1.2 GB (mesh 0.1 GB, solver 1.1 GB)"
-};
-
-// The size of a mesh that is not the box of the parameters (Mesh/File): the
-// counts of the mesh read.
-struct MeshSize {
-  double nodes = 0, cells = 0;
 };
 
 // This rank's estimate for the run `params` describes on numRanks ranks; the

@@ -204,8 +204,12 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
 // The decomposition of the run. The semismooth* method is serial: subdomains
 // only spread the output over the ranks, so a decomposition coarser than the
 // run is refined by METIS.
-Mesh::DecompositionSpec decompositionFor(const Teuchos::ParameterList& params, int numRanks) {
-  auto decomposition = Input::decompositionSpec(params);
+// A mesh file sized by Mesh/Subdomain Size is decomposed once its counts
+// are known (meshSize); before, its subdomain count is 0.
+Mesh::DecompositionSpec decompositionFor(const Teuchos::ParameterList& params, int numRanks,
+                                         const MeshSize* meshSize = nullptr) {
+  auto decomposition = Input::decompositionSpec(params, numRanks, meshSize);
+  if (requestedSubdomains(decomposition) == 0) return decomposition;
   if (Input::method(params) == Input::Method::Semismooth && requestedSubdomains(decomposition) < numRanks) {
     decomposition.partitioner = "METIS";
     decomposition.subdomains = numRanks;
@@ -475,6 +479,7 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
       const auto& contact = params.sublist("Contact");
       if (contact.get<bool>("Enabled") && contact.sublist("Pairs").numParams() == 0)
         Feti::faceNormal(mesh, contact.get<std::string>("Face"));
+      // (0: sized by Subdomain Size from the mesh, at most one per cell)
       TRIBOS_REQUIRE(requestedSubdomains(decomposition) <= mesh.numCells(),
                      "Mesh asks for " << requestedSubdomains(decomposition) << " subdomains but mesh file \""
                                       << Input::meshFile(params) << "\" has " << mesh.numCells() << " cells");
@@ -515,7 +520,8 @@ std::vector<Feti::ContactConstraint> contactConstraints(const Teuchos::Parameter
 void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& options, int numRanks) {
   const auto decomposition = decompositionFor(params, numRanks);
   const int S = requestedSubdomains(decomposition);
-  TRIBOS_REQUIRE(S >= numRanks, "the run has " << numRanks << " MPI ranks but Mesh asks for " << S
+  // S = 0: a mesh file sized by Subdomain Size, at least one subdomain per rank.
+  TRIBOS_REQUIRE(S >= numRanks || S == 0, "the run has " << numRanks << " MPI ranks but Mesh asks for " << S
                                                << " subdomains; use at most as many ranks as subdomains (Mesh/"
                                                << (decomposition.partitioner == "METIS" ? "Subdomains" : "Subdomain Grid") << ")");
   const auto spec = Input::boxSpec(params);
@@ -544,7 +550,7 @@ void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& optio
 
 RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) {
   const auto t0 = std::chrono::steady_clock::now();
-  const auto decomposition = decompositionFor(params, comm->getSize());
+  auto decomposition = decompositionFor(params, comm->getSize());
   // A mesh file is read first: the memory estimate needs its size, and the
   // names the input gives its faces are checked before any work.
   std::unique_ptr<Mesh::Mesh> fileMesh;
@@ -553,6 +559,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     Progress::stage("reading the mesh");
     fileMesh = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, *comm));
     fileMeshSize = {double(fileMesh->numNodes()), double(fileMesh->numCells())};
+    decomposition = decompositionFor(params, comm->getSize(), &fileMeshSize);
   }
   Progress::stage("memory estimate");
   const MemoryEstimate memory =
@@ -588,6 +595,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   summary.set("algorithm", type);
   summary.set("ranks", comm->getSize());
   summary.set("subdomains", disc.numSubdomains());
+  if (decomposition.size > 0) summary.set("subdomain_size", decomposition.size);
   summary.set("element", Mesh::cellTypeName(disc.mesh.type));
   if (fileMesh) summary.set("mesh_file", Input::meshFile(params));
   summary.set("nodes", disc.mesh.numNodes());

@@ -17,6 +17,7 @@ struct DecompositionSpec {
   std::string partitioner = "Structured";  // "Structured" | "METIS"
   std::array<int, 3> grid{1, 1, 1};         // for Structured
   int subdomains = 1;                       // for METIS
+  int size = 0;                             // H, when chosen by a subdomain size (cells per edge); else 0
 };
 
 // METIS partitions each body of the mesh on its own (partitionMetisByBody):
