@@ -4,7 +4,7 @@
 // the brick; the measured Auto rule (H = 4 while that gives at most 1000
 // subdomains, 6 beyond, lowered until every rank has a subdomain); and the
 // METIS count of a mesh file, (H+1)^3 nodes per subdomain, at least one per
-// rank and at most one per cell, unknown until the file is read.
+// rank and per body and at most one per cell, unknown until the file is read.
 #include <Teuchos_GlobalMPISession.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Teuchos_UnitTestRepository.hpp>
@@ -113,7 +113,7 @@ TEUCHOS_UNIT_TEST(SubdomainSize, MeshFileCountFromItsNodes) {
   struct Case {
     const char* size;
     double nodes, cells;
-    int ranks, H, subdomains;
+    int ranks, H, subdomains, bodies = 1;
   };
   const std::vector<Case> cases = {
       {"Auto", 125000, 7e5, 2, 4, 1000},  // 1000 parts of 5^3 nodes: still 4
@@ -121,9 +121,10 @@ TEUCHOS_UNIT_TEST(SubdomainSize, MeshFileCountFromItsNodes) {
       {"Auto", 100, 400, 3, 2, 4},        // fewer parts of 4 and 3 than ranks: 100 / 3^3
       {"4", 100, 400, 3, 4, 3},           // a given size: one part per rank at least
       {"1", 1000, 5, 1, 1, 5},            // at most one part per cell
+      {"20", 2000, 9000, 1, 20, 3, 3},    // 2000 / 21^3 rounds to 0: one part per body at least
   };
   for (const auto& c : cases) {
-    const MeshSize size{c.nodes, c.cells};
+    const MeshSize size{c.nodes, c.cells, c.bodies};
     const auto d = Input::decompositionSpec(*params(c.size), c.ranks, &size);
     out << c.size << ", " << c.nodes << " nodes, " << c.ranks << " rank(s): H " << d.size << ", "
         << d.subdomains << " METIS parts\n";

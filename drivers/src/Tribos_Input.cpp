@@ -735,14 +735,15 @@ Mesh::DecompositionSpec decompositionSpec(const ParameterList& params, int numRa
   }
   if (sizing.kind != SubdomainSizing::Grid) {
     // METIS parts of about (H+1)^3 nodes, as the box's subdomains of size H;
-    // at least one per rank and at most one per cell. Unknown (0) until the
-    // file is read.
+    // at least one per rank and per body (METIS cuts each body on its own),
+    // at most one per cell. Unknown (0) until the file is read.
     dec.partitioner = "METIS";
     dec.subdomains = 0;
     if (!meshSize) return dec;
     auto countOf = [&](int H) { return std::max(1.0, std::round(meshSize->nodes / std::pow(H + 1.0, 3))); };
     dec.size = sizing.kind == SubdomainSizing::Fixed ? sizing.H : automaticSubdomainSize(countOf, numRanks);
-    dec.subdomains = static_cast<int>(std::min(std::max(countOf(dec.size), double(numRanks)), meshSize->cells));
+    const double least = std::max(double(numRanks), double(meshSize->bodies));
+    dec.subdomains = static_cast<int>(std::min(std::max(countOf(dec.size), least), meshSize->cells));
     return dec;
   }
   // A grid of boxes splits a box only: a mesh from a file is split by METIS

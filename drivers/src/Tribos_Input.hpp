@@ -25,6 +25,7 @@ namespace Tribos {
 // counts of the mesh read.
 struct MeshSize {
   double nodes = 0, cells = 0;
+  int bodies = 1;
 };
 
 namespace Input {
@@ -91,7 +92,8 @@ int automaticSubdomainSize(const Count& subdomainsOfSize, int numRanks) {
 }
 // The decomposition of the run on numRanks ranks. A mesh file sized by
 // Subdomain Size needs the mesh's counts (*meshSize): without them its
-// METIS subdomain count is left 0 (not known before the file is read).
+// METIS subdomain count is left 0 (not known before the file is read); with
+// them, at least one subdomain per rank and per body, at most one per cell.
 Mesh::DecompositionSpec decompositionSpec(const Teuchos::ParameterList& params, int numRanks,
                                           const MeshSize* meshSize = nullptr);
 // The grid of boxes along x, y, z whose boxes have about H cells per edge:

@@ -479,10 +479,17 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
       const auto& contact = params.sublist("Contact");
       if (contact.get<bool>("Enabled") && contact.sublist("Pairs").numParams() == 0)
         Feti::faceNormal(mesh, contact.get<std::string>("Face"));
-      // (0: sized by Subdomain Size from the mesh, at most one per cell)
-      TRIBOS_REQUIRE(requestedSubdomains(decomposition) <= mesh.numCells(),
-                     "Mesh asks for " << requestedSubdomains(decomposition) << " subdomains but mesh file \""
-                                      << Input::meshFile(params) << "\" has " << mesh.numCells() << " cells");
+      // S = 0: sized by Subdomain Size from the mesh, at least one per
+      // body and at most one per cell.
+      const int S = requestedSubdomains(decomposition);
+      TRIBOS_REQUIRE(S <= mesh.numCells(), "Mesh asks for " << S << " subdomains but mesh file \""
+                                                            << Input::meshFile(params) << "\" has " << mesh.numCells()
+                                                            << " cells");
+      // METIS cuts each body on its own (partitionMetisByBody).
+      TRIBOS_REQUIRE(S == 0 || S >= mesh.numBodies(),
+                     "Mesh asks for " << S << " subdomain(s) but mesh file \"" << Input::meshFile(params) << "\" has "
+                                      << mesh.numBodies() << " bodies, each of which needs at least one of its own "
+                                      << "(Mesh/Subdomains, or Mesh/Subdomain Size)");
     } catch (const Error& e) {
       error = e.what();
     }
@@ -558,7 +565,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   if (!Input::meshFile(params).empty()) {
     Progress::stage("reading the mesh");
     fileMesh = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, *comm));
-    fileMeshSize = {double(fileMesh->numNodes()), double(fileMesh->numCells())};
+    fileMeshSize = {double(fileMesh->numNodes()), double(fileMesh->numCells()), fileMesh->numBodies()};
     decomposition = decompositionFor(params, comm->getSize(), &fileMeshSize);
   }
   Progress::stage("memory estimate");
