@@ -151,8 +151,9 @@ RCP<const ParameterList> validParameters() {
   mesh.set("Subdomain Size", "Grid",
            "Grid (or 0): the Subdomain Grid (Subdomains for METIS) as given; H, a positive integer: subdomains of "
            "about H cells per edge (the box: along each axis the divisor of the cell count nearest to cells / H, "
-           "Structured or METIS; a mesh file: METIS parts of about (H+1)^3 nodes, at least one per rank and per body); Auto: "
-           "H = 4 while that gives at most 1000 subdomains, else 6, lowered until every rank has a subdomain. "
+           "Structured or METIS; a mesh file: METIS parts of about (H+1)^3 nodes, at least one per rank and per "
+           "body); Auto: H = 4 while that gives at most 1000 subdomains, else 6, lowered until every rank has a "
+           "subdomain. "
            "Small subdomains make the dense blocks of the explicit dual operator cheap (their memory grows like "
            "the size, their setup per dof like its cube) and the coarse problem (6 per subdomain) large; "
            "docs/scaling.md measures 4 as the fastest up to about 1000 subdomains (Tet4 bricks to 0.3 million "

@@ -260,8 +260,6 @@ void kktResiduals(const std::vector<double>& r, const std::vector<double>& u, co
   rep.kktFriction = kkt.frictionLaw();
 }
 
-// The friction list with the defaults filled in, and the tolerance the user
-// asked of the chosen method (as Tribos_Run.cpp does for FETI runs).
 // defaultSolverParameters(), made once: building a parameter list takes
 // microseconds, more than NSGS takes to solve a small problem.
 const Teuchos::ParameterList& cachedDefaults() {
@@ -277,6 +275,8 @@ Teuchos::ParameterList solverList(const SolveOptions& options) {
   return params;
 }
 
+// The factor of the result check: the list's "Result Check Factor" (as
+// Tribos_Run.cpp reads it for FETI runs), else the options'.
 double resultCheckFactor(const Teuchos::ParameterList& params, const SolveOptions& options) {
   const double factor = params.isParameter("Result Check Factor") ? params.get<double>("Result Check Factor")
                                                                    : options.resultCheckFactor;
