@@ -699,19 +699,14 @@ SubdomainSizing subdomainSizing(const ParameterList& params) {
     return sizing;
   }
   // A positive integer, parsed completely ("4x" and "4.5" are refused).
-  std::size_t end = 0;
-  long long H = 0;
-  try {
-    H = std::stoll(text, &end);
-  } catch (const std::exception&) {
-    end = 0;
-  }
-  TRIBOS_REQUIRE(end == text.size() && end > 0 && H >= 1 && H <= 1000000,
+  int H = 0;
+  std::string why;
+  TRIBOS_REQUIRE(IO::parseInt(text, H, why) && H >= 1 && H <= 1000000,
                  "parameter \"Mesh/Subdomain Size\" = \"" << text
                                                            << "\": expected Grid, Auto or a whole number of cells in "
                                                               "[1, 1000000]");
   sizing.kind = SubdomainSizing::Fixed;
-  sizing.H = static_cast<int>(H);
+  sizing.H = H;
   return sizing;
 }
 

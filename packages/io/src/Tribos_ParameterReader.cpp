@@ -44,17 +44,6 @@ bool parseDouble(const std::string& text, double& v, std::string& why) {
   return true;
 }
 
-bool parseInt(const std::string& text, int& v, std::string& why) {
-  const std::string s = trim(text);
-  errno = 0;
-  char* end = nullptr;
-  const long long x = s.empty() ? 0 : std::strtoll(s.c_str(), &end, 10);
-  if (s.empty() || end != s.c_str() + s.size()) return why = "not an integer", false;
-  if (errno == ERANGE || x < INT_MIN || x > INT_MAX) return why = "an integer out of range", false;
-  v = static_cast<int>(x);
-  return true;
-}
-
 bool parseBool(const std::string& text, bool& v, std::string& why) {
   std::string s = trim(text);
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -150,6 +139,18 @@ std::string readText(const std::string& file) {
 }
 
 }  // namespace
+
+bool parseInt(const std::string& text, int& v, std::string& why) {
+  const std::string s = trim(text);
+  errno = 0;
+  char* end = nullptr;
+  const long long x = s.empty() ? 0 : std::strtoll(s.c_str(), &end, 10);
+  if (s.empty() || end != s.c_str() + s.size()) return why = "not an integer", false;
+  if (errno == ERANGE || x < INT_MIN || x > INT_MAX) return why = "an integer out of range", false;
+  v = static_cast<int>(x);
+  return true;
+}
+
 
 std::string parameterTypeName(const Teuchos::any& value) {
   if (value.type() == typeid(int)) return "int";

@@ -29,6 +29,11 @@ RCP<Teuchos::ParameterList> readParameterFile(const std::string& file);
 // for a type the reader does not support.
 std::string parameterTypeName(const Teuchos::any& value);
 
+// `text` (surrounding spaces allowed) as a whole int: false with the reason
+// ("not an integer", "an integer out of range") otherwise. The parser of
+// every int parameter, also for parameters that take a number or a word.
+bool parseInt(const std::string& text, int& v, std::string& why);
+
 // Parses `text` completely as a value of XML type `type` and sets it as
 // list[name]. `where` names the parameter in messages (e.g. the file and
 // path, or the --set argument). Throws Tribos::Error.
