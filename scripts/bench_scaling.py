@@ -4,7 +4,7 @@ from a hundred thousand to a few million degrees of freedom, side by side with
 the linear elastic solve of the same mesh by the monolithic Belos CG + MueLu
 path on the same ranks, and with the memory bandwidth of the machine.
 
-usage: scripts/bench_scaling.py [--levels 24 36 48] [--sizes 6] [--ranks 2]
+usage: scripts/bench_scaling.py [--levels 24 36 48] [--sizes 6 | Auto ...] [--ranks 2]
            [--tolerance 1e-4] [--precision Single] [--no-linear]
            [--set NAME=VALUE ...] [--tribos build/drivers/tribos]
 
@@ -67,10 +67,18 @@ def bandwidth(bench, ranks, precision):
     return rows["triad"] / ranks, rows[kernel] / ranks, out
 
 
+def subdomain_size(text):
+    """A Mesh/Subdomain Size value: a whole number >= 1 or Auto."""
+    if text == "Auto" or (text.isdigit() and int(text) >= 1):
+        return text
+    raise argparse.ArgumentTypeError("%r: expected a whole number >= 1 or Auto" % text)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--levels", type=int, nargs="+", default=[24, 36, 48])
-    ap.add_argument("--sizes", type=int, nargs="+", default=[6], help="Mesh/Subdomain Size values")
+    ap.add_argument("--sizes", type=subdomain_size, nargs="+", default=["6"],
+                    help="Mesh/Subdomain Size values: whole numbers or Auto (the H it chose is printed)")
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--tolerance", type=float, default=1e-4, help="Algorithm 2 relative tolerance")
     ap.add_argument("--precision", choices=["Double", "Single"], default="Single", help="dense block precision")
@@ -99,7 +107,7 @@ def main():
             linear = (wall, s)
         for H in args.sizes:
             cmd = mpirun(args.ranks) + [args.tribos, os.path.join(ROOT, "input/brick_coulomb_F03.xml"),
-                                        "--set", "Mesh/Level=%d" % level, "--set", "Mesh/Subdomain Size=%d" % H,
+                                        "--set", "Mesh/Level=%d" % level, "--set", "Mesh/Subdomain Size=" + H,
                                         "--set", "Solver/Algorithm 2/Relative Tolerance=%g" % args.tolerance,
                                         "--set", "Solver/FETI/Dense Block Precision=" + args.precision]
             for e in args.set:
@@ -111,8 +119,9 @@ def main():
             kkt = max(v for k, v in s["kkt"].items() if k not in ("displacement_scale", "force_scale", "tolerance", "limit"))
             ok = "" if s["converged"] else " (not converged)"
             lin = ("%.1f | %.2f" % (linear[0], wall / linear[0])) if linear else "- | -"
-            print("| %d | %d | %d | %d | %d | %d | %d | %.1f | %.1f | %d | %.1f | %.1f | %.1f | %.1f | %d | %d | %.1e%s | %.2f | %s |"
-                  % (level, H, mesh_dofs, s["primal_dofs"], s["dual_dofs"], s["subdomains"], s["coarse_size"],
+            chosen = "%d" % s["subdomain_size"] if H != "Auto" else "Auto: %d" % s["subdomain_size"]
+            print("| %d | %s | %d | %d | %d | %d | %d | %.1f | %.1f | %d | %.1f | %.1f | %.1f | %.1f | %d | %d | %.1e%s | %.2f | %s |"
+                  % (level, chosen, mesh_dofs, s["primal_dofs"], s["dual_dofs"], s["subdomains"], s["coarse_size"],
                      s["time_setup_s"], s["time_factor_s"], s["F_applications"], f_ms, bound_ms, s["time_solve_s"],
                      wall, s["outer_iterations"], s["n_A"], kkt, ok, s["peak_rss_mb"] / 1024.0, lin))
             sys.stdout.flush()
