@@ -85,16 +85,13 @@ double parseDouble(const std::string& flag, const std::string& text) {
 }
 
 int parseInt(const std::string& flag, const std::string& text) {
-  std::size_t used = 0;
-  long long value = 0;
-  try {
-    value = std::stoll(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  TRIBOS_REQUIRE(used == text.size() && used > 0, flag << ": \"" << text << "\" is not an integer");
+  int value = 0;
+  std::string why;
+  // (the parser of every int parameter: the whole text, within int's range)
+  TRIBOS_REQUIRE(IO::parseInt(text, value, why),
+                 flag << ": \"" << text << "\" is not an integer" << (why == "not an integer" ? "" : " of int's range"));
   TRIBOS_REQUIRE(value >= 1 && value <= 100000000, flag << ": " << value << " is out of range, expected 1 .. 100000000");
-  return static_cast<int>(value);
+  return value;
 }
 
 Args parse(int argc, char** argv) {
