@@ -72,22 +72,15 @@ struct Args {
 
 // The whole text must be a finite number (no trailing characters, no nan/inf).
 double parseDouble(const std::string& flag, const std::string& text) {
-  std::size_t used = 0;
   double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  TRIBOS_REQUIRE(used == text.size() && used > 0 && std::isfinite(value),
-                 flag << ": \"" << text << "\" is not a finite number");
+  std::string why;
+  TRIBOS_REQUIRE(IO::parseDouble(text, value, why), flag << ": \"" << text << "\" is not a finite number");
   return value;
 }
 
 int parseInt(const std::string& flag, const std::string& text) {
   int value = 0;
   std::string why;
-  // (the parser of every int parameter: the whole text, within int's range)
   TRIBOS_REQUIRE(IO::parseInt(text, value, why),
                  flag << ": \"" << text << "\" is not an integer" << (why == "not an integer" ? "" : " of int's range"));
   TRIBOS_REQUIRE(value >= 1 && value <= 100000000, flag << ": " << value << " is out of range, expected 1 .. 100000000");

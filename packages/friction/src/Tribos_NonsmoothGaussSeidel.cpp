@@ -364,15 +364,11 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   TRIBOS_REQUIRE(p.W.rows == n && p.W.cols == n && static_cast<int>(r.size()) == n,
                  "NSGS: W is " << p.W.rows << " x " << p.W.cols << " and r has " << r.size() << " entries for " << nc
                                << " contacts");
-  const double tol = tol_;
-  const int maxSweeps = maxSweeps_;
-  const double localTol = localTol_;
-  const int localMaxIt = localMaxIt_;
   const ContactRows rows(p.W, nc);
   // A contact's local solver, made when a sweep first finds it pressed.
   std::vector<std::optional<LocalCoulomb>> local(nc);
   auto localOf = [&](int c) -> const LocalCoulomb& {
-    if (!local[c]) local[c].emplace(rows.block(c), p.mu[c], localTol, localMaxIt);
+    if (!local[c]) local[c].emplace(rows.block(c), p.mu[c], localTol_, localMaxIt_);
     return *local[c];
   };
   // The blocked copy of W, made once a problem has taken kBlockedAfter sweeps.
@@ -381,18 +377,18 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   auto measure = [&](const std::vector<double>& rr, const std::vector<double>& uu) {
     return measure_ ? measure_(rr, uu) : alartCurnierMeasure(localOf, nc, rr, uu, p.q);
   };
-  // One sweep over the contacts with W read through M. It also writes each
-  // contact's velocity u_c = q~_c + W_cc r_c as it leaves the contact; when
-  // the sweep changed no force, every u_c saw the final forces of the
-  // others, so u = W r + q without another pass over W (finite termination,
-  // common when contacts open or stick). Returns whether r moved by at most
-  // the tolerance relative to ||r||.
   // The contacts whose force is not zero are counted: while there are none,
   // q~_c = q_c and a contact's rows need not be read. From r = 0 the first
   // sweep reads rows only from the first pressed contact on.
   auto hasForce = [](const double* f) { return f[0] != 0.0 || f[1] != 0.0 || f[2] != 0.0; };
   int forced = 0;
   for (int c = 0; c < nc; ++c) forced += hasForce(&r[3 * c]);
+  // One sweep over the contacts with W read through M. It also writes each
+  // contact's velocity u_c = q~_c + W_cc r_c as it leaves the contact; when
+  // the sweep changed no force, every u_c saw the final forces of the
+  // others, so u = W r + q without another pass over W (finite termination,
+  // common when contacts open or stick). Returns whether r moved by at most
+  // the tolerance relative to ||r||.
   bool unchanged = false;
   auto sweepWith = [&](const auto& M, FrictionStatus& st) {
     double change = 0, size = 0;
@@ -419,7 +415,7 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
       }
       forced += int(hasForce(rc)) - int(hadForce);
     }
-    return change <= tol * tol * size;
+    return change <= tol_ * tol_ * size;
   };
 
   FrictionStatus st;
@@ -449,7 +445,7 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
             << "\n";
     Progress::iteration([&] {
       return "NSGS sweep " + std::to_string(sweep) + ": measure " + Progress::sci(m) + ", tolerance " +
-             Progress::sci(tol);
+             Progress::sci(tol_);
     });
     return m;
   };
@@ -464,7 +460,7 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   for (int c = 0; c < nc; ++c) zeroMaySolve = zeroMaySolve && p.q[3 * c] >= 0;
   double m = !fromZero || zeroMaySolve ? check(0, false) : std::numeric_limits<double>::max();
   int sweep = 0, gap = 1, nextCheck = 1;
-  while (std::isfinite(m) && m > tol && sweep < maxSweeps) {
+  while (std::isfinite(m) && m > tol_ && sweep < maxSweeps_) {
     ++sweep;
     ++st.n_A;
     if (sweep == kBlockedAfter) blocked = std::make_unique<const BlockRows>(p.W, rows.blocks());
@@ -475,7 +471,7 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
     // kCheckEvery sweeps (with W singular, r may keep moving along ker W
     // while u has converged).
     constexpr int kCheckEvery = 64;
-    if ((settled && sweep >= nextCheck) || sweep % kCheckEvery == 0 || sweep == maxSweeps) {
+    if ((settled && sweep >= nextCheck) || sweep % kCheckEvery == 0 || sweep == maxSweeps_) {
       m = check(sweep, unchanged);
       nextCheck = sweep + gap;
       gap = std::min(2 * gap, 16);
@@ -485,11 +481,11 @@ FrictionStatus NonsmoothGaussSeidel::solve(const ExplicitCoulombProblem& p, std:
   st.slip_bound_change = 0;
   if (!std::isfinite(m)) {
     st.reason = "NSGS: the stopping measure is not finite after sweep " + std::to_string(sweep);
-  } else if (m <= tol) {
+  } else if (m <= tol_) {
     st.converged = true;
     st.reason = "NSGS: stopping measure below tolerance after " + std::to_string(sweep) + " sweep(s)";
   } else {
-    st.reason = "Maximum Iterations (" + std::to_string(maxSweeps) + ") of NSGS reached";
+    st.reason = "Maximum Iterations (" + std::to_string(maxSweeps_) + ") of NSGS reached";
   }
   return st;
 }

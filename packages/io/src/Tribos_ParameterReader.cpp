@@ -33,16 +33,6 @@ std::string trim(const std::string& s) {
 }
 
 // Every value parser returns false with a reason instead of guessing.
-bool parseDouble(const std::string& text, double& v, std::string& why) {
-  const std::string s = trim(text);
-  errno = 0;
-  char* end = nullptr;
-  v = s.empty() ? 0.0 : std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size()) return why = "not a number", false;
-  if (!std::isfinite(v) || (errno == ERANGE && std::abs(v) > 1.0))
-    return why = "not a finite number (NaN, infinity and values beyond 1.8e308 are refused)", false;
-  return true;
-}
 
 bool parseBool(const std::string& text, bool& v, std::string& why) {
   std::string s = trim(text);
@@ -139,6 +129,17 @@ std::string readText(const std::string& file) {
 }
 
 }  // namespace
+
+bool parseDouble(const std::string& text, double& v, std::string& why) {
+  const std::string s = trim(text);
+  errno = 0;
+  char* end = nullptr;
+  v = s.empty() ? 0.0 : std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size()) return why = "not a number", false;
+  if (!std::isfinite(v) || (errno == ERANGE && std::abs(v) > 1.0))
+    return why = "not a finite number (NaN, infinity and values beyond 1.8e308 are refused)", false;
+  return true;
+}
 
 bool parseInt(const std::string& text, int& v, std::string& why) {
   const std::string s = trim(text);

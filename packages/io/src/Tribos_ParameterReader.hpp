@@ -29,9 +29,12 @@ RCP<Teuchos::ParameterList> readParameterFile(const std::string& file);
 // for a type the reader does not support.
 std::string parameterTypeName(const Teuchos::any& value);
 
-// `text` (surrounding spaces allowed) as a whole int: false with the reason
-// ("not an integer", "an integer out of range") otherwise. The parser of
-// every int parameter, also for parameters that take a number or a word.
+// `text` (surrounding spaces allowed) as a whole finite double, or a whole
+// int: false with the reason ("not a number", "not a finite number ...",
+// "not an integer", "an integer out of range") otherwise. The parsers of
+// every double and int parameter, also for command-line options and for
+// parameters that take a number or a word.
+bool parseDouble(const std::string& text, double& v, std::string& why);
 bool parseInt(const std::string& text, int& v, std::string& why);
 
 // Parses `text` completely as a value of XML type `type` and sets it as
