@@ -101,7 +101,8 @@ Fem::SubdomainSystem assemble(const Grid& g, int s) {
   return sys;
 }
 
-// The rows of B, the same on every rank.
+// The rows of B, all of them on every rank (FetiProblem keeps each rank's
+// own; a larger application gives each rank only the rows of its subdomains).
 Feti::FetiConstraints constraints(const Grid& g) {
   const int n = g.n;
   Feti::FetiConstraints fc;

@@ -5,6 +5,9 @@
 //    meshConstraintRows, handed over as an application would) gives the same
 //    displacement, and the same on 1, 2 and 3 ranks (every rank count also
 //    solves on rank 0 alone and compares).
+//  - An application may give every rank all rows of B or only its own
+//    (those on its subdomains): the same displacement either way; a mix
+//    that would lose rows is refused.
 //  - Misuse is refused before any work, naming what is wrong: sizes, a
 //    kernel that is not one, ids out of order, rows naming missing nodes,
 //    contact rows off the plane's frame.
@@ -111,6 +114,38 @@ TEUCHOS_UNIT_TEST(ApplicationInterface, SameAsMeshPathOnEveryRankCount) {
   TEST_COMPARE(dr, <=, 1e-7);
 }
 
+// Every row of B, on every rank: the rows meshConstraintRows() gives each
+// rank of the run, concatenated.
+std::vector<Feti::DualRow> allRows(const Brick& b, const Handover& h, const Comm& comm) {
+  std::vector<Feti::DualRow> rows;
+  const auto mesh = Mesh::generateBox(b.spec);
+  const auto contact = Feti::contactConstraints(mesh, {Feti::planeBeyondFace(mesh, "zmin", b.contact.gap)});
+  for (int r = 0; r < comm.getSize(); ++r) {
+    const Mesh::Discretization disc(mesh, b.spec, b.dec, comm.getSize(), r);
+    const auto own = Feti::meshConstraintRows(disc, h.constraints.dirichlet, contact, "Orthonormal", false);
+    rows.insert(rows.end(), own.begin(), own.end());
+  }
+  return rows;
+}
+
+TEUCHOS_UNIT_TEST(ApplicationInterface, AllRowsOrOwnRowsAlike) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Brick b;
+  const auto disc = b.disc(*comm);
+  auto h = handover(b, disc);
+  const auto own = solveApplication(h, comm);
+  const size_t ownRows = h.constraints.rows.size();
+  h.constraints.rows = allRows(b, h, *comm);
+  out << "rows on this rank: own " << ownRows << ", all " << h.constraints.rows.size() << "\n";
+  if (comm->getSize() > 1) TEST_COMPARE(h.constraints.rows.size(), >, ownRows);
+  const auto all = solveApplication(h, comm);
+  TEST_ASSERT(own.verdict.converged);
+  TEST_ASSERT(all.verdict.converged);
+  const double d = Test::maxRelDiff(all.u, own.u);
+  out << "all rows vs own rows: " << d << "\n";
+  TEST_COMPARE(d, <=, 1e-12);
+}
+
 // Expects the application constructor to throw a message containing `what`.
 void refused(const std::string& label, const std::function<void(Handover&)>& spoil, const std::string& what,
              Teuchos::FancyOStream& out, bool& success) {
@@ -163,6 +198,19 @@ TEUCHOS_UNIT_TEST(ApplicationInterface, MisuseRefused) {
                 break;
               }
           }, "acts on a dof that Dirichlet row", out, success);
+  if (Tpetra::getDefaultComm()->getSize() > 1) {
+    // The last rank also given one row of rank 0 (not all rows): rank 0's
+    // row would be built twice or not at all.
+    const Brick b;
+    const auto comm = Tpetra::getDefaultComm();
+    const auto all = allRows(b, handover(b, b.disc(*comm)), *comm);
+    refused("a row on a rank that does not own it", [&](Handover& h) {
+              if (me == comm->getSize() - 1) h.constraints.rows.push_back(all.front());
+            }, "give every rank either all rows or only", out, success);
+    refused("all rows on rank 0, own rows elsewhere", [&](Handover& h) {
+              if (me == 0) h.constraints.rows = all;
+            }, "give every rank either all rows or only", out, success);
+  }
   // Reversed ids: a rank's subdomains out of order, or ranks out of order.
   refused("ids reversed", [&](Handover& h) { for (auto& s : h.systems) s.id = 2 - s.id; }, "ascending", out, success);
 }

@@ -42,6 +42,7 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::BodyMaterials& m
   }
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), all.data());
   const std::vector<double> v = problem.nodalDisplacement(u);  // collective
+  const auto constraints = Feti::gatherContactConstraints(problem.contactConstraints(), *comm);
 
   // The assembled stiffness on rank 0 alone (a communicator of one rank).
   const int rank = comm->getRank();
@@ -79,7 +80,7 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::BodyMaterials& m
   // (the force on the body, -B'lambda, is then H r).
   const double sign[3] = {-1.0, -1.0, 1.0};
   std::map<int, const Feti::ContactConstraint*> constraintOf;
-  for (const auto& c : problem.contactConstraints()) constraintOf[c.node] = &c;
+  for (const auto& c : constraints) constraintOf[c.node] = &c;
   rows.clear(), cols.clear(), vals.clear();
   int nc = 0;
   for (int node = 0; node < numNodes; ++node) {

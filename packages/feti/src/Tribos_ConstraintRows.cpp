@@ -107,11 +107,22 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
   std::vector<std::vector<int>> copies(mesh.numNodes());
   for (const auto& sd : disc.subdomains)
     for (int n : sd.nodes) copies[n].push_back(sd.id);
+  // A row belongs to the rank of its first copy's subdomain; only this
+  // rank's rows are kept (the dual numbering is made from the counts).
+  auto mine = [&](int subdomain) { return disc.layout.owner(subdomain) == disc.myRank; };
   std::vector<DualRow> rows;
+  auto emit = [&](const DualRow& r) {
+    if (mine(r.copies.front().subdomain)) rows.push_back(r);
+  };
   const bool orthonormal = gluing == "Orthonormal", full = gluing == "Full";
   for (int n = 0; n < mesh.numNodes(); ++n) {
     const auto& cp = copies[n];
     const int k = static_cast<int>(cp.size());
+    // Every row of node n has one of its copies first: none of them is on
+    // this rank when none of its subdomains is.
+    bool local = false;
+    for (int s : cp) local = local || mine(s);
+    if (!local) continue;
     for (int c = 0; c < 3; ++c) {
       DualRow r{DualRow::Gluing};
       r.node = n;
@@ -125,7 +136,7 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
         r.c = dirichlet->second;
         for (int i = 0; i < (orthonormal ? k : 1); ++i) {
           r.copies = {copyOf(cp[i], n, 1.0)};
-          rows.push_back(r);
+          emit(r);
         }
         if (orthonormal) continue;
         r.kind = DualRow::Gluing;
@@ -138,18 +149,20 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
           r.copies.clear();
           for (int i = 0; i < j; ++i) r.copies.push_back(copyOf(cp[i], n, s));
           r.copies.push_back(copyOf(cp[j], n, -j * s));
-          rows.push_back(r);
+          emit(r);
         }
         continue;
       }
       for (int i = 0; i + 1 < k; ++i)
         for (int j = i + 1; j < (full ? k : i + 2); ++j) {
           r.copies = {copyOf(cp[i], n, 1.0), copyOf(cp[j], n, -1.0)};
-          rows.push_back(r);
+          emit(r);
         }
     }
   }
   for (const ContactConstraint& cc : contact) {
+    // The rows of a contact node start at its first copy.
+    if (disc.nodeOwner()[cc.node] != disc.myRank) continue;
     // A direction is left out when Dirichlet conditions fix it at the slave
     // node and at every master node (then the row would repeat theirs). A
     // Dirichlet condition on the normal takes the node out of the contact
@@ -217,13 +230,12 @@ DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<
   const RCP<const Comm>& comm = primalMap->getComm();
   const int me = comm->getRank();
   DualConstraints dc;
-  GO first = 0;
-  size_t mine = 0;
-  for (const auto& r : rows) {
-    if (r.owner < me) ++first;
-    if (r.owner == me) ++mine;
-  }
-  dc.dualMap = rcp(new Map(static_cast<Tpetra::global_size_t>(rows.size()), mine, 0, comm));
+  // Rows are numbered rank after rank; the map follows from the counts, so
+  // each rank needs only its own rows.
+  long long mine = 0;
+  for (const auto& r : rows) mine += r.owner == me;
+  dc.dualMap = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(), static_cast<size_t>(mine), 0, comm));
+  const GO first = mine > 0 ? dc.dualMap->getMinGlobalIndex() : 0;
   size_t maxCopies = 1;
   for (const auto& r : rows) maxCopies = std::max(maxCopies, r.copies.size());
   dc.B = rcp(new CrsMatrix(dc.dualMap, 3 * maxCopies));

@@ -1,10 +1,11 @@
 // Tribos_ConstraintRows.hpp: the rows of FETI's constraint matrix
 //   B = [B_E; B_N; B_T],  B_E u = c_E (gluing, Dirichlet),  B_N u <= c_N (contact),
 // B_T the tangential rows of the contact nodes (friction).
-// A row is described once, on every rank, by the copies of the node it
-// touches; meshConstraintRows() derives them from a decomposed mesh,
-// assembleConstraints() makes this rank's part of B and c from any list of
-// rows (a mesh's or an application's).
+// A row is described by the copies of the node it touches and belongs to
+// the rank of its first copy's subdomain; meshConstraintRows() derives this
+// rank's rows from a decomposed mesh, assembleConstraints() makes this
+// rank's part of B and c from a list that holds at least them (a mesh's or
+// an application's), numbering the rows rank after rank from the counts.
 #pragma once
 
 #include <array>
@@ -37,7 +38,7 @@ struct RowCopy {
   double weight = 1.0;
 };
 
-// One row of B, described on every rank (cheap) so numbering is global.
+// One row of B.
 // Kinds: equality rows (Gluing, Dirichlet: B_E u = c), the contact row of a
 // node (Normal: u.dir <= c, c the gap) and its tangential rows (Tangent1,
 // Tangent2: friction directions, c = 0).
@@ -77,7 +78,8 @@ struct DualConstraints {
   LocalContact contact;
 };
 
-// The rows of a decomposed mesh: gluing of the subdomain copies of every node
+// This rank's rows of a decomposed mesh (those whose first copy is on one
+// of its subdomains; in the order of the node numbers): gluing of the subdomain copies of every node
 // ("Orthonormal", "Non-redundant" or "Full"), the Dirichlet conditions
 // (none when eliminateDirichlet: FETI-1 eliminates them in the subdomains)
 // and the contact constraints (contactConstraints()): per slave node a
@@ -97,9 +99,10 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
 void distributeRows(std::vector<DualRow>& rows, const std::vector<int>& owner);
 
 // This rank's part of B and c; primalOffsets[s]: the first global primal dof
-// of subdomain s. contact: the constraint of every node that has a Normal
-// row (the same list on every rank). Rows ordered by distributeRows().
-// Collective over the primal map's communicator.
+// of subdomain s. contact: the constraints of (at least) the nodes of this
+// rank's Normal and Bonded rows. Rows ordered by distributeRows(); rows of
+// other ranks in the list are passed over. Collective over the primal
+// map's communicator.
 DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<const Map>& primalMap,
                                     const std::vector<GO>& primalOffsets,
                                     const std::vector<ContactConstraint>& contact);

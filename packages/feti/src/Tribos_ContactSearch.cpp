@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "Tribos_AllGather.hpp"
 #include "Tribos_ConstraintRows.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Loads.hpp"
@@ -248,6 +249,34 @@ ContactPair planeBeyondFace(const Mesh::Mesh& mesh, const std::string& face, dou
   pair.planeNormal = {-n[0], -n[1], -n[2]};
   for (int d = 0; d < 3; ++d) pair.planePoint[d] = x0[d] + gap * n[d];
   return pair;
+}
+
+std::vector<ContactConstraint> gatherContactConstraints(const std::vector<ContactConstraint>& local, const Comm& comm) {
+  // Each constraint as doubles: node, pair, glued, normal, t1, t2, gap,
+  // area, the number of master nodes, then (node, weight) per master node.
+  std::vector<double> packed;
+  for (const auto& c : local) {
+    packed.insert(packed.end(), {double(c.node), double(c.pair), double(c.glued)});
+    for (const auto* v : {&c.normal, &c.t1, &c.t2}) packed.insert(packed.end(), v->begin(), v->end());
+    packed.insert(packed.end(), {c.gap, c.area, double(c.master.size())});
+    for (const auto& [node, weight] : c.master) packed.insert(packed.end(), {double(node), weight});
+  }
+  const std::vector<double> all = allGatherv(packed, comm);
+  std::vector<ContactConstraint> out;
+  for (size_t i = 0; i < all.size();) {
+    ContactConstraint c;
+    c.node = static_cast<int>(all[i++]);
+    c.pair = static_cast<int>(all[i++]);
+    c.glued = all[i++] != 0.0;
+    for (auto* v : {&c.normal, &c.t1, &c.t2})
+      for (double& x : *v) x = all[i++];
+    c.gap = all[i++];
+    c.area = all[i++];
+    const size_t masters = static_cast<size_t>(all[i++]);
+    for (size_t m = 0; m < masters; ++m, i += 2) c.master.emplace_back(static_cast<int>(all[i]), all[i + 1]);
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 std::array<double, 3> relativeDisplacement(const ContactConstraint& c, const std::vector<double>& u) {

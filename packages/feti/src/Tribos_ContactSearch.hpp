@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "Tribos_Mesh.hpp"
+#include "Tribos_Types.hpp"
 
 namespace Tribos {
 namespace Feti {
@@ -73,6 +74,10 @@ std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const 
 // (Contact/Face and Gap of a one-face run): every node of the face gets the
 // gap `gap` along the face's outward normal.
 ContactPair planeBeyondFace(const Mesh::Mesh& mesh, const std::string& face, double gap);
+
+// Every rank's constraints, in rank order, on every rank (for writers of a
+// global problem such as the FCLIB export). Collective.
+std::vector<ContactConstraint> gatherContactConstraints(const std::vector<ContactConstraint>& local, const Comm& comm);
 
 // The relative displacement (u_s - sum N_i u_i) of a constraint, from a
 // nodal displacement (3 per mesh node).

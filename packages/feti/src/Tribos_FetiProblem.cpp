@@ -12,6 +12,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
+#include <sstream>
 
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_AllGather.hpp"
@@ -282,6 +284,41 @@ void planeConstraints(FetiConstraints& fc) {
   }
 }
 
+// Drops the rows of other ranks (owners set by distributeRows) and the
+// contact constraints of nodes without a Normal or Bonded row here. An
+// application gives every rank either all rows or only its own; anything
+// else would lose rows (a row is built by its owner), so it is refused.
+void keepOwnRows(FetiConstraints& fc, const Comm& comm) {
+  const int me = comm.getRank();
+  const long long given = static_cast<long long>(fc.rows.size());
+  long long own = 0, total = 0;
+  for (const auto& r : fc.rows) own += r.owner == me;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, own, Teuchos::outArg(total));
+  const int replicated = given == total, local = given == own;
+  int everyReplicated = 0, everyLocal = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MIN, replicated, Teuchos::outArg(everyReplicated));
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MIN, local, Teuchos::outArg(everyLocal));
+  if (!everyReplicated && !everyLocal) {
+    std::ostringstream os;
+    os << "FetiProblem: rank " << me << " was given " << given << " rows of B, " << own << " of them its own, of "
+       << total << " rows in all; give every rank either all rows or only those whose first copy lies on one of "
+       << "its subdomains";
+    std::string error = agreeOnError(comm, replicated || local ? "" : os.str());
+    if (error.empty())
+      error = "FetiProblem: some ranks were given all rows of B and others only their own; give every rank either "
+              "all rows or only its own";
+    throw CollectiveError(error);
+  }
+  fc.rows.erase(std::remove_if(fc.rows.begin(), fc.rows.end(), [&](const DualRow& r) { return r.owner != me; }),
+                fc.rows.end());
+  std::set<int> contactNodes;
+  for (const auto& r : fc.rows)
+    if (r.kind != DualRow::Gluing && r.kind != DualRow::Dirichlet) contactNodes.insert(r.node);
+  fc.contact.erase(std::remove_if(fc.contact.begin(), fc.contact.end(),
+                                  [&](const ContactConstraint& c) { return !contactNodes.count(c.node); }),
+                   fc.contact.end());
+}
+
 }  // namespace
 
 RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
@@ -337,8 +374,10 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMateri
   checkOnEveryRank(*comm_, [&] {
     fc.rows = meshConstraintRows(disc, fc.dirichlet, contact, p.get<std::string>("Gluing"), feti1);
   });
-  fc.contact = contact;
-  bool hasContact = false;
+  // This rank keeps the constraints of its own contact nodes only.
+  for (const auto& c : contact)
+    if (disc.nodeOwner()[c.node] == disc.myRank) fc.contact.push_back(c);
+  bool hasContact = false;  // the same list on every rank
   for (const auto& c : contact) hasContact = hasContact || !c.glued;
   setup(std::move(fc), hasContact, p);
 }
@@ -369,8 +408,9 @@ FetiProblem::FetiProblem(std::vector<Fem::SubdomainSystem> localSubdomains, Feti
   checkOnEveryRank(*comm_, [&] {
     for (auto& sys : systems_) checkSubdomain(sys);
   });
-  bool contact = false;  // the rows are the same on every rank
-  for (const auto& r : constraints.rows) contact = contact || r.kind == DualRow::Normal;
+  int normalRows = 0, contact = 0;  // whether some rank was given a Normal row
+  for (const auto& r : constraints.rows) normalRows = normalRows || r.kind == DualRow::Normal;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, normalRows, Teuchos::outArg(contact));
   checkOnEveryRank(*comm_, [&] { planeConstraints(constraints); });
   setup(std::move(constraints), contact, p);
 }
@@ -405,8 +445,10 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
     for (const auto& sys : systems_)
       for (double v : sys.f) fv[k++] = v;
   }
-  if (!disc_) checkRows(fc.rows, primalOffsets_, fc);
+  // An application's rows may differ from rank to rank (each its own).
+  if (!disc_) checkOnEveryRank(*comm_, [&] { checkRows(fc.rows, primalOffsets_, fc); });
   distributeRows(fc.rows, numbering.owner);
+  keepOwnRows(fc, *comm_);
   constraints_ = assembleConstraints(fc.rows, primalMap_, primalOffsets_, fc.contact);
   contactConstraints_ = std::move(fc.contact);
   boundary_ = boundaryDofs();

@@ -42,14 +42,16 @@ namespace Feti {
 // besides them (see the second constructor): the rows of B and what the
 // result check needs to know of them.
 struct FetiConstraints {
-  // Every row of B (gluing, Dirichlet, contact normal and tangential rows),
-  // the same list on every rank; FetiProblem sets the owners.
+  // The rows of B (gluing, Dirichlet, contact normal and tangential rows):
+  // on every rank either all of them (the same list) or only its own, those
+  // whose first copy lies on one of its subdomains (no rank then holds the
+  // whole list). FetiProblem sets the owners and keeps its own rows.
   std::vector<DualRow> rows;
   // Global dof (3 node + c) -> prescribed value: the Dirichlet conditions
   // that rows of kind Dirichlet impose (the result check reads them here).
   std::map<long long, double> dirichlet;
-  // The constraint of every node that has a Normal row (the same list on
-  // every rank; Tribos_ContactSearch.hpp): its frame (the normal row's and
+  // The constraint of every node that has a Normal or Bonded row among the
+  // rows given on this rank (more are ignored; Tribos_ContactSearch.hpp): its frame (the normal row's and
   // the tangential rows' directions), gap (the normal row's c), master
   // nodes (global numbers; the rows' further copies) and contact area (a
   // Tresca slip bound traction times it is the node's slip bound). The
@@ -69,8 +71,10 @@ class FetiProblem {
   // Parameters: "Formulation" (TFETI | FETI-1), "Local Solver" (CHOLMOD | KLU2 | Tacho),
   // "Gluing" (Orthonormal | Non-redundant | Full), "Dual Operator" (Auto | Explicit | Implicit).
   // A decomposed mesh: assembles the subdomains of this rank (each body with
-  // its material) and derives the rows of B (meshConstraintRows) with the
-  // contact constraints of contactConstraints() (none: no contact).
+  // its material) and derives this rank's rows of B (meshConstraintRows)
+  // with the contact constraints `contact` of the free function
+  // contactConstraints() (none: no contact; the same list on every rank, of
+  // which the rank keeps those of its own contact nodes).
   FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
               const std::vector<ContactConstraint>& contact, const Teuchos::ParameterList& params,
               const RCP<const Comm>& comm);
@@ -94,7 +98,8 @@ class FetiProblem {
   const Vector& f() const { return *f_; }
   const Vector& c() const { return *constraints_.c; }
   const LocalContact& contact() const { return constraints_.contact; }
-  // The contact constraints of all contact nodes (every rank holds all).
+  // The contact constraints of this rank's contact nodes (those with a
+  // Normal or Bonded row here; gatherContactConstraints() for all).
   const std::vector<ContactConstraint>& contactConstraints() const { return contactConstraints_; }
   // Whether the problem is a contact problem (the mesh's contact is enabled,
   // or an application gave Normal rows), on every rank.
