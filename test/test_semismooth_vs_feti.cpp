@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     }
     const int i = it->second;
     for (int c = 0; c < 3; ++c) {
-      const double a = uNodes[3 * node + c], b = ss.u[3 * node + c];
+      const double a = uNodes.at(node)[c], b = ss.u[3 * node + c];
       du += (a - b) * (a - b);
       nu += b * b;
       // Tangential force on the body: FETI -(l1 t1 + l2 t2); semismooth* -lambdaT.

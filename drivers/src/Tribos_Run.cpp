@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "Tribos_AgreeOnError.hpp"
+#include "Tribos_ArrayScan.hpp"
 #include "Tribos_Assembly.hpp"
 #include "Tribos_ConstraintRows.hpp"
 #include "Tribos_ContactReduction.hpp"
@@ -53,13 +54,13 @@ double maxOverRanks(double v, const Comm& comm) {
 
 // Von Mises stress, subdomain and rank of every local cell.
 std::vector<IO::Field> cellFields(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
-                                  const std::vector<double>& u) {
+                                  const Fem::NodalVector& u) {
   IO::Field vm{"von_mises", 1, {}}, sub{"subdomain", 1, {}}, rank{"rank", 1, {}}, body{"body", 1, {}};
   const int npc = disc.mesh.nodesPerCell();
   for (int c : disc.localCells()) {
     std::vector<double> ue(3 * npc);
     for (int a = 0; a < npc; ++a)
-      for (int d = 0; d < 3; ++d) ue[3 * a + d] = u[3 * disc.mesh.cell(c)[a] + d];
+      for (int d = 0; d < 3; ++d) ue[3 * a + d] = u.at(disc.mesh.cell(c)[a])[d];
     vm.values.push_back(Fem::vonMises(
         Fem::cellStress(disc.mesh.type, Fem::cellCoordinates(disc.mesh, c), ue, mat.ofCell(disc.mesh, c))));
     sub.values.push_back(disc.cellPart[c]);
@@ -97,8 +98,9 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
 // Tresca friction (or frictionless contact) by the semismooth* Newton
 // method. Rank 0 solves (with "CG+MueLu" all ranks take part in the CG
 // solves); the contact results stay on rank 0, the displacement is
-// broadcast, and the KKT residuals of the result are computed as for FETI.
-std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Discretization& disc,
+// broadcast (held on every rank, owned by rank 0), and the KKT residuals of
+// the result are computed as for FETI.
+Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Discretization& disc,
                                     const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
                                     IO::Summary& summary, Contact::ContactNodeResults& nodes, bool& converged,
                                     Fem::ResultKKT& kkt, IO::IterationHistory& history) {
@@ -169,7 +171,10 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
   if (nres > 0) Teuchos::broadcast(comm, 0, nres, residuals.data());
   Fem::FrictionLaw friction;
   friction.kind = Fem::FrictionLaw::parse(law);  // Tresca or Frictionless (the input refuses Coulomb here)
-  kkt = Fem::resultKKT(u, Ku, f, Fem::constrainedDofs(disc.mesh, loads.dirichlet), friction, forces, comm);
+  const auto layout = Fem::NodalLayout::everyNode(disc.mesh.numNodes(), Teuchos::rcpFromRef(comm));
+  Fem::NodalVector uNodal(layout, u);
+  kkt = Fem::resultKKT(uNodal, Fem::NodalVector(layout, Ku), Fem::NodalVector(layout, f),
+                       Fem::constrainedDofs(disc.mesh, loads.dirichlet), friction, forces);
   long long counts[4] = {static_cast<long long>(nodes.nodes.size()), 0, 0, 0};
   for (int st : nodes.status) counts[1] += st > 0, counts[2] += st == 1, counts[3] += st == 2;
   Teuchos::broadcast(comm, 0, 4, counts);
@@ -198,7 +203,7 @@ std::vector<double> solveSemismooth(const Teuchos::ParameterList& params, const 
   summary.set("time_assembly_s", info[2]);
   summary.set("time_reduction_s", info[3]);
   summary.set("time_newton_s", info[4]);
-  return u;
+  return uNodal;
 }
 
 // The decomposition of the run. The semismooth* method is serial: subdomains
@@ -258,10 +263,12 @@ std::string setResultCheck(const Teuchos::ParameterList& params, double solverTo
 // work of the forces on it (at most dofs U P) representable: values beyond
 // double precision (a modulus of 1e-299, loads of 1e308) are a numerical
 // breakdown, not a result.
-void requireRepresentable(const std::vector<double>& u, const Fem::ResultKKT& kkt, const std::string& method) {
-  bool finite = std::isfinite(kkt.worst()) && std::isfinite(kkt.displacementScale) && std::isfinite(kkt.forceScale);
-  for (double v : u) finite = finite && std::isfinite(v);
-  const double work = double(u.size()) * kkt.displacementScale * kkt.forceScale;
+void requireRepresentable(const Fem::NodalVector& u, const Fem::ResultKKT& kkt, const std::string& method) {
+  int finiteHere = allFinite(u.values()), finiteEverywhere = 0;
+  Teuchos::reduceAll(*u.layout().comm(), Teuchos::REDUCE_MIN, finiteHere, Teuchos::outArg(finiteEverywhere));
+  const bool finite = finiteEverywhere && std::isfinite(kkt.worst()) && std::isfinite(kkt.displacementScale) &&
+                      std::isfinite(kkt.forceScale);
+  const double work = 3.0 * u.layout().numNodes() * kkt.displacementScale * kkt.forceScale;
   if (finite && std::isfinite(work)) return;
   std::ostringstream os;
   os << method << " produced " << (finite ? "values whose products overflow" : "non-finite values")
@@ -290,7 +297,7 @@ std::unique_ptr<IO::OutputDirectory> prepareOutput(const Teuchos::ParameterList&
 
 // What a solver leaves for the result check and the files.
 struct Solution {
-  std::vector<double> u;  // nodal displacement, replicated
+  Fem::NodalVector u;  // nodal displacement at the nodes this rank holds
   Contact::ContactNodeResults contactNodes;
   bool solverConverged = false;
   std::string solverReason;
@@ -314,6 +321,14 @@ IO::HistoryRow finalRow(long long iterations, double relativeResidual, long long
   return row;
 }
 
+// The nodes of this rank's subdomains. Collective.
+RCP<const Fem::NodalLayout> subdomainLayout(const std::vector<Fem::SubdomainSystem>& systems,
+                                            const RCP<const Comm>& comm) {
+  std::vector<int> held;
+  for (const auto& sys : systems) held.insert(held.end(), sys.nodes.begin(), sys.nodes.end());
+  return rcp(new Fem::NodalLayout(held, comm));
+}
+
 Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
                          const Fem::LoadCase& loads, const RCP<const Comm>& comm, IO::Summary& summary) {
   // K restricted to the free dofs is singular when a rigid motion is free.
@@ -330,7 +345,11 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
   const auto t1 = std::chrono::steady_clock::now();
   const auto res = system.solve(params.sublist("Solver").sublist("Monolithic"));
   sol.solveSeconds = seconds(t1);
-  sol.u = res.u;
+  // The rank keeps the nodes of its subdomains (the writer's cells).
+  std::vector<Fem::SubdomainSystem> systems;
+  for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s)
+    systems.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, loads));
+  sol.u = Fem::NodalVector(subdomainLayout(systems, comm), res.u);
   sol.solverConverged = res.converged;
   if (!res.converged) sol.solverReason = "monolithic CG: maximum iterations";
   summary.set("primal_dofs", static_cast<long long>(system.matrix()->getGlobalNumRows()));
@@ -341,12 +360,8 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
   sol.history.rows.push_back(finalRow(res.iterations, res.relativeResidual, res.iterations, sol.solveSeconds));
   // The residuals of the result from K and f assembled anew, as for FETI.
   Progress::stage("result check");
-  std::vector<Fem::SubdomainSystem> systems;
-  for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s)
-    systems.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, loads));
-  sol.kkt = Fem::resultKKT(sol.u, Fem::assembledProduct(systems, sol.u, *comm),
-                           Fem::assembledLoad(systems, disc.mesh.numNodes(), *comm), dirichlet, Fem::FrictionLaw{},
-                           {}, *comm);
+  sol.kkt = Fem::resultKKT(sol.u, Fem::assembledProduct(systems, sol.u), Fem::assembledLoad(systems, sol.u.layoutPtr()),
+                           dirichlet, Fem::FrictionLaw{}, {});
   return sol;
 }
 
@@ -454,7 +469,9 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   attributes.numbers = {{"converged", converged ? 1.0 : 0.0}, {"solver_converged", sol.solverConverged ? 1.0 : 0.0}};
   attributes.text = {{"problem", params.get<std::string>("Problem Name")},
                      {"stop_reason", stopReason}};
-  IO::ResultWriter(disc, comm).write(h5, base + ".h5", xmf, sol.u, {}, cellFields(disc, mat, sol.u), points, attributes);
+  std::vector<double> uOwned;
+  for (int n : disc.ownedNodes()) uOwned.insert(uOwned.end(), sol.u.at(n), sol.u.at(n) + 3);
+  IO::ResultWriter(disc, comm).write(h5, base + ".h5", xmf, uOwned, {}, cellFields(disc, mat, sol.u), points, attributes);
   Teuchos::ParameterList effective = params;
   effective.sublist("Output").set("Directory", dir.path());
   IO::writeTextFile(xml, Input::toXml(effective), comm);
@@ -639,18 +656,16 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     Progress::stage("monolithic reference solve (--verify)");
     Fem::MonolithicSystem reference(disc, mat, loads, comm);
     const auto ref = reference.solve(params.sublist("Solver").sublist("Monolithic"));
-    double diff = 0, norm = 0;
-    for (size_t i = 0; i < sol.u.size(); ++i)
-      diff += (sol.u[i] - ref.u[i]) * (sol.u[i] - ref.u[i]), norm += ref.u[i] * ref.u[i];
-    summary.set("verify_rel_diff_u", std::sqrt(diff / std::max(norm, 1e-300)));
+    Fem::NodalVector difference(sol.u.layoutPtr(), ref.u);
+    const double norm = difference.norm2();
+    for (size_t i = 0; i < difference.values().size(); ++i) difference.values()[i] -= sol.u.values()[i];
+    summary.set("verify_rel_diff_u", difference.norm2() / std::max(norm, 1e-300));
   }
   // Setup: from the start to a solver ready to iterate; solve: its iterations.
   const double meshSeconds = std::chrono::duration<double>(t1 - t0).count();
   summary.set("time_setup_s", maxOverRanks(meshSeconds + sol.setupSeconds, *comm));
   summary.set("time_solve_s", maxOverRanks(sol.solveSeconds, *comm));
-  double maxU = 0;
-  for (double v : sol.u) maxU = std::max(maxU, std::abs(v));
-  summary.set("max_abs_displacement", maxU);
+  summary.set("max_abs_displacement", sol.u.normInf());
   summary.set("memory_estimate_mb", maxOverRanks(memory.total() / (1024.0 * 1024.0), *comm));
   summary.set("peak_rss_mb", maxOverRanks(IO::peakRssMb(), *comm));
   if (outputDir) writeResult(params, *outputDir, disc, mat, sol, converged, stopReason, summary, comm);

@@ -14,6 +14,7 @@
 // Checks (exit 1 if one fails): the solve converged (its KKT residuals, node
 // by node, within the result check), and the displacement equals Tribos' own
 // solve of the same block from its mesh generator to 1e-6.
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_ParameterList.hpp>
 #include <Tpetra_Core.hpp>
 
@@ -183,7 +184,8 @@ std::vector<double> referenceSolve(int n, const RCP<const Comm>& comm, std::vect
   auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, contact, Teuchos::ParameterList(), comm));
   Contact::FrictionSpec friction{"Coulomb", kFriction, 0.0};
   coords = disc.mesh.coords;
-  return Contact::solveFeti(problem, friction, solverParameters()).u;
+  // Every node on every rank: the comparison below looks nodes up by position.
+  return Contact::solveFeti(problem, friction, solverParameters()).u.gathered();
 }
 
 }  // namespace
@@ -212,17 +214,25 @@ int main(int argc, char** argv) {
     std::vector<Fem::Point> coords;
     const auto ref = referenceSolve(n, comm, coords);
     // The reference numbers nodes as the application does (x fastest);
-    // compare by coordinates all the same.
-    double diff = 0, scale = 0;
+    // compare by coordinates all the same. r.u holds the displacement of
+    // the nodes of this rank's subdomains; each rank compares the nodes it
+    // owns, and the largest difference is taken over the ranks.
+    std::map<int, size_t> referenceNode;  // application node -> reference node
     for (size_t m = 0; m < coords.size(); ++m) {
       const auto& x = coords[m];
-      const int node = g.node(int(std::lround(x[0] * n)), int(std::lround(x[1] * n)), int(std::lround(x[2] * n)));
+      referenceNode[g.node(int(std::lround(x[0] * n)), int(std::lround(x[1] * n)), int(std::lround(x[2] * n)))] = m;
+    }
+    double local[2] = {0, 0}, global[2];  // max |u - ref|, max |ref|
+    for (int i = 0; i < r.u.layout().numOwned(); ++i) {
+      const int node = r.u.layout().nodes()[i];
+      const size_t m = referenceNode.at(node);
       for (int c = 0; c < 3; ++c) {
-        diff = std::max(diff, std::abs(r.u[3 * node + c] - ref[3 * m + c]));
-        scale = std::max(scale, std::abs(ref[3 * m + c]));
+        local[0] = std::max(local[0], std::abs(r.u.at(node)[c] - ref[3 * m + c]));
+        local[1] = std::max(local[1], std::abs(ref[3 * m + c]));
       }
     }
-    const double rel = diff / scale;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 2, local, global);
+    const double rel = global[0] / global[1];
     if (root) {
       std::cout << "embed: " << problem->primalMap()->getGlobalNumElements() << " primal dofs, "
                 << problem->dualMap()->getGlobalNumElements() << " dual, " << r.counts.nodes << " contact nodes ("

@@ -361,7 +361,7 @@ std::vector<Fem::ContactNodeForce> bondedForces(const Feti::FetiProblem& p, cons
   return out;
 }
 
-ContactNodeResults contactResults(const Feti::FetiProblem& p, const std::vector<double>& uNodal, const Vector& lambda,
+ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVector& uNodal, const Vector& lambda,
                                   const std::vector<double>& g, const PairFriction& friction, ContactCounts& counts) {
   const Comm& comm = *p.comm();
   const auto& lc = p.contact();
@@ -407,12 +407,11 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const std::vector<
   return out;
 }
 
-Fem::ResultKKT resultKKT(const Feti::FetiProblem& p, const std::vector<double>& uNodal, const ContactNodeResults& contact,
+Fem::ResultKKT resultKKT(const Feti::FetiProblem& p, const Fem::NodalVector& uNodal, const ContactNodeResults& contact,
                          const PairFriction& friction) {
   Fem::FrictionLaw law;
   law.kind = Fem::FrictionLaw::parse(runLaw(friction));
-  return Fem::resultKKT(uNodal, p.assembledProduct(uNodal), p.assembledLoad(), p.dirichlet(), law, contact.forces(),
-                        *p.comm());
+  return Fem::resultKKT(uNodal, p.assembledProduct(uNodal), p.assembledLoad(), p.dirichlet(), law, contact.forces());
 }
 
 }  // namespace Contact

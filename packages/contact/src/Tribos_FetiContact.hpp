@@ -128,7 +128,7 @@ struct ContactNodeResults {
 // The local contact nodes of the result: forces from lambda, slip and gap
 // from the written (nodal, single-valued) displacement. g: the slip bound of
 // the solution (local, one per contact node), empty for frictionless.
-ContactNodeResults contactResults(const Feti::FetiProblem& problem, const std::vector<double>& uNodal,
+ContactNodeResults contactResults(const Feti::FetiProblem& problem, const Fem::NodalVector& uNodal,
                                   const Vector& lambda, const std::vector<double>& g, const PairFriction& friction,
                                   ContactCounts& counts);
 
@@ -137,7 +137,7 @@ std::vector<Fem::ContactNodeForce> bondedForces(const Feti::FetiProblem& problem
 
 // The KKT residuals (Fem::resultKKT) of the written result: the nodal
 // displacement and the contact forces (none for a problem without contact).
-Fem::ResultKKT resultKKT(const Feti::FetiProblem& problem, const std::vector<double>& uNodal,
+Fem::ResultKKT resultKKT(const Feti::FetiProblem& problem, const Fem::NodalVector& uNodal,
                          const ContactNodeResults& contact, const PairFriction& friction);
 
 }  // namespace Contact

@@ -26,7 +26,7 @@ namespace Tribos {
 namespace Contact {
 
 struct FetiSolveResult {
-  std::vector<double> u;        // nodal displacement, 3 per global node, on every rank
+  Fem::NodalVector u;           // nodal displacement at the nodes this rank holds (problem->nodalLayout())
   RCP<Vector> lambda;           // the multipliers of B (this rank's rows)
   RCP<Vector> primal;           // the subdomain displacements (FETI's primal vector)
   ContactNodeResults contact;   // this rank's contact nodes (empty without contact)

@@ -92,9 +92,10 @@ Result solve(const Setup& s, const RCP<const Comm>& comm) {
   r.status = sol.status;
   const auto& lambda = sol.lambda;
   const auto& u = sol.u;
-  r.u = problem->nodalDisplacement(*u);
-  const auto nodes = Contact::contactResults(*problem, r.u, *lambda, r.status.slipBound, {fs}, r.counts);
-  r.kkt = Contact::resultKKT(*problem, r.u, nodes, {fs});
+  const auto uNodal = problem->nodalDisplacement(*u);
+  const auto nodes = Contact::contactResults(*problem, uNodal, *lambda, r.status.slipBound, {fs}, r.counts);
+  r.kkt = Contact::resultKKT(*problem, uNodal, nodes, {fs});
+  r.u = uNodal.gathered();  // every node on every rank, to compare runs
   r.normalForce.assign(disc.mesh.numNodes(), 0.0);
   for (size_t k = 0; k < nodes.nodes.size(); ++k) r.normalForce[nodes.nodes[k]] = nodes.normalForce[k];
   const std::vector<double> mine(r.normalForce);

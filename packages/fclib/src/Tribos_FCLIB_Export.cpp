@@ -41,7 +41,7 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::BodyMaterials& m
     }
   }
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), all.data());
-  const std::vector<double> v = problem.nodalDisplacement(u);  // collective
+  const std::vector<double> v = problem.nodalDisplacement(u).gathered();  // collective: the FCLIB problem is global
   const auto constraints = Feti::gatherContactConstraints(problem.contactConstraints(), *comm);
 
   // The assembled stiffness on rank 0 alone (a communicator of one rank).

@@ -73,7 +73,7 @@ const Exported& exported() {
     const auto sol = cp.solve("Algorithm2", tight);
     e.converged = sol.status.converged;
     e.reason = sol.status.reason;
-    e.uFeti = problem->nodalDisplacement(*sol.u);
+    e.uFeti = problem->nodalDisplacement(*sol.u).gathered();
 
     const std::string path = fclib_test::scratchPath("export", "brick.hdf5");
     FCLIB::Info info{"Tribos brick", "Tet4 6x2x2, 3 subdomains, clamped xmin, contact zmin, Coulomb F = 0.3",

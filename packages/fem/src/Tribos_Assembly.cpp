@@ -121,31 +121,29 @@ std::vector<double> globalLoadVector(const Mesh::Mesh& mesh, const LoadCase& loa
   return f;
 }
 
-std::vector<double> assembledProduct(const std::vector<SubdomainSystem>& systems, const std::vector<double>& uNodal,
-                                     const Comm& comm) {
-  std::vector<double> Ku(uNodal.size(), 0.0), us, Kus;
+NodalVector assembledProduct(const std::vector<SubdomainSystem>& systems, const NodalVector& u) {
+  NodalVector Ku(u.layoutPtr());
+  std::vector<double> us, Kus;
   for (const auto& sys : systems) {
     us.assign(sys.numDofs(), 0.0);
     Kus.assign(sys.numDofs(), 0.0);
     for (size_t a = 0; a < sys.nodes.size(); ++a)
-      for (int c = 0; c < 3; ++c) us[3 * a + c] = uNodal[3 * static_cast<size_t>(sys.nodes[a]) + c];
+      for (int c = 0; c < 3; ++c) us[3 * a + c] = u.at(sys.nodes[a])[c];
     sys.K.multiply(us.data(), Kus.data());
     for (size_t a = 0; a < sys.nodes.size(); ++a)
-      for (int c = 0; c < 3; ++c) Ku[3 * static_cast<size_t>(sys.nodes[a]) + c] += Kus[3 * a + c];
+      for (int c = 0; c < 3; ++c) Ku.at(sys.nodes[a])[c] += Kus[3 * a + c];
   }
-  std::vector<double> sum(Ku.size());
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(Ku.size()), Ku.data(), sum.data());
-  return sum;
+  u.layout().sumOverHolders(Ku.values());
+  return Ku;
 }
 
-std::vector<double> assembledLoad(const std::vector<SubdomainSystem>& systems, int numNodes, const Comm& comm) {
-  std::vector<double> f(3 * static_cast<size_t>(numNodes), 0.0);
+NodalVector assembledLoad(const std::vector<SubdomainSystem>& systems, const RCP<const NodalLayout>& layout) {
+  NodalVector f(layout);
   for (const auto& sys : systems)
     for (size_t a = 0; a < sys.nodes.size(); ++a)
-      for (int c = 0; c < 3; ++c) f[3 * static_cast<size_t>(sys.nodes[a]) + c] += sys.f[3 * a + c];
-  std::vector<double> sum(f.size());
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(f.size()), f.data(), sum.data());
-  return sum;
+      for (int c = 0; c < 3; ++c) f.at(sys.nodes[a])[c] += sys.f[3 * a + c];
+  layout->sumOverHolders(f.values());
+  return f;
 }
 
 }  // namespace Fem

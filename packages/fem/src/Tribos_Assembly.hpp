@@ -7,6 +7,7 @@
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_LocalCsr.hpp"
 #include "Tribos_Loads.hpp"
+#include "Tribos_NodalVector.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
@@ -33,12 +34,11 @@ std::vector<Point> cellCoordinates(const Mesh::Mesh& mesh, int cell);
 // K_s as a Tpetra::CrsMatrix on the given (typically serial) communicator.
 RCP<CrsMatrix> toTpetra(const LocalCsr& A, const RCP<const Comm>& comm);
 
-// K u and f of the whole mesh, summed from the subdomain systems each rank
-// holds; every rank gets the full nodal vectors (3 numNodes). uNodal is the
-// replicated nodal displacement. Collective over comm.
-std::vector<double> assembledProduct(const std::vector<SubdomainSystem>& systems, const std::vector<double>& uNodal,
-                                     const Comm& comm);
-std::vector<double> assembledLoad(const std::vector<SubdomainSystem>& systems, int numNodes, const Comm& comm);
+// K u and f of the whole mesh, summed over the subdomain systems of all
+// ranks, at the nodes of u's layout (which must hold the nodes of this
+// rank's systems). Collective.
+NodalVector assembledProduct(const std::vector<SubdomainSystem>& systems, const NodalVector& u);
+NodalVector assembledLoad(const std::vector<SubdomainSystem>& systems, const RCP<const NodalLayout>& layout);
 
 // Global load vector (3 numNodes), every rank computes it in full.
 std::vector<double> globalLoadVector(const Mesh::Mesh& mesh, const LoadCase& loads);

@@ -22,6 +22,12 @@ double maxOver(double v, const Comm& comm) {
   return out;
 }
 
+double sumOver(double v, const Comm& comm) {
+  double out = v;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, v, Teuchos::outArg(out));
+  return out;
+}
+
 double dot(const std::array<double, 3>& a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 }  // namespace
@@ -50,48 +56,50 @@ double ResultKKT::worst(std::string* which) const {
   return best.second;
 }
 
-std::vector<double> contactForceVector(int numNodes, const std::vector<ContactNodeForce>& contact, const Comm& comm) {
-  std::vector<double> phi(3 * static_cast<size_t>(numNodes), 0.0), out(phi.size(), 0.0);
+NodalVector contactForces(const RCP<const NodalLayout>& layout, const std::vector<ContactNodeForce>& contact) {
+  NodalVector phi(layout);
   for (const auto& c : contact)
     for (int d = 0; d < 3; ++d) {
       const double force = -c.normalForce * c.normal[d] + c.tangentialForce[d];
-      phi[3 * static_cast<size_t>(c.node) + d] += force;
-      for (const auto& [node, weight] : c.master) phi[3 * static_cast<size_t>(node) + d] -= weight * force;
+      phi.at(c.node)[d] += force;
+      for (const auto& [node, weight] : c.master) phi.at(node)[d] -= weight * force;
     }
-  if (!phi.empty())
-    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(phi.size()), phi.data(), out.data());
-  return out;
+  layout->sumOverHolders(phi.values());
+  return phi;
 }
 
-ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku, const std::vector<double>& f,
+ResultKKT resultKKT(const NodalVector& u, const NodalVector& Ku, const NodalVector& f,
                     const std::map<long long, double>& dirichlet, const FrictionLaw& law,
-                    const std::vector<ContactNodeForce>& contact, const Comm& comm) {
-  TRIBOS_REQUIRE(u.size() == Ku.size() && u.size() == f.size() && u.size() % 3 == 0,
-                 "resultKKT: u, Ku and f must be nodal vectors of one size (got " << u.size() << ", " << Ku.size()
-                                                                                  << ", " << f.size() << ")");
-  const int numNodes = static_cast<int>(u.size() / 3);
-  const auto phi = contactForceVector(numNodes, contact, comm);
+                    const std::vector<ContactNodeForce>& contact) {
+  TRIBOS_REQUIRE(!u.empty() && Ku.layoutPtr().get() == u.layoutPtr().get() && f.layoutPtr().get() == u.layoutPtr().get(),
+                 "resultKKT: u, Ku and f must be nodal vectors of one layout");
+  const NodalLayout& layout = u.layout();
+  const Comm& comm = *layout.comm();
+  const auto phi = contactForces(u.layoutPtr(), contact);
   ResultKKT res;
-  const double U = std::max(normInf(u), 1e-300);
-  const double P = std::max({normInf(f), normInf(Ku), normInf(phi), 1e-300});
-  res.displacementScale = normInf(u);
-  res.forceScale = std::max({normInf(f), normInf(Ku), normInf(phi)});
+  res.displacementScale = u.normInf();
+  res.forceScale = std::max({f.normInf(), Ku.normInf(), phi.normInf()});
+  const double U = std::max(res.displacementScale, 1e-300);
+  const double P = std::max(res.forceScale, 1e-300);
 
-  // Equilibrium at the dofs without a Dirichlet condition (u, Ku, f and phi
-  // are replicated: every rank computes the same figure).
-  double r2 = 0;
-  for (size_t i = 0; i < u.size(); ++i) {
-    if (dirichlet.count(static_cast<long long>(i))) continue;
-    const double r = Ku[i] - f[i] - phi[i];
-    r2 += r * r;
-  }
-  res.equilibrium = std::sqrt(r2) / std::max({norm2(f), norm2(Ku), norm2(phi), 1e-300});
-  double dir = 0, ubarMax = 0;
-  for (const auto& [dof, value] : dirichlet) {
-    dir = std::max(dir, std::abs(u[dof] - value));
-    ubarMax = std::max(ubarMax, std::abs(value));
-  }
-  res.dirichlet = dir / std::max(U, ubarMax);
+  // Equilibrium at the owned dofs without a Dirichlet condition, summed over
+  // the ranks; the Dirichlet values at the owned nodes.
+  double r2 = 0, dir = 0, ubarMax = 0;
+  const auto& nodes = layout.nodes();
+  for (int i = 0; i < layout.numOwned(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const size_t k = 3 * static_cast<size_t>(i) + c;
+      const auto it = dirichlet.find(3LL * nodes[i] + c);
+      if (it != dirichlet.end()) {
+        dir = std::max(dir, std::abs(u.values()[k] - it->second));
+        ubarMax = std::max(ubarMax, std::abs(it->second));
+        continue;
+      }
+      const double r = Ku.values()[k] - f.values()[k] - phi.values()[k];
+      r2 += r * r;
+    }
+  res.equilibrium = std::sqrt(sumOver(r2, comm)) / std::max({f.norm2(), Ku.norm2(), phi.norm2(), 1e-300});
+  res.dirichlet = maxOver(dir, comm) / std::max(U, maxOver(ubarMax, comm));
 
   // Contact node by node (rank-local nodes, then the maximum over ranks).
   Friction::ContactKKT kkt(P, U);
@@ -99,9 +107,9 @@ ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku,
   for (const auto& c : contact) {
     // w: the relative displacement of the slave node and its partner.
     double w[3];
-    for (int d = 0; d < 3; ++d) w[d] = u[3 * static_cast<size_t>(c.node) + d];
+    for (int d = 0; d < 3; ++d) w[d] = u.at(c.node)[d];
     for (const auto& [node, weight] : c.master)
-      for (int d = 0; d < 3; ++d) w[d] -= weight * u[3 * static_cast<size_t>(node) + d];
+      for (int d = 0; d < 3; ++d) w[d] -= weight * u.at(node)[d];
     const double wn = dot(c.normal, w);
     if (c.bonded) {
       bondedGap = std::max({bondedGap, std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});

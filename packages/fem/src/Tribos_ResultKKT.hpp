@@ -37,6 +37,7 @@
 #include <utility>
 #include <vector>
 
+#include "Tribos_NodalVector.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
@@ -74,11 +75,14 @@ struct ResultKKT {
   double worst(std::string* which = nullptr) const;
 };
 
-// u, Ku, f: nodal vectors (3 per node), replicated on every rank. dirichlet:
-// global dof (3 node + c) -> prescribed value. Collective over comm.
-ResultKKT resultKKT(const std::vector<double>& u, const std::vector<double>& Ku, const std::vector<double>& f,
+// u, Ku, f: nodal vectors of one layout, whose ranks hold (at least) the
+// slave and master nodes of their contact nodes; each figure is summed or
+// maximized over the owned nodes of all ranks. dirichlet: global dof
+// (3 node + c) -> prescribed value (read at the owned nodes and the contact
+// nodes). Collective over the layout's communicator.
+ResultKKT resultKKT(const NodalVector& u, const NodalVector& Ku, const NodalVector& f,
                     const std::map<long long, double>& dirichlet, const FrictionLaw& law,
-                    const std::vector<ContactNodeForce>& contact, const Comm& comm);
+                    const std::vector<ContactNodeForce>& contact);
 
 // The Dirichlet values at a contact node (at x) and its partners must leave
 // its contact conditions meaningful; both throw Tribos::Error naming the
@@ -97,9 +101,10 @@ void requireNoPrescribedPenetration(const std::map<long long, double>& dirichlet
 void requireNoPrescribedSlip(const std::map<long long, double>& dirichlet, int node, const std::array<double, 3>& x,
                              const std::array<double, 3>& normal, const std::vector<std::pair<int, double>>& master);
 
-// The contact force phi (3 per node, replicated) of the rank-local contact
-// nodes and their reactions on the master nodes, summed over the ranks.
-std::vector<double> contactForceVector(int numNodes, const std::vector<ContactNodeForce>& contact, const Comm& comm);
+// The contact force phi of the rank-local contact nodes and their reactions
+// on the master nodes, summed over the ranks, at the nodes of layout (which
+// must hold every slave and master node of contact). Collective.
+NodalVector contactForces(const RCP<const NodalLayout>& layout, const std::vector<ContactNodeForce>& contact);
 
 // `converged` is a promise about the result the user gets: the solver
 // stopped on its own test AND every KKT residual of the result is within

@@ -279,11 +279,11 @@ std::vector<ContactConstraint> gatherContactConstraints(const std::vector<Contac
   return out;
 }
 
-std::array<double, 3> relativeDisplacement(const ContactConstraint& c, const std::vector<double>& u) {
+std::array<double, 3> relativeDisplacement(const ContactConstraint& c, const Fem::NodalVector& u) {
   std::array<double, 3> w;
-  for (int d = 0; d < 3; ++d) w[d] = u[3 * static_cast<size_t>(c.node) + d];
+  for (int d = 0; d < 3; ++d) w[d] = u.at(c.node)[d];
   for (const auto& [node, weight] : c.master)
-    for (int d = 0; d < 3; ++d) w[d] -= weight * u[3 * static_cast<size_t>(node) + d];
+    for (int d = 0; d < 3; ++d) w[d] -= weight * u.at(node)[d];
   return w;
 }
 

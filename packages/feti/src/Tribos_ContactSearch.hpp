@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "Tribos_Mesh.hpp"
+#include "Tribos_NodalVector.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
@@ -80,8 +81,8 @@ ContactPair planeBeyondFace(const Mesh::Mesh& mesh, const std::string& face, dou
 std::vector<ContactConstraint> gatherContactConstraints(const std::vector<ContactConstraint>& local, const Comm& comm);
 
 // The relative displacement (u_s - sum N_i u_i) of a constraint, from a
-// nodal displacement (3 per mesh node).
-std::array<double, 3> relativeDisplacement(const ContactConstraint& c, const std::vector<double>& uNodal);
+// nodal displacement that holds its nodes.
+std::array<double, 3> relativeDisplacement(const ContactConstraint& c, const Fem::NodalVector& u);
 
 }  // namespace Feti
 }  // namespace Tribos

@@ -451,6 +451,7 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
   keepOwnRows(fc, *comm_);
   constraints_ = assembleConstraints(fc.rows, primalMap_, primalOffsets_, fc.contact);
   contactConstraints_ = std::move(fc.contact);
+  nodalLayout_ = makeNodalLayout();
   boundary_ = boundaryDofs();
   // Auto: a dense block of more than kAutoExplicitRows rows would cost more
   // to form and hold than the applications it saves; without contact
@@ -463,6 +464,18 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
     denseRowLimit = static_cast<long>(kAutoExplicitRows);
   Kplus_ = std::make_unique<SubdomainPseudoInverse>(systems_, boundary_, localSolverName_, denseRowLimit,
                                                     p.get<std::string>("Dense Block Precision") == "Single");
+}
+
+RCP<const Fem::NodalLayout> FetiProblem::makeNodalLayout() const {
+  // The nodes of this rank's subdomains and the partners of its contact
+  // nodes (the result check reads their displacement).
+  std::vector<int> held;
+  for (const auto& sys : systems_) held.insert(held.end(), sys.nodes.begin(), sys.nodes.end());
+  for (const auto& c : contactConstraints_) {
+    held.push_back(c.node);
+    for (const auto& m : c.master) held.push_back(m.first);
+  }
+  return rcp(new Fem::NodalLayout(held, comm_));
 }
 
 std::vector<std::vector<int>> FetiProblem::boundaryDofs() const {
@@ -594,31 +607,30 @@ void FetiProblem::applyR(const std::vector<double>& a, Vector& z) const {
   }
 }
 
-std::vector<double> FetiProblem::nodalDisplacement(const Vector& u) const {
-  const size_t N = static_cast<size_t>(numNodes_);
-  std::vector<double> full(3 * N, 0.0), count(N, 0.0);
+Fem::NodalVector FetiProblem::nodalDisplacement(const Vector& u) const {
+  // Sums of the subdomain copies and their numbers, over all ranks.
+  Fem::NodalVector mean(nodalLayout_), copies(nodalLayout_);
   auto uv = u.getData();
   size_t offset = 0;
   for (const auto& sys : systems_) {
     for (size_t a = 0; a < sys.nodes.size(); ++a) {
-      const int node = sys.nodes[a];
-      count[node] += 1.0;
-      for (int c = 0; c < 3; ++c) full[3 * static_cast<size_t>(node) + c] += uv[offset + 3 * a + c];
+      double* m = mean.at(sys.nodes[a]);
+      double* k = copies.at(sys.nodes[a]);
+      for (int c = 0; c < 3; ++c) m[c] += uv[offset + 3 * a + c], k[c] += 1.0;
     }
     offset += sys.numDofs();
   }
-  MPI_Allreduce(MPI_IN_PLACE, full.data(), static_cast<int>(full.size()), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
-  MPI_Allreduce(MPI_IN_PLACE, count.data(), static_cast<int>(count.size()), MPI_DOUBLE, MPI_SUM, rawComm(*comm_));
-  for (size_t n = 0; n < N; ++n)
-    for (int c = 0; c < 3; ++c) full[3 * n + c] /= std::max(count[n], 1.0);
-  return full;
+  nodalLayout_->sumOverHolders(mean.values());
+  nodalLayout_->sumOverHolders(copies.values());
+  for (size_t i = 0; i < mean.values().size(); ++i) mean.values()[i] /= std::max(copies.values()[i], 1.0);
+  return mean;
 }
 
-std::vector<double> FetiProblem::assembledProduct(const std::vector<double>& uNodal) const {
-  return Fem::assembledProduct(systems_, uNodal, *comm_);
+Fem::NodalVector FetiProblem::assembledProduct(const Fem::NodalVector& u) const {
+  return Fem::assembledProduct(systems_, u);
 }
 
-std::vector<double> FetiProblem::assembledLoad() const { return Fem::assembledLoad(systems_, numNodes_, *comm_); }
+Fem::NodalVector FetiProblem::assembledLoad() const { return Fem::assembledLoad(systems_, nodalLayout_); }
 
 }  // namespace Feti
 }  // namespace Tribos

@@ -138,14 +138,17 @@ class FetiProblem {
   // y = R' p (replicated coarse vector); z = R a (primal).
   void applyRt(const Vector& p, std::vector<double>& y) const;
   void applyR(const std::vector<double>& a, Vector& z) const;
-  // Replicated global nodal displacement (3 numNodes): the mean of the
-  // subdomain copies of each node (they agree to the gluing tolerance).
-  std::vector<double> nodalDisplacement(const Vector& u) const;
-  // K u of the assembled body for a nodal displacement (replicated, 3
-  // numNodes), from the subdomain matrices. Collective.
-  std::vector<double> assembledProduct(const std::vector<double>& uNodal) const;
-  // The assembled load f (replicated, 3 numNodes). Collective.
-  std::vector<double> assembledLoad() const;
+  // The nodes this rank holds results at: those of its subdomains and the
+  // partners of its contact nodes; each owned by the lowest rank holding it.
+  const RCP<const Fem::NodalLayout>& nodalLayout() const { return nodalLayout_; }
+  // The nodal displacement on nodalLayout(): the mean of the subdomain
+  // copies of each node (they agree to the gluing tolerance). Collective.
+  Fem::NodalVector nodalDisplacement(const Vector& u) const;
+  // K u of the assembled body for a nodal displacement on nodalLayout(),
+  // from the subdomain matrices. Collective.
+  Fem::NodalVector assembledProduct(const Fem::NodalVector& u) const;
+  // The assembled load f on nodalLayout(). Collective.
+  Fem::NodalVector assembledLoad() const;
   // Global dof (3 node + c) -> prescribed value of the Dirichlet conditions.
   const std::map<long long, double>& dirichlet() const { return dirichlet_; }
 
@@ -168,6 +171,7 @@ class FetiProblem {
   void setup(FetiConstraints constraints, bool contact, const Teuchos::ParameterList& validated);
   // Per local subdomain, the dofs that some row of B touches (ascending).
   std::vector<std::vector<int>> boundaryDofs() const;
+  RCP<const Fem::NodalLayout> makeNodalLayout() const;
 
   const Mesh::Discretization* disc_ = nullptr;
   int numNodes_ = 0;
@@ -182,6 +186,7 @@ class FetiProblem {
   std::map<long long, double> dirichlet_;
   DualConstraints constraints_;
   std::vector<ContactConstraint> contactConstraints_;
+  RCP<const Fem::NodalLayout> nodalLayout_;
   std::vector<std::vector<int>> boundary_;         // boundaryDofs()
   std::unique_ptr<SubdomainPseudoInverse> Kplus_;
   // The Dirichlet preconditioner, factored on first use (only projected CG

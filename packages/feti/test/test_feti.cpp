@@ -121,7 +121,7 @@ FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm, Teuchos::FancyO
   Vector lambda(problem->dualMap());
   const auto st = pcg.solve(dual, lambda);
   TEST_ASSERT(st.converged);  // PCG
-  return {problem->nodalDisplacement(*dual.recoverPrimal(lambda)), st.iterations, worst};
+  return {problem->nodalDisplacement(*dual.recoverPrimal(lambda)).gathered(), st.iterations, worst};
 }
 
 // FETI against the monolithic solve, K K+ K = K, and the same problem on

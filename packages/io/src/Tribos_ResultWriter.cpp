@@ -431,14 +431,14 @@ std::string layoutSignature(const std::string& h5Name, const std::vector<Field>&
 }
 
 // This rank's complaint about its arguments ("" if none).
-std::string argumentError(const Mesh::Discretization& disc, const std::vector<double>& uGlobal,
+std::string argumentError(const Mesh::Discretization& disc, const std::vector<double>& uOwned,
                           const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
                           const std::vector<PointSet>& pointSets) {
   const long long nOwned = static_cast<long long>(disc.ownedNodes().size());
   const long long nCells = static_cast<long long>(disc.localCells().size());
   std::ostringstream e;
-  if (uGlobal.size() != 3 * static_cast<size_t>(disc.mesh.numNodes()))
-    e << "the displacement has " << uGlobal.size() << " values for " << disc.mesh.numNodes() << " nodes";
+  if (uOwned.size() != 3 * static_cast<size_t>(nOwned))
+    e << "the displacement has " << uOwned.size() << " values for " << nOwned << " owned nodes";
   auto check = [&](const Field& f, long long rows, const std::string& what) {
     if (f.components < 1 || f.values.size() != static_cast<size_t>(rows * f.components))
       e << (e.tellp() > 0 ? "; " : "") << what << " field " << f.name << " has " << f.values.size() << " values for "
@@ -454,13 +454,14 @@ std::string argumentError(const Mesh::Discretization& disc, const std::vector<do
 // This rank's rows of every dataset, in the order they are written, with the
 // groups that hold them and the global sizes.
 struct Content {
-  Content(const Mesh::Discretization& disc, const std::vector<double>& uGlobal, const std::vector<Field>& nodeFields,
+  Content(const Mesh::Discretization& disc, const std::vector<double>& uOwned, const std::vector<Field>& nodeFields,
           const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets, MPI_Comm comm) {
     const Mesh::Mesh& mesh = disc.mesh;
     const int npc = mesh.nodesPerCell();
     const auto cells = disc.localCells();
     for (int n : disc.ownedNodes())
-      for (int d = 0; d < 3; ++d) xyz.push_back(mesh.coords[n][d]), disp.push_back(uGlobal[3 * n + d]);
+      for (int d = 0; d < 3; ++d) xyz.push_back(mesh.coords[n][d]);
+    disp = uOwned;
     for (int c : cells)
       for (int k = 0; k < npc; ++k) topo.push_back(disc.nodeIndex()[mesh.cell(c)[k]]);
     pointXyz.resize(pointSets.size());
@@ -529,14 +530,14 @@ std::string writeHdf5(const std::string& path, const Content& content, const Res
 ResultWriter::ResultWriter(const Mesh::Discretization& disc, const RCP<const Comm>& comm) : disc_(disc), comm_(comm) {}
 
 void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, const std::string& xmfPath,
-                         const std::vector<double>& uGlobal, const std::vector<Field>& nodeFields,
+                         const std::vector<double>& uOwned, const std::vector<Field>& nodeFields,
                          const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets,
                          const ResultAttributes& attributes) const {
   const std::string shownName = directoryOf(h5Path) + "/" + h5Name;
   // Arguments first: a wrong one must stop every rank before the first HDF5 call.
   const std::string signature = layoutSignature(h5Name, nodeFields, cellFields, pointSets, attributes);
   std::string error = broadcastFromRoot(*comm_, signature) == signature
-                          ? argumentError(disc_, uGlobal, nodeFields, cellFields, pointSets)
+                          ? argumentError(disc_, uOwned, nodeFields, cellFields, pointSets)
                           : "rank " + std::to_string(comm_->getRank()) +
                                 " passes other names, components or attributes than rank 0";
   error = agreeOnError(*comm_, error);
@@ -544,7 +545,7 @@ void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, c
 
   // Everything is packed before the first collective HDF5 call: from there on
   // nothing may throw on one rank only.
-  const Content content(disc_, uGlobal, nodeFields, cellFields, pointSets, rawComm(comm_));
+  const Content content(disc_, uOwned, nodeFields, cellFields, pointSets, rawComm(comm_));
   std::string failure = writeHdf5(h5Path, content, attributes, reserveSpace_, comm_);
   if (!failure.empty()) failure = "cannot write the result file " + shownName + ": " + failure;
   if (failure.empty()) {

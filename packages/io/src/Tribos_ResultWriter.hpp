@@ -44,8 +44,8 @@ class ResultWriter {
 
   // Writes the HDF5 file to h5Path and the XDMF index to xmfPath (rank 0);
   // the index names the HDF5 file h5Name (its final name, relative: the two
-  // files end up in one directory). uGlobal: replicated displacement
-  // (3 numNodes); nodeFields per owned node, cellFields per local cell,
+  // files end up in one directory). uOwned: the displacement of the owned
+  // nodes (3 per node of disc.ownedNodes(), in its order); nodeFields per owned node, cellFields per local cell,
   // pointSets per point of this rank; every rank passes the same names,
   // components and attributes. Collective. On any HDF5 or file failure on
   // any rank, every rank closes what it opened, rank 0 removes the partial
@@ -54,7 +54,7 @@ class ResultWriter {
   // differ between ranks or fields of the wrong size: Tribos::CollectiveError
   // on every rank, nothing written.
   void write(const std::string& h5Path, const std::string& h5Name, const std::string& xmfPath,
-             const std::vector<double>& uGlobal, const std::vector<Field>& nodeFields,
+             const std::vector<double>& uOwned, const std::vector<Field>& nodeFields,
              const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets = {},
              const ResultAttributes& attributes = {}) const;
 

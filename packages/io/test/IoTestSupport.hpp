@@ -113,10 +113,15 @@ inline Mesh::Discretization boxDiscretization(int nx, int ny, int nz, const Comm
 }
 
 // u(x) = (x, 2y, 3z) + 10 * node number: every value tells where it belongs.
+inline double displacementAt(const Mesh::Discretization& disc, int node, int d) {
+  return (d + 1) * disc.mesh.coords[node][d] + 10.0 * node;
+}
+
+// At the owned nodes, as the writer takes it.
 inline std::vector<double> displacementOf(const Mesh::Discretization& disc) {
   std::vector<double> u;
-  for (int n = 0; n < disc.mesh.numNodes(); ++n)
-    for (int d = 0; d < 3; ++d) u.push_back((d + 1) * disc.mesh.coords[n][d] + 10.0 * n);
+  for (int n : disc.ownedNodes())
+    for (int d = 0; d < 3; ++d) u.push_back(displacementAt(disc, n, d));
   return u;
 }
 

@@ -100,7 +100,10 @@ Fem::ResultKKT kkt(const Semismooth::SemismoothResult& r, Fem::FrictionLaw::Kind
   // Every contact node is held by one rank.
   std::vector<Fem::ContactNodeForce> forces;
   if (comm->getRank() == 0) forces = Semismooth::contactForces(r);
-  return Fem::resultKKT(r.u, r.Ku, r.f, r.dirichlet, fl, forces, *comm);
+  // The result is the same on every rank: held everywhere, owned by rank 0.
+  const auto layout = Fem::NodalLayout::everyNode(static_cast<int>(r.u.size() / 3), comm);
+  return Fem::resultKKT(Fem::NodalVector(layout, r.u), Fem::NodalVector(layout, r.Ku), Fem::NodalVector(layout, r.f),
+                        r.dirichlet, fl, forces);
 }
 
 void printKKT(const std::string& what, const Fem::ResultKKT& k, Teuchos::FancyOStream& out) {
