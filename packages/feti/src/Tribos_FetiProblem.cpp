@@ -452,6 +452,10 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
   constraints_ = assembleConstraints(fc.rows, primalMap_, primalOffsets_, fc.contact);
   contactConstraints_ = std::move(fc.contact);
   nodalLayout_ = makeNodalLayout();
+  // The conditions are read again (result check, contact checks) only at
+  // the nodes this rank holds.
+  for (auto it = dirichlet_.begin(); it != dirichlet_.end();)
+    it = nodalLayout_->index(static_cast<int>(it->first / 3)) >= 0 ? std::next(it) : dirichlet_.erase(it);
   boundary_ = boundaryDofs();
   // Auto: a dense block of more than kAutoExplicitRows rows would cost more
   // to form and hold than the applications it saves; without contact

@@ -149,7 +149,8 @@ class FetiProblem {
   Fem::NodalVector assembledProduct(const Fem::NodalVector& u) const;
   // The assembled load f on nodalLayout(). Collective.
   Fem::NodalVector assembledLoad() const;
-  // Global dof (3 node + c) -> prescribed value of the Dirichlet conditions.
+  // Global dof (3 node + c) -> prescribed value of the Dirichlet conditions
+  // at the nodes of nodalLayout().
   const std::map<long long, double>& dirichlet() const { return dirichlet_; }
 
   double factorTime() const { return Kplus_->factorSeconds(); }
