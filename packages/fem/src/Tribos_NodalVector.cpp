@@ -93,20 +93,6 @@ void NodalLayout::sumOverHolders(std::vector<double>& values) const {
   fromVector(held, values);
 }
 
-void NodalLayout::copyFromOwners(std::vector<double>& values) const {
-  TRIBOS_REQUIRE(values.size() == 3 * nodes_.size(),
-                 "NodalLayout: " << values.size() << " values for " << nodes_.size() << " held nodes");
-  Vector held(heldMap_), owned(ownedMap_);
-  toVector(values, held);
-  {
-    auto h = held.getData();
-    auto o = owned.getDataNonConst();
-    std::copy(h.getRawPtr(), h.getRawPtr() + 3 * static_cast<size_t>(numOwned_), o.getRawPtr());
-  }
-  held.doImport(owned, *import_, Tpetra::INSERT);
-  fromVector(held, values);
-}
-
 NodalVector::NodalVector(RCP<const NodalLayout> layout)
     : layout_(std::move(layout)), values_(3 * static_cast<size_t>(layout_->numHeld()), 0.0) {}
 

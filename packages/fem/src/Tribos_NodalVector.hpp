@@ -34,8 +34,6 @@ class NodalLayout {
   // values: 3 per held node. Each node's values summed over the ranks that
   // hold it, the sum then on every one of them. Collective.
   void sumOverHolders(std::vector<double>& values) const;
-  // The owner's values copied to every rank that holds the node. Collective.
-  void copyFromOwners(std::vector<double>& values) const;
 
  private:
   RCP<const Comm> comm_;

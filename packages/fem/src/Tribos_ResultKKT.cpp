@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "Tribos_ArrayScan.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_ContactKKT.hpp"
 

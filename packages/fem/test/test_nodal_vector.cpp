@@ -2,7 +2,7 @@
 //  - a node is owned by the lowest rank that holds it, which for a
 //    decomposed mesh is Discretization::nodeOwner();
 //  - sumOverHolders gives every holder the sum of all holders' values,
-//    copyFromOwners the owner's value, gathered() every node's value;
+//    gathered() every node's value;
 //  - norms count each node once;
 //  - a node a rank does not hold is refused, naming it.
 #include <Teuchos_CommHelpers.hpp>
@@ -78,12 +78,6 @@ TEUCHOS_UNIT_TEST(NodalVector, SumsCopiesAndGathers) {
   for (int n : L.nodes())
     for (int c = 0; c < 3; ++c) err = std::max(err, std::abs(v.at(n)[c] - ranksPlus1[n] * (n + c + 1.0)));
   TEST_EQUALITY(err, 0.0);
-  // The owner's value everywhere: each rank writes its rank, so every
-  // holder gets the owner's.
-  Fem::NodalVector w(b.layout);
-  for (double& x : w.values()) x = me;
-  L.copyFromOwners(w.values());
-  for (int n : L.nodes()) TEST_EQUALITY(w.at(n)[0], double(b.disc.nodeOwner()[n]));
   // gathered: every node's value on every rank; norms count a node once.
   const auto all = v.gathered();
   TEST_EQUALITY(all.size(), 3 * static_cast<size_t>(b.disc.mesh.numNodes()));

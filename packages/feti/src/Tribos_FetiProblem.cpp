@@ -374,9 +374,7 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMateri
   checkOnEveryRank(*comm_, [&] {
     fc.rows = meshConstraintRows(disc, fc.dirichlet, contact, p.get<std::string>("Gluing"), feti1);
   });
-  // This rank keeps the constraints of its own contact nodes only.
-  for (const auto& c : contact)
-    if (disc.nodeOwner()[c.node] == disc.myRank) fc.contact.push_back(c);
+  fc.contact = contact;  // setup() keeps those of this rank's contact rows
   bool hasContact = false;  // the same list on every rank
   for (const auto& c : contact) hasContact = hasContact || !c.glued;
   setup(std::move(fc), hasContact, p);
