@@ -59,7 +59,7 @@ LocalCsr regularizedSubdomain(Mesh::CellType type, int cells) {
   spec.cells = {cells, cells, cells};
   Mesh::DecompositionSpec dec;  // one Structured subdomain
   Mesh::Discretization disc(Mesh::generateBox(spec), spec, dec, 1, 0);
-  const auto sys = Fem::assembleSubdomain(disc.mesh, disc.subdomains[0], Fem::Material{2.1e11, 0.3}, Fem::LoadCase{});
+  const auto sys = Fem::assembleSubdomain(disc, 0, Fem::Material{2.1e11, 0.3}, Fem::LoadCase{});
   LocalCsr K = sys.K;
   const double rho = K.maxAbsDiagonal();
   for (int i : Feti::fixingDofs(sys.R, sys.numDofs()))

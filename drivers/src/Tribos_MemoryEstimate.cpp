@@ -137,8 +137,11 @@ MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks
   const double nodes = meshSize ? meshSize->nodes : (cx + 1) * (cy + 1) * (cz + 1);
   const double cells = meshSize ? meshSize->cells : cx * cy * cz * (spec.type == Mesh::CellType::Tet4 ? 6.0 : 1.0);
   MemoryEstimate e;
-  e.mesh = 80.0 * kMB + 400.0 * nodes + 50.0 * cells;
   const Input::Method m = Input::method(params);
+  // Rank 0 holds the whole mesh while it is read, checked and cut, and every
+  // rank its part; the semismooth* method (serial) keeps it on every rank.
+  const double whole = 400.0 * nodes + 50.0 * cells;
+  e.mesh = 80.0 * kMB + whole / numRanks + (rank == 0 || m == Input::Method::Semismooth ? whole : 0.0);
   if (m == Input::Method::Semismooth)
     e.solver = rank == 0 ? 28000.0 * nodes + factorBytes(3.0 * nodes) : 0.0;
   else if (m == Input::Method::Monolithic)

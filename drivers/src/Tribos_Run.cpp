@@ -56,22 +56,25 @@ double maxOverRanks(double v, const Comm& comm) {
 std::vector<IO::Field> cellFields(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
                                   const Fem::NodalVector& u) {
   IO::Field vm{"von_mises", 1, {}}, sub{"subdomain", 1, {}}, rank{"rank", 1, {}}, body{"body", 1, {}};
-  const int npc = disc.mesh.nodesPerCell();
-  for (int c : disc.localCells()) {
+  const Mesh::Mesh& part = disc.part;
+  const int npc = part.nodesPerCell();
+  for (int c = 0; c < part.numCells(); ++c) {
     std::vector<double> ue(3 * npc);
     for (int a = 0; a < npc; ++a)
-      for (int d = 0; d < 3; ++d) ue[3 * a + d] = u.at(disc.mesh.cell(c)[a])[d];
-    vm.values.push_back(Fem::vonMises(
-        Fem::cellStress(disc.mesh.type, Fem::cellCoordinates(disc.mesh, c), ue, mat.ofCell(disc.mesh, c))));
+      for (int d = 0; d < 3; ++d) ue[3 * a + d] = u.at(disc.meshNode(part.cell(c)[a]))[d];
+    vm.values.push_back(
+        Fem::vonMises(Fem::cellStress(part.type, Fem::cellCoordinates(part, c), ue, mat.ofCell(part, c))));
     sub.values.push_back(disc.cellPart[c]);
     rank.values.push_back(disc.myRank);
-    body.values.push_back(disc.mesh.bodyOf(c));
+    body.values.push_back(part.bodyOf(c));
   }
   return {vm, sub, rank, body};
 }
 
 // Contact nodes with their forces, slip and status, as a ParaView point set.
-IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::ContactNodeResults& r) {
+// The rows in /nodes and the coordinates of the nodes (slave and master
+// nodes may lie in other ranks' parts) are asked of their owners. Collective.
+IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::ContactNodeResults& r, const Comm& comm) {
   IO::PointSet ps;
   ps.name = "contact";
   IO::Field normal{"normal_force", 1, r.normalForce}, tangential{"tangential_force", 3, r.tangentialForce},
@@ -79,15 +82,28 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
       pair{"pair", 1, {}}, masterNode{"master_node", 4, {}}, masterWeight{"master_weight", 4, {}},
       node{"node", 1, {}};
   for (int s : r.status) status.values.push_back(s);
-  for (int n : r.nodes) node.values.push_back(disc.nodeIndex()[n]);  // its row in /nodes
-  for (int n : r.nodes) ps.coords.push_back(disc.mesh.coords[n]);
+  std::vector<int> asked(r.nodes);
+  for (const auto& c : r.constraint)
+    for (const auto& m : c.master) asked.push_back(m.first);
+  const auto answers = disc.askOwners(asked, 4,
+                                      [&](int n, double* out) {
+                                        out[0] = static_cast<double>(disc.nodeIndex()[n]);
+                                        for (int d = 0; d < 3; ++d) out[1 + d] = disc.part.coords[n][d];
+                                      },
+                                      comm);
+  std::map<int, const double*> known;  // mesh node -> row, x, y, z
+  for (size_t i = 0; i < asked.size(); ++i) known[asked[i]] = &answers[4 * i];
+  for (int n : r.nodes) {
+    node.values.push_back(known.at(n)[0]);  // its row in /nodes
+    ps.coords.push_back({known.at(n)[1], known.at(n)[2], known.at(n)[3]});
+  }
   // The partner of each slave node: up to 4 master nodes (a facet's) and
   // their weights, -1 and 0 where there are fewer (none: a rigid plane).
   for (const auto& c : r.constraint) {
     direction.values.insert(direction.values.end(), c.normal.begin(), c.normal.end());
     pair.values.push_back(c.pair);
     for (size_t i = 0; i < 4; ++i) {
-      masterNode.values.push_back(i < c.master.size() ? disc.nodeIndex()[c.master[i].first] : -1);
+      masterNode.values.push_back(i < c.master.size() ? known.at(c.master[i].first)[0] : -1);
       masterWeight.values.push_back(i < c.master.size() ? c.master[i].second : 0.0);
     }
   }
@@ -96,11 +112,11 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
 }
 
 // Tresca friction (or frictionless contact) by the semismooth* Newton
-// method. Rank 0 solves (with "CG+MueLu" all ranks take part in the CG
+// method, a serial method on the whole mesh (held by every rank). Rank 0 solves (with "CG+MueLu" all ranks take part in the CG
 // solves); the contact results stay on rank 0, the displacement is
 // broadcast (held on every rank, owned by rank 0), and the KKT residuals of
 // the result are computed as for FETI.
-Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Discretization& disc,
+Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh,
                                     const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
                                     IO::Summary& summary, Contact::ContactNodeResults& nodes, bool& converged,
                                     Fem::ResultKKT& kkt, IO::IterationHistory& history) {
@@ -110,11 +126,11 @@ Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mes
   // conditions do not hold (the method eliminates them and factors K_rr) and
   // Dirichlet values the contact face cannot take.
   checkOnEveryRank(comm, [&] {
-    const auto dirichlet = Fem::constrainedDofs(disc.mesh, loads.dirichlet);
-    Fem::requireRigidMotionsHeld(disc.mesh.coords, dirichlet, "semismooth*", Semismooth::kSemicoerciveAdvice);
-    Semismooth::contactFaceNodes(disc.mesh, dirichlet, contact.face, contact.gap, contact.slipBoundTraction);
+    const auto dirichlet = Fem::constrainedDofs(mesh, loads.dirichlet);
+    Fem::requireRigidMotionsHeld(mesh.coords, dirichlet, "semismooth*", Semismooth::kSemicoerciveAdvice);
+    Semismooth::contactFaceNodes(mesh, dirichlet, contact.face, contact.gap, contact.slipBoundTraction);
   });
-  std::vector<double> u(3 * static_cast<size_t>(disc.mesh.numNodes()), 0.0);
+  std::vector<double> u(3 * static_cast<size_t>(mesh.numNodes()), 0.0);
   double info[5] = {0};
   std::vector<double> residuals;
   // "CG+MueLu" spreads its CG solves over all ranks (each rank holds the
@@ -124,7 +140,7 @@ Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mes
                            Semismooth::NewtonSolverKind::FullSpace;
   Semismooth::SemismoothResult r;
   if (comm.getRank() == 0 || distributed)
-    r = Semismooth::solveFromMesh(disc.mesh, mat, loads, contact.face, contact.gap, contact.slipBoundTraction, ssParams, verbose && comm.getRank() == 0 ? &std::cout : nullptr,
+    r = Semismooth::solveFromMesh(mesh, mat, loads, contact.face, contact.gap, contact.slipBoundTraction, ssParams, verbose && comm.getRank() == 0 ? &std::cout : nullptr,
                                   distributed ? Teuchos::rcpFromRef(comm) : RCP<const Comm>());
   std::vector<Fem::ContactNodeForce> forces;
   std::vector<double> Ku, f;
@@ -171,10 +187,10 @@ Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mes
   if (nres > 0) Teuchos::broadcast(comm, 0, nres, residuals.data());
   Fem::FrictionLaw friction;
   friction.kind = Fem::FrictionLaw::parse(law);  // Tresca or Frictionless (the input refuses Coulomb here)
-  const auto layout = Fem::NodalLayout::everyNode(disc.mesh.numNodes(), Teuchos::rcpFromRef(comm));
+  const auto layout = Fem::NodalLayout::everyNode(mesh.numNodes(), Teuchos::rcpFromRef(comm));
   Fem::NodalVector uNodal(layout, u);
   kkt = Fem::resultKKT(uNodal, Fem::NodalVector(layout, Ku), Fem::NodalVector(layout, f),
-                       Fem::constrainedDofs(disc.mesh, loads.dirichlet), friction, forces);
+                       Fem::constrainedDofs(mesh, loads.dirichlet), friction, forces);
   long long counts[4] = {static_cast<long long>(nodes.nodes.size()), 0, 0, 0};
   for (int st : nodes.status) counts[1] += st > 0, counts[2] += st == 1, counts[3] += st == 2;
   Teuchos::broadcast(comm, 0, 4, counts);
@@ -194,7 +210,7 @@ Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mes
     row.n_A = 0;
     history.rows.push_back(row);
   }
-  summary.set("primal_dofs", 3LL * disc.mesh.numNodes());
+  summary.set("primal_dofs", 3LL * mesh.numNodes());
   summary.set("dual_dofs", 0);
   summary.set("n_A", 0);
   IO::Summary c;
@@ -321,21 +337,10 @@ IO::HistoryRow finalRow(long long iterations, double relativeResidual, long long
   return row;
 }
 
-// The nodes of this rank's subdomains. Collective.
-RCP<const Fem::NodalLayout> subdomainLayout(const std::vector<Fem::SubdomainSystem>& systems,
-                                            const RCP<const Comm>& comm) {
-  std::vector<int> held;
-  for (const auto& sys : systems) held.insert(held.end(), sys.nodes.begin(), sys.nodes.end());
-  return rcp(new Fem::NodalLayout(held, comm));
-}
-
 Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
                          const Fem::LoadCase& loads, const RCP<const Comm>& comm, IO::Summary& summary) {
-  // K restricted to the free dofs is singular when a rigid motion is free.
-  const auto dirichlet = Fem::constrainedDofs(disc.mesh, loads.dirichlet);
-  Fem::requireRigidMotionsHeld(disc.mesh.coords, dirichlet, "Solver/Type = Monolithic",
-                               "a body that Dirichlet conditions do not hold has no unique displacement; hold it, or "
-                               "use Solver/Type = FETI, which finds the equilibrium of a floating body");
+  // (The whole mesh was checked to hold every rigid motion: validateOnRoot.)
+  const auto dirichlet = Fem::constrainedDofs(disc, loads.dirichlet);
   Progress::stage("assembly");
   const auto t0 = std::chrono::steady_clock::now();
   Fem::MonolithicSystem system(disc, mat, loads, comm);
@@ -345,11 +350,11 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
   const auto t1 = std::chrono::steady_clock::now();
   const auto res = system.solve(params.sublist("Solver").sublist("Monolithic"));
   sol.solveSeconds = seconds(t1);
-  // The rank keeps the nodes of its subdomains (the writer's cells).
+  // The rank keeps the nodes of its part (the writer's cells).
   std::vector<Fem::SubdomainSystem> systems;
   for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s)
-    systems.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, loads));
-  sol.u = Fem::NodalVector(subdomainLayout(systems, comm), res.u);
+    systems.push_back(Fem::assembleSubdomain(disc, s, mat, loads));
+  sol.u = res.u;
   sol.solverConverged = res.converged;
   if (!res.converged) sol.solverReason = "monolithic CG: maximum iterations";
   summary.set("primal_dofs", static_cast<long long>(system.matrix()->getGlobalNumRows()));
@@ -366,7 +371,7 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
 }
 
 Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& options, const Mesh::Discretization& disc,
-                   const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
+                   const Mesh::Mesh& wholeMesh, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
                    const std::vector<Feti::ContactConstraint>& constraints, const RCP<const Comm>& comm,
                    IO::Summary& summary) {
   const auto& solverParams = params.sublist("Solver");
@@ -426,7 +431,7 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
       // FCLIB global problem: assembled K, contact rows in the local frame, gaps, F (docs/fclib.md).
       Progress::stage("FCLIB export");
       FCLIB::Info info{params.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + r.outerAlgorithm, ""};
-      FCLIB::exportFeti(options.exportFclib, *problem, mat, loads, Contact::runLaw(friction), friction[0].coefficient,
+      FCLIB::exportFeti(options.exportFclib, *problem, wholeMesh, mat, loads, Contact::runLaw(friction), friction[0].coefficient,
                         *r.primal, *r.lambda, info);
       summary.set("fclib_export", options.exportFclib);
     }
@@ -464,13 +469,16 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
                     xml = files.add(base + ".parameters.xml"), csv = files.add(base + ".history.csv"),
                     json = files.add(base + ".json");
   std::vector<IO::PointSet> points;
-  if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.contactNodes));
+  if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.contactNodes, *comm));
   IO::ResultAttributes attributes;
   attributes.numbers = {{"converged", converged ? 1.0 : 0.0}, {"solver_converged", sol.solverConverged ? 1.0 : 0.0}};
   attributes.text = {{"problem", params.get<std::string>("Problem Name")},
                      {"stop_reason", stopReason}};
   std::vector<double> uOwned;
-  for (int n : disc.ownedNodes()) uOwned.insert(uOwned.end(), sol.u.at(n), sol.u.at(n) + 3);
+  for (int n : disc.ownedNodes()) {
+    const double* un = sol.u.at(disc.meshNode(n));
+    uOwned.insert(uOwned.end(), un, un + 3);
+  }
   IO::ResultWriter(disc, comm).write(h5, base + ".h5", xmf, uOwned, {}, cellFields(disc, mat, sol.u), points, attributes);
   Teuchos::ParameterList effective = params;
   effective.sublist("Output").set("Directory", dir.path());
@@ -480,7 +488,8 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   files.commit();
 }
 
-// The mesh of Mesh/File, read on rank 0 and checked before any work: the
+// The mesh of Mesh/File, read on rank 0 (and held there only) and checked
+// before any work: the
 // faces the input names exist (the message lists the file's names), the
 // contact face is planar, there are enough cells for the subdomains. A
 // refusal is the same CollectiveError on every rank (exit 1).
@@ -514,28 +523,48 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
   error = agreeOnError(comm, error);
   if (!error.empty()) throw CollectiveError(error);
   for (const auto& w : warnings) std::cerr << "tribos: warning: " << w << std::endl;
-  // Every rank gets the mesh of rank 0 (ranks reading the file on their
-  // own could mesh a .geo differently, and would each print warnings).
-  Mesh::broadcastMesh(mesh, comm);
   return mesh;
 }
 
-// The contact constraints of the run's pairs (node-to-segment search on the
-// replicated mesh: every rank finds the same). A pair that the mesh cannot
-// make (no partner for any slave node, a node in two pairs) is an input
-// error on every rank alike (exit 1); slave nodes left out are warned of.
-std::vector<Feti::ContactConstraint> contactConstraints(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh,
-                                                        const Comm& comm) {
-  Progress::stage("contact search");
+// Everything the whole mesh decides, checked on rank 0 (which alone holds
+// it) before any work; a refusal is the same CollectiveError on every rank
+// (exit 1):
+//  - Dirichlet conditions that disagree at a node;
+//  - a monolithic solve of a body they do not hold;
+//  - the contact constraints of the run's pairs (node-to-segment search on
+//    the whole mesh): a pair the mesh cannot make (no partner for any slave
+//    node, a node in two pairs), prescribed sliding against friction.
+// Slave nodes left out are warned of. Returns the constraints on rank 0.
+std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList& params, const Mesh::Mesh* whole,
+                                                    const Fem::LoadCase& loads, Input::Method method, const Comm& comm) {
   std::vector<std::string> notes;
   std::vector<Feti::ContactConstraint> constraints;
-  try {
-    constraints = Feti::contactConstraints(mesh, Input::contactPairs(params, mesh), &notes);
-  } catch (const Error& e) {
-    throw CollectiveError(std::string("Contact: ") + e.what());
+  std::string error;
+  if (comm.getRank() == 0) {
+    try {
+      const auto dirichlet = Fem::constrainedDofs(*whole, loads.dirichlet);
+      if (method == Input::Method::Monolithic)
+        Fem::requireRigidMotionsHeld(whole->coords, dirichlet, "Solver/Type = Monolithic",
+                                     "a body that Dirichlet conditions do not hold has no unique displacement; hold "
+                                     "it, or use Solver/Type = FETI, which finds the equilibrium of a floating body");
+      if (method == Input::Method::FetiContact) {
+        Progress::stage("contact search");
+        try {
+          constraints = Feti::contactConstraints(*whole, Input::contactPairs(params, *whole), &notes);
+        } catch (const Error& e) {
+          throw Error(std::string("Contact: ") + e.what());
+        }
+        // Before the FETI setup: no prescribed sliding against friction.
+        Contact::requireNoPrescribedSlip(constraints, Input::pairFriction(params), dirichlet,
+                                         [&](int node) { return whole->coords.at(node); });
+      }
+    } catch (const Error& e) {
+      error = e.what();
+    }
   }
-  if (comm.getRank() == 0)
-    for (const auto& n : notes) std::cerr << "tribos: warning: " << n << std::endl;
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError(error);
+  for (const auto& n : notes) std::cerr << "tribos: warning: " << n << std::endl;
   return constraints;
 }
 
@@ -577,17 +606,22 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   auto decomposition = decompositionFor(params, comm->getSize());
   // A mesh file is read first: the memory estimate needs its size, and the
   // names the input gives its faces are checked before any work.
-  std::unique_ptr<Mesh::Mesh> fileMesh;
+  // The whole mesh is held by rank 0 alone: read or generated there, checked
+  // there, then cut into the ranks' parts (Mesh::Discretization::scatter).
+  std::unique_ptr<Mesh::Mesh> whole;
+  const bool fromFile = !Input::meshFile(params).empty();
   MeshSize fileMeshSize;
-  if (!Input::meshFile(params).empty()) {
+  if (fromFile) {
     Progress::stage("reading the mesh");
-    fileMesh = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, *comm));
-    fileMeshSize = {double(fileMesh->numNodes()), double(fileMesh->numCells()), fileMesh->numBodies()};
+    whole = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, *comm));
+    double counts[3] = {double(whole->numNodes()), double(whole->numCells()), double(whole->numBodies())};
+    Teuchos::broadcast(*comm, 0, 3, counts);
+    fileMeshSize = {counts[0], counts[1], static_cast<int>(counts[2])};
     decomposition = decompositionFor(params, comm->getSize(), &fileMeshSize);
   }
   Progress::stage("memory estimate");
   const MemoryEstimate memory =
-      requireMemory(params, options.maxMemory, options.verify, comm, fileMesh ? &fileMeshSize : nullptr);
+      requireMemory(params, options.maxMemory, options.verify, comm, fromFile ? &fileMeshSize : nullptr);
   Progress::stage("checking output paths");
   const auto outputDir = prepareOutput(params, options, comm);
   IO::Summary summary;
@@ -595,42 +629,48 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   if (!options.inputName.empty()) summary.set("input", options.inputName);
   Progress::stage("mesh and decomposition");
   const auto loads = Input::loadCase(params);
-  // A mesh from a file is described by its bounding box where a BoxSpec is
-  // asked for (one structured subdomain, e.g. the FCLIB export's).
-  Mesh::Mesh mesh = fileMesh ? std::move(*fileMesh) : Mesh::generateBox(Input::boxSpec(params));
-  const auto spec = fileMesh ? Mesh::boundingBox(mesh) : Input::boxSpec(params);
-  if (!fileMesh) Input::checkMeshFaces(mesh, params);  // the box's names were validated with the input
-  Mesh::Discretization disc(std::move(mesh), spec, decomposition, comm->getSize(), comm->getRank());
-  // Dirichlet conditions that disagree at a node: refused by every rank
-  // alike, before any solver starts.
-  std::map<long long, double> dirichlet;
-  checkOnEveryRank(*comm, [&] { dirichlet = Fem::constrainedDofs(disc.mesh, loads.dirichlet); });
-  const Fem::BodyMaterials mat = Input::materials(params, disc.mesh);
   const Input::Method method = Input::method(params);
-  const auto constraints = method == Input::Method::FetiContact ? contactConstraints(params, disc.mesh, *comm)
-                                                                  : std::vector<Feti::ContactConstraint>();
-  // Before the FETI setup: no prescribed sliding against friction.
-  if (method == Input::Method::FetiContact)
-    checkOnEveryRank(*comm, [&] {
-      Contact::requireNoPrescribedSlip(constraints, Input::pairFriction(params), dirichlet, disc.mesh.coords);
-    });
+  if (!fromFile) {
+    whole = std::make_unique<Mesh::Mesh>();
+    if (comm->getRank() == 0) *whole = Mesh::generateBox(Input::boxSpec(params));
+    // The box's names were validated with the input.
+    checkOnEveryRank(*comm, [&] { if (comm->getRank() == 0) Input::checkMeshFaces(*whole, params); });
+  }
+  // A mesh from a file is described by its bounding box where a BoxSpec is
+  // asked for (one structured subdomain, e.g. the FCLIB export's); root's
+  // goes with every part.
+  const auto spec = fromFile ? (comm->getRank() == 0 ? Mesh::boundingBox(*whole) : Mesh::BoxSpec())
+                             : Input::boxSpec(params);
+  auto rootConstraints = validateOnRoot(params, whole.get(), loads, method, *comm);
+  const Mesh::Discretization disc = Mesh::Discretization::scatter(*whole, spec, decomposition, *comm);
+  const auto constraints = method == Input::Method::FetiContact
+                               ? Feti::scatterContactConstraints(rootConstraints, disc, *comm)
+                               : std::vector<Feti::ContactConstraint>();
+  std::vector<Feti::ContactConstraint>().swap(rootConstraints);
+  // Kept on rank 0 for the FCLIB export (a global problem); on every rank
+  // for the semismooth* method (a serial method); otherwise released.
+  if (method == Input::Method::Semismooth)
+    Mesh::broadcastMesh(*whole, *comm);
+  else if (options.exportFclib.empty() || comm->getRank() != 0)
+    whole = std::make_unique<Mesh::Mesh>();
+  const Fem::BodyMaterials mat = Input::materials(params, disc.part);
   const bool semismooth = method == Input::Method::Semismooth;
   const std::string type = semismooth ? "SemismoothStarNewton" : params.sublist("Solver").get<std::string>("Type");
   summary.set("algorithm", type);
   summary.set("ranks", comm->getSize());
   summary.set("subdomains", disc.numSubdomains());
   if (decomposition.size > 0) summary.set("subdomain_size", decomposition.size);
-  summary.set("element", Mesh::cellTypeName(disc.mesh.type));
-  if (fileMesh) summary.set("mesh_file", Input::meshFile(params));
-  summary.set("nodes", disc.mesh.numNodes());
-  summary.set("cells", disc.mesh.numCells());
+  summary.set("element", Mesh::cellTypeName(disc.part.type));
+  if (fromFile) summary.set("mesh_file", Input::meshFile(params));
+  summary.set("nodes", disc.numMeshNodes());
+  summary.set("cells", disc.numMeshCells());
 
   const auto t1 = std::chrono::steady_clock::now();
   Solution sol;
   if (semismooth) {
     Progress::stage("semismooth* Newton");
     const auto t2 = std::chrono::steady_clock::now();
-    sol.u = solveSemismooth(params, disc, Input::material(params), loads, *comm, options.verbose, summary, sol.contactNodes,
+    sol.u = solveSemismooth(params, *whole, Input::material(params), loads, *comm, options.verbose, summary, sol.contactNodes,
                             sol.solverConverged, sol.kkt, sol.history);
     sol.solveSeconds = seconds(t2);
     if (!sol.history.rows.empty()) sol.history.rows.back().seconds = sol.solveSeconds;
@@ -638,7 +678,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   } else if (method == Input::Method::Monolithic) {
     sol = solveMonolithic(params, disc, mat, loads, comm, summary);
   } else {
-    sol = solveFeti(params, options, disc, mat, loads, constraints, comm, summary);
+    sol = solveFeti(params, options, disc, *whole, mat, loads, constraints, comm, summary);
   }
   requireRepresentable(sol.u, sol.kkt, semismooth ? "the semismooth* method" : "the " + type + " solve");
   // A solver that stopped before its first step still has a history: the
@@ -656,10 +696,11 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     Progress::stage("monolithic reference solve (--verify)");
     Fem::MonolithicSystem reference(disc, mat, loads, comm);
     const auto ref = reference.solve(params.sublist("Solver").sublist("Monolithic"));
-    Fem::NodalVector difference(sol.u.layoutPtr(), ref.u);
-    const double norm = difference.norm2();
-    for (size_t i = 0; i < difference.values().size(); ++i) difference.values()[i] -= sol.u.values()[i];
-    summary.set("verify_rel_diff_u", difference.norm2() / std::max(norm, 1e-300));
+    // Both hold the nodes of the rank's part.
+    Fem::NodalVector difference(sol.u.layoutPtr());
+    for (int node : difference.layout().nodes())
+      for (int c = 0; c < 3; ++c) difference.at(node)[c] = ref.u.at(node)[c] - sol.u.at(node)[c];
+    summary.set("verify_rel_diff_u", difference.norm2() / std::max(ref.u.norm2(), 1e-300));
   }
   // Setup: from the start to a solver ready to iterate; solve: its iterations.
   const double meshSeconds = std::chrono::duration<double>(t1 - t0).count();

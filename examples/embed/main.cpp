@@ -169,7 +169,8 @@ std::vector<double> referenceSolve(int n, const RCP<const Comm>& comm, std::vect
   spec.cells = {2 * n, n, n};
   Mesh::DecompositionSpec dec;
   dec.grid = {2, 1, 1};
-  Mesh::Discretization disc(Mesh::generateBox(spec), spec, dec, comm->getSize(), comm->getRank());
+  const Mesh::Mesh whole = Mesh::generateBox(spec);  // every rank keeps its part of it
+  Mesh::Discretization disc(whole, spec, dec, comm->getSize(), comm->getRank());
   Fem::Material mat;
   mat.E = kE;
   mat.nu = kNu;
@@ -183,7 +184,7 @@ std::vector<double> referenceSolve(int n, const RCP<const Comm>& comm, std::vect
   contact.enabled = true;
   auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, contact, Teuchos::ParameterList(), comm));
   Contact::FrictionSpec friction{"Coulomb", kFriction, 0.0};
-  coords = disc.mesh.coords;
+  coords = whole.coords;
   // Every node on every rank: the comparison below looks nodes up by position.
   return Contact::solveFeti(problem, friction, solverParameters()).u.gathered();
 }

@@ -110,11 +110,11 @@ std::string runLaw(const PairFriction& friction) {
 
 void requireNoPrescribedSlip(const std::vector<Feti::ContactConstraint>& contact, const PairFriction& friction,
                              const std::map<long long, double>& dirichlet,
-                             const std::vector<std::array<double, 3>>& coords) {
+                             const std::function<std::array<double, 3>(int)>& position) {
   if (dirichlet.empty()) return;
   for (const auto& c : contact)
     if (!c.glued && frictionOfPair(friction, c.pair).law != "Frictionless")
-      Fem::requireNoPrescribedSlip(dirichlet, c.node, coords.at(c.node), c.normal, c.master);
+      Fem::requireNoPrescribedSlip(dirichlet, c.node, position(c.node), c.normal, c.master);
 }
 
 FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const PairFriction& friction)
@@ -125,9 +125,12 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
   // with friction slide (the driver checks this before the FETI setup; an
   // application's contact rows may not touch its Dirichlet rows at all).
   checkOnEveryRank(*dual->problem().comm(), [&] {
-    if (dual->problem().hasDiscretization())
+    if (dual->problem().hasDiscretization()) {
+      const Mesh::Discretization& disc = dual->problem().discretization();
+      // The rank's contact nodes are nodes of its part.
       requireNoPrescribedSlip(lc.constraint, friction, dual->problem().dirichlet(),
-                              dual->problem().discretization().mesh.coords);
+                              [&](int node) { return disc.part.coords.at(disc.partNode(node)); });
+    }
   });
   // The dual problem as TFETI gives it: min 1/2 lambda'F lambda - lambda'h
   // s.t. G^ lambda = L^-1 e, lambda_N >= 0, ||lambda_T,k|| <= g_k.

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <string>
+#include <functional>
 #include <vector>
 
 #include <Teuchos_FancyOStream.hpp>
@@ -49,11 +50,11 @@ std::string runLaw(const PairFriction& friction);
 // Refuses (Tribos::Error naming the node) Dirichlet values that make a
 // contact node with friction slide along a tangential axis they fix at the
 // node and its master nodes (Fem::requireNoPrescribedSlip): the rows leave
-// that axis out, so its friction force would hide in the reaction. coords:
-// the mesh nodes' coordinates, for the message.
+// that axis out, so its friction force would hide in the reaction.
+// position: a slave node's coordinates by its mesh number, for the message.
 void requireNoPrescribedSlip(const std::vector<Feti::ContactConstraint>& contact, const PairFriction& friction,
                              const std::map<long long, double>& dirichlet,
-                             const std::vector<std::array<double, 3>>& coords);
+                             const std::function<std::array<double, 3>(int)>& position);
 
 // A solved FETI contact problem: multipliers, primal displacement, the outer
 // algorithm's status and the applications of F the solve took.

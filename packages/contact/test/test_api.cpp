@@ -73,16 +73,18 @@ struct Handover {
 Handover handover(const Brick& b, const Mesh::Discretization& disc) {
   Handover h;
   for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s) {
-    h.systems.push_back(Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], b.mat, b.loads));
+    h.systems.push_back(Fem::assembleSubdomain(disc, s, b.mat, b.loads));
     h.systems.back().R.clear();  // built again from the coordinates
   }
+  // The application holds the whole mesh on every rank.
+  const auto whole = Mesh::generateBox(b.spec);
   auto& fc = h.constraints;
-  fc.dirichlet = Fem::constrainedDofs(disc.mesh, b.loads.dirichlet);
-  const auto contact = Feti::contactConstraints(disc.mesh, {Feti::planeBeyondFace(disc.mesh, "zmin", b.contact.gap)});
+  fc.dirichlet = Fem::constrainedDofs(whole, b.loads.dirichlet);
+  const auto contact = Feti::contactConstraints(whole, {Feti::planeBeyondFace(whole, "zmin", b.contact.gap)});
   fc.rows = Feti::meshConstraintRows(disc, fc.dirichlet, contact, "Orthonormal", false);
   fc.contactNormal = Feti::faceNormal("zmin");
-  const auto area = Fem::faceNodalAreas(disc.mesh, "zmin");
-  for (int node : disc.mesh.faceNodes("zmin")) fc.contactArea[node] = area[node];
+  const auto area = Fem::faceNodalAreas(whole, "zmin");
+  for (int node : whole.faceNodes("zmin")) fc.contactArea[node] = area[node];
   return h;
 }
 

@@ -96,7 +96,7 @@ Result solve(const Setup& s, const RCP<const Comm>& comm) {
   const auto nodes = Contact::contactResults(*problem, uNodal, *lambda, r.status.slipBound, {fs}, r.counts);
   r.kkt = Contact::resultKKT(*problem, uNodal, nodes, {fs});
   r.u = uNodal.gathered();  // every node on every rank, to compare runs
-  r.normalForce.assign(disc.mesh.numNodes(), 0.0);
+  r.normalForce.assign(disc.numMeshNodes(), 0.0);
   for (size_t k = 0; k < nodes.nodes.size(); ++k) r.normalForce[nodes.nodes[k]] = nodes.normalForce[k];
   const std::vector<double> mine(r.normalForce);
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), r.normalForce.data());
@@ -133,8 +133,8 @@ std::vector<double> referenceTresca(const Setup& s, const std::vector<double>& g
   Kinv->factor(Kc);
   // Contact nodes: zmin nodes off the clamped face, frame (n, t1, t2) as in FETI.
   std::vector<int> nodes;
-  for (int node : disc.mesh.faceNodes("zmin"))
-    if (disc.mesh.coords[node][0] > 1e-12) nodes.push_back(node);
+  for (int node : disc.part.faceNodes("zmin"))
+    if (disc.part.coords[node][0] > 1e-12) nodes.push_back(node);
   const int nc = static_cast<int>(nodes.size()), m = 3 * nc;
   const double frame[3][3] = {{0, 0, -1}, {0, 1, 0}, {-1, 0, 0}};  // n, t1 = e_x x n, t2 = n x t1
   std::vector<double> Bt(static_cast<size_t>(n) * m, 0.0), KinvBt(Bt.size());
@@ -232,9 +232,9 @@ void checkAgainstReference(const Setup& s, const Result& r, Teuchos::FancyOStrea
   if (s.law == "Tresca") {
     // Nodal slip bound = traction x nodal area (recomputed here).
     auto disc = makeDisc(*self);
-    for (const auto& facet : disc.mesh.face("zmin")) {
+    for (const auto& facet : disc.part.face("zmin")) {
       std::vector<Fem::Point> X;
-      for (int nd : facet.nodes) X.push_back(disc.mesh.coords[nd]);
+      for (int nd : facet.nodes) X.push_back(disc.part.coords[nd]);
       const auto w = Fem::facetNodalAreas(X);
       for (size_t a = 0; a < w.size(); ++a) gByNode[facet.nodes[a]] += s.slipTraction * w[a];
     }

@@ -15,14 +15,14 @@
 namespace Tribos {
 namespace FCLIB {
 
-void buildFromFeti(const Feti::FetiProblem& problem, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
-                   const std::string& law, double coefficient, const Vector& u, const Vector& lambda,
-                   GlobalProblem& out, Solution& solution) {
+void buildFromFeti(const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh, const Fem::BodyMaterials& mat,
+                   const Fem::LoadCase& loads, const std::string& law, double coefficient, const Vector& u,
+                   const Vector& lambda, GlobalProblem& out, Solution& solution) {
   TRIBOS_REQUIRE(law == "Frictionless" || law == "Coulomb",
                  "FCLIB export: friction law \"" << law << "\" has no FCLIB form (Frictionless or Coulomb only)");
   const auto& comm = problem.comm();
   const auto& disc = problem.discretization();
-  const int numNodes = disc.mesh.numNodes();
+  const int numNodes = disc.numMeshNodes();
   const auto& lc = problem.contact();
 
   // Contact data by mesh node, summed over ranks (each contact node lives on one rank).
@@ -50,7 +50,9 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::BodyMaterials& m
   out = GlobalProblem();
   solution = Solution();
   if (rank != 0) return;
-  Mesh::Discretization serial(disc.mesh, disc.spec, Mesh::DecompositionSpec(), 1, 0);
+  TRIBOS_REQUIRE(wholeMesh.numNodes() == numNodes, "FCLIB export: the whole mesh on rank 0 has " << wholeMesh.numNodes()
+                                                   << " nodes, the problem's " << numNodes);
+  Mesh::Discretization serial(wholeMesh, disc.spec, Mesh::DecompositionSpec(), 1, 0);
   for (int n = 0; n < numNodes; ++n)
     TRIBOS_REQUIRE(serial.nodeIndex()[n] == n, "FCLIB export: unexpected node numbering of a one-rank discretization");
   Fem::MonolithicSystem mono(serial, mat, loads, self);
@@ -111,12 +113,12 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Fem::BodyMaterials& m
   validate(out, "FCLIB export");
 }
 
-void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Fem::BodyMaterials& mat,
-                const Fem::LoadCase& loads, const std::string& law, double coefficient, const Vector& u,
-                const Vector& lambda, const Info& info) {
+void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh,
+                const Fem::BodyMaterials& mat, const Fem::LoadCase& loads, const std::string& law, double coefficient,
+                const Vector& u, const Vector& lambda, const Info& info) {
   GlobalProblem p;
   Solution s;
-  buildFromFeti(problem, mat, loads, law, coefficient, u, lambda, p, s);
+  buildFromFeti(problem, wholeMesh, mat, loads, law, coefficient, u, lambda, p, s);
   if (problem.comm()->getRank() == 0) writeGlobal(path, p, info, &s, {}, Storage::CompressedRows);
   problem.comm()->barrier();
 }

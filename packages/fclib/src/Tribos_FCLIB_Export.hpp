@@ -35,15 +35,17 @@ namespace FCLIB {
 // complete on rank 0 only (other ranks get empty objects). 'law' is
 // "Frictionless" or "Coulomb" (FCLIB has no Tresca friction: throws). A
 // contact between bodies puts the master nodes' weights into H (the local
-// velocity is the relative one).
-void buildFromFeti(const Feti::FetiProblem& problem, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
-                   const std::string& law, double coefficient, const Vector& u, const Vector& lambda,
-                   GlobalProblem& out, Solution& solution);
+// velocity is the relative one). wholeMesh: the mesh the problem's
+// discretization was cut from, read on rank 0 only (the FCLIB problem is
+// global: M is assembled there).
+void buildFromFeti(const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh, const Fem::BodyMaterials& mat,
+                   const Fem::LoadCase& loads, const std::string& law, double coefficient, const Vector& u,
+                   const Vector& lambda, GlobalProblem& out, Solution& solution);
 
 // buildFromFeti, then writeGlobal on rank 0 (compressed rows).
-void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Fem::BodyMaterials& mat,
-                const Fem::LoadCase& loads, const std::string& law, double coefficient, const Vector& u,
-                const Vector& lambda, const Info& info);
+void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh,
+                const Fem::BodyMaterials& mat, const Fem::LoadCase& loads, const std::string& law, double coefficient,
+                const Vector& u, const Vector& lambda, const Info& info);
 
 }  // namespace FCLIB
 }  // namespace Tribos

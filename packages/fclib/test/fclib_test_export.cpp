@@ -50,7 +50,8 @@ const Exported& exported() {
     spec.cells = {6, 2, 2};
     Mesh::DecompositionSpec dec;
     dec.grid = {3, 1, 1};
-    Mesh::Discretization disc(Mesh::generateBox(spec), spec, dec, comm->getSize(), comm->getRank());
+    const Mesh::Mesh whole = Mesh::generateBox(spec);
+    Mesh::Discretization disc(whole, spec, dec, comm->getSize(), comm->getRank());
     Fem::LoadCase loads;
     Fem::DirichletCondition clamp;
     clamp.face = "xmin";
@@ -78,7 +79,7 @@ const Exported& exported() {
     const std::string path = fclib_test::scratchPath("export", "brick.hdf5");
     FCLIB::Info info{"Tribos brick", "Tet4 6x2x2, 3 subdomains, clamped xmin, contact zmin, Coulomb F = 0.3",
                      "exported from a FETI solution"};
-    FCLIB::exportFeti(path, *problem, steel, loads, fs.law, F, *sol.u, *sol.lambda, info);
+    FCLIB::exportFeti(path, *problem, whole, steel, loads, fs.law, F, *sol.u, *sol.lambda, info);
     if (comm->getRank() == 0) {
       e.p = FCLIB::readGlobal(path);
       e.stored = FCLIB::readSolution(path);

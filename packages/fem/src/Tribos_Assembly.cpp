@@ -89,6 +89,13 @@ SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain&
   return sys;
 }
 
+SubdomainSystem assembleSubdomain(const Mesh::Discretization& disc, int s, const BodyMaterials& mat,
+                                  const LoadCase& loads) {
+  SubdomainSystem sys = assembleSubdomain(disc.part, disc.subdomain(s), mat, loads);
+  for (int& n : sys.nodes) n = disc.meshNode(n);
+  return sys;
+}
+
 RCP<CrsMatrix> toTpetra(const LocalCsr& A, const RCP<const Comm>& comm) {
   TRIBOS_REQUIRE(comm->getSize() == 1, "toTpetra expects a serial communicator");
   auto map = rcp(new Map(static_cast<Tpetra::global_size_t>(A.rows), 0, comm));
@@ -103,7 +110,7 @@ RCP<CrsMatrix> toTpetra(const LocalCsr& A, const RCP<const Comm>& comm) {
   return K;
 }
 
-std::vector<double> globalLoadVector(const Mesh::Mesh& mesh, const LoadCase& loads) {
+std::vector<double> loadVector(const Mesh::Mesh& mesh, const LoadCase& loads) {
   std::vector<double> f(3 * static_cast<size_t>(mesh.numNodes()), 0.0);
   const int npc = mesh.nodesPerCell();
   for (int c = 0; c < mesh.numCells(); ++c) {

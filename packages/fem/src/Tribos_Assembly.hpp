@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "Tribos_Decomposition.hpp"
+#include "Tribos_Discretization.hpp"
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_LocalCsr.hpp"
 #include "Tribos_Loads.hpp"
@@ -27,6 +27,9 @@ struct SubdomainSystem {
 
 SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
                                   const LoadCase& loads);
+// Subdomain s of this rank's part, its nodes named by their mesh numbers.
+SubdomainSystem assembleSubdomain(const Mesh::Discretization& disc, int s, const BodyMaterials& mat,
+                                  const LoadCase& loads);
 
 // Cell node coordinates.
 std::vector<Point> cellCoordinates(const Mesh::Mesh& mesh, int cell);
@@ -40,8 +43,9 @@ RCP<CrsMatrix> toTpetra(const LocalCsr& A, const RCP<const Comm>& comm);
 NodalVector assembledProduct(const std::vector<SubdomainSystem>& systems, const NodalVector& u);
 NodalVector assembledLoad(const std::vector<SubdomainSystem>& systems, const RCP<const NodalLayout>& layout);
 
-// Global load vector (3 numNodes), every rank computes it in full.
-std::vector<double> globalLoadVector(const Mesh::Mesh& mesh, const LoadCase& loads);
+// The load vector of a mesh, 3 per node: its cells' volume forces and its
+// faces' tractions (of a part of a mesh: the part's share).
+std::vector<double> loadVector(const Mesh::Mesh& mesh, const LoadCase& loads);
 
 }  // namespace Fem
 }  // namespace Tribos

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "Tribos_Elasticity.hpp"
-#include "Tribos_Mesh.hpp"
+#include "Tribos_Discretization.hpp"
 
 namespace Tribos {
 namespace Fem {
@@ -37,6 +37,8 @@ struct LoadCase {
 // Global dof (3 node + c) -> prescribed value. Faces meeting at an edge may
 // both constrain a dof; conflicting values are an error naming both faces.
 std::map<long long, double> constrainedDofs(const Mesh::Mesh& mesh, const std::vector<DirichletCondition>& bcs);
+// The same at the nodes of a rank's part, by mesh node numbers (3 node + c).
+std::map<long long, double> constrainedDofs(const Mesh::Discretization& disc, const std::vector<DirichletCondition>& bcs);
 
 // The area of a face attached to every mesh node (the integral of its shape
 // function over the face; 0 off the face): a traction bound times it is the

@@ -8,8 +8,6 @@
 
 #include <Teuchos_DefaultSerialComm.hpp>
 
-#include <mpi.h>
-
 #include <algorithm>
 
 #include "Tribos_Assembly.hpp"
@@ -24,44 +22,54 @@ namespace Fem {
 MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const BodyMaterials& mat, const LoadCase& loads,
                                    const RCP<const Comm>& comm)
     : disc_(disc), comm_(comm) {
-  const Mesh::Mesh& mesh = disc.mesh;
-  std::vector<GO> gids;
+  const Mesh::Mesh& mesh = disc.part;  // the rank's part, in its own numbering
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
   // Dof GIDs follow the rank-contiguous node numbering, so every rank owns a
-  // contiguous block (what Amesos2 and MueLu handle best).
+  // contiguous block (what Amesos2 and MueLu handle best). The part's dofs
+  // (shared nodes on several ranks) send their sums to the owners.
   const auto& index = disc.nodeIndex();
+  std::vector<GO> owned, held;
   for (int n : disc.ownedNodes())
-    for (int c = 0; c < 3; ++c) gids.push_back(3 * index[n] + c);
-  map_ = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(), gids, 0, comm));
+    for (int c = 0; c < 3; ++c) owned.push_back(3 * index[n] + c);
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    for (int c = 0; c < 3; ++c) held.push_back(3 * index[n] + c);
+  map_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(owned), 0, comm));
+  partMap_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(held), 0, comm));
+  const Export toOwners(partMap_, map_);
   const auto bc = constrainedDofs(mesh, loads.dirichlet);
   const int npc = mesh.nodesPerCell(), ne = 3 * npc;
-  // Entries per row: 3 per node sharing a cell with the row's node, over all
-  // cells (rows of shared nodes receive other ranks' entries at fillComplete).
-  // Counted, not bounded: an unstructured mesh (Mesh/File) has no fixed
-  // number of neighbours.
-  std::vector<std::vector<int>> neighbours(mesh.numNodes());
-  const auto& owner = disc.nodeOwner();
-  for (int c = 0; c < mesh.numCells(); ++c)
-    for (int a = 0; a < npc; ++a) {
-      const int n = mesh.cell(c)[a];
-      if (owner[n] == disc.myRank) neighbours[n].insert(neighbours[n].end(), mesh.cell(c), mesh.cell(c) + npc);
+  // Entries per row: 3 per node sharing a part cell with the row's node,
+  // summed over the ranks holding it (a neighbour seen by two ranks counts
+  // twice: an upper bound, which is all the allocation needs). Counted, not
+  // bounded: an unstructured mesh (Mesh/File) has no fixed number of
+  // neighbours.
+  Vector partCount(partMap_), ownedCount(map_);
+  {
+    std::vector<std::vector<int>> neighbours(mesh.numNodes());
+    for (int c = 0; c < mesh.numCells(); ++c)
+      for (int a = 0; a < npc; ++a) neighbours[mesh.cell(c)[a]].insert(neighbours[mesh.cell(c)[a]].end(), mesh.cell(c), mesh.cell(c) + npc);
+    auto count = partCount.getDataNonConst();
+    for (int n = 0; n < mesh.numNodes(); ++n) {
+      auto& nb = neighbours[n];
+      std::sort(nb.begin(), nb.end());
+      const double k = 3.0 * static_cast<double>(std::unique(nb.begin(), nb.end()) - nb.begin());
+      std::vector<int>().swap(nb);
+      for (int c = 0; c < 3; ++c) count[3 * n + c] = k;
     }
-  std::vector<size_t> entries;
-  entries.reserve(gids.size());
-  for (int n : disc.ownedNodes()) {
-    auto& nb = neighbours[n];
-    std::sort(nb.begin(), nb.end());
-    const size_t count = 3 * static_cast<size_t>(std::unique(nb.begin(), nb.end()) - nb.begin());
-    std::vector<int>().swap(nb);
-    entries.insert(entries.end(), 3, count);
   }
+  ownedCount.doExport(partCount, toOwners, Tpetra::ADD);
+  std::vector<size_t> entries;
+  for (double k : ownedCount.getData()) entries.push_back(static_cast<size_t>(k));
   K_ = rcp(new CrsMatrix(map_, Teuchos::ArrayView<const size_t>(entries)));
   // Element-level symmetric elimination of the Dirichlet dofs: their columns
   // move to the right-hand side, their rows keep only the diagonal, so K stays
-  // SPD and CG applies.
-  std::vector<double> lift(3 * static_cast<size_t>(mesh.numNodes()), 0.0);
+  // SPD and CG applies. The load of a fixed dof is replaced by K_aa ubar_a.
+  // f: the part's share (its cells and facets), 3 per part node.
+  std::vector<double> f = loadVector(mesh, loads);
+  for (const auto& d : bc) f[d.first] = 0.0;
   std::vector<GO> dofs(ne);
   std::vector<SC> row(ne);
-  for (int c : disc.localCells()) {
+  for (int c = 0; c < mesh.numCells(); ++c) {
     const auto Ke = elementStiffness(mesh.type, cellCoordinates(mesh, c), mat.ofCell(mesh, c));
     std::vector<double> ubar(ne, 0.0);
     std::vector<char> fixed(ne, 0);
@@ -71,12 +79,13 @@ MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const BodyM
       if (it != bc.end()) fixed[a] = 1, ubar[a] = it->second;
     }
     for (int a = 0; a < ne; ++a) {
+      const long long partDof = 3LL * mesh.cell(c)[a / 3] + a % 3;
       for (int b = 0; b < ne; ++b) {
         const double k = Ke[a * ne + b];
         if (fixed[a] || fixed[b]) {
           row[b] = (a == b) ? k : 0.0;
-          if (!fixed[a] && fixed[b]) lift[dofs[a]] -= k * ubar[b];
-          if (fixed[a] && a == b) lift[dofs[a]] += k * ubar[a];
+          if (!fixed[a] && fixed[b]) f[partDof] -= k * ubar[b];
+          if (fixed[a] && a == b) f[partDof] += k * ubar[a];
         } else {
           row[b] = k;
         }
@@ -85,19 +94,14 @@ MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const BodyM
     }
   }
   K_->fillComplete();
-  // The load of a fixed dof is replaced by K_aa ubar_a (from lift).
-  std::vector<double> f = globalLoadVector(mesh, loads);
-  for (const auto& d : bc) f[d.first] = 0.0;
-  // lift is indexed by dof GID (rank-contiguous numbering), f by mesh node.
-  MPI_Allreduce(MPI_IN_PLACE, lift.data(), static_cast<int>(lift.size()), MPI_DOUBLE, MPI_SUM,
-                *Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm)->getRawMpiComm());
-  f_ = rcp(new Vector(map_));
-  auto fv = f_->getDataNonConst();
-  for (size_t i = 0; i < map_->getNodeNumElements(); ++i) {
-    const GO g = map_->getGlobalElement(static_cast<LO>(i));
-    const int node = disc.ownedNodes()[i / 3];
-    fv[i] = f[3LL * node + i % 3] + lift[g];
+  Vector partLoad(partMap_);
+  {
+    auto v = partLoad.getDataNonConst();
+    std::copy(f.begin(), f.end(), v.begin());
   }
+  f_ = rcp(new Vector(map_));
+  f_->doExport(partLoad, toOwners, Tpetra::ADD);
+  layout_ = rcp(new NodalLayout(disc.meshNodes(), comm));
 }
 
 namespace {
@@ -200,7 +204,7 @@ RCP<const Teuchos::ParameterList> MonolithicSystem::getValidParameters() {
 RCP<MultiVector> MonolithicSystem::nullSpace() const {
   auto nullspace = rcp(new MultiVector(map_, 6));
   for (size_t i = 0; i < map_->getNodeNumElements(); ++i) {
-    const auto& x = disc_.mesh.coords[disc_.ownedNodes()[i / 3]];
+    const auto& x = disc_.part.coords[disc_.ownedNodes()[i / 3]];
     for (int k = 0; k < 6; ++k) nullspace->replaceLocalValue(i, k, rigidBodyMode(k, x)[i % 3]);
   }
   return nullspace;
@@ -215,20 +219,18 @@ MonolithicResult MonolithicSystem::solve(const Teuchos::ParameterList& params) c
   K_->apply(*u, r);
   r.update(1.0, *f_, -1.0);
   res.relativeResidual = r.norm2() / std::max(f_->norm2(), 1e-300);
-  res.u = gatherToAll(*u, disc_);
+  res.u = atPartNodes(*u);
   return res;
 }
 
-std::vector<double> gatherToAll(const Vector& v, const Mesh::Discretization& disc) {
-  std::vector<double> full(3 * static_cast<size_t>(disc.mesh.numNodes()), 0.0);
-  auto data = v.getData();
-  const auto& owned = disc.ownedNodes();
-  TRIBOS_REQUIRE(data.size() == 3 * owned.size(), "gatherToAll: vector does not match the owned nodes");
-  for (size_t i = 0; i < data.size(); ++i) full[3 * owned[i / 3] + i % 3] = data[i];
-  auto mpiComm = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(v.getMap()->getComm());
-  MPI_Allreduce(MPI_IN_PLACE, full.data(), static_cast<int>(full.size()), MPI_DOUBLE, MPI_SUM,
-                *mpiComm->getRawMpiComm());
-  return full;
+NodalVector MonolithicSystem::atPartNodes(const Vector& owned) const {
+  Vector part(partMap_);
+  part.doImport(owned, Import(map_, partMap_), Tpetra::INSERT);
+  NodalVector u(layout_);
+  auto v = part.getData();
+  for (int n = 0; n < disc_.part.numNodes(); ++n)
+    for (int c = 0; c < 3; ++c) u.at(disc_.meshNode(n))[c] = v[3 * n + c];
+  return u;
 }
 
 }  // namespace Fem

@@ -12,6 +12,7 @@
 #include "Tribos_Discretization.hpp"
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_Loads.hpp"
+#include "Tribos_NodalVector.hpp"
 #include "Tribos_Registry.hpp"
 #include "Tribos_Types.hpp"
 
@@ -19,7 +20,7 @@ namespace Tribos {
 namespace Fem {
 
 struct MonolithicResult {
-  std::vector<double> u;   // replicated displacement, 3 numNodes
+  NodalVector u;           // at the nodes of the rank's part
   int iterations = 0;      // Belos iterations (0 for a direct solve)
   double relativeResidual = 0;
   bool converged = false;
@@ -49,18 +50,17 @@ class MonolithicSystem {
   // The rigid-body modes at the owned dofs (near null space of K).
   RCP<MultiVector> nullSpace() const;
   RCP<const Vector> rhs() const { return f_; }
+  // A vector on the owned dofs, at every node of the rank's part. Collective.
+  NodalVector atPartNodes(const Vector& owned) const;
 
  private:
   const Mesh::Discretization& disc_;
   RCP<const Comm> comm_;
-  RCP<const Map> map_;
+  RCP<const Map> map_, partMap_;  // dofs of the owned nodes; of the part's nodes
+  RCP<const NodalLayout> layout_;  // the part's nodes
   RCP<CrsMatrix> K_;
   RCP<Vector> f_;
 };
-
-// Replicates a vector on the owned-node dof map (3 per owned node, in
-// ownedNodes() order) into a full array indexed 3 node + c.
-std::vector<double> gatherToAll(const Vector& v, const Mesh::Discretization& disc);
 
 }  // namespace Fem
 }  // namespace Tribos

@@ -59,14 +59,17 @@ void patchTest(Mesh::CellType type, const std::string& solver, Teuchos::FancyOSt
   Fem::Material mat{2.1e11, 0.3};
   Fem::MonolithicSystem sys(disc, mat, allFacesDirichlet(exact), comm);
   const auto res = sys.solve(solverParams(solver));
-  double err = 0, scale = 0;
-  for (int n = 0; n < disc.mesh.numNodes(); ++n) {
-    const Point u = exact(disc.mesh.coords[n]);
+  // Every rank checks the nodes of its part; the worst over the ranks.
+  double worst[2] = {0, 0}, over[2];
+  for (int n = 0; n < disc.part.numNodes(); ++n) {
+    const Point u = exact(disc.part.coords[n]);
     for (int c = 0; c < 3; ++c) {
-      err = std::max(err, std::abs(res.u[3 * n + c] - u[c]));
-      scale = std::max(scale, std::abs(u[c]));
+      worst[0] = std::max(worst[0], std::abs(res.u.at(disc.meshNode(n))[c] - u[c]));
+      worst[1] = std::max(worst[1], std::abs(u[c]));
     }
   }
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 2, worst, over);
+  const double err = over[0], scale = over[1];
   out << "patch test " << Mesh::cellTypeName(type) << " " << solver << ": max error / max u = " << err / scale << "\n";
   TEST_COMPARE(err / scale, <, 1e-9);
 }
@@ -86,9 +89,9 @@ std::pair<double, double> manufacturedErrors(Mesh::CellType type, int n, const R
   const auto res = sys.solve(solverParams("CG+MueLu"));
   const auto D = mat.D();
   double l2 = 0, en = 0;
-  const int npc = disc.mesh.nodesPerCell();
-  for (int cell : disc.localCells()) {
-    const auto X = Fem::cellCoordinates(disc.mesh, cell);
+  const int npc = disc.part.nodesPerCell();
+  for (int cell = 0; cell < disc.part.numCells(); ++cell) {
+    const auto X = Fem::cellCoordinates(disc.part, cell);
     for (const auto& q : Fem::accurateQuadrature(type)) {
       std::vector<double> dN;
       const double det = Fem::shapeGradients(type, X, q.xi, dN);
@@ -96,11 +99,11 @@ std::pair<double, double> manufacturedErrors(Mesh::CellType type, int n, const R
       Point x{}, uh{};
       double grad[3][3] = {};  // grad[i][j] = d(uh_i - u_i)/dx_j
       for (int a = 0; a < npc; ++a) {
-        const int node = disc.mesh.cell(cell)[a];
+        const double* ua = res.u.at(disc.meshNode(disc.part.cell(cell)[a]));
         for (int i = 0; i < 3; ++i) {
           x[i] += N[a] * X[a][i];
-          uh[i] += N[a] * res.u[3 * node + i];
-          for (int j = 0; j < 3; ++j) grad[i][j] += dN[3 * a + j] * res.u[3 * node + i];
+          uh[i] += N[a] * ua[i];
+          for (int j = 0; j < 3; ++j) grad[i][j] += dN[3 * a + j] * ua[i];
         }
       }
       const Point u = exact(x);
@@ -147,7 +150,7 @@ void kernelTest(Mesh::CellType type, Teuchos::FancyOStream& out, bool& success) 
   auto disc = makeDisc(type, {6, 4, 4}, 5, *comm);
   Fem::Material mat{2.1e11, 0.3};
   for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s) {
-    const auto sys = Fem::assembleSubdomain(disc.mesh, disc.subdomains[s], mat, {});
+    const auto sys = Fem::assembleSubdomain(disc, s, mat, {});
     const int n = sys.numDofs();
     double kmax = 0;
     for (double v : sys.K.val) kmax = std::max(kmax, std::abs(v));

@@ -28,16 +28,16 @@ struct Box {
   RCP<const Fem::NodalLayout> layout;
   explicit Box(const RCP<const Comm>& comm) : disc(make(*comm)) {
     std::vector<int> held;
-    for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s)
-      held.insert(held.end(), disc.subdomains[s].nodes.begin(), disc.subdomains[s].nodes.end());
+    for (const auto& sd : disc.localSubdomains)
+      for (int n : sd.nodes) held.push_back(disc.meshNode(n));
     layout = rcp(new Fem::NodalLayout(held, comm));
   }
-  static Mesh::Discretization make(const Comm& comm) {
+  static Mesh::Discretization make(const Comm& comm, int rank = -1) {
     Mesh::BoxSpec spec;
     spec.cells = {4, 2, 2};
     Mesh::DecompositionSpec dec;
     dec.grid = {4, 1, 1};
-    return Mesh::Discretization(Mesh::generateBox(spec), spec, dec, comm.getSize(), comm.getRank());
+    return Mesh::Discretization(Mesh::generateBox(spec), spec, dec, comm.getSize(), rank < 0 ? comm.getRank() : rank);
   }
 };
 
@@ -45,16 +45,17 @@ TEUCHOS_UNIT_TEST(NodalVector, OwnerIsTheLowestHoldingRank) {
   const auto comm = Tpetra::getDefaultComm();
   const Box b(comm);
   const auto& L = *b.layout;
-  TEST_EQUALITY(L.numNodes(), b.disc.mesh.numNodes());
-  std::vector<int> owned(L.nodes().begin(), L.nodes().begin() + L.numOwned());
-  TEST_ASSERT(owned == b.disc.ownedNodes());
+  TEST_EQUALITY(L.numNodes(), b.disc.numMeshNodes());
+  std::vector<int> owned(L.nodes().begin(), L.nodes().begin() + L.numOwned()), partOwned;
+  for (int n : b.disc.ownedNodes()) partOwned.push_back(b.disc.meshNode(n));
+  TEST_ASSERT(owned == partOwned);
   // Every node owned exactly once over the ranks.
   long long mine = L.numOwned(), total = 0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, mine, Teuchos::outArg(total));
-  TEST_EQUALITY(total, static_cast<long long>(b.disc.mesh.numNodes()));
+  TEST_EQUALITY(total, static_cast<long long>(b.disc.numMeshNodes()));
   for (int i = 0; i < L.numHeld(); ++i) TEST_EQUALITY(L.index(L.nodes()[i]), i);
   TEST_EQUALITY(L.index(-5), -1);
-  TEST_EQUALITY(L.index(b.disc.mesh.numNodes()), -1);
+  TEST_EQUALITY(L.index(b.disc.numMeshNodes()), -1);
 }
 
 TEUCHOS_UNIT_TEST(NodalVector, SumsCopiesAndGathers) {
@@ -64,12 +65,12 @@ TEUCHOS_UNIT_TEST(NodalVector, SumsCopiesAndGathers) {
   const int me = comm->getRank();
   // Each holder adds (rank + 1) (node + c + 1): the sum over holders is
   // (node + c + 1) times the sum of (r + 1) over the ranks r holding node.
-  std::vector<int> holders(b.disc.mesh.numNodes(), 0), ranksPlus1(holders.size(), 0);
-  for (int s = 0; s < b.disc.numSubdomains(); ++s)
-    for (int n : b.disc.subdomains[s].nodes) {
-      const int r = b.disc.layout.owner(s);
-      if (!(holders[n] & (1 << r))) holders[n] |= 1 << r, ranksPlus1[n] += r + 1;
-    }
+  // Rank r holds the nodes of its part, cut here again for every r.
+  std::vector<int> ranksPlus1(b.disc.numMeshNodes(), 0);
+  for (int r = 0; r < comm->getSize(); ++r) {
+    const auto other = Box::make(*comm, r);
+    for (int n : other.meshNodes()) ranksPlus1[n] += r + 1;
+  }
   Fem::NodalVector v(b.layout);
   for (int n : L.nodes())
     for (int c = 0; c < 3; ++c) v.at(n)[c] = (me + 1.0) * (n + c + 1);
@@ -80,9 +81,9 @@ TEUCHOS_UNIT_TEST(NodalVector, SumsCopiesAndGathers) {
   TEST_EQUALITY(err, 0.0);
   // gathered: every node's value on every rank; norms count a node once.
   const auto all = v.gathered();
-  TEST_EQUALITY(all.size(), 3 * static_cast<size_t>(b.disc.mesh.numNodes()));
+  TEST_EQUALITY(all.size(), 3 * static_cast<size_t>(b.disc.numMeshNodes()));
   double maxAbs = 0, sum2 = 0;
-  for (int n = 0; n < b.disc.mesh.numNodes(); ++n)
+  for (int n = 0; n < b.disc.numMeshNodes(); ++n)
     for (int c = 0; c < 3; ++c) {
       const double x = ranksPlus1[n] * (n + c + 1.0);
       TEST_EQUALITY(all[3 * n + c], x);
@@ -106,7 +107,7 @@ TEUCHOS_UNIT_TEST(NodalVector, EveryNodeAndRefusals) {
   const Box b(comm);
   Fem::NodalVector u(b.layout);
   int missing = -1;
-  for (int n = 0; n < b.disc.mesh.numNodes() && missing < 0; ++n)
+  for (int n = 0; n < b.disc.numMeshNodes() && missing < 0; ++n)
     if (b.layout->index(n) < 0) missing = n;
   if (comm->getSize() == 1) TEST_EQUALITY(missing, -1);
   if (missing >= 0) {

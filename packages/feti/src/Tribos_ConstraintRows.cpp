@@ -98,15 +98,53 @@ void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::ar
   t2 = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
 }
 
+std::map<int, Mesh::NodeCopy> contactPartners(const Mesh::Discretization& disc,
+                                              const std::vector<ContactConstraint>& contact,
+                                              std::map<long long, double>& dirichlet, const Comm& comm) {
+  std::vector<int> asked;
+  for (const ContactConstraint& cc : contact) {
+    const int n = disc.partNode(cc.node);
+    if (n < 0 || disc.nodeOwner()[n] != disc.myRank) continue;
+    for (const auto& m : cc.master)
+      if (disc.partNode(m.first) < 0) asked.push_back(m.first);
+  }
+  // The owner answers: the node's first copy, then per component whether a
+  // Dirichlet condition fixes it and its value.
+  const auto answers = disc.askOwners(asked, 8,
+                                      [&](int n, double* out) {
+                                        const Mesh::NodeCopy first = disc.copies(n).front();
+                                        out[0] = first.subdomain, out[1] = first.localNode;
+                                        for (int c = 0; c < 3; ++c) {
+                                          const auto it = dirichlet.find(3LL * disc.meshNode(n) + c);
+                                          out[2 + c] = it != dirichlet.end();
+                                          out[5 + c] = it != dirichlet.end() ? it->second : 0.0;
+                                        }
+                                      },
+                                      comm);
+  std::map<int, Mesh::NodeCopy> partners;
+  for (size_t i = 0; i < asked.size(); ++i) {
+    const double* a = &answers[8 * i];
+    partners[asked[i]] = {static_cast<int>(a[0]), static_cast<int>(a[1])};
+    for (int c = 0; c < 3; ++c)
+      if (a[2 + c] != 0.0) dirichlet[3LL * asked[i] + c] = a[5 + c];
+  }
+  return partners;
+}
+
 std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const std::map<long long, double>& bc,
                                         const std::vector<ContactConstraint>& contact, const std::string& gluing,
-                                        bool eliminateDirichlet) {
-  const Mesh::Mesh& mesh = disc.mesh;
-  auto copyOf = [&](int s, int node, double weight) { return RowCopy{s, disc.subdomains[s].localNode(node), weight}; };
-  // Subdomain copies of every node, ascending.
-  std::vector<std::vector<int>> copies(mesh.numNodes());
-  for (const auto& sd : disc.subdomains)
-    for (int n : sd.nodes) copies[n].push_back(sd.id);
+                                        bool eliminateDirichlet, const std::map<int, Mesh::NodeCopy>& partners) {
+  const Mesh::Mesh& mesh = disc.part;  // the rank's part
+  auto copyOf = [](const Mesh::NodeCopy& c, double weight) { return RowCopy{c.subdomain, c.localNode, weight}; };
+  // The first copy of a mesh node: from the part, or a contact partner's.
+  auto firstCopy = [&](int meshNode) {
+    const int n = disc.partNode(meshNode);
+    if (n >= 0) return disc.copies(n).front();
+    const auto it = partners.find(meshNode);
+    TRIBOS_REQUIRE(it != partners.end(), "contact partner node " << meshNode << " is neither in the part of rank "
+                                                                 << disc.myRank << " nor among its partner nodes");
+    return it->second;
+  };
   // A row belongs to the rank of its first copy's subdomain; only this
   // rank's rows are kept (the dual numbering is made from the counts).
   auto mine = [&](int subdomain) { return disc.layout.owner(subdomain) == disc.myRank; };
@@ -116,18 +154,14 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
   };
   const bool orthonormal = gluing == "Orthonormal", full = gluing == "Full";
   for (int n = 0; n < mesh.numNodes(); ++n) {
-    const auto& cp = copies[n];
+    const std::vector<Mesh::NodeCopy> cp = disc.copies(n);
     const int k = static_cast<int>(cp.size());
-    // Every row of node n has one of its copies first: none of them is on
-    // this rank when none of its subdomains is.
-    bool local = false;
-    for (int s : cp) local = local || mine(s);
-    if (!local) continue;
+    const int node = disc.meshNode(n);
     for (int c = 0; c < 3; ++c) {
       DualRow r{DualRow::Gluing};
-      r.node = n;
+      r.node = node;
       r.dir[c] = 1.0;
-      auto dirichlet = bc.find(3LL * n + c);
+      auto dirichlet = bc.find(3LL * node + c);
       if (dirichlet != bc.end() && eliminateDirichlet) continue;  // eliminated in every copy
       if (dirichlet != bc.end()) {
         // Orthonormal: u = value on every copy (k orthonormal rows, no gluing
@@ -135,7 +169,7 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
         r.kind = DualRow::Dirichlet;
         r.c = dirichlet->second;
         for (int i = 0; i < (orthonormal ? k : 1); ++i) {
-          r.copies = {copyOf(cp[i], n, 1.0)};
+          r.copies = {copyOf(cp[i], 1.0)};
           emit(r);
         }
         if (orthonormal) continue;
@@ -147,22 +181,23 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
         for (int j = 1; j < k; ++j) {
           const double s = 1.0 / std::sqrt(static_cast<double>(j) * (j + 1));
           r.copies.clear();
-          for (int i = 0; i < j; ++i) r.copies.push_back(copyOf(cp[i], n, s));
-          r.copies.push_back(copyOf(cp[j], n, -j * s));
+          for (int i = 0; i < j; ++i) r.copies.push_back(copyOf(cp[i], s));
+          r.copies.push_back(copyOf(cp[j], -j * s));
           emit(r);
         }
         continue;
       }
       for (int i = 0; i + 1 < k; ++i)
         for (int j = i + 1; j < (full ? k : i + 2); ++j) {
-          r.copies = {copyOf(cp[i], n, 1.0), copyOf(cp[j], n, -1.0)};
+          r.copies = {copyOf(cp[i], 1.0), copyOf(cp[j], -1.0)};
           emit(r);
         }
     }
   }
   for (const ContactConstraint& cc : contact) {
     // The rows of a contact node start at its first copy.
-    if (disc.nodeOwner()[cc.node] != disc.myRank) continue;
+    const int slave = disc.partNode(cc.node);
+    if (slave < 0 || disc.nodeOwner()[slave] != disc.myRank) continue;
     // A direction is left out when Dirichlet conditions fix it at the slave
     // node and at every master node (then the row would repeat theirs). A
     // Dirichlet condition on the normal takes the node out of the contact
@@ -180,12 +215,12 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
       return true;
     };
     // Out of the contact set (below) only if the values keep it out.
-    if (!cc.glued) Fem::requireNoPrescribedPenetration(bc, cc.node, mesh.coords[cc.node], cc.normal, cc.gap, cc.master);
+    if (!cc.glued) Fem::requireNoPrescribedPenetration(bc, cc.node, mesh.coords[slave], cc.normal, cc.gap, cc.master);
     if (!cc.glued && fixedAtAll(cc.normal)) continue;
     DualRow r{cc.glued ? DualRow::Bonded : DualRow::Normal};
     r.node = cc.node;
-    r.copies = {copyOf(copies[cc.node].front(), cc.node, 1.0)};
-    for (const auto& [node, weight] : cc.master) r.copies.push_back(copyOf(copies[node].front(), node, -weight));
+    r.copies = {copyOf(firstCopy(cc.node), 1.0)};
+    for (const auto& [node, weight] : cc.master) r.copies.push_back(copyOf(firstCopy(node), -weight));
     const std::array<double, 3>* dirs[3] = {&cc.normal, &cc.t1, &cc.t2};
     const DualRow::Kind kinds[3] = {DualRow::Normal, DualRow::Tangent1, DualRow::Tangent2};
     std::vector<int> copyNodes{cc.node};

@@ -89,9 +89,19 @@ struct DualConstraints {
 // master node; a glued constraint gives three equality rows instead. With
 // eliminateDirichlet a copy whose node has the row's direction fixed gets
 // weight 0 and its prescribed part moves to c (B acts on free dofs only).
+// dirichlet: by mesh node numbers, at the part's nodes and the partners;
+// partners: contactPartners().
 std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const std::map<long long, double>& dirichlet,
                                         const std::vector<ContactConstraint>& contact, const std::string& gluing,
-                                        bool eliminateDirichlet);
+                                        bool eliminateDirichlet, const std::map<int, Mesh::NodeCopy>& partners = {});
+
+// The master nodes of this rank's contact nodes that its part does not
+// hold: their first copies (the rows of B name them), and their Dirichlet
+// conditions, added to `dirichlet` (a row is left out where they fix its
+// direction). Asked of the nodes' owners. Collective.
+std::map<int, Mesh::NodeCopy> contactPartners(const Mesh::Discretization& disc,
+                                              const std::vector<ContactConstraint>& contact,
+                                              std::map<long long, double>& dirichlet, const Comm& comm);
 
 // Sets every row's owner (owner[s]: the rank of subdomain s) and orders the
 // rows per rank: equality rows, normal rows, tangential rows (so that every

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "Tribos_AllGather.hpp"
+#include "Tribos_ByteBuffer.hpp"
 #include "Tribos_ConstraintRows.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Loads.hpp"
@@ -251,17 +252,22 @@ ContactPair planeBeyondFace(const Mesh::Mesh& mesh, const std::string& face, dou
   return pair;
 }
 
-std::vector<ContactConstraint> gatherContactConstraints(const std::vector<ContactConstraint>& local, const Comm& comm) {
-  // Each constraint as doubles: node, pair, glued, normal, t1, t2, gap,
-  // area, the number of master nodes, then (node, weight) per master node.
+namespace {
+
+// Each constraint as doubles: node, pair, glued, normal, t1, t2, gap, area,
+// the number of master nodes, then (node, weight) per master node.
+std::vector<double> packConstraints(const std::vector<ContactConstraint>& list) {
   std::vector<double> packed;
-  for (const auto& c : local) {
+  for (const auto& c : list) {
     packed.insert(packed.end(), {double(c.node), double(c.pair), double(c.glued)});
     for (const auto* v : {&c.normal, &c.t1, &c.t2}) packed.insert(packed.end(), v->begin(), v->end());
     packed.insert(packed.end(), {c.gap, c.area, double(c.master.size())});
     for (const auto& [node, weight] : c.master) packed.insert(packed.end(), {double(node), weight});
   }
-  const std::vector<double> all = allGatherv(packed, comm);
+  return packed;
+}
+
+std::vector<ContactConstraint> unpackConstraints(const std::vector<double>& all) {
   std::vector<ContactConstraint> out;
   for (size_t i = 0; i < all.size();) {
     ContactConstraint c;
@@ -277,6 +283,34 @@ std::vector<ContactConstraint> gatherContactConstraints(const std::vector<Contac
     out.push_back(std::move(c));
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<ContactConstraint> gatherContactConstraints(const std::vector<ContactConstraint>& local, const Comm& comm) {
+  return unpackConstraints(allGatherv(packConstraints(local), comm));
+}
+
+std::vector<ContactConstraint> scatterContactConstraints(const std::vector<ContactConstraint>& onRoot,
+                                                         const Mesh::Discretization& disc, const Comm& comm, int root) {
+  const bool isRoot = comm.getRank() == root;
+  std::vector<int> slaves;
+  if (isRoot)
+    for (const auto& c : onRoot) slaves.push_back(c.node);
+  const auto owner = disc.askOwners(slaves, 1, [&](int, double* out) { out[0] = disc.myRank; }, comm);
+  if (!isRoot) {
+    ByteBuffer b = receiveBuffer(root, comm);
+    return unpackConstraints(b.getVector<double>());
+  }
+  std::vector<std::vector<ContactConstraint>> perRank(comm.getSize());
+  for (size_t i = 0; i < onRoot.size(); ++i) perRank[static_cast<int>(owner[i])].push_back(onRoot[i]);
+  for (int r = 0; r < comm.getSize(); ++r) {
+    if (r == root) continue;
+    ByteBuffer b;
+    b.put(packConstraints(perRank[r]));
+    sendBuffer(b, r, comm);
+  }
+  return perRank[root];
 }
 
 std::array<double, 3> relativeDisplacement(const ContactConstraint& c, const Fem::NodalVector& u) {

@@ -33,7 +33,7 @@
 #include <utility>
 #include <vector>
 
-#include "Tribos_Mesh.hpp"
+#include "Tribos_Discretization.hpp"
 #include "Tribos_NodalVector.hpp"
 #include "Tribos_Types.hpp"
 
@@ -79,6 +79,13 @@ ContactPair planeBeyondFace(const Mesh::Mesh& mesh, const std::string& face, dou
 // Every rank's constraints, in rank order, on every rank (for writers of a
 // global problem such as the FCLIB export). Collective.
 std::vector<ContactConstraint> gatherContactConstraints(const std::vector<ContactConstraint>& local, const Comm& comm);
+
+// The constraints that `root` found on the whole mesh, each sent to the rank
+// that owns its slave node (the rank of its contact rows): no rank holds
+// the list of another's. Collective.
+std::vector<ContactConstraint> scatterContactConstraints(const std::vector<ContactConstraint>& onRoot,
+                                                         const Mesh::Discretization& disc, const Comm& comm,
+                                                         int root = 0);
 
 // The relative displacement (u_s - sum N_i u_i) of a constraint, from a
 // nodal displacement that holds its nodes.

@@ -73,12 +73,14 @@ class FetiProblem {
   // A decomposed mesh: assembles the subdomains of this rank (each body with
   // its material) and derives this rank's rows of B (meshConstraintRows)
   // with the contact constraints `contact` of the free function
-  // contactConstraints() (none: no contact; the same list on every rank, of
-  // which the rank keeps those of its own contact nodes).
+  // contactConstraints() (none: no contact). A rank may be given every
+  // constraint or only those of the slave nodes it owns
+  // (scatterContactConstraints); it keeps the latter. Collective.
   FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
               const std::vector<ContactConstraint>& contact, const Teuchos::ParameterList& params,
               const RCP<const Comm>& comm);
-  // The one-face contact with a rigid plane parallel to it (planeBeyondFace).
+  // The one-face contact with a rigid plane parallel to it (planeBeyondFace),
+  // found on the ranks' parts.
   FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
               const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm);
   // Subdomains an application assembled: this rank's subdomains (ids

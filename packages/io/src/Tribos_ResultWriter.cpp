@@ -435,7 +435,7 @@ std::string argumentError(const Mesh::Discretization& disc, const std::vector<do
                           const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
                           const std::vector<PointSet>& pointSets) {
   const long long nOwned = static_cast<long long>(disc.ownedNodes().size());
-  const long long nCells = static_cast<long long>(disc.localCells().size());
+  const long long nCells = static_cast<long long>(disc.part.numCells());
   std::ostringstream e;
   if (uOwned.size() != 3 * static_cast<size_t>(nOwned))
     e << "the displacement has " << uOwned.size() << " values for " << nOwned << " owned nodes";
@@ -456,20 +456,19 @@ std::string argumentError(const Mesh::Discretization& disc, const std::vector<do
 struct Content {
   Content(const Mesh::Discretization& disc, const std::vector<double>& uOwned, const std::vector<Field>& nodeFields,
           const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets, MPI_Comm comm) {
-    const Mesh::Mesh& mesh = disc.mesh;
+    const Mesh::Mesh& mesh = disc.part;
     const int npc = mesh.nodesPerCell();
-    const auto cells = disc.localCells();
     for (int n : disc.ownedNodes())
       for (int d = 0; d < 3; ++d) xyz.push_back(mesh.coords[n][d]);
     disp = uOwned;
-    for (int c : cells)
+    for (int c = 0; c < mesh.numCells(); ++c)
       for (int k = 0; k < npc; ++k) topo.push_back(disc.nodeIndex()[mesh.cell(c)[k]]);
     pointXyz.resize(pointSets.size());
     for (size_t k = 0; k < pointSets.size(); ++k)
       for (const auto& p : pointSets[k].coords) pointXyz[k].insert(pointXyz[k].end(), p.begin(), p.end());
 
     const long long nOwned = static_cast<long long>(disc.ownedNodes().size());
-    const long long nCells = static_cast<long long>(cells.size());
+    const long long nCells = static_cast<long long>(mesh.numCells());
     const auto nodeBlock = blockOffset(nOwned, comm), cellBlock = blockOffset(nCells, comm);
     totals = {nodeBlock.second, cellBlock.second, {}};
     groups = {"/mesh", "/nodes", "/cells", "/points"};
@@ -551,7 +550,7 @@ void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, c
   if (failure.empty()) {
     const std::string xmfError =
         comm_->getRank() == 0
-            ? writeWholeFile(xmfPath, xdmfIndex(h5Name, disc_.mesh, content.totals, nodeFields, cellFields, pointSets))
+            ? writeWholeFile(xmfPath, xdmfIndex(h5Name, disc_.part, content.totals, nodeFields, cellFields, pointSets))
             : "";
     failure = rootError(*comm_, xmfError.empty() ? "" : "cannot write the XDMF index of " + shownName + ": " + xmfError);
   }

@@ -112,16 +112,16 @@ inline Mesh::Discretization boxDiscretization(int nx, int ny, int nz, const Comm
   return Mesh::Discretization(Mesh::generateBox(spec), spec, dec, comm.getSize(), comm.getRank());
 }
 
-// u(x) = (x, 2y, 3z) + 10 * node number: every value tells where it belongs.
-inline double displacementAt(const Mesh::Discretization& disc, int node, int d) {
-  return (d + 1) * disc.mesh.coords[node][d] + 10.0 * node;
+// u(x) = (x, 2y, 3z) + 10 * mesh node number: every value tells where it belongs.
+inline double displacementAt(const std::array<double, 3>& x, int meshNode, int d) {
+  return (d + 1) * x[d] + 10.0 * meshNode;
 }
 
 // At the owned nodes, as the writer takes it.
 inline std::vector<double> displacementOf(const Mesh::Discretization& disc) {
   std::vector<double> u;
   for (int n : disc.ownedNodes())
-    for (int d = 0; d < 3; ++d) u.push_back(displacementAt(disc, n, d));
+    for (int d = 0; d < 3; ++d) u.push_back(displacementAt(disc.part.coords[n], disc.meshNode(n), d));
   return u;
 }
 

@@ -58,7 +58,7 @@ Outcome writeResult(const IO::OutputDirectory& dir, const Mesh::Discretization& 
                     const RCP<const Comm>& comm) {
   Outcome out;
   IO::Field pressure{"pressure", 1, std::vector<double>(disc.ownedNodes().size(), 1.5)};
-  IO::Field stress{"von_mises", 1, std::vector<double>(disc.localCells().size(), 2.5)};
+  IO::Field stress{"von_mises", 1, std::vector<double>(static_cast<size_t>(disc.part.numCells()), 2.5)};
   IO::PointSet contact{"contact", {}, {IO::Field{"gap", 1, {}}}};
   if (comm->getRank() == 0)
     for (int k = 0; k < 50; ++k) contact.coords.push_back({k * 0.01, 0, 0}), contact.fields[0].values.push_back(k);

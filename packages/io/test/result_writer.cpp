@@ -84,11 +84,13 @@ struct Expected {
 // The output order of nodes (nodeIndex) and cells (ranks' local cells in rank order).
 Expected outputOrder(const Mesh::Discretization& disc, int numRanks) {
   Expected e;
-  e.nodeAt.resize(disc.mesh.numNodes());
-  for (int n = 0; n < disc.mesh.numNodes(); ++n) e.nodeAt[disc.nodeIndex()[n]] = n;
+  // Every rank's part, cut again from the whole mesh.
+  e.nodeAt.resize(disc.numMeshNodes());
+  const Mesh::Mesh whole = Mesh::generateBox(disc.spec);
   for (int r = 0; r < numRanks; ++r) {
-    const Mesh::Discretization other(disc.mesh, disc.spec, {"Structured", {std::max(2, numRanks), 1, 1}, 1}, numRanks, r);
-    for (int c : other.localCells()) e.cellAt.push_back(c);
+    const Mesh::Discretization other(whole, disc.spec, {"Structured", {std::max(2, numRanks), 1, 1}, 1}, numRanks, r);
+    for (int n = 0; n < other.part.numNodes(); ++n) e.nodeAt[other.nodeIndex()[n]] = other.meshNode(n);
+    for (int c = 0; c < other.part.numCells(); ++c) e.cellAt.push_back(other.meshCell(c));
   }
   return e;
 }
@@ -104,8 +106,8 @@ struct Result {
 Result makeResult(const Mesh::Discretization& disc, const Comm& comm) {
   Result r;
   IO::Field temperature{"temperature", 1, {}}, cellId{"cell_id", 1, {}};
-  for (int n : disc.ownedNodes()) temperature.values.push_back(100 + n);
-  for (int c : disc.localCells()) cellId.values.push_back(c);
+  for (int n : disc.ownedNodes()) temperature.values.push_back(100 + disc.meshNode(n));
+  for (int c = 0; c < disc.part.numCells(); ++c) cellId.values.push_back(disc.meshCell(c));
   r.nodeFields = {temperature};
   r.cellFields = {cellId};
   IO::PointSet empty{"empty", {}, {IO::Field{"normal_force", 1, {}}, IO::Field{"slip", 3, {}}}};
@@ -204,7 +206,8 @@ TEUCHOS_UNIT_TEST(ResultWriter, MeshAndFieldsInOutputNumbering) {
   if (!opens(w, h5, out, success)) return;
   const auto& disc = w.disc;
   const Expected order = outputOrder(disc, comm->getSize());
-  const long long N = disc.mesh.numNodes(), C = disc.mesh.numCells(), npc = disc.mesh.nodesPerCell();
+  const Mesh::Mesh whole = Mesh::generateBox(disc.spec);
+  const long long N = whole.numNodes(), C = whole.numCells(), npc = whole.nodesPerCell();
   TEST_ASSERT((h5.shape("/mesh/geometry") == std::vector<long long>{N, 3}));
   TEST_ASSERT((h5.shape("/mesh/topology") == std::vector<long long>{C, npc}));
   TEST_ASSERT((h5.shape("/nodes/displacement") == std::vector<long long>{N, 3}));
@@ -220,7 +223,7 @@ TEUCHOS_UNIT_TEST(ResultWriter, MeshAndFieldsInOutputNumbering) {
   for (long long i = 0; nodesOk && i < N; ++i) {
     const int n = order.nodeAt[i];
     nodesOk = t[i] == 100 + n;
-    for (int d = 0; d < 3; ++d) nodesOk = nodesOk && xyz[3 * i + d] == disc.mesh.coords[n][d] && u[3 * i + d] == displacementAt(disc, n, d);
+    for (int d = 0; d < 3; ++d) nodesOk = nodesOk && xyz[3 * i + d] == whole.coords[n][d] && u[3 * i + d] == displacementAt(whole.coords[n], n, d);
   }
   TEST_ASSERT(nodesOk);  // geometry, displacement and temperature in the output numbering
   TEST_EQUALITY(topo.size(), size_t(C * npc));
@@ -230,7 +233,7 @@ TEUCHOS_UNIT_TEST(ResultWriter, MeshAndFieldsInOutputNumbering) {
   for (long long i = 0; cellsOk && i < C; ++i) {
     const int c = order.cellAt[i];
     cellsOk = id[i] == c;
-    for (int k = 0; k < npc; ++k) cellsOk = cellsOk && order.nodeAt[topo[npc * i + k]] == disc.mesh.cell(c)[k];
+    for (int k = 0; k < npc; ++k) cellsOk = cellsOk && order.nodeAt[topo[npc * i + k]] == whole.cell(c)[k];
   }
   TEST_ASSERT(cellsOk);  // topology and cell_id in the output numbering
 }
@@ -326,7 +329,7 @@ TEUCHOS_UNIT_TEST(ResultWriter, NoReservedSpaceLeft) {
   if (!opens(w, h5, out, success)) return;
   const auto& disc = w.disc;
   struct stat st = {};
-  const long long data = 8LL * (disc.mesh.numNodes() * 7 + disc.mesh.numCells() * 9 + 4 * 7 + 6 * comm->getSize());
+  const long long data = 8LL * (disc.numMeshNodes() * 7LL + disc.numMeshCells() * 9LL + 4 * 7 + 6 * comm->getSize());
   TEST_EQUALITY(::stat(w.h5Path().c_str(), &st), 0);
   out << "file size " << st.st_size << " for " << data << " bytes of data\n";
   TEST_COMPARE(st.st_size, <, data + 48 * 1024);

@@ -1,50 +1,294 @@
 #include "Tribos_Discretization.hpp"
 
+#include <Tpetra_Import.hpp>
+#include <Tpetra_Map.hpp>
+#include <Tpetra_MultiVector.hpp>
+
+#include <algorithm>
+
+#include "Tribos_AgreeOnError.hpp"
+#include "Tribos_ByteBuffer.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_MeshBroadcast.hpp"
 
 namespace Tribos {
 namespace Mesh {
 
-Discretization::Discretization(Mesh m, const BoxSpec& s, const DecompositionSpec& dec, int numRanks, int rank)
-    : mesh(std::move(m)), spec(s), myRank(rank) {
+// The decomposition of the whole mesh, from which every part is cut.
+struct WholeDecomposition {
+  std::vector<int> cellPart, subdomainBody;
+  std::vector<Subdomain> subdomains;   // mesh numbers
+  std::vector<int> nodeFirstSubdomain;  // per mesh node
+  std::vector<long long> nodeIndex;     // per mesh node
+  std::vector<int> copyStart;           // per mesh node: its copies, ascending subdomains
+  std::vector<NodeCopy> copy;
+  std::map<std::string, std::vector<int>> faceNodes;  // every named face's nodes
+  RankLayout layout;
+};
+
+struct DiscretizationAccess {
+  static WholeDecomposition decompose(const Mesh& mesh, const BoxSpec& spec, const DecompositionSpec& dec, int numRanks);
+  static Discretization cut(const Mesh& mesh, const WholeDecomposition& whole, const BoxSpec& spec, int rank,
+                            std::vector<int>& partOfNode, std::vector<int>& partOfCell);
+  static void pack(const Discretization& d, ByteBuffer& b);
+  static Discretization unpack(ByteBuffer& b);
+  static void finish(Discretization& d);
+};
+
+WholeDecomposition DiscretizationAccess::decompose(const Mesh& mesh, const BoxSpec& spec, const DecompositionSpec& dec,
+                                                   int numRanks) {
   mesh.checkBodies();
+  WholeDecomposition w;
   int S = 0;
   if (dec.partitioner == "Structured") {
     TRIBOS_REQUIRE(mesh.numBodies() == 1, "the Structured partitioner splits one box, but the mesh has "
                                               << mesh.numBodies() << " bodies; use METIS");
-    cellPart = partitionStructured(mesh, spec, dec.grid);
+    w.cellPart = partitionStructured(mesh, spec, dec.grid);
     S = dec.grid[0] * dec.grid[1] * dec.grid[2];
-    subdomainBody.assign(S, 0);
+    w.subdomainBody.assign(S, 0);
   } else if (dec.partitioner == "METIS") {
-    cellPart = partitionMetisByBody(mesh, dec.subdomains, &subdomainBody);
+    w.cellPart = partitionMetisByBody(mesh, dec.subdomains, &w.subdomainBody);
     S = dec.subdomains;
   } else {
     throw Error("partitioner \"" + dec.partitioner + "\" unknown; valid: Structured, METIS");
   }
-  subdomains = extractSubdomains(mesh, cellPart, S);
-  layout = makeRankLayout(S, numRanks);
-  nodeFirstSubdomain_.assign(mesh.numNodes(), S);
-  for (const Subdomain& sd : subdomains)
-    for (int n : sd.nodes)
-      if (sd.id < nodeFirstSubdomain_[n]) nodeFirstSubdomain_[n] = sd.id;
-  nodeOwner_.resize(mesh.numNodes());
-  for (int n = 0; n < mesh.numNodes(); ++n) {
-    TRIBOS_REQUIRE(nodeFirstSubdomain_[n] < S, "mesh node " << n << " belongs to no cell");
-    nodeOwner_[n] = layout.owner(nodeFirstSubdomain_[n]);
-    if (nodeOwner_[n] == myRank) ownedNodes_.push_back(n);
+  w.subdomains = extractSubdomains(mesh, w.cellPart, S);
+  w.layout = makeRankLayout(S, numRanks);
+  const int N = mesh.numNodes();
+  // Copies of every node, ascending subdomains: the first is the owner's.
+  w.copyStart.assign(N + 1, 0);
+  for (const Subdomain& sd : w.subdomains)
+    for (int n : sd.nodes) ++w.copyStart[n + 1];
+  for (int n = 0; n < N; ++n) {
+    TRIBOS_REQUIRE(w.copyStart[n + 1] > 0, "mesh node " << n << " belongs to no cell");
+    w.copyStart[n + 1] += w.copyStart[n];
   }
+  w.copy.resize(w.copyStart[N]);
+  std::vector<int> at(w.copyStart.begin(), w.copyStart.end() - 1);
+  for (const Subdomain& sd : w.subdomains)
+    for (size_t l = 0; l < sd.nodes.size(); ++l) w.copy[at[sd.nodes[l]]++] = {sd.id, static_cast<int>(l)};
+  w.nodeFirstSubdomain.resize(N);
   std::vector<long long> count(numRanks + 1, 0);
-  for (int n = 0; n < mesh.numNodes(); ++n) ++count[nodeOwner_[n] + 1];
+  for (int n = 0; n < N; ++n) {
+    w.nodeFirstSubdomain[n] = w.copy[w.copyStart[n]].subdomain;
+    ++count[w.layout.owner(w.nodeFirstSubdomain[n]) + 1];
+  }
   for (int r = 0; r < numRanks; ++r) count[r + 1] += count[r];
-  nodeIndex_.resize(mesh.numNodes());
-  for (int n = 0; n < mesh.numNodes(); ++n) nodeIndex_[n] = count[nodeOwner_[n]]++;
+  w.nodeIndex.resize(N);
+  for (int n = 0; n < N; ++n) w.nodeIndex[n] = count[w.layout.owner(w.nodeFirstSubdomain[n])]++;
+  for (const auto& name : mesh.faceNames()) w.faceNodes[name] = mesh.faceNodes(name);
+  return w;
 }
 
-std::vector<int> Discretization::localCells() const {
-  std::vector<int> cells;
-  for (int s = firstLocalSubdomain(); s < endLocalSubdomain(); ++s)
-    cells.insert(cells.end(), subdomains[s].cells.begin(), subdomains[s].cells.end());
-  return cells;
+// The part of `rank`. partOfNode and partOfCell are scratch of the whole
+// mesh's sizes, all -1 on entry and on return.
+Discretization DiscretizationAccess::cut(const Mesh& mesh, const WholeDecomposition& w, const BoxSpec& spec, int rank,
+                                         std::vector<int>& partOfNode, std::vector<int>& partOfCell) {
+  Discretization d;
+  d.spec = spec;
+  d.layout = w.layout;
+  d.myRank = rank;
+  d.subdomainBody = w.subdomainBody;
+  d.numMeshNodes_ = mesh.numNodes();
+  d.numMeshCells_ = mesh.numCells();
+  const int first = w.layout.firstSubdomain(rank), end = w.layout.firstSubdomain(rank + 1);
+  for (int s = first; s < end; ++s) {
+    const Subdomain& sd = w.subdomains[s];
+    d.meshCells_.insert(d.meshCells_.end(), sd.cells.begin(), sd.cells.end());
+    d.meshNodes_.insert(d.meshNodes_.end(), sd.nodes.begin(), sd.nodes.end());
+    d.cellPart.insert(d.cellPart.end(), sd.cells.size(), s);
+  }
+  std::sort(d.meshNodes_.begin(), d.meshNodes_.end());
+  d.meshNodes_.erase(std::unique(d.meshNodes_.begin(), d.meshNodes_.end()), d.meshNodes_.end());
+  for (size_t n = 0; n < d.meshNodes_.size(); ++n) partOfNode[d.meshNodes_[n]] = static_cast<int>(n);
+  for (size_t c = 0; c < d.meshCells_.size(); ++c) partOfCell[d.meshCells_[c]] = static_cast<int>(c);
+
+  Mesh& part = d.part;
+  part.type = mesh.type;
+  part.bodyNames = mesh.bodyNames;
+  const int npc = mesh.nodesPerCell();
+  for (int n : d.meshNodes_) part.coords.push_back(mesh.coords[n]);
+  for (int c : d.meshCells_) {
+    for (int a = 0; a < npc; ++a) part.connectivity.push_back(partOfNode[mesh.cell(c)[a]]);
+    if (!mesh.cellBody.empty()) part.cellBody.push_back(mesh.cellBody[c]);
+  }
+  for (const auto& [name, facets] : mesh.faces) {
+    auto& mine = part.faces[name];
+    for (const Facet& f : facets) {
+      if (partOfCell[f.cell] < 0) continue;
+      Facet g{{}, partOfCell[f.cell]};
+      for (int n : f.nodes) g.nodes.push_back(partOfNode[n]);
+      mine.push_back(g);
+    }
+    auto& nodes = part.partFaceNodes[name];
+    for (int n : w.faceNodes.at(name))
+      if (partOfNode[n] >= 0) nodes.push_back(partOfNode[n]);
+  }
+  for (const auto& [name, set] : mesh.nodeSets) {
+    auto& mine = part.nodeSets[name];
+    for (int n : set)
+      if (partOfNode[n] >= 0) mine.push_back(partOfNode[n]);
+  }
+  d.copyStart_.push_back(0);
+  for (int n : d.meshNodes_) {
+    d.nodeFirstSubdomain_.push_back(w.nodeFirstSubdomain[n]);
+    d.nodeOwner_.push_back(w.layout.owner(w.nodeFirstSubdomain[n]));
+    d.nodeIndex_.push_back(w.nodeIndex[n]);
+    d.copy_.insert(d.copy_.end(), w.copy.begin() + w.copyStart[n], w.copy.begin() + w.copyStart[n + 1]);
+    d.copyStart_.push_back(static_cast<int>(d.copy_.size()));
+  }
+  for (int n : d.meshNodes_) partOfNode[n] = -1;
+  for (int c : d.meshCells_) partOfCell[c] = -1;
+  finish(d);
+  return d;
+}
+
+// What a part derives from the rest: its subdomains and owned nodes.
+void DiscretizationAccess::finish(Discretization& d) {
+  const int first = d.firstLocalSubdomain(), end = d.endLocalSubdomain();
+  d.localSubdomains.assign(end - first, Subdomain());
+  for (int s = first; s < end; ++s) d.localSubdomains[s - first].id = s;
+  const int npc = d.part.nodesPerCell();
+  for (int c = 0; c < d.part.numCells(); ++c) d.localSubdomains[d.cellPart[c] - first].cells.push_back(c);
+  for (Subdomain& s : d.localSubdomains) {
+    for (int c : s.cells) s.nodes.insert(s.nodes.end(), d.part.cell(c), d.part.cell(c) + npc);
+    std::sort(s.nodes.begin(), s.nodes.end());
+    s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
+    for (int c : s.cells)
+      for (int k = 0; k < npc; ++k) s.connectivity.push_back(s.localNode(d.part.cell(c)[k]));
+  }
+  d.ownedNodes_.clear();
+  for (int n = 0; n < static_cast<int>(d.nodeOwner_.size()); ++n)
+    if (d.nodeOwner_[n] == d.myRank) d.ownedNodes_.push_back(n);
+}
+
+void DiscretizationAccess::pack(const Discretization& d, ByteBuffer& b) {
+  packMesh(d.part, b);
+  b.put(d.spec);
+  b.put(d.cellPart);
+  b.put(d.subdomainBody);
+  b.put(d.layout);
+  b.put(d.myRank);
+  b.put(d.numMeshNodes_);
+  b.put(d.numMeshCells_);
+  b.put(d.meshNodes_);
+  b.put(d.meshCells_);
+  b.put(d.nodeOwner_);
+  b.put(d.nodeFirstSubdomain_);
+  b.put(d.nodeIndex_);
+  b.put(d.copyStart_);
+  b.put(d.copy_);
+}
+
+Discretization DiscretizationAccess::unpack(ByteBuffer& b) {
+  Discretization d;
+  d.part = unpackMesh(b);
+  d.spec = b.get<BoxSpec>();
+  d.cellPart = b.getVector<int>();
+  d.subdomainBody = b.getVector<int>();
+  d.layout = b.get<RankLayout>();
+  d.myRank = b.get<int>();
+  d.numMeshNodes_ = b.get<int>();
+  d.numMeshCells_ = b.get<int>();
+  d.meshNodes_ = b.getVector<int>();
+  d.meshCells_ = b.getVector<int>();
+  d.nodeOwner_ = b.getVector<int>();
+  d.nodeFirstSubdomain_ = b.getVector<int>();
+  d.nodeIndex_ = b.getVector<long long>();
+  d.copyStart_ = b.getVector<int>();
+  d.copy_ = b.getVector<NodeCopy>();
+  TRIBOS_REQUIRE(b.consumed(), "Discretization: the packed part has bytes left over");
+  finish(d);
+  return d;
+}
+
+Discretization::Discretization(const Mesh& m, const BoxSpec& s, const DecompositionSpec& dec, int numRanks, int rank) {
+  const WholeDecomposition whole = DiscretizationAccess::decompose(m, s, dec, numRanks);
+  std::vector<int> partOfNode(m.numNodes(), -1), partOfCell(m.numCells(), -1);
+  *this = DiscretizationAccess::cut(m, whole, s, rank, partOfNode, partOfCell);
+}
+
+Discretization Discretization::scatter(const Mesh& meshOnRoot, const BoxSpec& spec, const DecompositionSpec& dec,
+                                       const Comm& comm, int root) {
+  const int rank = comm.getRank(), size = comm.getSize();
+  if (rank != root) {
+    // The root's refusal (or nothing), then the part.
+    const std::string error = agreeOnError(comm, "");
+    if (!error.empty()) throw CollectiveError(error);
+    ByteBuffer b = receiveBuffer(root, comm);
+    return DiscretizationAccess::unpack(b);
+  }
+  std::string error;
+  WholeDecomposition whole;
+  try {
+    whole = DiscretizationAccess::decompose(meshOnRoot, spec, dec, size);
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError(error);
+  std::vector<int> partOfNode(meshOnRoot.numNodes(), -1), partOfCell(meshOnRoot.numCells(), -1);
+  for (int r = 0; r < size; ++r) {
+    if (r == root) continue;
+    ByteBuffer b;
+    DiscretizationAccess::pack(DiscretizationAccess::cut(meshOnRoot, whole, spec, r, partOfNode, partOfCell), b);
+    sendBuffer(b, r, comm);
+  }
+  return DiscretizationAccess::cut(meshOnRoot, whole, spec, root, partOfNode, partOfCell);
+}
+
+const Subdomain& Discretization::subdomain(int s) const {
+  TRIBOS_REQUIRE(s >= firstLocalSubdomain() && s < endLocalSubdomain(),
+                 "subdomain " << s << " is not on rank " << myRank);
+  return localSubdomains[s - firstLocalSubdomain()];
+}
+
+int Discretization::partNode(int meshNode) const {
+  auto it = std::lower_bound(meshNodes_.begin(), meshNodes_.end(), meshNode);
+  return (it != meshNodes_.end() && *it == meshNode) ? static_cast<int>(it - meshNodes_.begin()) : -1;
+}
+
+std::vector<double> Discretization::askOwners(const std::vector<int>& asked, int width,
+                                              const std::function<void(int, double*)>& answer,
+                                              const Comm& commRef) const {
+  // The owned nodes as a one-to-one map; the asked ones (each once) import
+  // from it: Tpetra's directory finds their owners.
+  const auto comm = Teuchos::rcpFromRef(commRef);
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  std::vector<GO> owned;
+  for (int n : ownedNodes_) owned.push_back(meshNodes_[n]);
+  auto source = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(owned), 0, comm));
+  std::vector<GO> wanted(asked.begin(), asked.end());
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  auto target = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(wanted), 0, comm));
+  MultiVector values(source, static_cast<size_t>(width)), received(target, static_cast<size_t>(width));
+  std::vector<double> row(width);
+  for (size_t i = 0; i < ownedNodes_.size(); ++i) {
+    answer(ownedNodes_[i], row.data());
+    for (int k = 0; k < width; ++k) values.replaceLocalValue(static_cast<LO>(i), k, row[k]);
+  }
+  received.doImport(values, Import(source, target), Tpetra::INSERT);
+  const auto columns = received.get2dView();
+  std::vector<double> out(asked.size() * static_cast<size_t>(width));
+  for (size_t i = 0; i < asked.size(); ++i) {
+    const LO l = target->getLocalElement(asked[i]);
+    for (int k = 0; k < width; ++k) out[i * width + k] = columns[k][l];
+  }
+  return out;
+}
+
+std::vector<NodeCopy> Discretization::firstCopies(const std::vector<int>& asked, const Comm& comm) const {
+  const auto values = askOwners(asked, 2,
+                                [&](int n, double* out) {
+                                  out[0] = copy_[copyStart_[n]].subdomain;
+                                  out[1] = copy_[copyStart_[n]].localNode;
+                                },
+                                comm);
+  std::vector<NodeCopy> copies(asked.size());
+  for (size_t i = 0; i < asked.size(); ++i)
+    copies[i] = {static_cast<int>(values[2 * i]), static_cast<int>(values[2 * i + 1])};
+  return copies;
 }
 
 }  // namespace Mesh

@@ -41,6 +41,8 @@ const std::vector<Facet>& Mesh::face(const std::string& name) const {
 }
 
 std::vector<int> Mesh::faceNodes(const std::string& name) const {
+  auto part = partFaceNodes.find(name);
+  if (part != partFaceNodes.end()) return part->second;
   std::vector<int> nodes;
   if (!faces.count(name) && nodeSets.count(name)) {
     nodes = nodeSets.at(name);

@@ -1,7 +1,8 @@
 // Tribos_Mesh.hpp: meshes of P1 tetrahedra or Q1 hexahedra with named boundary
 // faces, named node sets and one or several bodies; structured box meshes.
-// The mesh is small enough to be replicated on every rank; each rank then
-// assembles only the subdomains it owns.
+// A run holds the whole mesh on one rank only, while it is read and
+// decomposed; every rank then keeps its part (Tribos_Discretization.hpp),
+// itself a Mesh in a numbering of its own.
 #pragma once
 
 #include <array>
@@ -43,6 +44,11 @@ class Mesh {
   std::vector<int> cellBody;                    // body of each cell; empty: every cell is body 0
   std::vector<std::string> bodyNames;           // per body; empty: one body named "body"
   std::map<std::string, std::vector<int>> nodeSets;  // named sets of node ids, no facets
+  // A part of a mesh only: every node of the part on each named face,
+  // sorted. The part holds the facets of its own cells, and a node of the
+  // part may lie on the face through another part's facets only; a whole
+  // mesh leaves this empty.
+  std::map<std::string, std::vector<int>> partFaceNodes;
 
   int nodesPerCell() const { return Mesh::nodesPerCellOf(type); }
   int numNodes() const { return static_cast<int>(coords.size()); }

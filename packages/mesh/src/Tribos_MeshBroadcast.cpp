@@ -1,7 +1,5 @@
 #include "Tribos_MeshBroadcast.hpp"
 
-#include <Teuchos_CommHelpers.hpp>
-
 #include "Tribos_Error.hpp"
 
 namespace Tribos {
@@ -9,94 +7,75 @@ namespace Mesh {
 
 namespace {
 
-// The mesh as three flat arrays: integers (counts first, then the cells,
-// facets, bodies and node sets), the coordinates, and the names, each
-// ended by '\0'.
-struct Packed {
-  std::vector<int> ints;
-  std::vector<double> coords;
-  std::string names;
-};
-
-Packed pack(const Mesh& mesh) {
-  Packed p;
-  p.ints = {mesh.type == CellType::Tet4 ? 0 : 1, mesh.numNodes(), static_cast<int>(mesh.connectivity.size()),
-            static_cast<int>(mesh.faces.size()), static_cast<int>(mesh.bodyNames.size()),
-            static_cast<int>(mesh.cellBody.size()), static_cast<int>(mesh.nodeSets.size())};
-  p.ints.insert(p.ints.end(), mesh.connectivity.begin(), mesh.connectivity.end());
-  for (const auto& [name, facets] : mesh.faces) {
-    p.names += name + '\0';
-    p.ints.push_back(static_cast<int>(facets.size()));
-    for (const Facet& f : facets) {
-      p.ints.insert(p.ints.end(), f.nodes.begin(), f.nodes.end());
-      p.ints.push_back(f.cell);
-    }
-  }
-  for (const auto& name : mesh.bodyNames) p.names += name + '\0';
-  p.ints.insert(p.ints.end(), mesh.cellBody.begin(), mesh.cellBody.end());
-  for (const auto& [name, nodes] : mesh.nodeSets) {
-    p.names += name + '\0';
-    p.ints.push_back(static_cast<int>(nodes.size()));
-    p.ints.insert(p.ints.end(), nodes.begin(), nodes.end());
-  }
-  for (const auto& x : mesh.coords) p.coords.insert(p.coords.end(), x.begin(), x.end());
-  return p;
+void packNamedLists(const std::map<std::string, std::vector<int>>& lists, ByteBuffer& b) {
+  b.put(static_cast<long long>(lists.size()));
+  for (const auto& [name, nodes] : lists) b.put(name), b.put(nodes);
 }
 
-Mesh unpack(const Packed& p) {
-  Mesh mesh;
-  size_t i = 0, at = 0;
-  auto next = [&] { return p.ints.at(i++); };
-  auto name = [&] {
-    const size_t end = p.names.find('\0', at);
-    TRIBOS_REQUIRE(end != std::string::npos, "broadcastMesh: the names are cut short");
-    std::string s = p.names.substr(at, end - at);
-    at = end + 1;
-    return s;
-  };
-  mesh.type = next() == 0 ? CellType::Tet4 : CellType::Hex8;
-  const int numNodes = next(), connectivity = next(), faces = next(), bodies = next(), cellBody = next(), sets = next();
-  const int npf = mesh.type == CellType::Tet4 ? 3 : 4;  // nodes per facet
-  mesh.connectivity.assign(p.ints.begin() + i, p.ints.begin() + i + connectivity);
-  i += connectivity;
-  for (int k = 0; k < faces; ++k) {
-    auto& face = mesh.faces[name()];
-    face.resize(next());
-    for (Facet& f : face) {
-      f.nodes.assign(p.ints.begin() + i, p.ints.begin() + i + npf);
-      i += npf;
-      f.cell = next();
-    }
+std::map<std::string, std::vector<int>> unpackNamedLists(ByteBuffer& b) {
+  std::map<std::string, std::vector<int>> lists;
+  const long long n = b.get<long long>();
+  for (long long k = 0; k < n; ++k) {
+    const std::string name = b.getString();
+    lists[name] = b.getVector<int>();
   }
-  for (int k = 0; k < bodies; ++k) mesh.bodyNames.push_back(name());
-  mesh.cellBody.assign(p.ints.begin() + i, p.ints.begin() + i + cellBody);
-  i += cellBody;
-  for (int k = 0; k < sets; ++k) {
-    auto& set = mesh.nodeSets[name()];
-    const int n = next();
-    set.assign(p.ints.begin() + i, p.ints.begin() + i + n);
-    i += n;
-  }
-  mesh.coords.resize(numNodes);
-  for (int n = 0; n < numNodes; ++n) mesh.coords[n] = {p.coords[3 * n], p.coords[3 * n + 1], p.coords[3 * n + 2]};
-  return mesh;
+  return lists;
 }
 
 }  // namespace
 
+void packMesh(const Mesh& mesh, ByteBuffer& b) {
+  b.put(static_cast<int>(mesh.type == CellType::Tet4 ? 0 : 1));
+  b.put(mesh.coords);
+  b.put(mesh.connectivity);
+  b.put(static_cast<long long>(mesh.faces.size()));
+  for (const auto& [name, facets] : mesh.faces) {
+    b.put(name);
+    std::vector<int> flat;  // per facet: its nodes, then its cell
+    for (const Facet& f : facets) {
+      flat.insert(flat.end(), f.nodes.begin(), f.nodes.end());
+      flat.push_back(f.cell);
+    }
+    b.put(flat);
+  }
+  b.put(static_cast<long long>(mesh.bodyNames.size()));
+  for (const auto& name : mesh.bodyNames) b.put(name);
+  b.put(mesh.cellBody);
+  packNamedLists(mesh.nodeSets, b);
+  packNamedLists(mesh.partFaceNodes, b);
+}
+
+Mesh unpackMesh(ByteBuffer& b) {
+  Mesh mesh;
+  mesh.type = b.get<int>() == 0 ? CellType::Tet4 : CellType::Hex8;
+  mesh.coords = b.getVector<std::array<double, 3>>();
+  mesh.connectivity = b.getVector<int>();
+  const size_t perFacet = (mesh.type == CellType::Tet4 ? 3 : 4) + 1;
+  const long long faces = b.get<long long>();
+  for (long long k = 0; k < faces; ++k) {
+    auto& face = mesh.faces[b.getString()];
+    const std::vector<int> flat = b.getVector<int>();
+    TRIBOS_REQUIRE(flat.size() % perFacet == 0, "unpackMesh: the facets are cut short");
+    face.resize(flat.size() / perFacet);
+    for (size_t f = 0; f < face.size(); ++f) {
+      face[f].nodes.assign(flat.begin() + f * perFacet, flat.begin() + (f + 1) * perFacet - 1);
+      face[f].cell = flat[(f + 1) * perFacet - 1];
+    }
+  }
+  const long long bodies = b.get<long long>();
+  for (long long k = 0; k < bodies; ++k) mesh.bodyNames.push_back(b.getString());
+  mesh.cellBody = b.getVector<int>();
+  mesh.nodeSets = unpackNamedLists(b);
+  mesh.partFaceNodes = unpackNamedLists(b);
+  return mesh;
+}
+
 void broadcastMesh(Mesh& mesh, const Teuchos::Comm<int>& comm, int root) {
   if (comm.getSize() == 1) return;
-  Packed p;
-  if (comm.getRank() == root) p = pack(mesh);
-  int sizes[3] = {static_cast<int>(p.ints.size()), static_cast<int>(p.coords.size()), static_cast<int>(p.names.size())};
-  Teuchos::broadcast(comm, root, 3, sizes);
-  p.ints.resize(sizes[0]);
-  p.coords.resize(sizes[1]);
-  p.names.resize(sizes[2]);
-  if (sizes[0] > 0) Teuchos::broadcast(comm, root, sizes[0], p.ints.data());
-  if (sizes[1] > 0) Teuchos::broadcast(comm, root, sizes[1], p.coords.data());
-  if (sizes[2] > 0) Teuchos::broadcast(comm, root, sizes[2], &p.names[0]);
-  if (comm.getRank() != root) mesh = unpack(p);
+  ByteBuffer buffer;
+  if (comm.getRank() == root) packMesh(mesh, buffer);
+  broadcastBuffer(buffer, root, comm);
+  if (comm.getRank() != root) mesh = unpackMesh(buffer);
 }
 
 }  // namespace Mesh
