@@ -112,8 +112,9 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
 }
 
 // Tresca friction (or frictionless contact) by the semismooth* Newton
-// method, a serial method on the whole mesh (held by every rank). Rank 0 solves (with "CG+MueLu" all ranks take part in the CG
-// solves); the contact results stay on rank 0, the displacement is
+// method, a serial method on the whole mesh (held by every rank). Rank 0
+// solves (with "CG+MueLu" all ranks take part in the CG solves); the
+// contact results stay on rank 0, the displacement is
 // broadcast (held on every rank, owned by rank 0), and the KKT residuals of
 // the result are computed as for FETI.
 Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh,
@@ -605,9 +606,9 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   const auto t0 = std::chrono::steady_clock::now();
   auto decomposition = decompositionFor(params, comm->getSize());
   // A mesh file is read first: the memory estimate needs its size, and the
-  // names the input gives its faces are checked before any work.
-  // The whole mesh is held by rank 0 alone: read or generated there, checked
-  // there, then cut into the ranks' parts (Mesh::Discretization::scatter).
+  // names the input gives its faces are checked before any work. The whole
+  // mesh is held by rank 0 alone: read or generated there, checked there,
+  // then cut into the ranks' parts (Mesh::Discretization::scatter).
   std::unique_ptr<Mesh::Mesh> whole;
   const bool fromFile = !Input::meshFile(params).empty();
   MeshSize fileMeshSize;
