@@ -71,17 +71,20 @@ class ByteBuffer {
 };
 
 namespace detail {
-constexpr size_t kMessagePiece = size_t(1) << 30;
+// Calls piece(at, n) for consecutive pieces of at most 1 GiB covering size bytes.
+template <class F>
+void forEachPiece(size_t size, F piece) {
+  constexpr size_t kPiece = size_t(1) << 30;
+  for (size_t at = 0; at < size; at += kPiece) piece(at, static_cast<int>(std::min(kPiece, size - at)));
 }
+}  // namespace detail
 
 // Point to point: the size, then the bytes in pieces.
 inline void sendBuffer(ByteBuffer& buffer, int destination, const Comm& comm) {
   long long size = static_cast<long long>(buffer.bytes().size());
   Teuchos::send(comm, 1, &size, destination);
-  for (size_t at = 0; at < buffer.bytes().size(); at += detail::kMessagePiece) {
-    const int n = static_cast<int>(std::min(detail::kMessagePiece, buffer.bytes().size() - at));
-    Teuchos::send(comm, n, &buffer.bytes()[at], destination);
-  }
+  detail::forEachPiece(buffer.bytes().size(),
+                       [&](size_t at, int n) { Teuchos::send(comm, n, &buffer.bytes()[at], destination); });
 }
 
 inline ByteBuffer receiveBuffer(int source, const Comm& comm) {
@@ -89,10 +92,8 @@ inline ByteBuffer receiveBuffer(int source, const Comm& comm) {
   Teuchos::receive(comm, source, 1, &size);
   ByteBuffer buffer;
   buffer.bytes().resize(static_cast<size_t>(size));
-  for (size_t at = 0; at < buffer.bytes().size(); at += detail::kMessagePiece) {
-    const int n = static_cast<int>(std::min(detail::kMessagePiece, buffer.bytes().size() - at));
-    Teuchos::receive(comm, source, n, &buffer.bytes()[at]);
-  }
+  detail::forEachPiece(buffer.bytes().size(),
+                       [&](size_t at, int n) { Teuchos::receive(comm, source, n, &buffer.bytes()[at]); });
   return buffer;
 }
 
@@ -101,10 +102,8 @@ inline void broadcastBuffer(ByteBuffer& buffer, int root, const Comm& comm) {
   long long size = static_cast<long long>(buffer.bytes().size());
   Teuchos::broadcast(comm, root, &size);
   if (comm.getRank() != root) buffer = ByteBuffer(), buffer.bytes().resize(static_cast<size_t>(size));
-  for (size_t at = 0; at < buffer.bytes().size(); at += detail::kMessagePiece) {
-    const int n = static_cast<int>(std::min(detail::kMessagePiece, buffer.bytes().size() - at));
-    Teuchos::broadcast(comm, root, n, &buffer.bytes()[at]);
-  }
+  detail::forEachPiece(buffer.bytes().size(),
+                       [&](size_t at, int n) { Teuchos::broadcast(comm, root, n, &buffer.bytes()[at]); });
 }
 
 }  // namespace Tribos

@@ -47,7 +47,10 @@ MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const BodyM
   {
     std::vector<std::vector<int>> neighbours(mesh.numNodes());
     for (int c = 0; c < mesh.numCells(); ++c)
-      for (int a = 0; a < npc; ++a) neighbours[mesh.cell(c)[a]].insert(neighbours[mesh.cell(c)[a]].end(), mesh.cell(c), mesh.cell(c) + npc);
+      for (int a = 0; a < npc; ++a) {
+        auto& nb = neighbours[mesh.cell(c)[a]];
+        nb.insert(nb.end(), mesh.cell(c), mesh.cell(c) + npc);
+      }
     auto count = partCount.getDataNonConst();
     for (int n = 0; n < mesh.numNodes(); ++n) {
       auto& nb = neighbours[n];

@@ -176,13 +176,15 @@ int Subdomain::localNode(int globalNode) const {
   return (it != nodes.end() && *it == globalNode) ? static_cast<int>(it - nodes.begin()) : -1;
 }
 
-std::vector<Subdomain> extractSubdomains(const Mesh& mesh, const std::vector<int>& cellPart, int numSubdomains) {
+std::vector<Subdomain> extractSubdomains(const Mesh& mesh, const std::vector<int>& cellPart, int numSubdomains,
+                                         int first) {
   TRIBOS_REQUIRE(static_cast<int>(cellPart.size()) == mesh.numCells(), "partition size differs from cell count");
   std::vector<Subdomain> subs(numSubdomains);
-  for (int s = 0; s < numSubdomains; ++s) subs[s].id = s;
+  for (int s = 0; s < numSubdomains; ++s) subs[s].id = first + s;
   for (int c = 0; c < mesh.numCells(); ++c) {
-    TRIBOS_REQUIRE(cellPart[c] >= 0 && cellPart[c] < numSubdomains, "cell " << c << " has invalid subdomain " << cellPart[c]);
-    subs[cellPart[c]].cells.push_back(c);
+    const int s = cellPart[c] - first;
+    TRIBOS_REQUIRE(s >= 0 && s < numSubdomains, "cell " << c << " has invalid subdomain " << cellPart[c]);
+    subs[s].cells.push_back(c);
   }
   const int npc = mesh.nodesPerCell();
   for (Subdomain& s : subs) {

@@ -47,7 +47,10 @@ struct Subdomain {
   int localNode(int globalNode) const;  // -1 if absent
 };
 
-std::vector<Subdomain> extractSubdomains(const Mesh& mesh, const std::vector<int>& cellPart, int numSubdomains);
+// Subdomains first .. first + numSubdomains - 1 (every cell's subdomain
+// lies among them), in order.
+std::vector<Subdomain> extractSubdomains(const Mesh& mesh, const std::vector<int>& cellPart, int numSubdomains,
+                                         int first = 0);
 
 // Subdomains are given to ranks in contiguous blocks as even as possible:
 // rank r owns [firstSubdomain(r), firstSubdomain(r+1)).

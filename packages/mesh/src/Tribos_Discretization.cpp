@@ -18,7 +18,6 @@ namespace Mesh {
 struct WholeDecomposition {
   std::vector<int> cellPart, subdomainBody;
   std::vector<Subdomain> subdomains;   // mesh numbers
-  std::vector<int> nodeFirstSubdomain;  // per mesh node
   std::vector<long long> nodeIndex;     // per mesh node
   std::vector<int> copyStart;           // per mesh node: its copies, ascending subdomains
   std::vector<NodeCopy> copy;
@@ -67,15 +66,12 @@ WholeDecomposition DiscretizationAccess::decompose(const Mesh& mesh, const BoxSp
   std::vector<int> at(w.copyStart.begin(), w.copyStart.end() - 1);
   for (const Subdomain& sd : w.subdomains)
     for (size_t l = 0; l < sd.nodes.size(); ++l) w.copy[at[sd.nodes[l]]++] = {sd.id, static_cast<int>(l)};
-  w.nodeFirstSubdomain.resize(N);
+  auto owner = [&](int n) { return w.layout.owner(w.copy[w.copyStart[n]].subdomain); };
   std::vector<long long> count(numRanks + 1, 0);
-  for (int n = 0; n < N; ++n) {
-    w.nodeFirstSubdomain[n] = w.copy[w.copyStart[n]].subdomain;
-    ++count[w.layout.owner(w.nodeFirstSubdomain[n]) + 1];
-  }
+  for (int n = 0; n < N; ++n) ++count[owner(n) + 1];
   for (int r = 0; r < numRanks; ++r) count[r + 1] += count[r];
   w.nodeIndex.resize(N);
-  for (int n = 0; n < N; ++n) w.nodeIndex[n] = count[w.layout.owner(w.nodeFirstSubdomain[n])]++;
+  for (int n = 0; n < N; ++n) w.nodeIndex[n] = count[owner(n)]++;
   for (const auto& name : mesh.faceNames()) w.faceNodes[name] = mesh.faceNodes(name);
   return w;
 }
@@ -131,8 +127,6 @@ Discretization DiscretizationAccess::cut(const Mesh& mesh, const WholeDecomposit
   }
   d.copyStart_.push_back(0);
   for (int n : d.meshNodes_) {
-    d.nodeFirstSubdomain_.push_back(w.nodeFirstSubdomain[n]);
-    d.nodeOwner_.push_back(w.layout.owner(w.nodeFirstSubdomain[n]));
     d.nodeIndex_.push_back(w.nodeIndex[n]);
     d.copy_.insert(d.copy_.end(), w.copy.begin() + w.copyStart[n], w.copy.begin() + w.copyStart[n + 1]);
     d.copyStart_.push_back(static_cast<int>(d.copy_.size()));
@@ -143,23 +137,17 @@ Discretization DiscretizationAccess::cut(const Mesh& mesh, const WholeDecomposit
   return d;
 }
 
-// What a part derives from the rest: its subdomains and owned nodes.
+// What a part derives from the rest: its subdomains, and the owner of each
+// node (the rank of its first copy's subdomain).
 void DiscretizationAccess::finish(Discretization& d) {
-  const int first = d.firstLocalSubdomain(), end = d.endLocalSubdomain();
-  d.localSubdomains.assign(end - first, Subdomain());
-  for (int s = first; s < end; ++s) d.localSubdomains[s - first].id = s;
-  const int npc = d.part.nodesPerCell();
-  for (int c = 0; c < d.part.numCells(); ++c) d.localSubdomains[d.cellPart[c] - first].cells.push_back(c);
-  for (Subdomain& s : d.localSubdomains) {
-    for (int c : s.cells) s.nodes.insert(s.nodes.end(), d.part.cell(c), d.part.cell(c) + npc);
-    std::sort(s.nodes.begin(), s.nodes.end());
-    s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
-    for (int c : s.cells)
-      for (int k = 0; k < npc; ++k) s.connectivity.push_back(s.localNode(d.part.cell(c)[k]));
-  }
+  const int first = d.firstLocalSubdomain();
+  d.localSubdomains = extractSubdomains(d.part, d.cellPart, d.endLocalSubdomain() - first, first);
+  d.nodeOwner_.clear();
   d.ownedNodes_.clear();
-  for (int n = 0; n < static_cast<int>(d.nodeOwner_.size()); ++n)
+  for (int n = 0; n < d.part.numNodes(); ++n) {
+    d.nodeOwner_.push_back(d.layout.owner(d.copy_[d.copyStart_[n]].subdomain));
     if (d.nodeOwner_[n] == d.myRank) d.ownedNodes_.push_back(n);
+  }
 }
 
 void DiscretizationAccess::pack(const Discretization& d, ByteBuffer& b) {
@@ -173,8 +161,6 @@ void DiscretizationAccess::pack(const Discretization& d, ByteBuffer& b) {
   b.put(d.numMeshCells_);
   b.put(d.meshNodes_);
   b.put(d.meshCells_);
-  b.put(d.nodeOwner_);
-  b.put(d.nodeFirstSubdomain_);
   b.put(d.nodeIndex_);
   b.put(d.copyStart_);
   b.put(d.copy_);
@@ -192,8 +178,6 @@ Discretization DiscretizationAccess::unpack(ByteBuffer& b) {
   d.numMeshCells_ = b.get<int>();
   d.meshNodes_ = b.getVector<int>();
   d.meshCells_ = b.getVector<int>();
-  d.nodeOwner_ = b.getVector<int>();
-  d.nodeFirstSubdomain_ = b.getVector<int>();
   d.nodeIndex_ = b.getVector<long long>();
   d.copyStart_ = b.getVector<int>();
   d.copy_ = b.getVector<NodeCopy>();
@@ -276,19 +260,6 @@ std::vector<double> Discretization::askOwners(const std::vector<int>& asked, int
     for (int k = 0; k < width; ++k) out[i * width + k] = columns[k][l];
   }
   return out;
-}
-
-std::vector<NodeCopy> Discretization::firstCopies(const std::vector<int>& asked, const Comm& comm) const {
-  const auto values = askOwners(asked, 2,
-                                [&](int n, double* out) {
-                                  out[0] = copy_[copyStart_[n]].subdomain;
-                                  out[1] = copy_[copyStart_[n]].localNode;
-                                },
-                                comm);
-  std::vector<NodeCopy> copies(asked.size());
-  for (size_t i = 0; i < asked.size(); ++i)
-    copies[i] = {static_cast<int>(values[2 * i]), static_cast<int>(values[2 * i + 1])};
-  return copies;
 }
 
 }  // namespace Mesh

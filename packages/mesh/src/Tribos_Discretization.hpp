@@ -75,9 +75,8 @@ class Discretization {
   int partNode(int meshNode) const;
 
   // Per part node: the owner, the rank of the lowest-numbered subdomain
-  // holding the node, and that subdomain.
+  // holding the node (its first copy).
   const std::vector<int>& nodeOwner() const { return nodeOwner_; }
-  const std::vector<int>& nodeFirstSubdomain() const { return nodeFirstSubdomain_; }
   // Part nodes owned by this rank, ascending.
   const std::vector<int>& ownedNodes() const { return ownedNodes_; }
   // Per part node, its row in the rank-contiguous node numbering: the nodes
@@ -94,16 +93,13 @@ class Discretization {
   // (possibly nothing) and answers for the nodes it owns.
   std::vector<double> askOwners(const std::vector<int>& meshNodes, int width,
                                 const std::function<void(int partNode, double* out)>& answer, const Comm& comm) const;
-  // The first copy of each of `meshNodes` (rows of B on partner nodes of
-  // other ranks). Collective.
-  std::vector<NodeCopy> firstCopies(const std::vector<int>& meshNodes, const Comm& comm) const;
 
  private:
   Discretization() = default;
   friend struct DiscretizationAccess;
   int numMeshNodes_ = 0, numMeshCells_ = 0;
   std::vector<int> meshNodes_, meshCells_;
-  std::vector<int> nodeOwner_, nodeFirstSubdomain_, ownedNodes_;
+  std::vector<int> nodeOwner_, ownedNodes_;
   std::vector<long long> nodeIndex_;
   std::vector<int> copyStart_;
   std::vector<NodeCopy> copy_;
