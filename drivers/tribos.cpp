@@ -20,7 +20,9 @@
 #include <string>
 #include <vector>
 
+#include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_FailureReport.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_InputXml.hpp"
 #include "Tribos_MemoryEstimate.hpp"
@@ -88,11 +90,32 @@ Args parse(int argc, char** argv) {
   return a;
 }
 
-// Runs the problem; returns the exit code. Errors every rank detects alike
-// are reported once by rank 0; an error on one rank alone (out of memory,
-// a failure inside a library) can only end the run by MPI_Abort.
-int runAndReport(const Args& args, const Teuchos::ParameterList& params, const Teuchos::RCP<const Tribos::Comm>& comm) {
+// A failure the ranks did not agree on beforehand (FailureReport.hpp):
+// said once by rank 0 when every rank found it, the run ended by MPI_Abort
+// when this rank found it alone.
+int reportFailure(const Tribos::RankFailure& failure, Tribos::FailureChannel& channel, const Tribos::Comm& comm) {
+  const auto shared = channel.agree(failure, Tribos::kFailureGraceSeconds);
+  if (shared.everyRank) {
+    for (const auto& [message, ranks] : shared.messages)
+      std::cerr << "tribos: " << (shared.inputError ? "error" : "run failed") << (ranks.empty() ? "" : " on ranks " + ranks)
+                << ": " << message << std::endl;
+    return shared.inputError ? kBadInput : kRunFailure;
+  }
+  std::cerr << "tribos: run failed" << (comm.getSize() > 1 ? " on rank " + std::to_string(comm.getRank()) + " alone" : "")
+            << ": " << failure.message
+            << (comm.getSize() > 1 ? "; the other ranks cannot go on without it: the run is aborted (no result written)" : "")
+            << std::endl;
+  if (comm.getSize() > 1) MPI_Abort(MPI_COMM_WORLD, kRunFailure);
+  return kRunFailure;
+}
+
+// Runs the problem; returns the exit code. Errors the ranks agreed on
+// (CollectiveError) are reported once by rank 0; any other exception goes
+// through reportFailure.
+int runAndReport(const Args& args, const Teuchos::ParameterList& params, const Teuchos::RCP<const Tribos::Comm>& comm,
+                 Tribos::FailureChannel& channel) {
   const bool root = comm->getRank() == 0;
+  Tribos::RankFailure failure;
   try {
     const auto result = Tribos::run(params, args.options, comm);
     // Teuchos timers of the phases (factorization, F applications, QP solvers, output).
@@ -122,16 +145,17 @@ int runAndReport(const Args& args, const Teuchos::ParameterList& params, const T
     if (root) std::cerr << "tribos: error: " << e.what() << std::endl;
     return kBadInput;
   } catch (const std::bad_alloc&) {
-    std::cerr << "tribos: run failed: out of memory during " << Tribos::Progress::currentStage()
-              << (comm->getSize() > 1 ? " on rank " + std::to_string(comm->getRank()) : "")
-              << "; the memory estimate made before the run (docs/exit_codes.md) found enough memory, so a limit "
-                 "(ulimit, cgroup) or other processes may hold it" << std::endl;
+    failure.message = "out of memory during " + Tribos::Progress::currentStage() +
+                      "; the memory estimate made before the run (docs/exit_codes.md) found enough memory, so a limit "
+                      "(ulimit, cgroup) or other processes may hold it";
+  } catch (const Tribos::Error& e) {
+    failure = {std::string(e.what()) + " (found during " + Tribos::Progress::currentStage() + ")", true};
   } catch (const std::exception& e) {
-    std::cerr << "tribos: run failed" << (comm->getSize() > 1 ? " on rank " + std::to_string(comm->getRank()) : "")
-              << " during " << Tribos::Progress::currentStage() << ": " << e.what() << std::endl;
+    failure.message = "during " + Tribos::Progress::currentStage() + ": " + e.what();
+  } catch (...) {
+    failure.message = "during " + Tribos::Progress::currentStage() + ": an exception that is not a std::exception";
   }
-  if (comm->getSize() > 1) MPI_Abort(MPI_COMM_WORLD, kRunFailure);
-  return kRunFailure;
+  return reportFailure(failure, channel, *comm);
 }
 
 }  // namespace
@@ -150,32 +174,45 @@ int main(int argc, char** argv) {
   Tpetra::ScopeGuard guard(&kokkosArgc, &kokkosArgv);
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
+  Tribos::FailureChannel channel(MPI_COMM_WORLD);
   Args args;
   Teuchos::RCP<Teuchos::ParameterList> params;
-  // Input errors happen identically on every rank: report once and exit.
+  // Every rank reads the input itself; the ranks then agree on the outcome
+  // (the lowest failing rank's message), so that a rank that could not read
+  // the file never leaves the others waiting.
+  std::string inputError;
   try {
     args = parse(argc, argv);
     if (args.help) {
-      if (root) std::cout << kUsage;
-      return kConverged;
+      // the usage alone
+    } else if (args.printParameters) {
+      params = args.input.empty() ? Tribos::Input::defaults(args.overrides)
+                                  : Tribos::Input::read(args.input, args.overrides);
+    } else {
+      params = Tribos::Input::read(args.input, args.overrides);
+      Tribos::checkRunnable(*params, args.options, comm->getSize());
     }
-    if (args.printParameters) {
-      // The effective list the run would use, as a file it accepts again;
-      // no rank check, no output directory: no work at all.
-      const auto effective = args.input.empty() ? Tribos::Input::defaults(args.overrides)
-                                                : Tribos::Input::read(args.input, args.overrides);
-      if (root) std::cout << Tribos::Input::toXml(*effective) << std::flush;
-      return kConverged;
-    }
-    params = Tribos::Input::read(args.input, args.overrides);
-    Tribos::checkRunnable(*params, args.options, comm->getSize());
   } catch (const std::exception& e) {
-    if (root) std::cerr << "tribos: error: " << e.what() << std::endl;
+    inputError = e.what();
+  }
+  inputError = Tribos::agreeOnError(*comm, inputError);
+  if (!inputError.empty()) {
+    if (root) std::cerr << "tribos: error: " << inputError << std::endl;
     return kBadInput;
+  }
+  if (args.help) {
+    if (root) std::cout << kUsage;
+    return kConverged;
+  }
+  if (args.printParameters) {
+    // The effective list the run would use, as a file it accepts again; no
+    // rank check, no output directory: no work at all.
+    if (root) std::cout << Tribos::Input::toXml(*params) << std::flush;
+    return kConverged;
   }
   // A file-size limit (ulimit -f) makes writes fail with EFBIG, reported
   // like a full disk, instead of killing the process.
   std::signal(SIGXFSZ, SIG_IGN);
   Tribos::Progress::Session progress(root && !args.quiet ? &std::cerr : nullptr);
-  return runAndReport(args, *params, comm);
+  return runAndReport(args, *params, comm, channel);
 }

@@ -128,13 +128,21 @@ RCP<const ParameterList> validParameters() {
   pl->set("Problem Name", "tribos", "name of the problem in the summary");
   ParameterList& mesh = pl->sublist("Mesh", false, "structured box mesh, or a mesh read from a Gmsh file");
   mesh.set("File", "",
-           "mesh file: Gmsh (.msh version 4, ASCII or binary, or a .geo script meshed at run time; physical volumes "
+           "mesh file: Gmsh (.msh version 4, ASCII or binary, or a .geo script meshed at run time when Run Geo "
+           "Script allows it; physical volumes "
            "are bodies, physical surfaces are faces) or Exodus II (.exo, .e, .ex2, .g; element blocks are bodies, "
            "side sets are faces, node sets may carry Dirichlet conditions), relative to the input file's directory "
            "(also when given by --set) or absolute; empty: the box. With a file, Element, the ranges, Cells and Level "
            "are ignored, faces are named as in the file, and the decomposition is METIS per body (Partitioner = "
            "Structured is taken as METIS with the Subdomain Grid's number of subdomains, spread over the bodies by "
            "their cell counts)");
+  mesh.set("Run Geo Script", false,
+           "a .geo File is a Gmsh program: it can run shell commands (System) and read other files (Include), so it "
+           "runs only when the input opts in here; it is then meshed by the gmsh program in a child process limited "
+           "to Geo Time Limit and to the run's memory (--max-memory, or the machine's available memory)");
+  mesh.set("Geo Time Limit", 600.0,
+           "seconds Gmsh may take to mesh a .geo File (wall clock and CPU); it is stopped at the limit",
+           range<double>(0.1, 86400.0));
   mesh.set("Element", "Tet4", "cell type", choice(tuple<std::string>("Tet4", "Hex8")));
   mesh.set("X Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along x");
   mesh.set("Y Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along y");
@@ -423,13 +431,44 @@ void validateMaterial(const ParameterList& m) {
                                                         : ""));
 }
 
+// The longest Base Name: the longest file of the set (BASE.parameters.xml)
+// and its temporary (.BASE.parameters.xml.<pid>.tmp) stay within the 255
+// bytes a file name may have on every common file system.
+constexpr size_t kMaxBaseName = 200;
+// The longest Problem Name: a title, written as an HDF5 attribute (whose
+// object header holds 64 KiB in all) and into the summary.
+constexpr size_t kMaxProblemName = 1000;
+
+// The first control character (C0 or DEL) of `text`, or npos.
+size_t firstControl(const std::string& text) {
+  for (size_t i = 0; i < text.size(); ++i)
+    if (static_cast<unsigned char>(text[i]) < 0x20 || text[i] == 0x7f) return i;
+  return std::string::npos;
+}
+
 void validateOutput(const ParameterList& out) {
   const std::string base = out.get<std::string>("Base Name");
-  TRIBOS_REQUIRE(!base.empty() && base != "." && base != ".." && base.find('/') == std::string::npos &&
-                     base.find('\0') == std::string::npos,
-                 "\"Output/Base Name\" = \"" << base << "\": must be a file name without a directory (no '/'); "
-                                                << "use Output/Directory or --output for the directory");
+  // Checked first: the messages below quote the name.
+  const size_t control = firstControl(base);
+  TRIBOS_REQUIRE(control == std::string::npos, "\"Output/Base Name\" holds the control character 0x"
+                                                   << std::hex << static_cast<int>(static_cast<unsigned char>(base[control]))
+                                                   << std::dec << " at byte " << control
+                                                   << "; a file name of the result set takes printable characters");
+  const std::string what = "\"Output/Base Name\" = \"" + base + "\": ";
+  TRIBOS_REQUIRE(!base.empty() && base != "." && base != ".." && base.find('/') == std::string::npos,
+                 what << "must be a file name without a directory (no '/'); "
+                      << "use Output/Directory or --output for the directory");
+  // The .xmf names its arrays FILE.h5:/path; a ':' in FILE would cut that reference.
+  TRIBOS_REQUIRE(base.find(':') == std::string::npos,
+                 what << "holds ':', which the .xmf index uses between the HDF5 file and its arrays");
+  TRIBOS_REQUIRE(base.size() <= kMaxBaseName, "\"Output/Base Name\" has " << base.size() << " bytes; at most "
+                                                                         << kMaxBaseName << " (file names end at 255)");
   TRIBOS_REQUIRE(!out.get<std::string>("Directory").empty(), "\"Output/Directory\" is empty");
+}
+
+void validateProblemName(const std::string& name) {
+  TRIBOS_REQUIRE(name.size() <= kMaxProblemName, "\"Problem Name\" has " << name.size() << " bytes; at most "
+                                                                        << kMaxProblemName << " (it is a title)");
 }
 
 // The outer algorithm checks its own parameters (e.g. Algorithm 2's Residual
@@ -525,6 +564,7 @@ void validate(ParameterList& params, const std::string& source) {
     requireFinite(params, "");
     validateMaterial(params.sublist("Material"));
     validateOutput(params.sublist("Output"));
+    validateProblemName(params.get<std::string>("Problem Name"));
     validateFaceNames(params);
     boxSpec(params);  // cell and node counts fit
   } catch (const Error& e) {
@@ -535,12 +575,21 @@ void validate(ParameterList& params, const std::string& source) {
 }
 
 void applyOverride(ParameterList& params, const std::string& assignment) {
+  // The characters an input file may hold (XML 1.0 text in UTF-8), before the text is quoted in any message.
+  IO::checkText(assignment, "--set \"" + IO::visibleText(assignment) + "\"");
   const auto eq = assignment.find('=');
   TRIBOS_REQUIRE(eq != std::string::npos && eq > 0, "--set \"" << assignment << "\": expected \"Sublist/Key=value\"");
   const std::string path = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+  // Every component named: "Mesh/Level/" or "Mesh//Level" is a typo, not Mesh/Level.
   std::vector<std::string> parts;
-  std::stringstream ss(path);
-  for (std::string p; std::getline(ss, p, '/');) parts.push_back(p);
+  for (size_t begin = 0;;) {
+    const size_t slash = path.find('/', begin);
+    parts.push_back(path.substr(begin, slash == std::string::npos ? std::string::npos : slash - begin));
+    TRIBOS_REQUIRE(!parts.back().empty(), "--set \"" << assignment << "\": \"" << path
+                                                      << "\" has an empty component; expected \"Sublist/Key=value\"");
+    if (slash == std::string::npos) break;
+    begin = slash + 1;
+  }
   ParameterList* user = &params;
   const ParameterList* valid = validParameters().get();
   std::string at;  // path of the current level
@@ -587,14 +636,110 @@ RCP<ParameterList> read(const std::string& file, const std::vector<std::string>&
     mesh.set("File", (std::filesystem::absolute(file).parent_path() / meshPath)
                          .lexically_normal()
                          .string());
+  // A .geo is a program: refused before any work unless the input opts in.
+  Mesh::requireGeoScriptAllowed(meshFile(*params), meshFileOptions(*params, 0));
   return params;
 }
 
 std::string meshFile(const ParameterList& params) { return params.sublist("Mesh").get<std::string>("File"); }
 
-Mesh::Mesh mesh(const ParameterList& params, std::vector<std::string>* warnings) {
+Mesh::MeshFileOptions meshFileOptions(const ParameterList& params, double memoryLimit) {
+  const auto& m = params.sublist("Mesh");
+  Mesh::MeshFileOptions options;
+  options.runGeoScript = m.get<bool>("Run Geo Script");
+  options.geoTimeLimit = m.get<double>("Geo Time Limit");
+  options.memoryLimit = memoryLimit;
+  return options;
+}
+
+Mesh::Mesh mesh(const ParameterList& params, std::vector<std::string>* warnings, double memoryLimit) {
   const std::string file = meshFile(params);
-  return file.empty() ? Mesh::generateBox(boxSpec(params)) : Mesh::readMeshFile(file, warnings);
+  return file.empty() ? Mesh::generateBox(boxSpec(params))
+                      : Mesh::readMeshFile(file, warnings, meshFileOptions(params, memoryLimit));
+}
+
+namespace {
+
+double maxAbs(const Array<double>& v) {
+  double m = 0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+// The diagonal of the mesh's bounding box.
+double meshExtent(const Mesh::Mesh& mesh) {
+  const auto box = Mesh::boundingBox(mesh);
+  return std::hypot(box.x[1] - box.x[0], box.y[1] - box.y[0], box.z[1] - box.z[0]);
+}
+
+void requireScale(double scale, bool mayVanish, const std::string& what) {
+  TRIBOS_REQUIRE(scale <= kMaxScale && (mayVanish || scale >= kMinScale),
+                 what << " is " << (scale > kMaxScale ? "above " : "below ") << (scale > kMaxScale ? kMaxScale : kMinScale)
+                      << ": beyond the scales whose products double precision represents; state the problem in "
+                         "other units (e.g. mm and MPa) or correct the value");
+}
+
+std::string quoted(const std::string& path, double value) {
+  std::ostringstream os;
+  os << "\"" << path << "\" = " << value;
+  return os.str();
+}
+
+}  // namespace
+
+void checkScales(const ParameterList& params, const Mesh::Mesh& mesh) {
+  const double L = meshExtent(mesh);
+  std::ostringstream extent;
+  extent << " with a mesh of extent L = " << L;
+  // Stiffness: every material the mesh uses (Material unless every body has its own).
+  std::vector<std::pair<std::string, double>> moduli = {
+      {"Material/Young's Modulus", params.sublist("Material").get<double>("Young's Modulus")}};
+  const auto& bodies = params.sublist("Bodies");
+  for (auto it = bodies.begin(); it != bodies.end(); ++it)
+    moduli.emplace_back("Bodies/" + bodies.name(it) + "/Material/Young's Modulus",
+                        bodies.sublist(bodies.name(it)).sublist("Material").get<double>("Young's Modulus"));
+  double softest = moduli.front().second;
+  for (const auto& [path, E] : moduli) {
+    std::ostringstream os;
+    os << quoted(path, E) << extent.str() << " gives a stiffness scale E L = " << E * L;
+    requireScale(E * L, false, os.str());
+    softest = std::min(softest, E);
+  }
+  // Loads: their resultant over the mesh, and the displacement they cause in the softest material.
+  const auto& bc = params.sublist("Boundary Conditions");
+  std::vector<std::pair<std::string, double>> loads = {
+      {"Boundary Conditions/Volume Force", maxAbs(bc.get<Array<double>>("Volume Force")) * L * L * L}};
+  const auto& tractions = bc.sublist("Traction");
+  for (auto it = tractions.begin(); it != tractions.end(); ++it)
+    loads.emplace_back("Boundary Conditions/Traction/" + tractions.name(it) + "/Value",
+                       maxAbs(tractions.sublist(tractions.name(it)).get<Array<double>>("Value")) * L * L);
+  // The Tresca slip bounds act as loads where the contact slips.
+  const auto& contact = params.sublist("Contact");
+  const auto& pairs = contact.sublist("Pairs");
+  loads.emplace_back("Contact/Slip Bound Traction", contact.get<double>("Slip Bound Traction") * L * L);
+  for (auto it = pairs.begin(); it != pairs.end(); ++it)
+    loads.emplace_back("Contact/Pairs/" + pairs.name(it) + "/Slip Bound Traction",
+                       pairs.sublist(pairs.name(it)).get<double>("Slip Bound Traction") * L * L);
+  for (const auto& [path, resultant] : loads) {
+    std::ostringstream os;
+    os << "\"" << path << "\"" << extent.str() << " gives a resultant force of about " << resultant;
+    requireScale(resultant, true, os.str());
+    os << " and a displacement of about " << resultant / (softest * L) << " in the softest material";
+    requireScale(resultant / (softest * L), true, os.str());
+  }
+  // Lengths: prescribed displacements, gaps, plane points.
+  const auto& dirichlet = bc.sublist("Dirichlet");
+  for (auto it = dirichlet.begin(); it != dirichlet.end(); ++it) {
+    const std::string path = "Boundary Conditions/Dirichlet/" + dirichlet.name(it) + "/Value";
+    const double u = maxAbs(dirichlet.sublist(dirichlet.name(it)).get<Array<double>>("Value"));
+    requireScale(u, true, quoted(path, u) + " (its largest component)");
+  }
+  requireScale(std::abs(contact.get<double>("Gap")), true, quoted("Contact/Gap", contact.get<double>("Gap")));
+  for (auto it = pairs.begin(); it != pairs.end(); ++it) {
+    const std::string path = "Contact/Pairs/" + pairs.name(it) + "/Plane Point";
+    const double x = maxAbs(pairs.sublist(pairs.name(it)).get<Array<double>>("Plane Point"));
+    requireScale(x, true, quoted(path, x) + " (its largest component)");
+  }
 }
 
 void checkMeshFaces(const Mesh::Mesh& mesh, const ParameterList& params) {
@@ -665,6 +810,8 @@ Mesh::BoxSpec boxSpec(const ParameterList& params) {
   TRIBOS_REQUIRE(nodes * 3 < 2147483647.0 && cells < 2147483647.0,
                  "Mesh: " << spec.cells[0] << " x " << spec.cells[1] << " x " << spec.cells[2] << " cells (" << nodes
                           << " nodes) exceed the 2^31 - 1 degrees of freedom and cells a mesh may have");
+  // The coordinates every mesh reader checks, here for the box before any work.
+  if (meshFile(params).empty()) Mesh::requireUsableBox(spec, "the box (Mesh/X Range, Y Range, Z Range)");
   return spec;
 }
 

@@ -15,6 +15,7 @@
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_Loads.hpp"
+#include "Tribos_MeshFile.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
 #include "Tribos_Types.hpp"
@@ -62,13 +63,29 @@ Mesh::BoxSpec boxSpec(const Teuchos::ParameterList& params);
 // Mesh/File: the Gmsh file of the body ("" for the box). read() makes a
 // relative path absolute (relative to the input file's directory).
 std::string meshFile(const Teuchos::ParameterList& params);
-// The mesh of the run: the box of boxSpec(), or the body read from
-// meshFile() (Mesh::readGmsh; its warnings are added to `warnings`, printed
-// on std::cerr when null). Serial: the driver reads on rank 0 and broadcasts.
-Mesh::Mesh mesh(const Teuchos::ParameterList& params, std::vector<std::string>* warnings = nullptr);
+// How Mesh/File is read: Run Geo Script, Geo Time Limit, and the run's
+// memory limit (bytes, 0 for none).
+Mesh::MeshFileOptions meshFileOptions(const Teuchos::ParameterList& params, double memoryLimit);
+// The mesh of the run: the box of boxSpec(), or the bodies read from
+// meshFile() (Mesh::readMeshFile with meshFileOptions(params, memoryLimit);
+// its warnings are added to `warnings`, printed on std::cerr when null). The
+// driver reads on rank 0 only.
+Mesh::Mesh mesh(const Teuchos::ParameterList& params, std::vector<std::string>* warnings = nullptr,
+                double memoryLimit = 0);
 // Every face the conditions and the contact name exists in `mesh`; throws
 // naming the parameter, the file and the names the mesh has.
 void checkMeshFaces(const Mesh::Mesh& mesh, const Teuchos::ParameterList& params);
+// The problem's scales within [kMinScale, kMaxScale] (checked before any
+// work, on the mesh the run has): the stiffness E L of every material (L the
+// mesh's extent), the resultant of the loads (|t| L^2, |b| L^3), the
+// displacement they cause (load / (E L)), the prescribed displacements, gaps
+// and plane points. The solver forms products of these (K u, the work u'f,
+// F = B K+ B', squared norms); within this window every such product is
+// representable in double precision with room to spare, and physical
+// problems in any consistent units lie far inside it. Throws naming the
+// parameter, its value and the scale it gives.
+constexpr double kMinScale = 1e-100, kMaxScale = 1e100;
+void checkScales(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
 // Mesh/Subdomain Size: "Grid" (or 0: Subdomain Grid, or Subdomains for
 // METIS, as given), a positive H (subdomains of about H cells per edge: a
 // grid of boxes of the box mesh, or METIS parts of about (H+1)^3 nodes), or

@@ -158,6 +158,11 @@ double availableMemory() {
   return std::max(available, limit);
 }
 
+double memoryLimit(double maxMemory) {
+  const double available = availableMemory();
+  return maxMemory > 0 && (available <= 0 || maxMemory < available) ? maxMemory : available;
+}
+
 double parseMemorySize(const std::string& text, const std::string& what) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
@@ -182,7 +187,11 @@ MemoryEstimate requireMemory(const Teuchos::ParameterList& params, double limit,
   int ranksHere = 1;
   MPI_Comm_size(machine, &ranksHere);
   MPI_Comm_free(&machine);
-  const double allowed = limit > 0 ? limit : availableMemory();
+  // --max-memory may only lower what the machine has: a limit above it
+  // cannot make room that is not there.
+  const double available = availableMemory();
+  const bool userBound = limit > 0 && (available <= 0 || limit <= available);
+  const double allowed = userBound ? limit : available;
   // The machine that is shortest of memory speaks for all.
   struct {
     double ratio;
@@ -190,17 +199,19 @@ MemoryEstimate requireMemory(const Teuchos::ParameterList& params, double limit,
   } worst{allowed > 0 ? (sum[0] + sum[1]) / allowed : 0.0, comm->getRank()}, global{};
   MPI_Allreduce(&worst, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
   if (global.ratio <= 1.0) return mine;
-  double report[4] = {sum[0], sum[1], allowed, double(ranksHere)};
-  MPI_Bcast(report, 4, MPI_DOUBLE, global.rank, world);
+  double report[5] = {sum[0], sum[1], allowed, double(ranksHere), userBound ? 1.0 : 0.0};
+  MPI_Bcast(report, 5, MPI_DOUBLE, global.rank, world);
+  const bool bound = report[4] != 0;  // the short machine's limit is --max-memory
   MemoryEstimate need;
   need.mesh = report[0];
   need.solver = report[1];
   std::ostringstream os;
   os << "the run needs about " << need.describe() << " on a machine running " << report[3] << " of its ranks, but "
-     << bytes(report[2]) << (limit > 0 ? " are allowed (--max-memory)" : " are available there")
+     << bytes(report[2]) << (bound ? " are allowed (--max-memory)" : " are available there")
      << "; use a coarser mesh (" << (meshSize ? "Mesh/File" : "Mesh/Level, Mesh/Cells")
      << "), more subdomains or more machines"
-     << (limit > 0 ? ", or raise --max-memory" : "");
+     << (bound ? ", or raise --max-memory" : "")
+     << (limit > 0 && !bound ? " (--max-memory " + bytes(limit) + " is above what the machine has and cannot raise it)" : "");
   throw CollectiveError(os.str());
 }
 

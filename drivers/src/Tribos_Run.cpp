@@ -18,6 +18,7 @@
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_FetiSolve.hpp"
 #include "Tribos_FetiDual.hpp"
+#include "Tribos_FileSystem.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_GmshReader.hpp"
 #include "Tribos_History.hpp"
@@ -299,6 +300,38 @@ std::string outputDirectory(const Teuchos::ParameterList& params, const RunOptio
   return options.outputDir.empty() ? params.sublist("Output").get<std::string>("Directory") : options.outputDir;
 }
 
+// The files of a result set in Output/Directory, in the order they are
+// committed (the summary, the marker of a complete set, last).
+struct ResultNames {
+  std::string h5, xmf, parameters, history, summary;
+  explicit ResultNames(const std::string& base)
+      : h5(base + ".h5"), xmf(base + ".xmf"), parameters(base + ".parameters.xml"), history(base + ".history.csv"),
+        summary(base + ".json") {}
+  std::vector<std::string> all() const { return {h5, xmf, parameters, history, summary}; }
+};
+
+// Every file the run reads or writes, by the name messages give it.
+std::vector<IO::RunFile> runFiles(const Teuchos::ParameterList& params, const RunOptions& options) {
+  std::vector<IO::RunFile> files = {{"--summary", options.summaryFile, true},
+                                    {"--export-fclib", options.exportFclib, true},
+                                    {"Mesh/File", Input::meshFile(params), false}};
+  std::string rerun;  // the parameters file of a result, when the input is one
+  if (params.sublist("Output").get<bool>("Write Results")) {
+    const std::string dir = outputDirectory(params, options);
+    const ResultNames names(params.sublist("Output").get<std::string>("Base Name"));
+    for (const auto& name : names.all()) files.push_back({"the result file " + name, dir + "/" + name, true});
+    files.push_back({"the output directory's lock file", dir + "/" + IO::OutputDirectory::lockName(), true});
+    rerun = dir + "/" + names.parameters;
+  }
+  // A result's parameters file run again (README) is rewritten with the
+  // effective parameters of the new result: the one input a run may replace
+  // (it was read whole before). Every other output is still kept from it,
+  // being kept from the parameters file.
+  if (!options.inputName.empty() && (rerun.empty() || !IO::sameFile(options.inputName, rerun)))
+    files.push_back({"the input file", options.inputName, false});
+  return files;
+}
+
 // Everything the run will write is checked before any work: the output
 // directory (created, locked for this run, probed) and the files named on
 // the command line.
@@ -461,14 +494,13 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
                  const RCP<const Comm>& comm) {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::output"));
   Progress::stage("writing results");
-  const std::string base = params.sublist("Output").get<std::string>("Base Name");
-  summary.set("output", dir.path() + "/" + base + ".xmf");
-  summary.set("parameters", dir.path() + "/" + base + ".parameters.xml");
-  summary.set("history_file", dir.path() + "/" + base + ".history.csv");
+  const ResultNames names(params.sublist("Output").get<std::string>("Base Name"));
+  summary.set("output", dir.path() + "/" + names.xmf);
+  summary.set("parameters", dir.path() + "/" + names.parameters);
+  summary.set("history_file", dir.path() + "/" + names.history);
   IO::ResultSet files(dir, comm);
-  const std::string h5 = files.add(base + ".h5"), xmf = files.add(base + ".xmf"),
-                    xml = files.add(base + ".parameters.xml"), csv = files.add(base + ".history.csv"),
-                    json = files.add(base + ".json");
+  const std::string h5 = files.add(names.h5), xmf = files.add(names.xmf), xml = files.add(names.parameters),
+                    csv = files.add(names.history), json = files.add(names.summary);
   std::vector<IO::PointSet> points;
   if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.contactNodes, *comm));
   IO::ResultAttributes attributes;
@@ -480,7 +512,7 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
     const double* un = sol.u.at(disc.meshNode(n));
     uOwned.insert(uOwned.end(), un, un + 3);
   }
-  IO::ResultWriter(disc, comm).write(h5, base + ".h5", xmf, uOwned, {}, cellFields(disc, mat, sol.u), points, attributes);
+  IO::ResultWriter(disc, comm).write(h5, names.h5, xmf, uOwned, {}, cellFields(disc, mat, sol.u), points, attributes);
   Teuchos::ParameterList effective = params;
   effective.sublist("Output").set("Directory", dir.path());
   IO::writeTextFile(xml, Input::toXml(effective), comm);
@@ -492,16 +524,19 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
 // The mesh of Mesh/File, read on rank 0 (and held there only) and checked
 // before any work: the
 // faces the input names exist (the message lists the file's names), the
-// contact face is planar, there are enough cells for the subdomains. A
-// refusal is the same CollectiveError on every rank (exit 1).
+// contact face is planar, there are enough cells for the subdomains. The
+// read may use the run's memory limit (maxMemory, --max-memory, at most the
+// machine's available memory): a .geo is meshed by a Gmsh process limited
+// to it, a file larger than it is refused. A refusal is the same
+// CollectiveError on every rank (exit 1).
 Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::DecompositionSpec& decomposition,
-                        const Comm& comm) {
+                        double maxMemory, const Comm& comm) {
   Mesh::Mesh mesh;
   std::vector<std::string> warnings;
   std::string error;
   if (comm.getRank() == 0) {
     try {
-      mesh = Input::mesh(params, &warnings);
+      mesh = Input::mesh(params, &warnings, memoryLimit(maxMemory));
       Input::checkMeshFaces(mesh, params);
       const auto& contact = params.sublist("Contact");
       if (contact.get<bool>("Enabled") && contact.sublist("Pairs").numParams() == 0)
@@ -530,8 +565,10 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
 // Everything the whole mesh decides, checked on rank 0 (which alone holds
 // it) before any work; a refusal is the same CollectiveError on every rank
 // (exit 1):
+//  - the problem's scales (Input::checkScales);
 //  - Dirichlet conditions that disagree at a node;
-//  - a monolithic solve of a body they do not hold;
+//  - a monolithic solve of a body they do not hold; bodies that nothing
+//    holds (Contact::requireEveryBodyHeld), named with the pairs on them;
 //  - the contact constraints of the run's pairs (node-to-segment search on
 //    the whole mesh): a pair the mesh cannot make (no partner for any slave
 //    node, a node in two pairs), prescribed sliding against friction.
@@ -543,6 +580,7 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
   std::string error;
   if (comm.getRank() == 0) {
     try {
+      Input::checkScales(params, *whole);
       const auto dirichlet = Fem::constrainedDofs(*whole, loads.dirichlet);
       if (method == Input::Method::Monolithic)
         Fem::requireRigidMotionsHeld(whole->coords, dirichlet, "Solver/Type = Monolithic",
@@ -550,14 +588,18 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
                                      "it, or use Solver/Type = FETI, which finds the equilibrium of a floating body");
       if (method == Input::Method::FetiContact) {
         Progress::stage("contact search");
+        const auto pairs = Input::contactPairs(params, *whole);
         try {
-          constraints = Feti::contactConstraints(*whole, Input::contactPairs(params, *whole), &notes);
+          constraints = Feti::contactConstraints(*whole, pairs, &notes);
         } catch (const Error& e) {
           throw Error(std::string("Contact: ") + e.what());
         }
+        Contact::requireEveryBodyHeld(*whole, dirichlet, pairs, Input::pairFriction(params), constraints);
         // Before the FETI setup: no prescribed sliding against friction.
         Contact::requireNoPrescribedSlip(constraints, Input::pairFriction(params), dirichlet,
                                          [&](int node) { return whole->coords.at(node); });
+      } else if (method != Input::Method::Semismooth) {
+        Contact::requireEveryBodyHeld(*whole, dirichlet, {}, {}, {});
       }
     } catch (const Error& e) {
       error = e.what();
@@ -604,6 +646,8 @@ void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& optio
 
 RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) {
   const auto t0 = std::chrono::steady_clock::now();
+  // No output may be an input or another output: checked before the mesh is read.
+  IO::requireDistinctFiles(runFiles(params, options), comm);
   auto decomposition = decompositionFor(params, comm->getSize());
   // A mesh file is read first: the memory estimate needs its size, and the
   // names the input gives its faces are checked before any work. The whole
@@ -614,7 +658,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   MeshSize fileMeshSize;
   if (fromFile) {
     Progress::stage("reading the mesh");
-    whole = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, *comm));
+    whole = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, options.maxMemory, *comm));
     double counts[3] = {double(whole->numNodes()), double(whole->numCells()), double(whole->numBodies())};
     Teuchos::broadcast(*comm, 0, 3, counts);
     fileMeshSize = {counts[0], counts[1], static_cast<int>(counts[2])};

@@ -63,6 +63,21 @@ GENERATED = {
     "tab_name": lambda: base_input([('value="brick_linear"', 'value="tab&#9;quote&quot;backslash\\newline&#10;end"')]),
     "deep": lambda: "<ParameterList>" + "<ParameterList name=\"a\">" * 20000 + "</ParameterList>" * 20001 + "\n",
     "element": lambda: base_input([('<ParameterList name="Mesh">', '<ParameterList name="Mesh">\n    <Foo/>')]),
+    "brick": lambda: base_input([]),
+    "brick_free": lambda: base_input([('''<ParameterList name="Dirichlet">
+      <ParameterList name="clamped end">
+        <Parameter name="Face" type="string" value="xmin"/>
+        <Parameter name="Components" type="string" value="xyz"/>
+      </ParameterList>
+      <ParameterList name="support">
+        <Parameter name="Face" type="string" value="zmin"/>
+        <Parameter name="Components" type="string" value="z"/>
+      </ParameterList>
+    </ParameterList>''', '<ParameterList name="Dirichlet"></ParameterList>')]),
+    "base_name_newline": lambda: base_input([('<ParameterList name="Output">',
+                                              '<ParameterList name="Output">\n    <Parameter name="Base Name" '
+                                              'type="string" value="two&#10;lines"/>')]),
+    "problem_name_long": lambda: base_input([('value="brick_linear"', 'value="%s"' % ("x" * 100000))]),
 }
 
 

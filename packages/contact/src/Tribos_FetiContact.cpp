@@ -5,9 +5,11 @@
 #include <Tpetra_Vector.hpp>
 
 #include <cmath>
+#include <sstream>
 
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_RigidMotions.hpp"
 
 namespace Tribos {
 namespace Contact {
@@ -415,6 +417,88 @@ Fem::ResultKKT resultKKT(const Feti::FetiProblem& p, const Fem::NodalVector& uNo
   Fem::FrictionLaw law;
   law.kind = Fem::FrictionLaw::parse(runLaw(friction));
   return Fem::resultKKT(uNodal, p.assembledProduct(uNodal), p.assembledLoad(), p.dirichlet(), law, contact.forces());
+}
+
+namespace {
+
+// Union-find over bodies: the groups that move together.
+struct BodyGroups {
+  std::vector<int> parent;
+  explicit BodyGroups(int n) : parent(static_cast<size_t>(n)) {
+    for (int b = 0; b < n; ++b) parent[b] = b;
+  }
+  int root(int b) { return parent[b] == b ? b : parent[b] = root(parent[b]); }
+  void join(int a, int b) { parent[root(a)] = root(b); }
+};
+
+}  // namespace
+
+void requireEveryBodyHeld(const Mesh::Mesh& mesh, const std::map<long long, double>& dirichlet,
+                          const std::vector<Feti::ContactPair>& pairs, const PairFriction& friction,
+                          const std::vector<Feti::ContactConstraint>& constraints) {
+  const int bodies = mesh.numBodies();
+  // A body of each node (its first cell's); bodies sharing a node are bonded there.
+  std::vector<int> nodeBody(static_cast<size_t>(mesh.numNodes()), -1);
+  BodyGroups groups(bodies);
+  const int npc = mesh.nodesPerCell();
+  for (int c = 0; c < mesh.numCells(); ++c)
+    for (int a = 0; a < npc; ++a) {
+      int& b = nodeBody[mesh.cell(c)[a]];
+      if (b < 0) b = mesh.bodyOf(c);
+      else groups.join(b, mesh.bodyOf(c));
+    }
+  for (const auto& c : constraints)
+    for (const auto& m : c.master) groups.join(nodeBody[c.node], nodeBody[m.first]);
+  const auto groupOf = [&](int node) { return groups.root(nodeBody[node]); };
+
+  for (int g = 0; g < bodies; ++g) {
+    if (groups.root(g) != g) continue;
+    // The group's nodes, numbered locally, and the directions held at them.
+    std::vector<std::array<double, 3>> coords;
+    std::vector<int> local(static_cast<size_t>(mesh.numNodes()), -1);
+    for (int n = 0; n < mesh.numNodes(); ++n)
+      if (nodeBody[n] >= 0 && groupOf(n) == g) local[n] = static_cast<int>(coords.size()), coords.push_back(mesh.coords[n]);
+    if (coords.empty()) continue;
+    std::vector<Fem::HeldDirection> held;
+    for (const auto& d : dirichlet)
+      if (local[d.first / 3] >= 0) {
+        Fem::HeldDirection h{local[d.first / 3], {0, 0, 0}};
+        h.direction[d.first % 3] = 1;
+        held.push_back(h);
+      }
+    std::vector<char> within(pairs.size(), 0);  // pairs acting between bodies of the group
+    for (const auto& c : constraints) {
+      if (local[c.node] < 0) continue;
+      if (!c.master.empty()) {
+        within[c.pair] = 1;
+        continue;
+      }
+      const auto& f = frictionOfPair(friction, c.pair);
+      const bool tangential = c.glued || (f.law != "Frictionless" && (f.coefficient > 0 || f.slipBoundTraction > 0));
+      for (const auto& d : {c.normal, c.t1, c.t2}) {
+        held.push_back({local[c.node], d});
+        if (!tangential) break;
+      }
+    }
+    const auto free = Fem::freeRigidMotions(coords, held);
+    if (free.empty()) continue;
+    std::string names, motions, inside;
+    int count = 0;
+    for (int b = 0; b < bodies; ++b)
+      if (groups.root(b) == g) names += (count++ ? ", '" : "'") + mesh.bodyName(b) + "'";
+    for (const auto& m : free) motions += (motions.empty() ? "" : ", ") + m;
+    for (size_t p = 0; p < pairs.size(); ++p)
+      if (within[p]) inside += (inside.empty() ? "'" : ", '") + pairs[p].name + "'";
+    std::ostringstream os;
+    os << (count == 1 ? "body " + names + " is" : "bodies " + names + " (bonded or in contact) are")
+       << " free to move rigidly" << (count == 1 ? "" : " as one") << " (" << motions
+       << "): no Dirichlet condition or contact with a rigid plane holds this motion";
+    if (!inside.empty())
+      os << "; contact " << (inside.find(',') == std::string::npos ? "pair " + inside + " acts" : "pairs " + inside + " act")
+         << " only within " << (count == 1 ? "this body" : "these bodies") << " and cannot hold it";
+    os << "; add a Dirichlet condition that holds it";
+    throw Error(os.str());
+  }
 }
 
 }  // namespace Contact

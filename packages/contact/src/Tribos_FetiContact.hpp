@@ -14,6 +14,7 @@
 
 #include <string>
 #include <functional>
+#include <map>
 #include <vector>
 
 #include <Teuchos_FancyOStream.hpp>
@@ -46,6 +47,21 @@ const FrictionSpec& frictionOfPair(const PairFriction& friction, int pair);
 // is Tresca (a frictionless pair has g = 0), else Frictionless. Tresca and
 // Coulomb pairs in one run are refused (no outer algorithm solves both).
 std::string runLaw(const PairFriction& friction);
+
+// Refuses (Tribos::Error naming the bodies, the free motions and the pairs
+// acting within them) a group of bodies that can move rigidly as a whole.
+// A group: bodies joined by shared nodes or by the constraints of pairs
+// between them; pairs within a group exert internal forces only, so the
+// group's rigid motions are held by its Dirichlet dofs and its constraints
+// against rigid planes alone (their normals; their tangents too where the
+// pair has friction or is glued). A motion none of these touches leaves the
+// displacement undetermined whatever the contact does, e.g. a body whose one
+// pair joins two of its own surfaces. (Relative motions of the bodies of a
+// group are found later, by the coarse space.) dirichlet: constrained dofs
+// 3 n + c of the mesh's nodes.
+void requireEveryBodyHeld(const Mesh::Mesh& mesh, const std::map<long long, double>& dirichlet,
+                          const std::vector<Feti::ContactPair>& pairs, const PairFriction& friction,
+                          const std::vector<Feti::ContactConstraint>& constraints);
 
 // Refuses (Tribos::Error naming the node) Dirichlet values that make a
 // contact node with friction slide along a tangential axis they fix at the

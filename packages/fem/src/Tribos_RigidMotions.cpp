@@ -90,6 +90,21 @@ void nameDirections(std::vector<std::array<double, 3>> dirs, const std::string& 
 
 std::vector<std::string> freeRigidMotions(const std::vector<std::array<double, 3>>& coords,
                                           const std::map<long long, double>& dirichlet) {
+  std::vector<HeldDirection> held;
+  held.reserve(dirichlet.size());
+  for (const auto& entry : dirichlet) {
+    const long long dof = entry.first;
+    TRIBOS_REQUIRE(dof >= 0 && static_cast<size_t>(dof / 3) < coords.size(),
+                   "rigid motions: Dirichlet dof " << dof << " out of range");
+    HeldDirection h{static_cast<int>(dof / 3), {0, 0, 0}};
+    h.direction[dof % 3] = 1;
+    held.push_back(h);
+  }
+  return freeRigidMotions(coords, held);
+}
+
+std::vector<std::string> freeRigidMotions(const std::vector<std::array<double, 3>>& coords,
+                                          const std::vector<HeldDirection>& held) {
   const size_t N = coords.size();
   TRIBOS_REQUIRE(N > 0, "rigid motions: no node coordinates");
   // Rigid motions about the centroid, rotations scaled by the body's size, so
@@ -102,20 +117,24 @@ std::vector<std::string> freeRigidMotions(const std::vector<std::array<double, 3
     L = std::max(L, std::sqrt((X[0] - c[0]) * (X[0] - c[0]) + (X[1] - c[1]) * (X[1] - c[1]) + (X[2] - c[2]) * (X[2] - c[2])));
   if (L == 0) L = 1;
 
-  // M = D'D, D = the six motions at the Dirichlet dofs: its null space is the
-  // set of motions the Dirichlet conditions leave free.
+  // M = D'D, D = the six motions along the held directions: its null space
+  // is the set of motions they leave free.
   std::vector<double> M(36, 0.0);
-  for (const auto& entry : dirichlet) {
-    const long long dof = entry.first;
-    TRIBOS_REQUIRE(dof >= 0 && static_cast<size_t>(dof / 3) < N, "rigid motions: Dirichlet dof " << dof << " out of range");
-    const auto& X = coords[dof / 3];
-    const int a = static_cast<int>(dof % 3);
+  for (const auto& h : held) {
+    TRIBOS_REQUIRE(h.node >= 0 && static_cast<size_t>(h.node) < N, "rigid motions: node " << h.node << " out of range");
+    const auto& X = coords[h.node];
+    const double norm = std::sqrt(h.direction[0] * h.direction[0] + h.direction[1] * h.direction[1] +
+                                  h.direction[2] * h.direction[2]);
+    if (norm == 0) continue;
     const Point r{(X[0] - c[0]) / L, (X[1] - c[1]) / L, (X[2] - c[2]) / L};
     // Columns: translation along axis b, then rotation about axis b (e_b x r),
     // so that the rotational part of a motion is its axis.
     double row[6] = {0, 0, 0, 0, 0, 0};
-    row[a] = 1;
-    for (int b = 0; b < 3; ++b) row[3 + b] = rotation(b, r)[a];
+    for (int a = 0; a < 3; ++a) {
+      const double d = h.direction[a] / norm;
+      row[a] = d;
+      for (int b = 0; b < 3; ++b) row[3 + b] += d * rotation(b, r)[a];
+    }
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j) M[6 * i + j] += row[i] * row[j];
   }

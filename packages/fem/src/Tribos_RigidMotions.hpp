@@ -24,6 +24,16 @@ namespace Fem {
 std::vector<std::string> freeRigidMotions(const std::vector<std::array<double, 3>>& coords,
                                           const std::map<long long, double>& dirichlet);
 
+// The same for general held directions: the displacement of node `node`
+// (an index into coords) along `direction` is held, e.g. by a contact's
+// normal. Directions of zero length hold nothing.
+struct HeldDirection {
+  int node = -1;
+  std::array<double, 3> direction{0, 0, 0};
+};
+std::vector<std::string> freeRigidMotions(const std::vector<std::array<double, 3>>& coords,
+                                          const std::vector<HeldDirection>& held);
+
 // Throws Tribos::CollectiveError naming the free rigid motions, if any:
 // "<method>: the Dirichlet conditions leave the rigid motion(s) ... free; <advice>".
 void requireRigidMotionsHeld(const std::vector<std::array<double, 3>>& coords,

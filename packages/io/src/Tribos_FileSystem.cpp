@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 namespace Tribos {
 namespace IO {
@@ -122,14 +123,13 @@ bool sameFile(const std::string& a, const std::string& b) {
   struct stat sa, sb;
   const bool hasA = ::stat(a.c_str(), &sa) == 0, hasB = ::stat(b.c_str(), &sb) == 0;
   if (hasA && hasB) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-  if (hasA || hasB) return false;
-  // Neither exists: compare the resolved directories (links, "..") and names.
-  auto resolved = [](const std::string& path) {
-    char buffer[PATH_MAX];
-    const std::string dir = directoryOf(path);
-    return std::string(::realpath(dir.c_str(), buffer) ? buffer : dir.c_str()) + "/" + fileNameOf(path);
-  };
-  return resolved(a) == resolved(b);
+  // One or neither exists yet (a directory a run is about to create): the
+  // paths with their existing part resolved (links, "..") and the rest
+  // normalized, so that "new/../input.xml" is the input once "new" is made.
+  std::error_code ea, eb;
+  const auto ra = std::filesystem::weakly_canonical(std::filesystem::absolute(a, ea), ea);
+  const auto rb = std::filesystem::weakly_canonical(std::filesystem::absolute(b, eb), eb);
+  return !ea && !eb && ra == rb;
 }
 
 }  // namespace IO

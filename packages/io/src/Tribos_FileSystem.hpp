@@ -24,7 +24,8 @@ bool isTemporaryName(const std::string& fileName);
 // the same directory (so that the rename onto path is atomic).
 std::string temporaryPathFor(const std::string& path);
 // True when both paths name the same file: the same device and inode when
-// both exist, else the same name in the same (resolved) directory.
+// both exist, else the same path once the part that exists is resolved
+// (links, "..") and the rest normalized.
 bool sameFile(const std::string& a, const std::string& b);
 
 // The directory part of a path ("." when it has none) and the last component.

@@ -132,6 +132,8 @@ OutputDirectory::~OutputDirectory() {
   if (lockFd_ >= 0) ::close(lockFd_);
 }
 
+const char* OutputDirectory::lockName() { return kLockName; }
+
 std::string OutputDirectory::temporary(const std::string& name) const { return temporaryName(path_, name, rootPid_); }
 
 void requireWritableFile(const std::string& path, const std::string& what, const RCP<const Comm>& comm) {
@@ -148,6 +150,23 @@ void requireWritableFile(const std::string& path, const std::string& what, const
   }
   error = rootError(*comm, error);
   if (!error.empty()) throw CollectiveError(what + " " + path + ": " + error);
+}
+
+void requireDistinctFiles(const std::vector<RunFile>& files, const RCP<const Comm>& comm) {
+  std::string error;
+  if (comm->getRank() == 0) {
+    for (size_t i = 0; i < files.size() && error.empty(); ++i)
+      for (size_t j = i + 1; j < files.size() && error.empty(); ++j) {
+        const RunFile &a = files[i], &b = files[j];
+        if (a.path.empty() || b.path.empty() || !(a.written || b.written) || !sameFile(a.path, b.path)) continue;
+        const RunFile& w = a.written ? a : b;  // the one that would be overwritten names the fault
+        const RunFile& other = a.written ? b : a;
+        error = w.role + " " + w.path + " is " + other.role + " (" + other.path + ")" +
+                (other.written ? "; two outputs of one run need two files" : "; the run would overwrite it");
+      }
+  }
+  error = rootError(*comm, error);
+  if (!error.empty()) throw CollectiveError(error);
 }
 
 }  // namespace IO

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "Tribos_Types.hpp"
 
@@ -28,6 +29,8 @@ class OutputDirectory {
   OutputDirectory& operator=(const OutputDirectory&) = delete;
 
   const std::string& path() const { return path_; }
+  // The name of the lock file inside the directory (".tribos.lock").
+  static const char* lockName();
   // path/.name.<pid>.tmp, pid of rank 0: where this run writes the file
   // `name` before it is renamed to path/name. Unique to this run and
   // recognised as a leftover by the next run if this one is killed.
@@ -46,6 +49,20 @@ class OutputDirectory {
 // removed beside it. Collective (rank 0 probes, the result is broadcast);
 // throws Tribos::CollectiveError naming `what` (e.g. "--summary") and the cause.
 void requireWritableFile(const std::string& path, const std::string& what, const RCP<const Comm>& comm);
+
+// A file a run reads or writes, with the name messages give it (e.g.
+// "--summary", "the input file", "the result file solution.h5").
+struct RunFile {
+  std::string role;
+  std::string path;
+  bool written = false;  // the run writes it (else reads it)
+};
+
+// Collective (rank 0 looks, every rank gets its verdict): refuses, with a
+// CollectiveError naming both roles and the file, a file the run writes that
+// is also another file of the list, read or written. Two files read may be
+// one (harmless). Links and ".." are seen through (sameFile).
+void requireDistinctFiles(const std::vector<RunFile>& files, const RCP<const Comm>& comm);
 
 }  // namespace IO
 }  // namespace Tribos
