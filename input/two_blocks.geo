@@ -4,7 +4,9 @@
 // fragmented): they meet at z = 1 only through a contact pair (or a glued
 // one), node-matching when nl = nu (two_blocks_matching.geo), non-matching
 // otherwise. An OpenCASCADE box lists its faces as xmin, xmax, ymin, ymax,
-// zmin, zmax.
+// zmin, zmax. input/two_blocks.msh (read by input/two_blocks_coulomb.xml) is
+// made from it by
+//   gmsh -3 -format msh4 input/two_blocks.geo -o input/two_blocks.msh
 SetFactory("OpenCASCADE");
 DefineConstant[nl = 3, nu = 4];
 Box(1) = {0, 0, 0, 1, 1, 1};

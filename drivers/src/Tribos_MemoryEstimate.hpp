@@ -46,6 +46,10 @@ MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks
 // limit when there is one (bytes; 0 when unknown).
 double availableMemory();
 
+// The memory a run may use on this machine: --max-memory (maxMemory > 0),
+// which may only lower availableMemory(); 0 when neither is known.
+double memoryLimit(double maxMemory);
+
 // "4G", "500M", "2.5GB", "1e9": bytes. Throws Tribos::Error naming `what`.
 double parseMemorySize(const std::string& text, const std::string& what);
 

@@ -96,13 +96,27 @@ std::vector<std::string> uniqueNames(const ExodusFile& exo, ex_entity_type type,
   return names;
 }
 
-Mesh readExodusFile(const std::string& path, const std::string& file, std::vector<std::string>* warnings) {
-  detail::requireReadable(path, file);
+Mesh readExodusFile(const std::string& path, const std::string& file, std::vector<std::string>* warnings,
+                    const MeshFileOptions& options) {
+  detail::requireRegularFile(path, file);
   const ExodusFile exo(path, file);
   ex_init_params init{};
   exo.check(ex_get_init_ext(exo.id(), &init), "its header");
   TRIBOS_REQUIRE(init.num_dim == 3, file << " is a " << init.num_dim << "D mesh; Tribos reads 3D meshes");
   TRIBOS_REQUIRE(init.num_elem > 0 && init.num_nodes > 0, file << " has no elements; Tribos meshes bodies with Tet4 or Hex8 cells");
+  // The header's counts before the arrays they size are allocated: a
+  // netCDF-4 file may declare arrays it does not store (read as fill
+  // values). Node and element numbers are ints; the reader holds about 64
+  // bytes per node and 128 per element (Hex8) at once.
+  TRIBOS_REQUIRE(init.num_nodes < 2147483647 && init.num_elem < 2147483647,
+                 file << " declares " << init.num_nodes << " nodes and " << init.num_elem
+                      << " elements; a mesh has at most 2^31 - 1 of each");
+  const double arrays = 64.0 * double(init.num_nodes) + 128.0 * double(init.num_elem);
+  TRIBOS_REQUIRE(options.memoryLimit <= 0 || arrays <= options.memoryLimit,
+                 file << " declares " << init.num_nodes << " nodes and " << init.num_elem << " elements, whose arrays "
+                      << "need about " << detail::describeBytes(arrays) << ", more than the "
+                      << detail::describeBytes(options.memoryLimit) << " the read may use (--max-memory, or the "
+                      << "memory available on the machine)");
 
   std::vector<double> x(init.num_nodes), y(init.num_nodes), z(init.num_nodes);
   exo.check(ex_get_coord(exo.id(), x.data(), y.data(), z.data()), "the node coordinates");
@@ -158,8 +172,13 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
   for (int n : fileNodes) usedByCells[n - 1] = 1;
   const std::vector<int> newIndex =
       detail::numberUsedNodes(usedByCells, std::vector<long long>(nodeMap.begin(), nodeMap.end()), file, warnings);
+  std::vector<long long> usedIds;
   for (int64_t i = 0; i < init.num_nodes; ++i)
-    if (newIndex[i] >= 0) mesh.coords.push_back({x[i], y[i], z[i]});
+    if (newIndex[i] >= 0) {
+      mesh.coords.push_back({x[i], y[i], z[i]});
+      usedIds.push_back(nodeMap[i]);
+    }
+  detail::requireUsableCoordinates(mesh.coords, usedIds, file);
   mesh.connectivity.reserve(fileNodes.size());
   for (int n : fileNodes) mesh.connectivity.push_back(newIndex[n - 1]);
   std::vector<long long> cellIds;
@@ -221,8 +240,8 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
 
 }  // namespace
 
-Mesh readExodus(const std::string& path, std::vector<std::string>* warnings) {
-  return readExodusFile(path, "mesh file \"" + path + "\"", warnings);
+Mesh readExodus(const std::string& path, std::vector<std::string>* warnings, const MeshFileOptions& options) {
+  return readExodusFile(path, "mesh file \"" + path + "\"", warnings, options);
 }
 
 }  // namespace Mesh

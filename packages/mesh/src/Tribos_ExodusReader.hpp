@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "Tribos_Mesh.hpp"
+#include "Tribos_MeshFile.hpp"
 
 namespace Tribos {
 namespace Mesh {
@@ -26,12 +27,17 @@ namespace Mesh {
 // file's ids (its element and node number maps).
 //
 // Refused with a Tribos::Error naming the file: a missing or unreadable
-// file, a file the Exodus II library cannot read, a mesh that is not 3D or
-// has no elements, elements other than Tet4 and Hex8 (named with their
+// file, one that is not a regular file, a file the Exodus II library cannot
+// read, a mesh that is not 3D or has no elements, a header whose node and
+// element counts need more memory than options.memoryLimit (checked before
+// the arrays are allocated; the file's size is not bounded, an Exodus file
+// may hold results beside its mesh), a coordinate that is not finite or
+// beyond kMaxCoordinate or a mesh spanning less than kMinExtent, elements other than Tet4 and Hex8 (named with their
 // block) or both kinds at once, two blocks, side sets or node sets of one
 // name, inverted or degenerate cells, side set sides that are not on the
 // boundary, node set nodes no element uses.
-Mesh readExodus(const std::string& path, std::vector<std::string>* warnings = nullptr);
+Mesh readExodus(const std::string& path, std::vector<std::string>* warnings = nullptr,
+                const MeshFileOptions& options = MeshFileOptions());
 
 }  // namespace Mesh
 }  // namespace Tribos

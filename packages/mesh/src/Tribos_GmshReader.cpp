@@ -3,13 +3,13 @@
 #include <gmsh.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <fstream>
 #include <map>
 #include <new>
 #include <unordered_map>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_GeoScript.hpp"
 #include "detail/Tribos_MeshFacets.hpp"
 
 namespace Tribos {
@@ -97,6 +97,31 @@ struct Body {
   std::vector<int> entities;
 };
 
+// The model's nodes, each tag once. Gmsh keeps a node whose tag the file
+// defines twice and resolves the tag to one of them without a word: a tag
+// given twice at other coordinates is refused naming both; the same node
+// written twice is kept once.
+void readNodes(const std::string& file, std::vector<std::size_t>& tags, std::vector<double>& xyz,
+               std::unordered_map<std::size_t, int>& index) {
+  std::vector<std::size_t> allTags;
+  std::vector<double> allXyz, parametric;
+  gmsh::model::mesh::getNodes(allTags, allXyz, parametric, -1, -1, false, false);
+  index.reserve(allTags.size());
+  for (size_t i = 0; i < allTags.size(); ++i) {
+    const double* p = &allXyz[3 * i];
+    const auto [it, fresh] = index.emplace(allTags[i], static_cast<int>(tags.size()));
+    if (fresh) {
+      tags.push_back(allTags[i]);
+      xyz.insert(xyz.end(), p, p + 3);
+      continue;
+    }
+    const double* q = &xyz[3 * it->second];
+    TRIBOS_REQUIRE(p[0] == q[0] && p[1] == q[1] && p[2] == q[2],
+                   file << ": node " << allTags[i] << " is defined twice, at (" << q[0] << ", " << q[1] << ", " << q[2]
+                        << ") and at (" << p[0] << ", " << p[1] << ", " << p[2] << "); a node tag names one node");
+  }
+}
+
 std::vector<Body> readBodies(const std::string& file) {
   std::vector<Body> bodies;
   gmsh::vectorpair groups;
@@ -130,39 +155,33 @@ std::vector<Body> readBodies(const std::string& file) {
   return bodies;
 }
 
-Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<std::string>* warnings) {
-  detail::requireReadable(path, file);
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char ch) { return std::tolower(ch); });
-
+Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<std::string>* warnings,
+                  const MeshFileOptions& options) {
+  detail::requireRegularFile(path, file, options.memoryLimit,
+                             "the memory the read may use: Gmsh holds the whole file in memory");
   // A .msh file (ASCII or binary) starts with the line "$MeshFormat". Any
-  // other file is refused here rather than handed to Gmsh, which would parse
-  // it as a .geo script: its script parser keeps its state after a syntax
-  // error, and every later .geo read in the process would fail.
-  if (extension != ".geo") {
+  // other file is refused here rather than handed to Gmsh, which would run
+  // it as a .geo script (a program: .geo files are meshed in a child
+  // process, GeoScriptMesh).
+  {
     std::ifstream in(path, std::ios::binary);
-    std::string first;
-    std::getline(in, first);
-    if (!first.empty() && first.back() == '\r') first.pop_back();
-    TRIBOS_REQUIRE(first == "$MeshFormat", file << " is not a Gmsh mesh (a .msh file starts with $MeshFormat; a .geo "
-                                                   "script is meshed when its name ends in .geo)");
+    std::string first(12, '\0');
+    in.read(&first[0], 12);
+    first.resize(in.gcount());
+    TRIBOS_REQUIRE(first == "$MeshFormat\n" || first == "$MeshFormat\r",
+                   file << " is not a Gmsh mesh (a .msh file starts with $MeshFormat; a .geo script is meshed when "
+                           "its name ends in .geo)");
   }
 
   GmshSession session;
-  std::string error = gmshError([&] { gmsh::open(path); });
+  const std::string error = gmshError([&] { gmsh::open(path); });
   TRIBOS_REQUIRE(error.empty(), file << " is not a mesh Gmsh can read: " << error);
-  if (extension == ".geo") {
-    error = gmshError([&] { gmsh::model::mesh::generate(3); });
-    TRIBOS_REQUIRE(error.empty(), file << ": Gmsh could not mesh the geometry: " << error);
-  }
 
   std::vector<std::size_t> nodeTags;
-  std::vector<double> xyz, parametric;
-  gmsh::model::mesh::getNodes(nodeTags, xyz, parametric, -1, -1, false, false);
-  TRIBOS_REQUIRE(!nodeTags.empty(), file << " holds no mesh (no nodes); a .msh file of version 4 or a .geo script is expected");
+  std::vector<double> xyz;
   std::unordered_map<std::size_t, int> gmshIndex;  // node tag -> position in nodeTags
-  gmshIndex.reserve(nodeTags.size());
-  for (size_t i = 0; i < nodeTags.size(); ++i) gmshIndex.emplace(nodeTags[i], static_cast<int>(i));
+  readNodes(file, nodeTags, xyz, gmshIndex);
+  TRIBOS_REQUIRE(!nodeTags.empty(), file << " holds no mesh (no nodes); a .msh file of version 4 or a .geo script is expected");
 
   const std::vector<Body> bodies = readBodies(file);
   const bool physical = !bodies.front().what.empty();
@@ -212,8 +231,13 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
   }
   const std::vector<int> newIndex =
       detail::numberUsedNodes(usedByCells, std::vector<long long>(nodeTags.begin(), nodeTags.end()), file, warnings);
+  std::vector<long long> usedTags;
   for (size_t i = 0; i < nodeTags.size(); ++i)
-    if (newIndex[i] >= 0) mesh.coords.push_back({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+    if (newIndex[i] >= 0) {
+      mesh.coords.push_back({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+      usedTags.push_back(static_cast<long long>(nodeTags[i]));
+    }
+  detail::requireUsableCoordinates(mesh.coords, usedTags, file);
   mesh.connectivity.reserve(cellNodes.size());
   for (std::size_t tag : cellNodes) mesh.connectivity.push_back(newIndex[gmshIndex.at(tag)]);
   detail::requirePositiveCells(mesh, file, std::vector<long long>(cellTags.begin(), cellTags.end()));
@@ -258,12 +282,18 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
 
 }  // namespace
 
-Mesh readGmsh(const std::string& path, std::vector<std::string>* warnings) {
+Mesh readGmsh(const std::string& path, std::vector<std::string>* warnings, const MeshFileOptions& options) {
   const std::string file = "mesh file \"" + path + "\"";
   // A Gmsh call that fails outside gmshError() (on a model Gmsh has read)
   // throws a string (4.8) or an exception: said as a Tribos::Error naming the file.
   try {
-    return readGmshFile(path, file, warnings);
+    if (!isGeoScript(path)) return readGmshFile(path, file, warnings, options);
+    // A .geo is a program: run only when allowed, in a child process with
+    // limits; its mesh is read as any .msh, messages naming the script.
+    requireGeoScriptAllowed(path, options);
+    detail::requireRegularFile(path, file, options.memoryLimit, "the memory the read may use");
+    const GeoScriptMesh meshed(path, file, options);
+    return readGmshFile(meshed.mshPath(), file, warnings, options);
   } catch (const Error&) {
     throw;
   } catch (const std::bad_alloc&) {

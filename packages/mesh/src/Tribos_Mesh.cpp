@@ -142,12 +142,27 @@ void collectBoundaryFaces(Mesh& mesh, const BoxSpec& spec) {
 
 }  // namespace
 
+void requireUsableBox(const BoxSpec& spec, const std::string& what) {
+  // The corners hold the box's extreme coordinates; every other node lies between them.
+  const long long nx = spec.cells[0], ny = spec.cells[1], nz = spec.cells[2];
+  std::vector<std::array<double, 3>> corners;
+  std::vector<long long> ids;
+  for (int k : {0, 1})
+    for (int j : {0, 1})
+      for (int i : {0, 1}) {
+        corners.push_back({spec.x[i], spec.y[j], spec.z[k]});
+        ids.push_back(i * nx + (nx + 1) * (j * ny + (ny + 1) * k * nz));
+      }
+  detail::requireUsableCoordinates(corners, ids, what);
+}
+
 Mesh generateBox(const BoxSpec& spec) {
   const int nx = spec.cells[0], ny = spec.cells[1], nz = spec.cells[2];
   TRIBOS_REQUIRE(nx > 0 && ny > 0 && nz > 0,
                  "box cells: need at least one cell per axis, got " << nx << "x" << ny << "x" << nz);
   TRIBOS_REQUIRE(spec.x[1] > spec.x[0] && spec.y[1] > spec.y[0] && spec.z[1] > spec.z[0],
                  "Mesh: box ranges must be increasing intervals");
+  requireUsableBox(spec, "the box");
   Mesh mesh;
   mesh.type = spec.type;
   auto nodeId = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };

@@ -94,5 +94,20 @@ std::array<int, 3> prismLevelCells(int L);
 // checked against it before they are multiplied.
 constexpr int kMaxCellsPerAxis = 1 << 20;
 
+// The coordinates a mesh may have, checked by every reader and for the box
+// before any geometric check. The geometry forms products of up to four
+// lengths (the squared norm of an area vector; volumes are three): with
+// |x| <= 1e50 and an extent of at least 1e-50 they stay within the doubles'
+// range (about 1e-308 to 1e308, with room for differences and sums), so a
+// mesh in unsuitable units is refused by name instead of failing later as
+// "degenerate" or "not planar".
+constexpr double kMaxCoordinate = 1e50;
+constexpr double kMinExtent = 1e-50;
+
+// Refuses a box (its ranges) whose coordinates are not usable as above,
+// naming `what` (e.g. the parameters that give the ranges) and the corner
+// node by its number in generateBox's numbering. generateBox checks it too.
+void requireUsableBox(const BoxSpec& spec, const std::string& what);
+
 }  // namespace Mesh
 }  // namespace Tribos

@@ -36,7 +36,8 @@ std::string scratch(const std::string& name) {
   return "/tmp/tribos_bodies_test_" + std::to_string(getpid()) + "_" + name;
 }
 
-// Writes a .geo script, reads it, removes it.
+// Writes a .geo script, reads it (a program: allowed here, meshed by Gmsh
+// in a child process), removes it.
 Mesh readGeo(const std::string& name, const std::string& text) {
   const std::string path = scratch(name);
   std::ofstream(path) << text;
@@ -44,7 +45,9 @@ Mesh readGeo(const std::string& name, const std::string& text) {
     std::string p;
     ~Remove() { std::remove(p.c_str()); }
   } remove{path};
-  return readGmsh(path);
+  MeshFileOptions options;
+  options.runGeoScript = true;
+  return readGmsh(path, nullptr, options);
 }
 std::string geoError(const std::string& name, const std::string& text) { return errorOf([&] { readGeo(name, text); }); }
 
@@ -361,7 +364,10 @@ TEUCHOS_UNIT_TEST(Bodies, ReadMeshFileDispatch) {
   const char* dir = std::getenv("TRIBOS_SOURCE_DIR");
   const Mesh m = readMeshFile(std::string(dir ? dir : ".") + "/input/gmsh_block.msh");
   TEST_EQUALITY(m.numCells(), 1125);
-  const std::string e = errorOf([] { readMeshFile("model.stl"); });
+  const std::string stl = scratch("model.stl");
+  std::ofstream(stl) << "solid model\nendsolid model\n";
+  const std::string e = errorOf([&] { readMeshFile(stl); });
+  std::remove(stl.c_str());
   out << e << "\n";
-  TEST_ASSERT(contains(e, "mesh file \"model.stl\": unknown extension \".stl\"; Tribos reads Gmsh (.msh, .geo) and Exodus II"));
+  TEST_ASSERT(contains(e, "mesh file \"" + stl + "\": unknown extension \".stl\"; Tribos reads Gmsh (.msh, .geo) and Exodus II"));
 }

@@ -377,3 +377,61 @@ TEUCHOS_UNIT_TEST(Exodus, BrokenFiles) {
   out << e << "\n";
   TEST_ASSERT(contains(e, "mesh file \"/tmp\" is a directory"));
 }
+
+TEUCHOS_UNIT_TEST(Exodus, UnusableCoordinates) {
+  // Node 1004 (the fourth) at a coordinate the geometry cannot compute
+  // with: named with its value before any cell is checked.
+  const Mesh good = twoBodies(CellType::Hex8);
+  const std::string file = scratch("coordinates.exo");
+  const std::vector<std::pair<double, std::string>> bad = {
+      {std::nan(""), "node 1004 has coordinate y = nan; coordinates must be finite numbers"},
+      {1e300, "node 1004 has coordinate y = 1e+300, beyond the 1e+50 a coordinate may have"},
+      {-1e100, "node 1004 has coordinate y = -1e+100, beyond the 1e+50"}};
+  for (const auto& [value, message] : bad) {
+    Mesh m = good;
+    m.coords[3][1] = value;
+    writeExodus(file, m);
+    const std::string e = readError(file);
+    out << e << "\n";
+    TEST_ASSERT(contains(e, "coordinates.exo") && contains(e, message));
+  }
+  // A mesh 2.5e-60 across: its volumes (1e-180) and squared areas would
+  // vanish in round-off.
+  Mesh tiny = good;
+  for (auto& p : tiny.coords)
+    for (double& x : p) x *= 1e-60;
+  writeExodus(file, tiny);
+  std::string e = readError(file);
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "the mesh spans 2.5e-60 (the largest side of its bounding box), less than the 1e-50"));
+  // The same mesh at 1e-40 and at 1e40 is read.
+  for (double scale : {1e-40, 1e40}) {
+    Mesh scaled = good;
+    for (auto& p : scaled.coords)
+      for (double& x : p) x *= scale;
+    writeExodus(file, scaled);
+    TEST_EQUALITY(readError(file), "");
+  }
+  std::remove(file.c_str());
+}
+
+TEUCHOS_UNIT_TEST(Exodus, HeaderCountsBeyondTheMemoryLimit) {
+  // A header is believed only as far as the memory the read may use: the
+  // arrays it sizes are not allocated beyond it.
+  const std::string file = scratch("counts.exo");
+  writeExodus(file, twoBodies(CellType::Hex8));
+  MeshFileOptions options;
+  options.memoryLimit = 1000;  // bytes: less than 72 nodes and 24 elements need
+  std::string e;
+  try {
+    readExodus(file, nullptr, options);
+  } catch (const std::exception& ex) {
+    e = ex.what();
+  }
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "counts.exo") && contains(e, "declares 72 nodes and 24 elements, whose arrays need about") &&
+              contains(e, "the read may use"));
+  options.memoryLimit = 1e6;
+  TEST_EQUALITY(readExodus(file, nullptr, options).numNodes(), 72);
+  std::remove(file.c_str());
+}

@@ -1,5 +1,7 @@
 // The Gmsh reader: the shipped block (.msh, ASCII and binary made at test
-// time), a .geo meshed at run time (Hex8), and the files it must refuse.
+// time), a .geo meshed at run time (Hex8; allowed explicitly, meshed by the
+// gmsh program in a child process), and the files it must refuse: broken,
+// inverted, mixed, coordinates the geometry cannot use, node tags given twice.
 #include <Teuchos_UnitTestHarness.hpp>
 
 #include <gmsh.h>
@@ -80,10 +82,17 @@ void checkBlock(const Mesh& m, Teuchos::FancyOStream& out, bool& success) {
   TEST_EQUALITY(std::count(used.begin(), used.end(), 0), 0);
 }
 
+// A .geo is a program: the tests that mesh one say so.
+MeshFileOptions allowGeo() {
+  MeshFileOptions options;
+  options.runGeoScript = true;
+  return options;
+}
+
 // The message of what readGmsh throws, "" when it does not.
-std::string readError(const std::string& path) {
+std::string readError(const std::string& path, const MeshFileOptions& options = MeshFileOptions()) {
   try {
-    readGmsh(path);
+    readGmsh(path, nullptr, options);
   } catch (const std::exception& e) {
     return e.what();
   }
@@ -126,7 +135,7 @@ TEUCHOS_UNIT_TEST(Gmsh, BinaryAndReadersInSequence) {
 }
 
 TEUCHOS_UNIT_TEST(Gmsh, GeoMeshedAtRunTimeHex8) {
-  const Mesh m = readGmsh(dataFile("hex_block.geo"));
+  const Mesh m = readGmsh(dataFile("hex_block.geo"), nullptr, allowGeo());
   TEST_ASSERT(m.type == CellType::Hex8);
   TEST_EQUALITY(m.numCells(), 4 * 2 * 2);
   TEST_EQUALITY(m.numNodes(), 5 * 3 * 3);
@@ -145,7 +154,7 @@ TEUCHOS_UNIT_TEST(Gmsh, GeoMeshedAtRunTimeHex8) {
 
 TEUCHOS_UNIT_TEST(Gmsh, GeoTetBlock) {
   // The shipped .geo itself, meshed here.
-  const Mesh m = readGmsh(sourceDir() + "/input/gmsh_block.geo");
+  const Mesh m = readGmsh(sourceDir() + "/input/gmsh_block.geo", nullptr, allowGeo());
   checkBlock(m, out, success);
 }
 
@@ -174,12 +183,12 @@ TEUCHOS_UNIT_TEST(Gmsh, RefusedFiles) {
   TEST_ASSERT(contains(e, "garbage.msh") && contains(e, "is not a Gmsh mesh"));
   std::remove(garbage.c_str());
 
-  e = readError(dataFile("second_order.geo"));
+  e = readError(dataFile("second_order.geo"), allowGeo());
   out << e << "\n";
   TEST_ASSERT(contains(e, "second_order.geo") &&
               contains(e, "element type 11 (Tet10) in physical volume 'shaft' is not supported; Tribos reads Tet4 and Hex8"));
 
-  e = readError(dataFile("interior_surface.geo"));
+  e = readError(dataFile("interior_surface.geo"), allowGeo());
   out << e << "\n";
   TEST_ASSERT(contains(e, "interior_surface.geo") && contains(e, "surface 'middle' is not on the boundary (facet "));
 }
@@ -228,6 +237,68 @@ TEUCHOS_UNIT_TEST(Gmsh, MixedCellTypes) {
   const std::string e = readError(file);
   out << e << "\n";
   TEST_ASSERT(contains(e, "mixed.msh") && contains(e, "mixes Tet4 (volume 1) and Hex8 (volume 2); a body has one cell type"));
+  std::remove(file.c_str());
+}
+
+// One tetrahedron of nodes 1-4 at `corners` and an unused node 5; with
+// `again`, a sixth node record whose tag is 2 again, at `again`.
+std::string oneTet(const std::vector<std::string>& corners, const std::string& again = "") {
+  const std::string count = again.empty() ? "5" : "6";
+  std::string text = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 0 1\n1 0 0 0 1 1 1 0 0\n$EndEntities\n";
+  text += "$Nodes\n1 " + count + " 1 5\n3 1 0 " + count + "\n1\n2\n3\n4\n5\n" + (again.empty() ? "" : "2\n");
+  for (const auto& c : corners) text += c + "\n";
+  text += "5 5 5\n" + (again.empty() ? "" : again + "\n") + "$EndNodes\n";
+  return text + "$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n";
+}
+std::string oneTet(const std::string& x2, const std::string& again = "") {
+  return oneTet({"0 0 0", x2, "0 1 0", "0 0 1"}, again);
+}
+
+TEUCHOS_UNIT_TEST(Gmsh, UnusableCoordinates) {
+  const std::string file = scratch("coordinates.msh");
+  std::ofstream(file) << oneTet("1 0 0");
+  TEST_EQUALITY(readError(file), "");  // the file itself is good
+  // Named with the node and the value before any cell is checked (1e300 was
+  // "inverted or degenerate", 1e100 a face "not planar").
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"1e300 0 0", "node 2 has coordinate x = 1e+300, beyond the 1e+50 a coordinate may have"},
+      {"1 1e100 0", "node 2 has coordinate y = 1e+100, beyond the 1e+50"},
+      {"1 0 -1e51", "node 2 has coordinate z = -1e+51, beyond the 1e+50"}};
+  for (const auto& [x2, message] : bad) {
+    std::ofstream(file) << oneTet(x2);
+    const std::string e = readError(file);
+    out << e << "\n";
+    TEST_ASSERT(contains(e, "coordinates.msh") && contains(e, message));
+  }
+  // NaN: Gmsh's own parser may refuse it first; either way, by name.
+  std::ofstream(file) << oneTet("nan 0 0");
+  std::string e = readError(file);
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "coordinates.msh") && !contains(e, "degenerate"));
+  // The tetrahedron 1e-51 across.
+  std::ofstream(file) << oneTet({"0 0 0", "1e-51 0 0", "0 1e-51 0", "0 0 1e-51"});
+  e = readError(file);
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "the mesh spans 1e-51 (the largest side of its bounding box), less than the 1e-50"));
+  std::remove(file.c_str());
+}
+
+TEUCHOS_UNIT_TEST(Gmsh, NodeTagTwice) {
+  // Gmsh keeps both records of tag 2 and resolves the tag to one of them:
+  // refused naming both coordinates.
+  const std::string file = scratch("twice.msh");
+  std::ofstream(file) << oneTet("1 0 0", "1 0 0.5");
+  std::string e = readError(file);
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "twice.msh") && contains(e, "node 2 is defined twice, at (1, 0, 0) and at (1, 0, 0.5)"));
+  // The same node written twice is one node: read, no warning (node 5 is
+  // the one unused node).
+  std::ofstream(file) << oneTet("1 0 0", "1 0 0");
+  std::vector<std::string> warnings;
+  const Mesh m = readGmsh(file, &warnings);
+  TEST_EQUALITY(m.numNodes(), 4);
+  TEST_EQUALITY(warnings.size(), 1u);
+  if (!warnings.empty()) TEST_ASSERT(contains(warnings[0], "1 of its 5 nodes belong to no 3D element"));
   std::remove(file.c_str());
 }
 

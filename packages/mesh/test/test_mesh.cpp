@@ -132,6 +132,42 @@ TEUCHOS_UNIT_TEST(Box, Tet4) { checkBox(CellType::Tet4, out, success); }
 
 TEUCHOS_UNIT_TEST(Box, Hex8) { checkBox(CellType::Hex8, out, success); }
 
+TEUCHOS_UNIT_TEST(Box, UnusableCoordinates) {
+  // The readers' coordinate check, for the box: by its corners, named by
+  // their node numbers, before a node is made.
+  auto errorOf = [](const BoxSpec& spec) {
+    try {
+      requireUsableBox(spec, "the box");
+      generateBox(spec);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  BoxSpec spec;
+  spec.cells = {2, 3, 4};
+  spec.x = {0, 1e300};
+  std::string e = errorOf(spec);
+  out << e << "\n";
+  TEST_EQUALITY(e, "the box: node 2 has coordinate x = 1e+300, beyond the 1e+50 a coordinate may have (the geometry "
+                   "forms products of up to four lengths, which must stay representable); express the mesh in other units");
+  spec.x = {0, 1};
+  spec.z = {-1e51, 0};
+  e = errorOf(spec);
+  TEST_ASSERT(e.find("the box: node 0 has coordinate z = -1e+51") == 0);
+  // The first corner at y = 1e51 is node (0, 3, 0) of a 3 x 4 x 5 grid of nodes: 3 * 3.
+  spec.z = {0, 1};
+  spec.y = {0, 1e51};
+  e = errorOf(spec);
+  TEST_ASSERT(e.find("the box: node 9 has coordinate y = 1e+51") == 0);
+  spec.x = spec.y = spec.z = {0, 1e-51};
+  e = errorOf(spec);
+  out << e << "\n";
+  TEST_ASSERT(e.find("the box: the mesh spans 1e-51 (the largest side of its bounding box), less than the 1e-50") == 0);
+  spec.x = spec.y = spec.z = {-1e49, 1e49};
+  TEST_EQUALITY(errorOf(spec), "");
+}
+
 TEUCHOS_UNIT_TEST(Partition, Tet4) { checkPartitions(CellType::Tet4, out, success); }
 
 TEUCHOS_UNIT_TEST(Partition, Hex8) { checkPartitions(CellType::Hex8, out, success); }

@@ -6,8 +6,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
+
+#include <sys/stat.h>
 
 #include "Tribos_Error.hpp"
 
@@ -94,11 +97,71 @@ const FaceIndex::Entry* FaceIndex::boundaryFace(const std::vector<int>& nodes) c
   return &*lo;
 }
 
-void requireReadable(const std::string& path, const std::string& file) {
-  std::error_code ec;
-  TRIBOS_REQUIRE(!std::filesystem::is_directory(path, ec), file << " is a directory");
+std::string lowerExtension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  return extension;
+}
+
+namespace {
+
+// What a path that is not a regular file is, for messages.
+const char* kindOfFile(mode_t mode) {
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+}  // namespace
+
+void requireRegularFile(const std::string& path, const std::string& file, double maxBytes, const std::string& why) {
+  // stat() follows symbolic links and opens nothing: a FIFO is not waited on.
+  struct stat st {};
+  TRIBOS_REQUIRE(::stat(path.c_str(), &st) == 0, "cannot open " << file << ": " << std::strerror(errno));
+  TRIBOS_REQUIRE(!S_ISDIR(st.st_mode), file << " is a directory");
+  TRIBOS_REQUIRE(S_ISREG(st.st_mode), file << " is " << kindOfFile(st.st_mode)
+                                           << ", not a regular file; a mesh file must be a regular file");
+  TRIBOS_REQUIRE(maxBytes <= 0 || double(st.st_size) <= maxBytes,
+                 file << " is " << describeBytes(double(st.st_size)) << ", more than " << describeBytes(maxBytes)
+                      << (why.empty() ? "" : " (" + why + ")"));
   std::ifstream probe(path, std::ios::binary);
   TRIBOS_REQUIRE(probe.good(), "cannot open " << file << ": " << std::strerror(errno));
+}
+
+std::string describeBytes(double bytes) {
+  const double kB = 1024.0, MB = 1024.0 * kB, GB = 1024.0 * MB;
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(bytes >= GB ? 2 : bytes >= MB && bytes < 10 * MB ? 1 : 0);
+  if (bytes >= GB) os << bytes / GB << " GB";
+  else if (bytes >= MB) os << bytes / MB << " MB";
+  else if (bytes >= 10 * kB) os << bytes / kB << " kB";
+  else os << bytes << " bytes";
+  return os.str();
+}
+
+void requireUsableCoordinates(const std::vector<Point>& coords, const std::vector<long long>& nodeIds,
+                              const std::string& file) {
+  auto nodeName = [&](size_t i) { return nodeIds.empty() ? static_cast<long long>(i) : nodeIds[i]; };
+  Point lo{0, 0, 0}, hi{0, 0, 0};
+  for (size_t i = 0; i < coords.size(); ++i)
+    for (int d = 0; d < 3; ++d) {
+      const double x = coords[i][d];
+      TRIBOS_REQUIRE(std::isfinite(x), file << ": node " << nodeName(i) << " has coordinate " << "xyz"[d] << " = " << x
+                                            << "; coordinates must be finite numbers");
+      TRIBOS_REQUIRE(std::abs(x) <= kMaxCoordinate,
+                     file << ": node " << nodeName(i) << " has coordinate " << "xyz"[d] << " = " << x
+                          << ", beyond the " << kMaxCoordinate << " a coordinate may have (the geometry forms products "
+                          << "of up to four lengths, which must stay representable); express the mesh in other units");
+      lo[d] = i == 0 ? x : std::min(lo[d], x);
+      hi[d] = i == 0 ? x : std::max(hi[d], x);
+    }
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  TRIBOS_REQUIRE(coords.empty() || extent >= kMinExtent,
+                 file << ": the mesh spans " << extent << " (the largest side of its bounding box), less than the "
+                      << kMinExtent << " a mesh must span (the geometry forms products of up to four lengths, "
+                      << "which must not vanish in round-off); express the mesh in other units");
 }
 
 void warn(std::vector<std::string>* warnings, const std::string& message) {

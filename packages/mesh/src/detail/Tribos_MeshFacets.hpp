@@ -55,8 +55,28 @@ class FaceIndex {
   std::vector<Entry> entries_;
 };
 
-// Refuses a path that is a directory or cannot be opened, naming the file.
-void requireReadable(const std::string& path, const std::string& file);
+// The extension of a path in lower case (".msh", "" when none).
+std::string lowerExtension(const std::string& path);
+
+// Refuses, naming the file, before it is opened: a path that does not
+// exist, is not a regular file (a directory; a FIFO or a device, which
+// would block or never end), is larger than maxBytes (when > 0; `why` says
+// what the bound is, e.g. "the memory limit of the run: Gmsh holds the whole
+// file in memory"), or cannot be opened for reading.
+void requireRegularFile(const std::string& path, const std::string& file, double maxBytes = 0,
+                        const std::string& why = "");
+
+// "300 MB", "2.50 GB", "12 kB", "500 bytes" (units of 2^10, 2^20 and 2^30
+// bytes, as --max-memory reads them).
+std::string describeBytes(double bytes);
+
+// Refuses coordinates the geometry cannot compute with, before any
+// geometric check: a coordinate that is not finite or beyond
+// kMaxCoordinate, a mesh whose extent (the largest side of its bounding
+// box) is below kMinExtent. Nodes are named by nodeIds[i] (their numbers in
+// the file), or by their index when nodeIds is empty.
+void requireUsableCoordinates(const std::vector<Point>& coords, const std::vector<long long>& nodeIds,
+                              const std::string& file);
 
 // A reader's warning: added to `warnings`, or printed on std::cerr when null.
 void warn(std::vector<std::string>* warnings, const std::string& message);

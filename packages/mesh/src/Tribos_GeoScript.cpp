@@ -1,0 +1,261 @@
+#include "Tribos_GeoScript.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "Tribos_Error.hpp"
+#include "detail/Tribos_MeshFacets.hpp"
+
+extern char** environ;
+
+namespace Tribos {
+namespace Mesh {
+
+namespace {
+
+// Without a memory limit, what Gmsh may write: far beyond any mesh a run
+// can solve, short of filling a disk.
+constexpr double kUnboundedFileBytes = 64.0 * 1024 * 1024 * 1024;
+
+bool isExecutableFile(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(path.c_str(), X_OK) == 0;
+}
+
+// A child's end, as waitpid tells it, or that the deadline came first.
+struct Ending {
+  bool timedOut = false;
+  bool known = true;  // false: the status was not ours to read (someone else reaped the child)
+  int status = 0;
+};
+
+// The limits and the program of the child, prepared before fork(): the
+// child may only make async-signal-safe calls until exec.
+struct ChildSetup {
+  std::vector<std::string> args, env;
+  std::vector<char*> argv, envp;
+  std::string log;
+  rlim_t memory = RLIM_INFINITY, cpu = RLIM_INFINITY, fileSize = RLIM_INFINITY;
+  pid_t parent = 0;
+
+  void finish() {
+    for (auto& a : args) argv.push_back(&a[0]);
+    argv.push_back(nullptr);
+    for (auto& e : env) envp.push_back(&e[0]);
+    envp.push_back(nullptr);
+  }
+};
+
+void setLimit(int resource, rlim_t soft, rlim_t hard) {
+  const struct rlimit limit = {soft, hard};
+  setrlimit(resource, &limit);
+}
+
+// In the child, between fork and exec. A failure is written to the log
+// (as Gmsh's own output would be) and ends the child with 127.
+[[noreturn]] void runChild(const ChildSetup& s) {
+  setpgid(0, 0);                      // its own group: the deadline kills whatever the script started
+  prctl(PR_SET_PDEATHSIG, SIGKILL);   // and it dies with the run
+  if (getppid() != s.parent) _exit(127);  // the run ended before the line above
+  const int in = open("/dev/null", O_RDONLY);
+  const int out = open(s.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  if (in < 0 || out < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(out, 2) < 0) _exit(127);
+#ifdef SYS_close_range
+  syscall(SYS_close_range, 3u, ~0u, 0u);  // the run's sockets and files are not the script's
+#endif
+  if (s.memory != RLIM_INFINITY) setLimit(RLIMIT_AS, s.memory, s.memory);
+  setLimit(RLIMIT_CPU, s.cpu, s.cpu + 5);  // SIGXCPU first, SIGKILL 5 s later
+  setLimit(RLIMIT_FSIZE, s.fileSize, s.fileSize);
+  setLimit(RLIMIT_CORE, 0, 0);
+  execve(s.argv[0], s.argv.data(), s.envp.data());
+  static const char failed[] = "tribos: cannot run gmsh (execve failed)\n";
+  if (write(2, failed, sizeof failed - 1) < 0) _exit(127);
+  _exit(127);
+}
+
+// Waits for the child until the deadline; then kills its process group.
+Ending waitFor(pid_t child, double seconds) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  auto pause = std::chrono::milliseconds(2);
+  Ending ending;
+  for (;;) {
+    const pid_t r = waitpid(child, &ending.status, WNOHANG);
+    if (r == child) break;
+    if (r < 0 && errno != EINTR) {
+      ending.known = false;
+      break;
+    }
+    if (std::chrono::steady_clock::now() >= deadline) {
+      kill(-child, SIGKILL);
+      while (waitpid(child, &ending.status, 0) < 0 && errno == EINTR) {
+      }
+      ending.timedOut = true;
+      break;
+    }
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::milliseconds(50));
+  }
+  // Commands the script left running in the background end with it.
+  kill(-child, SIGKILL);
+  return ending;
+}
+
+// The end of Gmsh's log: at most its last 64 kB, in lines.
+std::vector<std::string> logTail(const std::string& log) {
+  std::ifstream in(log, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(std::max<std::streamoff>(0, size - 65536));
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (!line.empty()) lines.push_back(line);
+  }
+  return lines;
+}
+
+bool mentions(const std::vector<std::string>& lines, const std::vector<std::string>& words) {
+  for (const auto& line : lines)
+    for (const auto& w : words)
+      if (line.find(w) != std::string::npos) return true;
+  return false;
+}
+
+// Gmsh's last error lines ("Error   : ..." without the prefix), else its
+// last lines; at most three, each cut to 300 characters.
+std::string lastLines(const std::vector<std::string>& lines) {
+  std::vector<std::string> errors;
+  for (const auto& line : lines)
+    if (line.rfind("Error", 0) == 0) {
+      const size_t colon = line.find(':');
+      errors.push_back(colon == std::string::npos ? line : line.substr(line.find_first_not_of(' ', colon + 1)));
+    }
+  const std::vector<std::string>& from = errors.empty() ? lines : errors;
+  std::string text;
+  for (size_t i = from.size() > 3 ? from.size() - 3 : 0; i < from.size(); ++i)
+    text += (text.empty() ? "" : "; ") + (from[i].size() > 300 ? from[i].substr(0, 300) + "..." : from[i]);
+  return text.empty() ? "(no output)" : text;
+}
+
+std::string seconds(double s) {
+  std::ostringstream os;
+  os << s << " s";
+  return os.str();
+}
+
+// The message for a child that did not leave a mesh, or "" when it did.
+std::string failure(const Ending& e, const std::vector<std::string>& log, const MeshFileOptions& options,
+                    double fileBound) {
+  const std::string timeLimit = "its time limit of " + seconds(options.geoTimeLimit) + " (Mesh/Geo Time Limit)";
+  if (e.timedOut)
+    return "Gmsh did not finish meshing the script within " + timeLimit +
+           " and was stopped; raise the limit for a script known to end, or mesh it once with gmsh and give the .msh";
+  const bool signaled = e.known && WIFSIGNALED(e.status);
+  const int signal = signaled ? WTERMSIG(e.status) : 0;
+  if (signal == SIGXCPU)
+    return "Gmsh used up the CPU time of " + timeLimit + " and was stopped";
+  if (signal == SIGXFSZ)
+    return "Gmsh wrote a file larger than " + detail::describeBytes(fileBound) +
+           (options.memoryLimit > 0 ? " (the run's memory limit, which a mesh read whole must fit)" : "") + " and was stopped";
+  // An allocation that fails under RLIMIT_AS: std::bad_alloc (Gmsh aborts),
+  // or a library that cannot even be mapped when Gmsh starts.
+  const bool outOfMemory = mentions(log, {"bad_alloc", "failed to map segment", "Cannot allocate memory", "out of memory",
+                                          "Out of memory"});
+  if (outOfMemory || (signal == SIGKILL && options.memoryLimit <= 0)) {
+    std::string text = "Gmsh ran out of memory meshing the script";
+    if (options.memoryLimit > 0)
+      text += ": it may use " + detail::describeBytes(options.memoryLimit) +
+              " (the run's memory limit: --max-memory, or the memory available on the machine); use a coarser mesh, "
+              "or raise --max-memory";
+    return text;
+  }
+  if (signaled)
+    return "Gmsh ended by signal " + std::to_string(signal) + " (" + strsignal(signal) + ") meshing the script; its last " +
+           "lines: " + lastLines(log);
+  if (e.known && WIFEXITED(e.status) && WEXITSTATUS(e.status) != 0)
+    return "Gmsh could not mesh the script: " + lastLines(log);
+  return "";
+}
+
+}  // namespace
+
+std::string gmshExecutable() {
+#ifdef TRIBOS_GMSH_EXECUTABLE
+  if (isExecutableFile(TRIBOS_GMSH_EXECUTABLE)) return TRIBOS_GMSH_EXECUTABLE;
+#endif
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "");
+  for (std::string dir; std::getline(dirs, dir, ':');)
+    if (!dir.empty() && isExecutableFile(dir + "/gmsh")) return dir + "/gmsh";
+  return "";
+}
+
+GeoScriptMesh::GeoScriptMesh(const std::string& script, const std::string& file, const MeshFileOptions& options) {
+  TRIBOS_REQUIRE(std::isfinite(options.geoTimeLimit) && options.geoTimeLimit > 0,
+                 file << ": the time limit of a .geo script must be a positive number of seconds, not "
+                      << options.geoTimeLimit);
+  ChildSetup setup;
+  const std::string gmsh = gmshExecutable();
+  TRIBOS_REQUIRE(!gmsh.empty(), file << ": the gmsh program, which meshes .geo scripts, is not installed (Debian: "
+                                        "apt-get install gmsh); or give a .msh file");
+  std::string pattern = (std::filesystem::temp_directory_path() / "tribos-geo-XXXXXX").string();
+  TRIBOS_REQUIRE(mkdtemp(&pattern[0]), file << ": cannot create a temporary directory for Gmsh in "
+                                            << std::filesystem::temp_directory_path() << ": " << std::strerror(errno));
+  dir_ = pattern;  // mode 0700: the script's output is the run's alone
+  msh_ = dir_ + "/mesh.msh";
+  log_ = dir_ + "/gmsh.log";
+  try {
+    setup.args = {gmsh, script, "-3", "-format", "msh41", "-o", msh_, "-nt", "1", "-v", "4", "-nopopup"};
+    for (char** e = environ; *e; ++e)
+      if (std::strncmp(*e, "HOME=", 5) != 0) setup.env.push_back(*e);
+    setup.env.push_back("HOME=" + dir_);
+    setup.finish();
+    setup.log = log_;
+    const double fileBound = options.memoryLimit > 0 ? options.memoryLimit : kUnboundedFileBytes;
+    if (options.memoryLimit > 0) setup.memory = static_cast<rlim_t>(options.memoryLimit);
+    setup.cpu = static_cast<rlim_t>(std::ceil(options.geoTimeLimit)) + 1;
+    setup.fileSize = static_cast<rlim_t>(fileBound);
+    setup.parent = getpid();
+
+    const pid_t child = fork();
+    TRIBOS_REQUIRE(child >= 0, file << ": cannot start gmsh: " << std::strerror(errno));
+    if (child == 0) runChild(setup);
+    setpgid(child, child);  // also here: the group exists whichever process runs first
+    const Ending ending = waitFor(child, options.geoTimeLimit);
+    const std::string error = failure(ending, logTail(log_), options, fileBound);
+    TRIBOS_REQUIRE(error.empty(), file << ": " << error);
+    std::error_code ec;
+    TRIBOS_REQUIRE(std::filesystem::is_regular_file(msh_, ec),
+                   file << ": Gmsh wrote no mesh; its last lines: " << lastLines(logTail(log_)));
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+    throw;
+  }
+}
+
+GeoScriptMesh::~GeoScriptMesh() {
+  std::error_code ec;
+  std::filesystem::remove_all(dir_, ec);
+}
+
+}  // namespace Mesh
+}  // namespace Tribos
