@@ -1,7 +1,7 @@
 // A 2 x 1 x 1 block of 4 x 2 x 2 hexahedra (transfinite, recombined), meshed
-// by the reader at run time: the Hex8 path of the Gmsh reader and of the
-// driver (test/CMakeLists.txt). Surfaces: bottom z = 0, top z = 1,
-// clamp x = 0, front y = 0.
+// by Gmsh at run time (the tests opt in: Mesh/Run Geo Script): the Hex8 path
+// of the Gmsh reader and of the driver (test/CMakeLists.txt). Surfaces:
+// bottom z = 0, top z = 1, clamp x = 0, front y = 0.
 Point(1) = {0, 0, 0};
 Point(2) = {2, 0, 0};
 Point(3) = {2, 1, 0};
