@@ -43,6 +43,16 @@ std::string makeDirectories(const std::string& path) {
   }
 }
 
+// "a character device", ... for a file that is not a regular file.
+std::string fileKind(mode_t mode) {
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISDIR(mode)) return "a directory";
+  return "a special file";
+}
+
 // "process P on host H" from the lock file of the run that holds it.
 std::string holderOf(int fd) {
   char text[512] = "";
@@ -57,8 +67,17 @@ std::string holderOf(int fd) {
 // Takes the lock or says why not; on success fd holds it and names this process.
 std::string lock(const std::string& dir, int& fd) {
   const std::string path = dir + "/" + kLockName;
-  fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // Not through a link, and only a regular file: the lock file is
+  // truncated and written, which must never reach a file it points to.
+  fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+  if (fd < 0 && errno == ELOOP) return "the lock file " + path + " is a symbolic link; remove it";
   if (fd < 0) return "cannot create the lock file " + path + ": " + systemReason(errno);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    const std::string kind = fileKind(st.st_mode);
+    ::close(fd), fd = -1;
+    return "the lock file " + path + " is not a regular file (" + kind + "); remove it";
+  }
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     const int err = errno;
     const std::string why = err == EWOULDBLOCK ? "in use by " + holderOf(fd) : "cannot lock " + path + ": " + systemReason(err);
@@ -143,6 +162,10 @@ void requireWritableFile(const std::string& path, const std::string& what, const
     struct stat st;
     if (path.empty() || path.back() == '/') error = "no file name given";
     else if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) error = "is a directory";
+    // The file is replaced by a rename: a device, FIFO or socket in its place
+    // (say /dev/null) would be replaced itself, not written to.
+    else if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+      error = "is not a regular file (" + fileKind(st.st_mode) + "); it would be replaced by a file, not written to";
     else if (::stat(dir.c_str(), &st) != 0)
       error = errno == ENOENT ? "directory " + dir + " does not exist" : "cannot use directory " + dir + ": " + systemReason(errno);
     else if (!S_ISDIR(st.st_mode)) error = dir + " is not a directory";

@@ -316,6 +316,69 @@ TEUCHOS_UNIT_TEST(RequireWritableFile, FileAsDirectoryRefused) {
   TEST_ASSERT(contains(m, "not a directory"));
 }
 
+// A lock file that is a link or not a regular file is refused, and the file
+// a link points to is left as it was (the lock file is truncated and written).
+TEUCHOS_UNIT_TEST(OutputDirectory, LockThroughLinkRefused) {
+  const auto comm = Tpetra::getDefaultComm();
+  ScratchDirectory scratch(comm, "output_directory");
+  const std::string base = scratch.path();
+  if (comm->getRank() == 0) {
+    ::mkdir((base + "/out").c_str(), 0755);
+    writePlainFile(base + "/victim", "keep me\n");
+    const int linked = ::symlink((base + "/victim").c_str(), (base + "/out/.tribos.lock").c_str());
+    ::mkdir((base + "/fifo_out").c_str(), 0755);
+    const int made = ::mkfifo((base + "/fifo_out/.tribos.lock").c_str(), 0644);
+    TEST_ASSERT(linked == 0 && made == 0);
+  }
+  comm->barrier();
+  std::string m = refusal("lock through a link", *comm, out, success, [&] { IO::OutputDirectory dir(base + "/out", comm); });
+  TEST_ASSERT(contains(m, "is a symbolic link"));
+  if (comm->getRank() == 0) TEST_EQUALITY(readFile(base + "/victim"), "keep me\n");
+  m = refusal("lock a FIFO", *comm, out, success, [&] { IO::OutputDirectory dir(base + "/fifo_out", comm); });
+  TEST_ASSERT(contains(m, "not a regular file (a FIFO)"));
+}
+
+// An output that exists and is not a regular file (a device, a FIFO) would
+// be replaced by the rename that writes it: refused.
+TEUCHOS_UNIT_TEST(RequireWritableFile, DeviceRefused) {
+  const auto comm = Tpetra::getDefaultComm();
+  const std::string m =
+      refusal("/dev/null", *comm, out, success, [&] { IO::requireWritableFile("/dev/null", "--summary", comm); });
+  TEST_ASSERT(contains(m, "--summary /dev/null: is not a regular file (a character device)"));
+}
+
+// Outputs that are an input or another output are refused naming both; two
+// inputs may be one file; names that reach one file through a link or
+// through a directory not made yet are seen through.
+TEUCHOS_UNIT_TEST(RequireDistinctFiles, CollisionsNamed) {
+  const auto comm = Tpetra::getDefaultComm();
+  ScratchDirectory scratch(comm, "distinct_files");
+  const std::string base = scratch.path();
+  if (comm->getRank() == 0) {
+    writePlainFile(base + "/input.xml", "<x/>\n");
+    const int linked = ::symlink((base + "/input.xml").c_str(), (base + "/link.xml").c_str());
+    TEST_ASSERT(linked == 0);
+  }
+  comm->barrier();
+  const IO::RunFile input{"the input file", base + "/input.xml", false};
+  IO::requireDistinctFiles({input, {"Mesh/File", base + "/input.xml", false}, {"--summary", base + "/s.json", true}},
+                           comm);  // two inputs alike, a distinct output: accepted
+  std::string m = refusal("summary is the input", *comm, out, success, [&] {
+    IO::requireDistinctFiles({input, {"--summary", base + "/link.xml", true}}, comm);
+  });
+  TEST_ASSERT(contains(m, "--summary " + base + "/link.xml is the input file"));
+  TEST_ASSERT(contains(m, "would overwrite it"));
+  m = refusal("through a directory not made yet", *comm, out, success, [&] {
+    IO::requireDistinctFiles({input, {"--export-fclib", base + "/new/../input.xml", true}}, comm);
+  });
+  TEST_ASSERT(contains(m, "--export-fclib"));
+  m = refusal("two outputs", *comm, out, success, [&] {
+    IO::requireDistinctFiles({{"--summary", base + "/out/s.json", true}, {"the result file s.json", base + "/out/./s.json", true}},
+                             comm);
+  });
+  TEST_ASSERT(contains(m, "two outputs of one run need two files"));
+}
+
 // Two names of one file (through "..") are the same file, two names in one
 // directory are not; the temporary of a path is in its directory.
 TEUCHOS_UNIT_TEST(FileSystem, SameFileAndTemporaryPath) {
