@@ -75,6 +75,12 @@ void setLimit(int resource, rlim_t soft, rlim_t hard) {
   setpgid(0, 0);                      // its own group: the deadline kills whatever the script started
   prctl(PR_SET_PDEATHSIG, SIGKILL);   // and it dies with the run
   if (getppid() != s.parent) _exit(127);  // the run ended before the line above
+  // What the run's threads block or ignore is not the script's: the limits'
+  // signals (SIGXCPU, SIGXFSZ) must end it.
+  sigset_t none;
+  sigemptyset(&none);
+  sigprocmask(SIG_SETMASK, &none, nullptr);
+  for (int sig : {SIGXCPU, SIGXFSZ, SIGPIPE, SIGTERM, SIGINT}) signal(sig, SIG_DFL);
   const int in = open("/dev/null", O_RDONLY);
   const int out = open(s.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
   if (in < 0 || out < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(out, 2) < 0) _exit(127);
@@ -192,6 +198,8 @@ std::string failure(const Ending& e, const std::vector<std::string>& log, const 
            "lines: " + lastLines(log);
   if (e.known && WIFEXITED(e.status) && WEXITSTATUS(e.status) != 0)
     return "Gmsh could not mesh the script: " + lastLines(log);
+  // Its status reaped elsewhere (SIGCHLD ignored): Gmsh's errors are in its log.
+  if (!e.known && mentions(log, {"Error   :"})) return "Gmsh could not mesh the script: " + lastLines(log);
   return "";
 }
 
