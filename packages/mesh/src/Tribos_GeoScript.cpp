@@ -231,7 +231,9 @@ GeoScriptMesh::GeoScriptMesh(const std::string& script, const std::string& file,
   msh_ = dir_ + "/mesh.msh";
   log_ = dir_ + "/gmsh.log";
   try {
-    setup.args = {gmsh, script, "-3", "-format", "msh41", "-o", msh_, "-nt", "1", "-v", "4", "-nopopup"};
+    // (a relative name as ./NAME: a script named "-3" is not an option)
+    const std::string scriptArg = script.rfind('/', 0) == 0 ? script : "./" + script;
+    setup.args = {gmsh, scriptArg, "-3", "-format", "msh41", "-o", msh_, "-nt", "1", "-v", "4", "-nopopup"};
     for (char** e = environ; *e; ++e)
       if (std::strncmp(*e, "HOME=", 5) != 0) setup.env.push_back(*e);
     setup.env.push_back("HOME=" + dir_);
