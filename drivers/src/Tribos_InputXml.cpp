@@ -125,6 +125,24 @@ Teuchos::XMLObject inputFileXml(const Teuchos::XMLObject& xml) {
   return out;
 }
 
+// Tab, LF and CR in attribute values as character references: written
+// literally (as Teuchos' writer leaves them) an XML parser reads them as
+// spaces (XML 1.0, 3.3.3) and a CR LF as LF. A value is the text after
+// =" or =' up to the same quote (Teuchos quotes a value holding '"' with
+// '); the elements have no other text.
+std::string referencedWhitespace(const std::string& xml) {
+  std::string out;
+  char quote = 0;  // the delimiter of the value being copied, 0 outside values
+  for (size_t i = 0; i < xml.size(); ++i) {
+    const char c = xml[i];
+    if (quote && c == quote) quote = 0;
+    else if (!quote && (c == '"' || c == '\'') && i > 0 && xml[i - 1] == '=') quote = c;
+    if (quote && (c == '\t' || c == '\n' || c == '\r')) out += "&#" + std::to_string(static_cast<int>(c)) + ";";
+    else out += c;
+  }
+  return out;
+}
+
 }  // namespace
 
 RCP<ParameterList> defaults(const std::vector<std::string>& overrides) {
@@ -140,7 +158,7 @@ std::string toXml(const ParameterList& params) {
   // print() (operator<<) escapes attribute values and indents; toString() does neither.
   std::ostringstream os;
   os << inputFileXml(Teuchos::XMLParameterListWriter().toXML(out));
-  return os.str();
+  return referencedWhitespace(os.str());
 }
 
 }  // namespace Input

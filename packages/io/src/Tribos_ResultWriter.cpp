@@ -17,6 +17,7 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_QuietHdf5Errors.hpp"
 #include "Tribos_FileSystem.hpp"
+#include "Tribos_ParameterReader.hpp"
 
 namespace Tribos {
 namespace IO {
@@ -184,8 +185,11 @@ class ParallelH5File {
     agree(f.message);
   }
 
-  void writeAttribute(const std::string& name, const std::string& value) {
-    // A fixed-length string of at least one byte (HDF5 has no empty type).
+  void writeAttribute(const std::string& name, const std::string& text) {
+    // A fixed-length string of at least one byte (HDF5 has no empty type),
+    // marked UTF-8 and held to it as the summary is (Summary.cpp: inputs are
+    // checked, other text has ill-formed sequences replaced).
+    const std::string value = validUtf8(text);
     const hid_t type = H5Tcopy(H5T_C_S1);
     H5Tset_size(type, std::max<size_t>(value.size(), 1));
     H5Tset_strpad(type, H5T_STR_NULLPAD);

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "Tribos_ParameterReader.hpp"
+
 namespace Tribos {
 namespace IO {
 
@@ -17,9 +19,13 @@ std::string number(double v) {
   return buf;
 }
 // A JSON string (RFC 8259, section 7): quotation mark, reverse solidus and the
-// control characters below 0x20 must be escaped; bytes from 0x80 on pass
-// through (the text is UTF-8).
-std::string quote(const std::string& s) {
+// control characters below 0x20 must be escaped, and the text must be UTF-8
+// (section 8.1). Inputs are checked (IO::checkText), but a summary also
+// reports text that never was, such as an output path from the command line,
+// which may hold any bytes: an ill-formed UTF-8 sequence is replaced by
+// U+FFFD here rather than refused, the summary being a report.
+std::string quote(const std::string& text) {
+  const std::string s = validUtf8(text);
   std::string out = "\"";
   for (char c : s) {
     const unsigned char u = static_cast<unsigned char>(c);

@@ -8,6 +8,7 @@
 
 #include "IoTestSupport.hpp"
 #include "Tribos_History.hpp"
+#include "Tribos_ParameterReader.hpp"
 #include "Tribos_Summary.hpp"
 
 using namespace Tribos;
@@ -63,6 +64,19 @@ TEUCHOS_UNIT_TEST(SummaryJson, EveryControlCharacter) {
   TEST_ASSERT(noRawControlCharacters(every.toJson()));
   TEST_ASSERT(contains(every.toJson(), "\\u0000\\u0001"));
   TEST_ASSERT(contains(every.toJson(), "\\b\\t\\n\\u000b\\f\\r\\u000e"));
+}
+
+// JSON text is UTF-8 (RFC 8259, 8.1): a string that was never checked (an
+// output path from the command line may hold any bytes) has each ill-formed
+// sequence replaced by U+FFFD; valid UTF-8 passes unchanged.
+TEUCHOS_UNIT_TEST(SummaryJson, IllFormedUtf8Replaced) {
+  IO::Summary s;
+  s.set("path", std::string("/tmp/a\xFF" "b\xC0\xAF" "c\xE2\x82")).set("k\xFE", "M\xC5\x82yn \xF0\x9D\x9C\x87");
+  const std::string json = s.toJson();
+  out << json << "\n";
+  TEST_ASSERT(contains(json, "\"/tmp/a\xEF\xBF\xBD" "b\xEF\xBF\xBD" "c\xEF\xBF\xBD\""));
+  TEST_ASSERT(contains(json, "\"k\xEF\xBF\xBD\": \"M\xC5\x82yn \xF0\x9D\x9C\x87\""));
+  TEST_EQUALITY(IO::textProblem(json), "");
 }
 
 TEUCHOS_UNIT_TEST(SummaryJson, NonFiniteNumbers) {
