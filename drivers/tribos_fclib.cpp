@@ -2,13 +2,14 @@
 // algorithm, compare with the stored solution when there is one, and report.
 //   tribos_fclib FILE.hdf5 [--xml solver.xml] [--algorithm NAME] [--tolerance TOL]
 //                [--max-iterations N] [--summary FILE.json]
-//                [--mass-solver KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose]
+//                [--mass-solver KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose] [--quiet]
 // Exit status: 0 converged; 1 bad input or error (usage, unreadable or invalid
 // problem, unusable output path: nothing solved, nothing written); 2 not
 // converged (the result check failed, e.g. ||F_nat||/||q|| above --tolerance;
 // the summary and the solution file are still written, and stop_reason says why).
 // The solve runs on rank 0 with a communicator of one rank (Amesos2 is not
 // usable on multi-rank communicators in this Trilinos build); other ranks wait.
+// A run longer than 2 s shows its stage and iterations on stderr (--quiet: not).
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Core.hpp>
 
@@ -30,6 +31,7 @@
 #include "Tribos_FCLIB_Solve.hpp"
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_Summary.hpp"
+#include "Tribos_Progress.hpp"
 #include "Tribos_MpiStartup.hpp"
 
 namespace {
@@ -42,6 +44,8 @@ std::string usage() {
   const std::string names = joinNames(FCLIB::coulombAlgorithms());
   return "usage: tribos_fclib FILE.hdf5 [--xml solver.xml] [--algorithm NAME] [--tolerance TOL] [--max-iterations N]\n"
          "                   [--summary FILE.json] [--mass-solver KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose]\n"
+         "                   [--quiet]\n"
+         "--quiet              no progress lines on stderr (shown for runs longer than 2 s: stage, iterations)\n"
          "--algorithm NAME     a friction algorithm that solves Coulomb problems: " + names + "\n"
          "                     (default Algorithm2)\n"
          "--tolerance TOL      0 < TOL < 1: the result must reach ||F_nat|| / ||q|| <= TOL (the natural-map error\n"
@@ -67,7 +71,7 @@ struct Args {
   std::string input, xml, summary, algorithm, massSolver = "KLU2", writeSolution;
   double tolerance = 0;     // 0: not given
   int maxIterations = 0;    // 0: not given
-  bool verbose = false;
+  bool verbose = false, quiet = false;
 };
 
 // The whole text must be a finite number (no trailing characters, no nan/inf).
@@ -110,6 +114,7 @@ Args parse(int argc, char** argv) {
     else if (s == "--mass-solver") a.massSolver = next("--mass-solver");
     else if (s == "--write-solution") a.writeSolution = next("--write-solution");
     else if (s == "--verbose") a.verbose = true;
+    else if (s == "--quiet") a.quiet = true;
     else if (!s.empty() && s[0] == '-') throw Error("unknown option " + s + "\n" + usage());
     else {
       TRIBOS_REQUIRE(a.input.empty(), "more than one input file given\n" << usage());
@@ -147,6 +152,7 @@ FCLIB::SolveOptions solveOptions(const Args& args) {
   FCLIB::SolveOptions options;
   options.massSolver = args.massSolver;
   options.verbose = args.verbose;
+  options.source = "FCLIB file " + args.input;
   if (!args.xml.empty()) {
     auto pl = IO::readParameterFile(args.xml);  // every value parsed completely, finite
     const Teuchos::ParameterList& solver = pl->isSublist("Solver") ? pl->sublist("Solver") : *pl;
@@ -157,27 +163,6 @@ FCLIB::SolveOptions solveOptions(const Args& args) {
   options.naturalMapTolerance = args.tolerance;
   options.maxIterations = args.maxIterations;
   return options;
-}
-
-// Text from the file (title, messages quoting it) made safe for the JSON
-// summary, whose writer escapes only quotes, backslashes and newlines:
-// control characters and bytes that are not UTF-8 become '?'.
-std::string printable(const std::string& text) {
-  std::string out;
-  for (std::size_t k = 0; k < text.size();) {
-    const unsigned char c = static_cast<unsigned char>(text[k]);
-    const int length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
-    bool valid = length > 0 && k + length <= text.size();
-    for (int j = 1; valid && j < length; ++j) valid = (static_cast<unsigned char>(text[k + j]) >> 6) == 0x2;
-    if (!valid || (length == 1 && (c < 0x20 || c == 0x7F) && c != '\n')) {
-      out += '?';
-      ++k;
-      continue;
-    }
-    out.append(text, k, length);
-    k += length;
-  }
-  return out;
 }
 
 // ||a - b|| / max(||a||, ||b||): 0 for two zero vectors, never a division by ~0.
@@ -213,6 +198,7 @@ template <typename ErrOf>
 void compareStored(const std::optional<FCLIB::Solution>& stored, const FCLIB::SolveReport& rep, ErrOf errOf,
                    Outcome& out) {
   if (!stored) return;
+  Progress::stage("comparison with the stored solution");
   IO::Summary& s = out.stored.emplace();
   if (!stored->r.empty()) {
     s.set("err", errSummary(errOf(stored->r)));
@@ -231,6 +217,7 @@ void writeResult(const Args& args, const Problem& p, const FCLIB::Info& info, co
     out.notes.push_back("--write-solution " + args.writeSolution + " not written: the result has non-finite entries");
     return;
   }
+  Progress::stage("writing " + args.writeSolution);
   write(args.writeSolution, p, info, &s, {}, FCLIB::Storage::CompressedRows);
 }
 
@@ -253,7 +240,7 @@ void solveGlobal(const Args& args, const FCLIB::SolveOptions& options, const RCP
   compareStored(
       stored, rep,
       [&](const std::vector<double>& r) {
-        FCLIB::MassSolver M(p.M, options.massSolver);
+        FCLIB::MassSolver M(p.M, options.massSolver, options.source);
         return FCLIB::naturalMapError(p, r, M.function());
       },
       out);
@@ -273,7 +260,7 @@ FCLIB::Info readInfo(const std::string& path, std::vector<std::string>& notes) {
 void reportSolve(const Args& args, const FCLIB::SolveReport& rep, FCLIB::ProblemKind kind, IO::Summary& summary) {
   summary.set("algorithm", rep.algorithm);
   summary.set("converged", rep.converged).set("solver_converged", rep.status.converged);
-  summary.set("stop_reason", printable(rep.stopReason));
+  summary.set("stop_reason", rep.stopReason);
   summary.set("outer_iterations", rep.status.outer_iterations).set("msa_iterations", rep.status.msa_iterations);
   summary.set("inner_iterations", rep.status.inner_iterations);
   summary.set("n_A", rep.n_A).set("n_A_qpp", static_cast<long long>(rep.status.n_A_qpp));
@@ -302,11 +289,12 @@ void reportSolve(const Args& args, const FCLIB::SolveReport& rep, FCLIB::Problem
 
 Outcome run(const Args& args, const RCP<const Comm>& self) {
   const FCLIB::SolveOptions options = solveOptions(args);
+  Progress::stage("reading " + args.input);
   const auto kind = FCLIB::problemKind(args.input);
   Outcome out;
-  out.summary.set("input", printable(args.input));
+  out.summary.set("input", args.input);
   const FCLIB::Info info = readInfo(args.input, out.notes);
-  out.summary.set("title", printable(info.title));
+  out.summary.set("title", info.title);
   FCLIB::SolveReport rep;
   if (kind == FCLIB::ProblemKind::Local) solveLocal(args, options, self, info, rep, out);
   else solveGlobal(args, options, self, info, rep, out);
@@ -314,7 +302,7 @@ Outcome run(const Args& args, const RCP<const Comm>& self) {
   if (!rep.note.empty()) out.notes.insert(out.notes.begin(), rep.note);
   std::string note;
   for (const auto& n : out.notes) note += (note.empty() ? "" : "; ") + n;
-  if (!note.empty()) out.summary.set("note", printable(note));
+  if (!note.empty()) out.summary.set("note", note);
   if (out.stored) out.summary.set("stored_solution", *out.stored);
   out.converged = rep.converged;
   return out;
@@ -344,6 +332,7 @@ int main(int argc, char** argv) {
   if (rank == 0) {
     try {
       const Args args = parse(argc, argv);
+      Progress::Session progress(args.quiet ? nullptr : &std::cerr);
       checkOutputs(args, self);
       const Outcome outcome = run(args, self);
       const std::string json = outcome.summary.toJson() + "\n";

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "Tribos_FileSystem.hpp"
+#include "Tribos_ParameterReader.hpp"
 #include "Tribos_QuietHdf5Errors.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_ArrayScan.hpp"
@@ -86,12 +87,18 @@ Handle openDataset(hid_t loc, const Location& where, const std::string& name) {
 }
 
 // A directory or an empty file is named as such rather than as "not HDF5".
+// A FIFO or a device (/dev/zero) would block HDF5's reads or feed them
+// without end: only a regular file of at most kMaxFileBytes is opened.
 Handle openFileForReading(const std::string& path) {
   auto fail = [&](const std::string& why) { throw Error("FCLIB file " + path + ": " + why); };
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) fail(std::string("cannot open for reading: ") + std::strerror(errno));
   if (S_ISDIR(st.st_mode)) fail("is a directory, expected an HDF5 file");
+  if (!S_ISREG(st.st_mode)) fail("is " + IO::fileKind(st.st_mode) + ", expected an HDF5 file (a regular file)");
   if (st.st_size == 0) fail("is empty, expected an HDF5 file");
+  if (static_cast<std::uintmax_t>(st.st_size) > kMaxFileBytes)
+    fail("has " + std::to_string(st.st_size) + " bytes, more than the " + std::to_string(kMaxFileBytes >> 30) +
+         " GiB read (the problem is held in memory on one rank)");
   if (!std::ifstream(path).good()) fail("cannot open for reading");
   hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (id < 0) fail("not a readable HDF5 file");

@@ -36,6 +36,7 @@
 // extent the file does not actually store. Zero contacts is a valid problem.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,6 +82,12 @@ enum class ProblemKind { Local, Global };
 
 // How a writer stores sparse matrices.
 enum class Storage { CompressedRows, Triplets };
+
+// Every reader opens only a regular file of at most this size: a FIFO or a
+// device would block HDF5 or feed it without end. The problems of the FCLIB
+// collection have less than 1 GB, and what is read is held in memory on one
+// rank.
+constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(4) << 30;
 
 ProblemKind problemKind(const std::string& path);
 

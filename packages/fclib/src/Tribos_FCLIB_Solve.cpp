@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <numeric>
@@ -17,6 +18,7 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_ArrayScan.hpp"
 #include "Tribos_NonsmoothGaussSeidel.hpp"
+#include "Tribos_Progress.hpp"
 #include "Tribos_SemismoothNewton.hpp"
 
 #include <klu.h>
@@ -34,7 +36,24 @@ double seconds(std::chrono::steady_clock::time_point t0) {
 
 // ---------------------------------------------------------------- MassSolver
 
-MassSolver::MassSolver(const SparseMatrix& M, const std::string& name) {
+namespace {
+
+// The reason a library gives for a failure, without what is only of use to
+// its developers: Teuchos' exceptions (Amesos2's) carry the library's source
+// path, line and "Throw number" before the text; the last line is the text.
+std::string libraryReason(const std::string& what) {
+  std::string line;
+  std::istringstream lines(what);
+  for (std::string l; std::getline(lines, l);)
+    if (l.find_first_not_of(" \t") != std::string::npos) line = l;
+  const bool internal = line.find(".hpp") != std::string::npos || line.find(".cpp") != std::string::npos ||
+                        line.find("Throw") != std::string::npos;
+  return internal ? "" : line.substr(line.find_first_not_of(" \t"));
+}
+
+}  // namespace
+
+MassSolver::MassSolver(const SparseMatrix& M, const std::string& name, const std::string& source) {
   if (M.m != M.n) throw Error("MassSolver: M is not square");
   if (M.m == 0) return;  // no degrees of freedom: nothing to factor, v is empty
   LocalCsr A;
@@ -44,14 +63,19 @@ MassSolver::MassSolver(const SparseMatrix& M, const std::string& name) {
   A.col = M.col;
   A.val = M.val;
   const auto t0 = std::chrono::steady_clock::now();
+  const std::string what = "M (/fclib_global/M, " + std::to_string(M.m) + " x " + std::to_string(M.n) + ", " +
+                           std::to_string(M.nnz()) + " entries)";
+  Progress::stage("factorization of " + what + " by " + name);
   solver_ = createLocalSolver(name);
   try {
     solver_->factor(A);
   } catch (const std::exception& e) {
-    throw Error("FCLIB solve: the " + name + " factorization of M (" +
-                             std::to_string(M.m) + " x " + std::to_string(M.n) +
-                             ") failed; M must be nonsingular" +
-                             (name == "KLU2" ? "" : " (and SPD for " + name + ")") + ": " + e.what());
+    const std::string reason = libraryReason(e.what());
+    throw Error(source + ": " + what + " is singular (or not positive definite): its " + name +
+                " factorization failed" + (reason.empty() ? "" : " (" + reason + ")") +
+                (name == "KLU2" ? "; the mass matrix must be nonsingular"
+                                : "; " + name + " needs M symmetric positive definite, KLU2 (--mass-solver KLU2) "
+                                                "takes any nonsingular M"));
   }
   factorSeconds_ = seconds(t0);
 }
@@ -289,6 +313,7 @@ using SolverPtr = RCP<Friction::FrictionSolver>;
 
 // Extreme eigenvalues of the symmetric part of W, formed densely.
 void spectrum(const DelassusOperator& op, int n, SolveReport& rep) {
+  Progress::stage("eigenvalues of W (dense, " + std::to_string(n) + " x " + std::to_string(n) + ")");
   std::vector<double> D = op.dense();
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < i; ++j) {
@@ -380,6 +405,7 @@ SolveReport solveReduced(DelassusOperator& op, const std::vector<double>& q, con
   double requested = target > 0 ? solver.requestedTolerance() : 0;
   int iterationsLeft = options.maxIterations;
   for (int round = 1; round <= rounds; ++round) {
+    Progress::stage(options.algorithm + " solve" + (round > 1 ? ", round " + std::to_string(round) : ""));
     const Friction::FrictionStatus s = solver.solve(*cd, x);
     // The counts of every round, the state of the last.
     rep.status = round == 1 ? s : Friction::followedBy(rep.status, s);
@@ -444,6 +470,7 @@ SolveReport solveExplicit(const CsrView& W, const std::vector<double>& q, const 
   SolveReport rep;
   rep.algorithm = options.algorithm;
   const auto t0 = std::chrono::steady_clock::now();
+  Progress::stage(options.algorithm + " solve");
   if (options.verbose) nsgs.setOutputStream(Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout)));
   nsgs.setStoppingMeasure([&q, &mu, &rep](const std::vector<double>& r, const std::vector<double>& u) {
     rep.err = naturalMapError(r, u, mu, q);
@@ -521,7 +548,14 @@ Solver::Solver(const SolveOptions& options, const RCP<const Comm>& serialComm)
   if (options.toleranceRounds < 1)
     throw Error("FCLIB solve: tolerance rounds " + std::to_string(options.toleranceRounds) + ", expected >= 1");
   const double factor = resultCheckFactor(params, options);
+  if (!(options.symmetryTolerance >= 0 && options.symmetryTolerance < 1))
+    throw Error("FCLIB solve: symmetry tolerance " + std::to_string(options.symmetryTolerance) +
+                ", expected in [0, 1)");
   solver_ = registry.create(options.algorithm, params);
+  // NSGS solves the contacts' Coulomb problems and Semismooth Newton the
+  // Alart-Curnier equations, for any W; the others minimize a quadratic in W.
+  needsSymmetricW_ = !dynamic_cast<Friction::NonsmoothGaussSeidel*>(solver_.get()) &&
+                     !dynamic_cast<Friction::SemismoothNewton*>(solver_.get());
   resetLimits();
   tolerance_ = options.naturalMapTolerance > 0 ? options.naturalMapTolerance : solver_->requestedTolerance();
   limit_ = factor * tolerance_;
@@ -536,6 +570,23 @@ void Solver::resetLimits() const {
   if (options_.naturalMapTolerance > 0) solver_->setRequestedTolerance(std::max(options_.naturalMapTolerance, 1e-15));
   if (options_.maxIterations > 0) solver_->setMaximumIterations(options_.maxIterations);
   limitsAsGiven_ = true;
+}
+
+std::string Solver::source() const { return options_.source.empty() ? kContext : options_.source; }
+
+void Solver::requireSymmetric(const SparseMatrix& W) const {
+  if (!needsSymmetricW_ || W.m == 0) return;
+  const SparseMatrix::Asymmetry worst = W.largestAsymmetry();
+  const double scale = W.maxAbs(), difference = std::abs(worst.value - worst.mirror);
+  if (difference <= options_.symmetryTolerance * scale) return;
+  std::ostringstream os;
+  os << std::setprecision(6) << source() << ": W (/fclib_local/W) is not symmetric: W(" << worst.row << ", "
+     << worst.col << ") = " << worst.value << " but W(" << worst.col << ", " << worst.row << ") = " << worst.mirror
+     << " (rows and columns from 0; contacts " << worst.row / 3 << " and " << worst.col / 3 << "), a difference of "
+     << difference << " > " << options_.symmetryTolerance << " max|W| = " << options_.symmetryTolerance * scale
+     << "; " << options_.algorithm
+     << " minimizes 1/2 r'W r + q'r and needs W symmetric (NSGS and Semismooth Newton do not: --algorithm)";
+  throw Error(os.str());
 }
 
 namespace {
@@ -590,6 +641,7 @@ SolveReport Solver::solve(const LocalProblem& problem) const {
   if (problem.V || problem.R || problem.s)
     throw Error("FCLIB solve: mixed local problems (V, R, s) are not supported");
   if (problem.spacedim != 3) throw Error("FCLIB solve: only spacedim = 3 is supported");
+  requireSymmetric(problem.W);
   resetLimits();
   const int n = 3 * problem.numberOfContacts();
   SolveReport rep;
@@ -618,7 +670,7 @@ SolveReport Solver::solve(const GlobalProblem& problem) const {
   const int n = 3 * problem.numberOfContacts();
   const auto map = serialMap(n, comm_);
   const auto t0 = std::chrono::steady_clock::now();
-  auto M = std::make_shared<const MassSolver>(problem.M, options_.massSolver);
+  auto M = std::make_shared<const MassSolver>(problem.M, options_.massSolver, source());
   // q = H' M^-1 f + w: the contact velocities at r = 0.
   std::vector<double> vFree, q;
   M->solve(problem.f, vFree);
@@ -631,6 +683,7 @@ SolveReport Solver::solve(const GlobalProblem& problem) const {
   } else if (auto* nsgs = dynamic_cast<Friction::NonsmoothGaussSeidel*>(solver_.get())) {
     DelassusOperator op(problem.H, M, map);
     const auto t1 = std::chrono::steady_clock::now();
+    Progress::stage("W = H'M^-1 H (" + std::to_string(n) + " solves with M)");
     const LocalCsr W = op.explicitMatrix();  // H' M^-1 H, from n solves with M
     const double formW = seconds(t1);
     rep = solveExplicit(W.view(), q, problem.mu, options_, *nsgs);

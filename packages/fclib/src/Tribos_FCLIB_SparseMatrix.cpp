@@ -158,7 +158,7 @@ void SparseMatrix::toTriplets(std::vector<int>& row, std::vector<int>& column) c
     for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) row[k] = r;
 }
 
-double SparseMatrix::asymmetry() const {
+SparseMatrix::Asymmetry SparseMatrix::largestAsymmetry() const {
   if (m != n) throw Error("SparseMatrix::asymmetry: matrix is not square");
   // Look up A_ji by binary search in the (sorted) row j; a missing entry is 0.
   auto entry = [this](int r, int c) {
@@ -166,11 +166,19 @@ double SparseMatrix::asymmetry() const {
     auto it = std::lower_bound(first, last, c);
     return (it != last && *it == c) ? val[it - col.begin()] : 0.0;
   };
-  double worst = 0.0;
+  Asymmetry worst;
+  double largest = 0.0;
   for (int r = 0; r < m; ++r)
-    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k)
-      worst = std::max(worst, std::abs(val[k] - entry(col[k], r)));
+    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) {
+      const double mirror = entry(col[k], r), difference = std::abs(val[k] - mirror);
+      if (difference > largest) largest = difference, worst = {r, col[k], val[k], mirror};
+    }
   return worst;
+}
+
+double SparseMatrix::asymmetry() const {
+  const Asymmetry a = largestAsymmetry();
+  return std::abs(a.value - a.mirror);
 }
 
 bool SparseMatrix::isZero() const {

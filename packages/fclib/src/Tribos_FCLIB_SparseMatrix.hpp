@@ -41,8 +41,15 @@ struct SparseMatrix {
   // Triplet view of the canonical CSR (row-major order).
   void toTriplets(std::vector<int>& row, std::vector<int>& column) const;
 
+  // The entry farthest from its mirror: the largest |A_rc - A_cr| (a mirror
+  // that is not stored is 0), row = col = -1 when A is symmetric.
+  struct Asymmetry {
+    int row = -1, col = -1;
+    double value = 0, mirror = 0;  // A_rc, A_cr
+  };
+  Asymmetry largestAsymmetry() const;
   // max |A_ij - A_ji| over the stored entries, and max |A_ij| (for a relative
-  // measure). Requires a square matrix.
+  // measure). Require a square matrix.
   double asymmetry() const;
   double maxAbs() const;
   // Every stored entry is 0 (stops at the first that is not).

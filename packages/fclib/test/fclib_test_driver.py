@@ -20,6 +20,7 @@ import resource
 import shutil
 import subprocess
 import sys
+import time
 
 import h5py
 import numpy as np
@@ -89,6 +90,23 @@ def duplicate_overflow(f):
     i[1], p[1], x[0], x[1] = i[0], p[0], 1e308, 1e308
     for name, data in (("i", i), ("p", p), ("x", x)):
         replace(f, f"fclib_global/M/{name}", data)
+
+
+def asymmetric_W(f):
+    """W(4, c) of the first off-diagonal entry c of row 4 made 1000 times larger than its mirror W(c, 4)."""
+    p, i, x = f["fclib_local/W/p"][()], f["fclib_local/W/i"][()], f["fclib_local/W/x"][()]
+    k = next(k for k in range(p[4], p[5]) if i[k] != 4)
+    x[k] *= 1000.0
+    replace(f, "fclib_local/W/x", x)
+
+
+def singular_M(f):
+    """Row and column 5 of M zero: M is singular (and not positive definite)."""
+    g = f["fclib_global/M"]
+    i, p, x = g["i"][()], g["p"][()], g["x"][()]
+    nz = g["nz"][0]
+    x[:nz][(i[:nz] == 5) | (p[:nz] == 5)] = 0.0
+    replace(f, "fclib_global/M/x", x)
 
 
 def title_array(f):
@@ -186,6 +204,14 @@ BAD_INPUTS = [
      "group /fclib_global has G but not vectors/b (G, vectors/b come together)"),
     ("f_terabyte", GLOBAL, unwritten("fclib_global/vectors/f", 2**37),
      "/fclib_global/vectors/f declares 137438953472 entries"),
+    # The methods that minimize 1/2 r'W r + q'r need W symmetric: refused
+    # before any work, the largest asymmetric entry named (it would run for minutes).
+    ("W_not_symmetric", LOCAL, asymmetric_W,
+     "W (/fclib_local/W) is not symmetric: W(0, 4) = 1.43785e-08 but W(4, 0) = 1.43785e-05 (rows and columns "
+     "from 0; contacts 0 and 1)"),
+    ("M_singular", GLOBAL, singular_M,
+     "M_singular.hdf5: M (/fclib_global/M, 162 x 162, 3168 entries) is singular (or not positive definite): its "
+     "KLU2 factorization failed"),
 ]
 
 
@@ -209,9 +235,16 @@ def outputs(work, name):
 
 
 def expect_refusal(args, name, cmd, fragment, summary, solution):
+    """Exit 1 within seconds, the message, no library source path or raw
+    library text in it, nothing on stdout, no output written."""
+    start = time.monotonic()
     rc, out, err = run(cmd)
+    elapsed = time.monotonic() - start
     check(rc == 1, f"{name}: exit status", f"{rc}, expected 1\n{err}")
+    check(elapsed < 30, f"{name}: refused at once", f"after {elapsed:.1f} s")
     check(fragment in err, f"{name}: message", f"'{fragment}' not in:\n{err}")
+    check(not any(raw in err for raw in (".hpp", ".cpp", "Throw number", "Amesos2")), f"{name}: no raw library text",
+          err)
     check(out == "", f"{name}: nothing on stdout (no solve)", out[:500])
     check(not os.path.exists(summary) and not os.path.exists(solution), f"{name}: no output written")
     check(not leftovers(args.work), f"{name}: temporaries left", leftovers(args.work))
@@ -236,13 +269,21 @@ def bad_inputs(args):
         make(path)
         summary, solution = outputs(args.work, name)
         expect_refusal(args, name, [args.driver, path, "--summary", summary], fragment, summary, solution)
+    # Not regular files: a device and a FIFO would block HDF5 or feed it without end.
+    fifo = os.path.join(args.work, "fifo.hdf5")
+    os.mkfifo(fifo)
+    for name, path, fragment in (("device", "/dev/zero", "FCLIB file /dev/zero: is a character device, expected an "
+                                                         "HDF5 file (a regular file)"),
+                                 ("fifo", fifo, "fifo.hdf5: is a FIFO (named pipe), expected an HDF5 file")):
+        summary, solution = outputs(args.work, name)
+        expect_refusal(args, name, [args.driver, path, "--summary", summary], fragment, summary, solution)
     path = os.path.join(args.work, "no_problem.hdf5")
     with h5py.File(path, "w") as f:
         f.create_dataset("other", data=[1.0])
     summary, solution = outputs(args.work, "no_problem")
     expect_refusal(args, "no_problem", [args.driver, path, "--summary", summary],
                    "has neither group /fclib_local nor group /fclib_global", summary, solution)
-    print(f"{len(BAD_INPUTS) + 5} bad inputs refused", flush=True)
+    print(f"{len(BAD_INPUTS) + 7} bad inputs refused", flush=True)
 
 
 def solve(args, name, path, status=0, extra=()):
@@ -309,6 +350,12 @@ def good_inputs(args):
           "wrong-size stored solution: note", s.get("note"))
     check("err" in s.get("stored_solution", {}), "wrong-size stored u: stored r still compared")
 
+    # The symmetry W needs is the method's: NSGS takes a nonsymmetric W (and stops on its own terms).
+    summary, solution = outputs(args.work, "asymmetric_nsgs")
+    rc, out, err = run([args.driver, copy_of(args.samples, args.work, LOCAL, "asymmetric_nsgs", asymmetric_W),
+                        "--algorithm", "NSGS", "--max-iterations", "200", "--summary", summary])
+    check(rc in (0, 2) and json.loads(out).get("algorithm") == "NSGS", "nonsymmetric W, NSGS: solved",
+          f"{rc}\n{err}")
     s, _ = solve(args, "title_array", copy_of(args.samples, args.work, LOCAL, "title_array", title_array))
     check("/fclib_local/info/title should hold one string, has 2" in s.get("note", ""), "title array: note",
           s.get("note"))

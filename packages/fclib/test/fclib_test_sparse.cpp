@@ -147,3 +147,20 @@ void checkCompressedColumnFile(Teuchos::FancyOStream& out, bool& success) {
 TEUCHOS_UNIT_TEST(SparseMatrix, Conversions) { checkConversions(out, success); }
 TEUCHOS_UNIT_TEST(SparseMatrix, Validation) { checkValidation(out, success); }
 TEUCHOS_UNIT_TEST(SparseMatrix, CompressedColumnFile) { checkCompressedColumnFile(out, success); }
+
+// The entry farthest from its mirror, a mirror that is not stored counting as 0.
+TEUCHOS_UNIT_TEST(SparseMatrix, LargestAsymmetry) {
+  // [ 2   1   0 ]
+  // [ 1.5 3   4 ]   (2, 1) not stored: |4 - 0| is the largest difference
+  // [ 0   0   5 ]
+  const SparseMatrix A = SparseMatrix::fromCSR(3, 3, {0, 2, 5, 6}, {0, 1, 0, 1, 2, 2}, {2, 1, 1.5, 3, 4, 5}, "A");
+  const SparseMatrix::Asymmetry worst = A.largestAsymmetry();
+  TEST_EQUALITY(worst.row, 1);
+  TEST_EQUALITY(worst.col, 2);
+  TEST_EQUALITY(worst.value, 4.0);
+  TEST_EQUALITY(worst.mirror, 0.0);
+  TEST_EQUALITY(A.asymmetry(), 4.0);
+  const SparseMatrix S = SparseMatrix::fromCSR(2, 2, {0, 2, 4}, {0, 1, 0, 1}, {2, -1, -1, 2}, "S");
+  TEST_EQUALITY(S.largestAsymmetry().row, -1);
+  TEST_EQUALITY(S.asymmetry(), 0.0);
+}
