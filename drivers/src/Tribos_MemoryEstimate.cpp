@@ -187,11 +187,9 @@ MemoryEstimate requireMemory(const Teuchos::ParameterList& params, double limit,
   int ranksHere = 1;
   MPI_Comm_size(machine, &ranksHere);
   MPI_Comm_free(&machine);
-  // --max-memory may only lower what the machine has: a limit above it
-  // cannot make room that is not there.
-  const double available = availableMemory();
-  const bool userBound = limit > 0 && (available <= 0 || limit <= available);
-  const double allowed = userBound ? limit : available;
+  // --max-memory may only lower what the machine has (memoryLimit).
+  const double allowed = memoryLimit(limit);
+  const bool userBound = limit > 0 && allowed == limit;
   // The machine that is shortest of memory speaks for all.
   struct {
     double ratio;
