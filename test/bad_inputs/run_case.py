@@ -43,7 +43,18 @@ def base_input(text_changes, base="brick_linear.xml"):
     return text
 
 
-# Inputs that cannot be said with --set: they are written into the case's directory.
+# A Problem Name of 2- and 4-byte UTF-8 sequences: "Młyn ü 𝜇" (the last a mathematical italic mu).
+NON_ASCII = "M\u0142yn \u00fc \U0001d707"
+
+
+def named(problem):
+    """The brick with this Problem Name (XML text, as written in the file)."""
+    return base_input([('value="brick_linear"', 'value="%s"' % problem)])
+
+
+# Inputs that cannot be said with --set: they are written into the case's
+# directory. A generator returns text (written as UTF-8) or bytes (written as
+# they are: other encodings, bytes that are not text).
 GENERATED = {
     "value_text": lambda: base_input([('value="0.277"', 'value="abc"')]),
     "value_trailing": lambda: base_input([('value="21.2e10"', 'value="21.2e10abc"')]),
@@ -78,6 +89,18 @@ GENERATED = {
                                               '<ParameterList name="Output">\n    <Parameter name="Base Name" '
                                               'type="string" value="two&#10;lines"/>')]),
     "problem_name_long": lambda: base_input([('value="brick_linear"', 'value="%s"' % ("x" * 100000))]),
+    # Encodings (bytes, written as they are): what XML 1.0 allows is read, the value comes out as UTF-8.
+    "utf8_bom": lambda: b"\xef\xbb\xbf" + named(NON_ASCII).encode("utf-8"),
+    "utf16le_bom": lambda: b"\xff\xfe" + named(NON_ASCII).encode("utf-16-le"),
+    "utf16be_bom": lambda: b"\xfe\xff" + named(NON_ASCII).encode("utf-16-be"),
+    "latin1": lambda: ('<?xml version="1.0" encoding="ISO-8859-1"?>\n' + named("caf\u00e9 \u00fc")).encode("latin-1"),
+    "char_references": lambda: named("caf&#233; &#x1D707;"),
+    # ... and what it does not is refused with its place.
+    "invalid_utf8": lambda: named("caf\u00e9").encode("latin-1"),
+    "nul_byte": lambda: named("a\0b").encode("utf-8"),
+    "reference_nul": lambda: named("a&#0;b"),
+    "shift_jis": lambda: '<?xml version="1.0" encoding="Shift_JIS"?>\n' + named("x"),
+    "utf32": lambda: named("x").encode("utf-32"),
 }
 
 
@@ -151,8 +174,9 @@ def main():
     inp = case["input"]
     if inp.startswith("gen:"):
         path = os.path.join(work, inp[4:] + ".xml")
-        with open(path, "w") as f:
-            f.write(GENERATED[inp[4:]]())
+        content = GENERATED[inp[4:]]()
+        with (open(path, "wb") if isinstance(content, bytes) else open(path, "w", encoding="utf-8")) as f:
+            f.write(content)
         inp_args = [path]
     elif inp.startswith("input/"):
         inp_args = [os.path.join(SOURCE, inp)]
