@@ -19,6 +19,8 @@ Whatever the case, the run must end within the timeout without a crash,
 and what it leaves must not lie:
   exit 0    the summary on stdout is valid JSON with converged true; a
             written result is a complete set (h5, xmf, json) marked converged
+            whose parameters file, read again, gives the same file (every
+            value as it was; checked on one rank)
   exit 2    a complete set whose json and h5 say converged = false
   exit 1, 3 no result file and no temporary in the output directory
 """
@@ -101,6 +103,8 @@ GENERATED = {
     "reference_nul": lambda: named("a&#0;b"),
     "shift_jis": lambda: '<?xml version="1.0" encoding="Shift_JIS"?>\n' + named("x"),
     "utf32": lambda: named("x").encode("utf-32"),
+    # Every character XML escapes or normalizes, and non-ASCII ones: the parameters file gives them back.
+    "name_specials": lambda: named("tab&#9;lf&#10;cr&#13;quote&quot;apos'amp&amp;lt&lt;gt>" + NON_ASCII),
 }
 
 
@@ -158,6 +162,28 @@ def check_set(out_dir, converged, err):
             if ref not in h5:
                 fail("the xmf names %s, which the h5 lacks" % ref)
     return s, h5
+
+
+def check_parameters_reread(tribos, out_dir, summary, err):
+    """BASE.parameters.xml runs again as it is: read back by tribos it gives
+    the same file, so every value (strings with any character) is unchanged;
+    and any XML parser reads the Problem Name of the summary from it (tab, LF
+    and CR written literally would come back as spaces)."""
+    import xml.etree.ElementTree as ET
+    files = [n for n in os.listdir(out_dir) if n.endswith(".parameters.xml")]
+    if len(files) != 1:
+        fail("expected one parameters file in %s, found %s" % (out_dir, files), err=err)
+    path = os.path.join(out_dir, files[0])
+    p = subprocess.run([tribos, path, "--print-parameters"], capture_output=True, timeout=120)
+    with open(path, "rb") as f:
+        written = f.read()
+    if p.returncode != 0 or p.stdout != written:
+        fail("%s read again gives exit %d and %s text" % (path, p.returncode, "the same" if p.stdout == written
+                                                          else "other"), p.stdout.decode(errors="replace"),
+             p.stderr.decode(errors="replace"))
+    names = [e.get("value") for e in ET.parse(path).getroot().iter("Parameter") if e.get("name") == "Problem Name"]
+    if names != [summary["problem"]]:
+        fail("%s holds the Problem Name %r for an XML parser, the summary %r" % (path, names, summary["problem"]))
 
 
 def main():
@@ -218,6 +244,8 @@ def main():
             fail("exit 0 without converged = true", out, err)
         if os.path.isdir(out_dir) and result_files(out_dir)[0]:
             s, h5 = check_set(out_dir, True, err)
+            if np_ == "1":
+                check_parameters_reread(command[-1], out_dir, s, err)
     # The HDF5 root attributes, strings decoded.
     a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h5.attrs.items()} if h5 is not None else {}
     if case["check"] and not eval(case["check"], {"s": s, "h5": h5, "a": a}):
