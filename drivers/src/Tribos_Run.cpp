@@ -29,6 +29,7 @@
 #include "Tribos_MemoryEstimate.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_OutputDirectory.hpp"
+#include "Tribos_ParameterReader.hpp"
 #include "Tribos_Progress.hpp"
 #include "Tribos_ResultSet.hpp"
 #include "Tribos_ResultWriter.hpp"
@@ -614,6 +615,14 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
 }  // namespace
 
 void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& options, int numRanks) {
+  // Paths from the command line and the mesh path made absolute (from the
+  // working directory) end up in BASE.parameters.xml and the summary: held
+  // to the text an input file may hold (IO::checkText), refused otherwise.
+  for (const auto& [what, path] : {std::pair<std::string, std::string>{"--output", options.outputDir},
+                                   {"--summary", options.summaryFile},
+                                   {"--export-fclib", options.exportFclib},
+                                   {"Mesh/File", Input::meshFile(params)}})
+    IO::checkText(path, what + " \"" + IO::visibleText(path) + "\"");
   const auto decomposition = decompositionFor(params, numRanks);
   const int S = requestedSubdomains(decomposition);
   // S = 0: a mesh file sized by Subdomain Size, at least one subdomain per rank.
