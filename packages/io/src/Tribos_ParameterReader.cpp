@@ -350,13 +350,13 @@ std::string resolveCharacterReferences(const std::string& text, const std::strin
       const char32_t v = std::isdigit(static_cast<unsigned char>(d)) ? d - '0' : std::tolower(d) - 'a' + 10;
       value = std::min<char32_t>(value * (hexadecimal ? 16 : 10) + v, 0x110000);  // capped: beyond is refused anyway
     }
-    const std::string here = where + ", " + lineAndColumn(text, i);
+    // The place only on failure: counting lines is a pass over the text.
+    const auto here = [&] { return where + ", " + lineAndColumn(text, i); };
     TRIBOS_REQUIRE(digits > 0 && j < text.size() && text[j] == ';',
-                   here << ": a malformed character reference (\"&#\" then decimal digits, or \"&#x\" then "
-                           "hexadecimal digits, then \";\")");
-    const std::string reference = text.substr(i, j + 1 - i);
+                   here() << ": a malformed character reference (\"&#\" then decimal digits, or \"&#x\" then "
+                             "hexadecimal digits, then \";\")");
     if (const char* why = notXmlChar(value))
-      throw Error(here + ": the character reference " + reference + " is " +
+      throw Error(here() + ": the character reference " + text.substr(i, j + 1 - i) + " is " +
                   (value > 0x10FFFF ? std::string("beyond U+10FFFF, the last code point")
                                     : codePoint(value) + ", " + why));
     if (value < 0x80) out += "&#" + std::to_string(value) + ";";
