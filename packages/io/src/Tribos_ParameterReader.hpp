@@ -45,7 +45,7 @@ RCP<Teuchos::ParameterList> readParameterFile(const std::string& file);
 // Throws Tribos::Error naming `where`, the line and column (in characters,
 // from 1) and the byte offset (from 0) of the first character that is not
 // allowed, and its bytes in hex:
-//   --set "Problem Name=a\x01", line 1, column 15 (byte 14): the control character U+0001 (byte 0x01) ...
+//   --set "Problem Name=a\x01", line 1, column 15 (byte 14): U+0001 (byte 0x01), a control character ...
 void checkText(const std::string& text, const std::string& where);
 
 // The same check as a message tail ("line 1, column 15 (byte 14): ..."), ""
@@ -73,8 +73,12 @@ std::string validUtf8(const std::string& text);
 // non-ASCII character are replaced by its UTF-8 bytes (Teuchos' parser
 // would make a single byte of &#233; and refuses hexadecimal and values
 // above 255); one to a character XML does not allow (&#0;) is refused with
-// its line and column. `where` names the document in messages. Throws
-// Tribos::Error.
+// its line and column. Tab, LF and CR written literally inside an
+// attribute value stay as they are (Teuchos' parser does not make them
+// spaces as XML 1.0, 3.3.3, would; doing it here would shift the line
+// numbers of its messages): the parameters file writes them as references,
+// which every reader reads alike. `where` names the document in messages.
+// Throws Tribos::Error.
 std::string decodeXmlDocument(const std::string& bytes, const std::string& where);
 
 // What kind of file st_mode describes, for messages: "a directory", "a
