@@ -17,6 +17,7 @@
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_QuietHdf5Errors.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_FileKind.hpp"
 #include "Tribos_ArrayScan.hpp"
 
 namespace Tribos {
@@ -94,7 +95,7 @@ Handle openFileForReading(const std::string& path) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) fail(std::string("cannot open for reading: ") + std::strerror(errno));
   if (S_ISDIR(st.st_mode)) fail("is a directory, expected an HDF5 file");
-  if (!S_ISREG(st.st_mode)) fail("is " + IO::fileKind(st.st_mode) + ", expected an HDF5 file (a regular file)");
+  if (!S_ISREG(st.st_mode)) fail("is " + Tribos::fileKind(st.st_mode) + ", expected an HDF5 file (a regular file)");
   if (st.st_size == 0) fail("is empty, expected an HDF5 file");
   if (static_cast<std::uintmax_t>(st.st_size) > kMaxFileBytes)
     fail("has " + std::to_string(st.st_size) + " bytes, more than the " + std::to_string(kMaxFileBytes >> 30) +

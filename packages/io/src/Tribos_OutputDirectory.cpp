@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_FileKind.hpp"
 #include "Tribos_FileSystem.hpp"
 
 namespace Tribos {
@@ -41,16 +42,6 @@ std::string makeDirectories(const std::string& path) {
     }
     if (end == std::string::npos) return "";
   }
-}
-
-// "a character device", ... for a file that is not a regular file.
-std::string fileKind(mode_t mode) {
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISDIR(mode)) return "a directory";
-  return "a special file";
 }
 
 // "process P on host H" from the lock file of the run that holds it.

@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_FileKind.hpp"
 
 namespace Tribos {
 namespace IO {
@@ -547,16 +548,6 @@ std::string decodeXmlDocument(const std::string& bytes, const std::string& where
                                               : ""));
   if (detected.utf16) checkUtf16Declaration(text, detected, where);
   return resolveCharacterReferences(text, where);
-}
-
-std::string fileKind(unsigned mode) {
-  if (S_ISREG(mode)) return "a regular file";
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
 }
 
 bool parseDouble(const std::string& text, double& v, std::string& why) {

@@ -81,9 +81,6 @@ std::string validUtf8(const std::string& text);
 // Throws Tribos::Error.
 std::string decodeXmlDocument(const std::string& bytes, const std::string& where);
 
-// What kind of file st_mode describes, for messages: "a directory", "a
-// character device", "a FIFO (named pipe)", ...; "a regular file".
-std::string fileKind(unsigned mode);
 
 // The Teuchos XML name of a value's type ("double", "Array(int)", ...), or ""
 // for a type the reader does not support.

@@ -335,7 +335,7 @@ TEUCHOS_UNIT_TEST(OutputDirectory, LockThroughLinkRefused) {
   TEST_ASSERT(contains(m, "is a symbolic link"));
   if (comm->getRank() == 0) TEST_EQUALITY(readFile(base + "/victim"), "keep me\n");
   m = refusal("lock a FIFO", *comm, out, success, [&] { IO::OutputDirectory dir(base + "/fifo_out", comm); });
-  TEST_ASSERT(contains(m, "not a regular file (a FIFO)"));
+  TEST_ASSERT(contains(m, "not a regular file (a FIFO (named pipe))"));
 }
 
 // An output that exists and is not a regular file (a device, a FIFO) would

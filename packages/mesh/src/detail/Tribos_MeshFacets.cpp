@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_FileKind.hpp"
 
 namespace Tribos {
 namespace Mesh {
@@ -103,25 +104,12 @@ std::string lowerExtension(const std::string& path) {
   return extension;
 }
 
-namespace {
-
-// What a path that is not a regular file is, for messages.
-const char* kindOfFile(mode_t mode) {
-  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
-}  // namespace
-
 void requireRegularFile(const std::string& path, const std::string& file, double maxBytes, const std::string& why) {
   // stat() follows symbolic links and opens nothing: a FIFO is not waited on.
   struct stat st {};
   TRIBOS_REQUIRE(::stat(path.c_str(), &st) == 0, "cannot open " << file << ": " << std::strerror(errno));
   TRIBOS_REQUIRE(!S_ISDIR(st.st_mode), file << " is a directory");
-  TRIBOS_REQUIRE(S_ISREG(st.st_mode), file << " is " << kindOfFile(st.st_mode)
+  TRIBOS_REQUIRE(S_ISREG(st.st_mode), file << " is " << fileKind(st.st_mode)
                                            << ", not a regular file; a mesh file must be a regular file");
   TRIBOS_REQUIRE(maxBytes <= 0 || double(st.st_size) <= maxBytes,
                  file << " is " << describeBytes(double(st.st_size)) << ", more than " << describeBytes(maxBytes)
