@@ -197,12 +197,15 @@ RCP<const ParameterList> validParameters() {
                   "friction (Friction Law, Friction Coefficient, Slip Bound Traction; default: Contact's), Search "
                   "Distance; the contact of each slave node is node-to-segment on the master surface (docs/contact.md)");
   ParameterList& solver = pl->sublist("Solver", false, "solution algorithm");
-  solver.set("Type", "Monolithic", "Monolithic (assembled global solve) or FETI",
-             choice(tuple<std::string>("Monolithic", "FETI")));
-  Array<std::string> outer;
+  solver.set("Type", "Auto",
+             "Monolithic (assembled global solve), FETI, or Auto: Monolithic without contact, FETI with it "
+             "(contact problems are FETI's)",
+             choice(tuple<std::string>("Auto", "Monolithic", "FETI")));
+  Array<std::string> outer(1, Contact::kAutoOuterAlgorithm);
   for (const auto& name : outerAlgorithms()) outer.push_back(name);
-  solver.set("Outer Algorithm", "Algorithm2",
-             "contact problems: " + Friction::frictionSolvers().documentation() + "; " + kSemismooth +
+  solver.set("Outer Algorithm", Contact::kAutoOuterAlgorithm,
+             "contact problems: Auto (Algorithm2 for Coulomb friction, Tresca for Tresca friction and frictionless "
+             "contact); " + Friction::frictionSolvers().documentation() + "; " + kSemismooth +
                  " (Tresca or frictionless by the semismooth* Newton method)",
              choice(outer));
   // The result check's parameters, as the FETI solve defines them.
@@ -542,12 +545,14 @@ void validate(ParameterList& params, const std::string& source) {
     for (auto it = pairList.begin(); it != pairList.end(); ++it)
       unilateral = unilateral || pairList.sublist(pairList.name(it)).get<std::string>("Type") == "Contact";
     if (contact.get<bool>("Enabled") && unilateral) {
-      const std::string law = Contact::runLaw(pairFriction(params)), outer = solver.get<std::string>("Outer Algorithm");
+      const std::string law = Contact::runLaw(pairFriction(params));
+      const std::string outer = Contact::outerAlgorithmFor(solver.get<std::string>("Outer Algorithm"), pairFriction(params));
       TRIBOS_REQUIRE(outer != kSemismooth || contact.sublist("Pairs").numParams() == 0,
                      "Solver/Outer Algorithm = " << kSemismooth << " solves one face against a rigid plane (Contact/Face, "
                                                  "Gap); Contact/Pairs needs a FETI outer algorithm");
-      TRIBOS_REQUIRE(solver.get<std::string>("Type") == "FETI" || outer == kSemismooth,
-                     "contact problems are solved by FETI (Solver/Type = FETI) or by Solver/Outer Algorithm = " << kSemismooth);
+      TRIBOS_REQUIRE(solver.get<std::string>("Type") != "Monolithic" || outer == kSemismooth,
+                     "contact problems are solved by FETI (Solver/Type = FETI or Auto) or by Solver/Outer Algorithm = "
+                         << kSemismooth << ", not by Solver/Type = Monolithic");
       // Which algorithms solve which law: the registry's compatibility query.
       auto solves = [&](const std::string& algorithm) {
         return algorithm == kSemismooth ? law != "Coulomb" : Friction::frictionSolvers().accepts(algorithm, law);
@@ -818,7 +823,7 @@ Mesh::BoxSpec boxSpec(const ParameterList& params) {
 Method method(const ParameterList& params) {
   const auto& solver = params.sublist("Solver");
   if (!params.sublist("Contact").get<bool>("Enabled"))
-    return solver.get<std::string>("Type") == "Monolithic" ? Method::Monolithic : Method::FetiLinear;
+    return solver.get<std::string>("Type") == "FETI" ? Method::FetiLinear : Method::Monolithic;
   return solver.get<std::string>("Outer Algorithm") == "SemismoothStarNewton" ? Method::Semismooth : Method::FetiContact;
 }
 

@@ -34,6 +34,7 @@
 #include "Tribos_ResultSet.hpp"
 #include "Tribos_ResultWriter.hpp"
 #include "Tribos_RigidMotions.hpp"
+#include "Tribos_RunReport.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
 
 namespace Tribos {
@@ -121,7 +122,7 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
 // the result are computed as for FETI.
 Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh,
                                     const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
-                                    IO::Summary& summary, Contact::ContactNodeResults& nodes, bool& converged,
+                                    RunReport& report, Contact::ContactNodeResults& nodes, bool& converged,
                                     Fem::ResultKKT& kkt, IO::IterationHistory& history) {
   const std::string law = params.sublist("Contact").get<std::string>("Friction Law");
   const Input::PlaneContact contact = Input::planeContact(params);
@@ -197,11 +198,16 @@ Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mes
   long long counts[4] = {static_cast<long long>(nodes.nodes.size()), 0, 0, 0};
   for (int st : nodes.status) counts[1] += st > 0, counts[2] += st == 1, counts[3] += st == 2;
   Teuchos::broadcast(comm, 0, 4, counts);
-  summary.set("friction_law", Fem::FrictionLaw::name(friction.kind));
+  report.frictionLaw = Fem::FrictionLaw::name(friction.kind);
   converged = info[0] != 0.0;
-  summary.set("newton_iterations", static_cast<long long>(info[1]));
-  summary.set("outer_iterations", static_cast<long long>(info[1]));
-  summary.set("residuals", residuals);
+  SemismoothReport newton;
+  newton.newtonIterations = static_cast<long long>(info[1]);
+  newton.residuals = residuals;
+  newton.assemblySeconds = info[2];
+  newton.reductionSeconds = info[3];
+  newton.newtonSeconds = info[4];
+  report.semismooth = newton;
+  report.outerIterations = newton.newtonIterations;
   // One row per residual, the last one after the last Newton step (the list
   // may start with the residual of the initial approximation, step 0); the
   // method times its whole solve only (the last row gets it) and makes no
@@ -213,15 +219,10 @@ Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mes
     row.n_A = 0;
     history.rows.push_back(row);
   }
-  summary.set("primal_dofs", 3LL * mesh.numNodes());
-  summary.set("dual_dofs", 0);
-  summary.set("n_A", 0);
-  IO::Summary c;
-  c.set("nodes", counts[0]).set("active", counts[1]).set("stick", counts[2]).set("slip", counts[3]);
-  summary.set("contact", c);
-  summary.set("time_assembly_s", info[2]);
-  summary.set("time_reduction_s", info[3]);
-  summary.set("time_newton_s", info[4]);
+  report.primalDofs = 3LL * mesh.numNodes();
+  report.dualDofs = 0;
+  report.n_A = 0;
+  report.contact = ContactCountReport{counts[0], counts[1], counts[2], counts[3]};
   return uNodal;
 }
 
@@ -252,30 +253,8 @@ double requestedTolerance(const Teuchos::ParameterList& params) {
     case Input::Method::Semismooth: return solver.sublist("SemismoothStarNewton").get<double>("Tolerance");
     case Input::Method::FetiContact: break;
   }
-  return Friction::frictionSolvers().create(solver.get<std::string>("Outer Algorithm"), solver)->requestedTolerance();
-}
-
-// `converged` is a promise about the written result: the solver stopped on
-// its own test AND every KKT residual of the result (Fem::resultKKT) is
-// within Result Check Factor times the requested tolerance.
-// Returns the stop reason written to the summary.
-std::string setResultCheck(const Teuchos::ParameterList& params, double solverTolerance, bool solverConverged,
-                           const std::string& solverReason, const Fem::ResultKKT& kkt, IO::Summary& summary,
-                           bool& converged) {
-  const double tol = solverTolerance > 0 ? solverTolerance : requestedTolerance(params);
-  const auto verdict = Fem::resultVerdict(kkt, solverConverged, solverReason, tol,
-                                          params.sublist("Solver").get<double>("Result Check Factor"));
-  IO::Summary k;
-  k.set("equilibrium", kkt.equilibrium).set("dirichlet", kkt.dirichlet).set("nonpenetration", kkt.nonpenetration);
-  k.set("complementarity", kkt.complementarity).set("friction_law", kkt.frictionLaw);
-  k.set("displacement_scale", kkt.displacementScale).set("force_scale", kkt.forceScale);
-  k.set("tolerance", tol).set("limit", verdict.limit);
-  summary.set("kkt", k);
-  converged = verdict.converged;
-  summary.set("solver_converged", solverConverged);
-  summary.set("converged", converged);
-  summary.set("stop_reason", verdict.stopReason);
-  return verdict.stopReason;
+  const auto outer = Contact::outerAlgorithmFor(solver.get<std::string>("Outer Algorithm"), Input::pairFriction(params));
+  return Friction::frictionSolvers().create(outer, solver)->requestedTolerance();
 }
 
 // The displacement and the KKT figures of the result must be finite, and the
@@ -346,6 +325,18 @@ std::unique_ptr<IO::OutputDirectory> prepareOutput(const Teuchos::ParameterList&
   return dir;
 }
 
+// The mesh step's result: the whole mesh on rank 0 (on every rank for the
+// semismooth* method, a serial method; kept on rank 0 for the FCLIB export,
+// a global problem; else released once cut), this rank's part, its
+// materials, the loads, and the contact constraints of its slave nodes.
+struct Discretized {
+  std::unique_ptr<Mesh::Mesh> whole;
+  Mesh::Discretization disc;
+  Fem::BodyMaterials materials;
+  Fem::LoadCase loads;
+  std::vector<Feti::ContactConstraint> constraints;
+};
+
 // What a solver leaves for the result check and the files.
 struct Solution {
   Fem::NodalVector u;  // nodal displacement at the nodes this rank holds
@@ -373,7 +364,7 @@ IO::HistoryRow finalRow(long long iterations, double relativeResidual, long long
 }
 
 Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
-                         const Fem::LoadCase& loads, const RCP<const Comm>& comm, IO::Summary& summary) {
+                         const Fem::LoadCase& loads, const RCP<const Comm>& comm, RunReport& report) {
   // (The whole mesh was checked to hold every rigid motion: validateOnRoot.)
   const auto dirichlet = Fem::constrainedDofs(disc, loads.dirichlet);
   Progress::stage("assembly");
@@ -392,11 +383,11 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
   sol.u = res.u;
   sol.solverConverged = res.converged;
   if (!res.converged) sol.solverReason = "monolithic CG: maximum iterations";
-  summary.set("primal_dofs", static_cast<long long>(system.matrix()->getGlobalNumRows()));
-  summary.set("dual_dofs", 0);
-  summary.set("outer_iterations", res.iterations);
-  summary.set("n_A", static_cast<long long>(res.iterations));
-  summary.set("relative_residual", res.relativeResidual);
+  report.primalDofs = static_cast<long long>(system.matrix()->getGlobalNumRows());
+  report.dualDofs = 0;
+  report.outerIterations = res.iterations;
+  report.n_A = res.iterations;
+  report.relativeResidual = res.relativeResidual;
   sol.history.rows.push_back(finalRow(res.iterations, res.relativeResidual, res.iterations, sol.solveSeconds));
   // The residuals of the result from K and f assembled anew, as for FETI.
   Progress::stage("result check");
@@ -408,7 +399,7 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
 Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& options, const Mesh::Discretization& disc,
                    const Mesh::Mesh& wholeMesh, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
                    const std::vector<Feti::ContactConstraint>& constraints, const RCP<const Comm>& comm,
-                   IO::Summary& summary) {
+                   RunReport& report) {
   const auto& solverParams = params.sublist("Solver");
   const auto& fetiParams = solverParams.sublist("FETI");
   Teuchos::ParameterList problemParams;
@@ -432,23 +423,25 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
   sol.solverReason = r.solverReason;
   sol.solveSeconds = r.solveSeconds;
   sol.tolerance = r.tolerance;
-  summary.set("n_A", r.n_A);
+  report.n_A = r.n_A;
   if (!problem->hasContact()) {
-    summary.set("outer_iterations", r.iterations);
-    summary.set("relative_residual", r.relativeResidual);
+    report.outerIterations = r.iterations;
+    report.relativeResidual = r.relativeResidual;
     sol.history.rows.push_back(finalRow(r.iterations, r.relativeResidual, r.n_A, r.solveSeconds));
   } else {
     const auto& st = r.status;
-    summary.set("outer_algorithm", r.outerAlgorithm);
-    summary.set("friction_law", Contact::runLaw(friction));
-    summary.set("result_check_rounds", r.rounds);
-    summary.set("outer_iterations", st.outer_iterations);
-    summary.set("msa_iterations", st.msa_iterations);
-    summary.set("inner_iterations", st.inner_iterations);
-    summary.set("n_A_qpp", static_cast<long long>(st.n_A_qpp));
-    summary.set("n_A_qpq", static_cast<long long>(st.n_A_qpq));
-    summary.set("slip_bound_change", st.slip_bound_change);
-    summary.set("history", st.history);
+    OuterAlgorithmReport outer;
+    outer.name = r.outerAlgorithm;
+    outer.resultCheckRounds = r.rounds;
+    outer.msaIterations = st.msa_iterations;
+    outer.innerIterations = st.inner_iterations;
+    outer.n_A_qpp = static_cast<long long>(st.n_A_qpp);
+    outer.n_A_qpq = static_cast<long long>(st.n_A_qpq);
+    outer.slipBoundChange = st.slip_bound_change;
+    outer.history = st.history;
+    report.outer = outer;
+    report.frictionLaw = Contact::runLaw(friction);
+    report.outerIterations = st.outer_iterations;
     for (const auto& step : st.steps) {
       IO::HistoryRow row;
       row.iteration = step.iteration;
@@ -459,28 +452,28 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
       row.seconds = step.seconds;
       sol.history.rows.push_back(row);
     }
-    IO::Summary c;
-    c.set("nodes", r.counts.nodes).set("active", r.counts.active).set("stick", r.counts.stick).set("slip", r.counts.slip);
-    summary.set("contact", c);
+    report.contact = ContactCountReport{r.counts.nodes, r.counts.active, r.counts.stick, r.counts.slip};
     if (!options.exportFclib.empty()) {
       // FCLIB global problem: assembled K, contact rows in the local frame, gaps, F (docs/fclib.md).
       Progress::stage("FCLIB export");
       FCLIB::Info info{params.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + r.outerAlgorithm, ""};
       FCLIB::exportFeti(options.exportFclib, *problem, wholeMesh, mat, loads, Contact::runLaw(friction), friction[0].coefficient,
                         *r.primal, *r.lambda, info);
-      summary.set("fclib_export", options.exportFclib);
+      report.fclibExport = options.exportFclib;
     }
   }
-  summary.set("primal_dofs", static_cast<long long>(problem->primalMap()->getGlobalNumElements()));
-  summary.set("dual_dofs", static_cast<long long>(problem->dualMap()->getGlobalNumElements()));
-  summary.set("local_solver", problem->localSolverName());
-  summary.set("time_factor_s", maxOverRanks(problem->factorTime(), *comm));
-  summary.set("factor_memory_mb", maxOverRanks(problem->factorMemoryMb(), *comm));
-  summary.set("dense_block_memory_mb", maxOverRanks(problem->denseBlockMemoryMb(), *comm));
-  summary.set("F_applications", r.F_applications);
-  summary.set("time_F_apply_s", maxOverRanks(r.F_seconds, *comm));
-  summary.set("coarse_size", static_cast<long long>(r.coarseSize));
-  summary.set("coarse_factor_mb", r.coarseFactorMb);
+  report.primalDofs = static_cast<long long>(problem->primalMap()->getGlobalNumElements());
+  report.dualDofs = static_cast<long long>(problem->dualMap()->getGlobalNumElements());
+  FetiReport feti;
+  feti.localSolver = problem->localSolverName();
+  feti.factorSeconds = maxOverRanks(problem->factorTime(), *comm);
+  feti.factorMemoryMb = maxOverRanks(problem->factorMemoryMb(), *comm);
+  feti.denseBlockMemoryMb = maxOverRanks(problem->denseBlockMemoryMb(), *comm);
+  feti.F_applications = r.F_applications;
+  feti.F_seconds = maxOverRanks(r.F_seconds, *comm);
+  feti.coarseSize = r.coarseSize;
+  feti.coarseFactorMb = r.coarseFactorMb;
+  report.feti = feti;
   return sol;
 }
 
@@ -489,36 +482,34 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
 // directory the run wrote to: the run again), .history.csv (one row per outer
 // iteration, Tribos_History.hpp) and .json (the summary, written last: a set
 // without it is incomplete).
-void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory& dir, const Mesh::Discretization& disc,
-                 const Fem::BodyMaterials& mat, const Solution& sol, bool converged, const std::string& stopReason,
-                 IO::Summary& summary,
-                 const RCP<const Comm>& comm) {
+void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory& dir, const Discretized& d,
+                 const Solution& sol, RunReport& report, const RCP<const Comm>& comm) {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::output"));
   Progress::stage("writing results");
+  const auto& disc = d.disc;
   const ResultNames names(params.sublist("Output").get<std::string>("Base Name"));
-  summary.set("output", dir.path() + "/" + names.xmf);
-  summary.set("parameters", dir.path() + "/" + names.parameters);
-  summary.set("history_file", dir.path() + "/" + names.history);
+  report.output = dir.path() + "/" + names.xmf;
+  report.parameters = dir.path() + "/" + names.parameters;
+  report.historyFile = dir.path() + "/" + names.history;
   IO::ResultSet files(dir, comm);
   const std::string h5 = files.add(names.h5), xmf = files.add(names.xmf), xml = files.add(names.parameters),
                     csv = files.add(names.history), json = files.add(names.summary);
   std::vector<IO::PointSet> points;
   if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.contactNodes, *comm));
   IO::ResultAttributes attributes;
-  attributes.numbers = {{"converged", converged ? 1.0 : 0.0}, {"solver_converged", sol.solverConverged ? 1.0 : 0.0}};
-  attributes.text = {{"problem", params.get<std::string>("Problem Name")},
-                     {"stop_reason", stopReason}};
+  attributes.numbers = {{"converged", report.converged ? 1.0 : 0.0}, {"solver_converged", sol.solverConverged ? 1.0 : 0.0}};
+  attributes.text = {{"problem", report.problem}, {"stop_reason", report.stopReason}};
   std::vector<double> uOwned;
   for (int n : disc.ownedNodes()) {
     const double* un = sol.u.at(disc.meshNode(n));
     uOwned.insert(uOwned.end(), un, un + 3);
   }
-  IO::ResultWriter(disc, comm).write(h5, names.h5, xmf, uOwned, {}, cellFields(disc, mat, sol.u), points, attributes);
+  IO::ResultWriter(disc, comm).write(h5, names.h5, xmf, uOwned, {}, cellFields(disc, d.materials, sol.u), points, attributes);
   Teuchos::ParameterList effective = params;
   effective.sublist("Output").set("Directory", dir.path());
   IO::writeTextFile(xml, Input::toXml(effective), comm);
   IO::writeTextFile(csv, sol.history.toCsv(), comm);
-  IO::writeTextFile(json, summary.toJson() + "\n", comm);
+  IO::writeTextFile(json, report.toSummary().toJson() + "\n", comm);
   files.commit();
 }
 
@@ -612,6 +603,131 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
   return constraints;
 }
 
+// Step "read": the mesh file, when there is one, read and checked on rank 0
+// before any work (the memory estimate needs its size); the decomposition
+// sized from it. The box is generated in the mesh step.
+std::unique_ptr<Mesh::Mesh> readStep(const Teuchos::ParameterList& params, const RunOptions& options,
+                                     Mesh::DecompositionSpec& decomposition, MeshSize& fileSize, const Comm& comm) {
+  decomposition = decompositionFor(params, comm.getSize());
+  if (Input::meshFile(params).empty()) return nullptr;
+  Progress::stage("reading the mesh");
+  auto whole = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, options.maxMemory, comm));
+  double counts[3] = {double(whole->numNodes()), double(whole->numCells()), double(whole->numBodies())};
+  Teuchos::broadcast(comm, 0, 3, counts);
+  fileSize = {counts[0], counts[1], static_cast<int>(counts[2])};
+  decomposition = decompositionFor(params, comm.getSize(), &fileSize);
+  return whole;
+}
+
+// Step "mesh": the box generated (rank 0), the whole mesh checked against the
+// problem (validateOnRoot), cut into the ranks' parts with their contact
+// constraints, and the materials of this rank's part.
+Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& options, std::unique_ptr<Mesh::Mesh> whole,
+                     const Mesh::DecompositionSpec& decomposition, const Comm& comm, RunReport& report) {
+  Progress::stage("mesh and decomposition");
+  const bool fromFile = whole != nullptr;
+  const Input::Method method = Input::method(params);
+  if (!fromFile) {
+    whole = std::make_unique<Mesh::Mesh>();
+    if (comm.getRank() == 0) *whole = Mesh::generateBox(Input::boxSpec(params));
+    // The box's names were validated with the input.
+    checkOnEveryRank(comm, [&] { if (comm.getRank() == 0) Input::checkMeshFaces(*whole, params); });
+  }
+  // A mesh from a file is described by its bounding box where a BoxSpec is
+  // asked for (one structured subdomain, e.g. the FCLIB export's); root's
+  // goes with every part.
+  const auto spec = fromFile ? (comm.getRank() == 0 ? Mesh::boundingBox(*whole) : Mesh::BoxSpec())
+                             : Input::boxSpec(params);
+  auto loads = Input::loadCase(params);
+  auto rootConstraints = validateOnRoot(params, whole.get(), loads, method, comm);
+  auto disc = Mesh::Discretization::scatter(*whole, spec, decomposition, comm);
+  auto constraints = method == Input::Method::FetiContact
+                         ? Feti::scatterContactConstraints(rootConstraints, disc, comm)
+                         : std::vector<Feti::ContactConstraint>();
+  std::vector<Feti::ContactConstraint>().swap(rootConstraints);
+  if (method == Input::Method::Semismooth)
+    Mesh::broadcastMesh(*whole, comm);
+  else if (options.exportFclib.empty() || comm.getRank() != 0)
+    whole = std::make_unique<Mesh::Mesh>();
+  auto materials = Input::materials(params, disc.part);
+  Discretized d{std::move(whole), std::move(disc), std::move(materials), std::move(loads), std::move(constraints)};
+  report.algorithm = method == Input::Method::Semismooth   ? "SemismoothStarNewton"
+                     : method == Input::Method::Monolithic ? "Monolithic"
+                                                           : "FETI";
+  report.ranks = comm.getSize();
+  report.subdomains = d.disc.numSubdomains();
+  report.subdomainSize = decomposition.size;
+  report.element = Mesh::cellTypeName(d.disc.part.type);
+  if (fromFile) report.meshFile = Input::meshFile(params);
+  report.nodes = d.disc.numMeshNodes();
+  report.cells = d.disc.numMeshCells();
+  return d;
+}
+
+// Step "solve" (assembly included: each method assembles what it needs): by
+// the method the parameters choose (Input::method).
+Solution solveStep(const Teuchos::ParameterList& params, const RunOptions& options, const Discretized& d,
+                   const RCP<const Comm>& comm, RunReport& report) {
+  switch (Input::method(params)) {
+    case Input::Method::Semismooth: {
+      Progress::stage("semismooth* Newton");
+      Solution sol;
+      const auto t0 = std::chrono::steady_clock::now();
+      sol.u = solveSemismooth(params, *d.whole, Input::material(params), d.loads, *comm, options.verbose, report,
+                              sol.contactNodes, sol.solverConverged, sol.kkt, sol.history);
+      sol.solveSeconds = seconds(t0);
+      if (!sol.history.rows.empty()) sol.history.rows.back().seconds = sol.solveSeconds;
+      if (!sol.solverConverged) sol.solverReason = "semismooth*: maximum Newton iterations";
+      return sol;
+    }
+    case Input::Method::Monolithic:
+      return solveMonolithic(params, d.disc, d.materials, d.loads, comm, report);
+    case Input::Method::FetiLinear:
+    case Input::Method::FetiContact:
+      break;
+  }
+  return solveFeti(params, options, d.disc, *d.whole, d.materials, d.loads, d.constraints, comm, report);
+}
+
+// Step "check": the result must be representable, and `converged` is a
+// promise about it: the solver stopped on its own test AND every KKT residual
+// of the result (Fem::resultKKT) is within Result Check Factor times the
+// requested tolerance. With --verify, the monolithic reference solve.
+void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, const Discretized& d,
+               Solution& sol, const RCP<const Comm>& comm, RunReport& report) {
+  const Input::Method method = Input::method(params);
+  requireRepresentable(sol.u, sol.kkt,
+                       method == Input::Method::Semismooth ? "the semismooth* method" : "the " + report.algorithm + " solve");
+  // A solver that stopped before its first step still has a history: the
+  // solve as one row, so that every result's file has a row to read.
+  if (sol.history.rows.empty()) {
+    IO::HistoryRow row;
+    row.seconds = sol.solveSeconds;
+    sol.history.rows.push_back(row);
+  }
+  report.tolerance = sol.tolerance > 0 ? sol.tolerance : requestedTolerance(params);
+  const auto verdict = Fem::resultVerdict(sol.kkt, sol.solverConverged, sol.solverReason, report.tolerance,
+                                          params.sublist("Solver").get<double>("Result Check Factor"));
+  report.kkt = sol.kkt;
+  report.limit = verdict.limit;
+  report.solverConverged = sol.solverConverged;
+  report.converged = verdict.converged;
+  report.stopReason = verdict.stopReason;
+  if (!options.verify) return;
+  if (method == Input::Method::FetiContact || method == Input::Method::Semismooth) {
+    report.verifyNote = "--verify compares with the monolithic linear solve; it does not apply to contact problems";
+    return;
+  }
+  Progress::stage("monolithic reference solve (--verify)");
+  Fem::MonolithicSystem reference(d.disc, d.materials, d.loads, comm);
+  const auto ref = reference.solve(params.sublist("Solver").sublist("Monolithic"));
+  // Both hold the nodes of the rank's part.
+  Fem::NodalVector difference(sol.u.layoutPtr());
+  for (int node : difference.layout().nodes())
+    for (int c = 0; c < 3; ++c) difference.at(node)[c] = ref.u.at(node)[c] - sol.u.at(node)[c];
+  report.verifyRelativeDifference = difference.norm2() / std::max(ref.u.norm2(), 1e-300);
+}
+
 }  // namespace
 
 void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& options, int numRanks) {
@@ -653,118 +769,39 @@ void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& optio
                                                                         : "a linear problem without contact"));
 }
 
+// The run in its steps: read, mesh, solve (assembling what the method
+// needs), check, write; before the first, the paths; before the mesh, the
+// memory and the output directory.
 RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) {
   const auto t0 = std::chrono::steady_clock::now();
+  RunReport report;
+  report.problem = params.get<std::string>("Problem Name");
+  report.input = options.inputName;
   // No output may be an input or another output: checked before the mesh is read.
   IO::requireDistinctFiles(runFiles(params, options), comm);
-  auto decomposition = decompositionFor(params, comm->getSize());
-  // A mesh file is read first: the memory estimate needs its size, and the
-  // names the input gives its faces are checked before any work. The whole
-  // mesh is held by rank 0 alone: read or generated there, checked there,
-  // then cut into the ranks' parts (Mesh::Discretization::scatter).
-  std::unique_ptr<Mesh::Mesh> whole;
-  const bool fromFile = !Input::meshFile(params).empty();
-  MeshSize fileMeshSize;
-  if (fromFile) {
-    Progress::stage("reading the mesh");
-    whole = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, options.maxMemory, *comm));
-    double counts[3] = {double(whole->numNodes()), double(whole->numCells()), double(whole->numBodies())};
-    Teuchos::broadcast(*comm, 0, 3, counts);
-    fileMeshSize = {counts[0], counts[1], static_cast<int>(counts[2])};
-    decomposition = decompositionFor(params, comm->getSize(), &fileMeshSize);
-  }
+
+  Mesh::DecompositionSpec decomposition;
+  MeshSize fileSize;
+  auto whole = readStep(params, options, decomposition, fileSize, *comm);
   Progress::stage("memory estimate");
-  const MemoryEstimate memory =
-      requireMemory(params, options.maxMemory, options.verify, comm, fromFile ? &fileMeshSize : nullptr);
+  const MemoryEstimate memory = requireMemory(params, options.maxMemory, options.verify, comm, whole ? &fileSize : nullptr);
   Progress::stage("checking output paths");
   const auto outputDir = prepareOutput(params, options, comm);
-  IO::Summary summary;
-  summary.set("problem", params.get<std::string>("Problem Name"));
-  if (!options.inputName.empty()) summary.set("input", options.inputName);
-  Progress::stage("mesh and decomposition");
-  const auto loads = Input::loadCase(params);
-  const Input::Method method = Input::method(params);
-  if (!fromFile) {
-    whole = std::make_unique<Mesh::Mesh>();
-    if (comm->getRank() == 0) *whole = Mesh::generateBox(Input::boxSpec(params));
-    // The box's names were validated with the input.
-    checkOnEveryRank(*comm, [&] { if (comm->getRank() == 0) Input::checkMeshFaces(*whole, params); });
-  }
-  // A mesh from a file is described by its bounding box where a BoxSpec is
-  // asked for (one structured subdomain, e.g. the FCLIB export's); root's
-  // goes with every part.
-  const auto spec = fromFile ? (comm->getRank() == 0 ? Mesh::boundingBox(*whole) : Mesh::BoxSpec())
-                             : Input::boxSpec(params);
-  auto rootConstraints = validateOnRoot(params, whole.get(), loads, method, *comm);
-  const Mesh::Discretization disc = Mesh::Discretization::scatter(*whole, spec, decomposition, *comm);
-  const auto constraints = method == Input::Method::FetiContact
-                               ? Feti::scatterContactConstraints(rootConstraints, disc, *comm)
-                               : std::vector<Feti::ContactConstraint>();
-  std::vector<Feti::ContactConstraint>().swap(rootConstraints);
-  // Kept on rank 0 for the FCLIB export (a global problem); on every rank
-  // for the semismooth* method (a serial method); otherwise released.
-  if (method == Input::Method::Semismooth)
-    Mesh::broadcastMesh(*whole, *comm);
-  else if (options.exportFclib.empty() || comm->getRank() != 0)
-    whole = std::make_unique<Mesh::Mesh>();
-  const Fem::BodyMaterials mat = Input::materials(params, disc.part);
-  const bool semismooth = method == Input::Method::Semismooth;
-  const std::string type = semismooth ? "SemismoothStarNewton" : params.sublist("Solver").get<std::string>("Type");
-  summary.set("algorithm", type);
-  summary.set("ranks", comm->getSize());
-  summary.set("subdomains", disc.numSubdomains());
-  if (decomposition.size > 0) summary.set("subdomain_size", decomposition.size);
-  summary.set("element", Mesh::cellTypeName(disc.part.type));
-  if (fromFile) summary.set("mesh_file", Input::meshFile(params));
-  summary.set("nodes", disc.numMeshNodes());
-  summary.set("cells", disc.numMeshCells());
 
+  const Discretized d = meshStep(params, options, std::move(whole), decomposition, *comm, report);
   const auto t1 = std::chrono::steady_clock::now();
-  Solution sol;
-  if (semismooth) {
-    Progress::stage("semismooth* Newton");
-    const auto t2 = std::chrono::steady_clock::now();
-    sol.u = solveSemismooth(params, *whole, Input::material(params), loads, *comm, options.verbose, summary, sol.contactNodes,
-                            sol.solverConverged, sol.kkt, sol.history);
-    sol.solveSeconds = seconds(t2);
-    if (!sol.history.rows.empty()) sol.history.rows.back().seconds = sol.solveSeconds;
-    if (!sol.solverConverged) sol.solverReason = "semismooth*: maximum Newton iterations";
-  } else if (method == Input::Method::Monolithic) {
-    sol = solveMonolithic(params, disc, mat, loads, comm, summary);
-  } else {
-    sol = solveFeti(params, options, disc, *whole, mat, loads, constraints, comm, summary);
-  }
-  requireRepresentable(sol.u, sol.kkt, semismooth ? "the semismooth* method" : "the " + type + " solve");
-  // A solver that stopped before its first step still has a history: the
-  // solve as one row, so that every result's file has a row to read.
-  if (sol.history.rows.empty()) {
-    IO::HistoryRow row;
-    row.seconds = sol.solveSeconds;
-    sol.history.rows.push_back(row);
-  }
-  bool converged = false;
-  const std::string stopReason = setResultCheck(params, sol.tolerance, sol.solverConverged, sol.solverReason, sol.kkt, summary, converged);
-  if (options.verify && (method == Input::Method::FetiContact || semismooth)) {
-    summary.set("verify_note", "--verify compares with the monolithic linear solve; it does not apply to contact problems");
-  } else if (options.verify) {
-    Progress::stage("monolithic reference solve (--verify)");
-    Fem::MonolithicSystem reference(disc, mat, loads, comm);
-    const auto ref = reference.solve(params.sublist("Solver").sublist("Monolithic"));
-    // Both hold the nodes of the rank's part.
-    Fem::NodalVector difference(sol.u.layoutPtr());
-    for (int node : difference.layout().nodes())
-      for (int c = 0; c < 3; ++c) difference.at(node)[c] = ref.u.at(node)[c] - sol.u.at(node)[c];
-    summary.set("verify_rel_diff_u", difference.norm2() / std::max(ref.u.norm2(), 1e-300));
-  }
+  Solution sol = solveStep(params, options, d, comm, report);
+  checkStep(params, options, d, sol, comm, report);
+
   // Setup: from the start to a solver ready to iterate; solve: its iterations.
   const double meshSeconds = std::chrono::duration<double>(t1 - t0).count();
-  summary.set("time_setup_s", maxOverRanks(meshSeconds + sol.setupSeconds, *comm));
-  summary.set("time_solve_s", maxOverRanks(sol.solveSeconds, *comm));
-  summary.set("max_abs_displacement", sol.u.normInf());
-  summary.set("memory_estimate_mb", maxOverRanks(memory.total() / (1024.0 * 1024.0), *comm));
-  summary.set("peak_rss_mb", maxOverRanks(IO::peakRssMb(), *comm));
-  if (outputDir) writeResult(params, *outputDir, disc, mat, sol, converged, stopReason, summary, comm);
-  return {summary, converged, stopReason, outputDir != nullptr};
+  report.setupSeconds = maxOverRanks(meshSeconds + sol.setupSeconds, *comm);
+  report.solveSeconds = maxOverRanks(sol.solveSeconds, *comm);
+  report.maxAbsDisplacement = sol.u.normInf();
+  report.memoryEstimateMb = maxOverRanks(memory.total() / (1024.0 * 1024.0), *comm);
+  report.peakRssMb = maxOverRanks(IO::peakRssMb(), *comm);
+  if (outputDir) writeResult(params, *outputDir, d, sol, report, comm);
+  return {report.toSummary(), report, report.converged, report.stopReason, outputDir != nullptr};
 }
 
 }  // namespace Tribos

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "Tribos_RunReport.hpp"
 #include "Tribos_Summary.hpp"
 #include "Tribos_Types.hpp"
 
@@ -27,7 +28,8 @@ struct RunOptions {
 void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& options, int numRanks);
 
 struct RunResult {
-  IO::Summary summary;     // identical on every rank
+  IO::Summary summary;     // identical on every rank: report.toSummary()
+  RunReport report;        // what each step of the run found
   bool converged = false;  // the summary's "converged": the written result passed its KKT check
   std::string stopReason;  // the summary's "stop_reason"
   bool written = false;    // the result files were written

@@ -54,12 +54,21 @@ void checkResult(const Feti::FetiProblem& problem, const PairFriction& friction,
 
 }  // namespace
 
+std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction) {
+  if (requested != kAutoOuterAlgorithm) return requested;
+  return runLaw(friction) == "Coulomb" ? "Algorithm2" : "Tresca";
+}
+
 RCP<const Teuchos::ParameterList> fetiSolveParameters() {
   static RCP<Teuchos::ParameterList> pl;
   if (pl.is_null()) {
     pl = Teuchos::parameterList("Solver");
-    pl->set("Outer Algorithm", "Algorithm2", "contact problems: " + Friction::frictionSolvers().documentation(),
-            Friction::frictionSolvers().validator());
+    auto names = Friction::frictionSolvers().names();
+    names.insert(names.begin(), kAutoOuterAlgorithm);
+    pl->set("Outer Algorithm", kAutoOuterAlgorithm,
+            "contact problems: Auto (Algorithm2 for Coulomb friction, Tresca for Tresca friction and frictionless "
+            "contact); " + Friction::frictionSolvers().documentation(),
+            rcp(new Teuchos::StringValidator(Teuchos::Array<std::string>(names.begin(), names.end()))));
     pl->set("Result Check Factor", 100.0,
             "converged means every KKT residual of the written result (docs/friction.md) is at most this factor "
             "times the solver's requested tolerance",
@@ -83,7 +92,7 @@ FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const Pai
     // (the same dual size, hence the same refusal, on every rank).
     try {
       Friction::FrictionSolverFactory()
-          .create(p.get<std::string>("Outer Algorithm"), p)
+          .create(outerAlgorithmFor(p.get<std::string>("Outer Algorithm"), friction), p)
           ->checkDualRows(static_cast<long long>(problem->dualMap()->getGlobalNumElements()));
     } catch (const Error& e) {
       throw CollectiveError(e.what());
@@ -110,7 +119,7 @@ FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const Pai
     law = {FrictionSpec()};  // no contact forces to check
   } else {
     FetiContactProblem cp(dual, friction);
-    r.outerAlgorithm = p.get<std::string>("Outer Algorithm");
+    r.outerAlgorithm = outerAlgorithmFor(p.get<std::string>("Outer Algorithm"), friction);
     const std::string runLawName = runLaw(friction);
     TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, runLawName),
                    "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << runLawName << " friction ("

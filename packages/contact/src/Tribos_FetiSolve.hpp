@@ -54,6 +54,13 @@ struct FetiSolveResult {
   double coarseFactorMb = 0;
 };
 
+// The outer algorithm of a contact run: `requested`, or for "Auto" (the
+// default) the one that suits the run's law (runLaw): Algorithm2 for Coulomb
+// friction, Tresca for Tresca friction and frictionless contact, so that a
+// user who names a law need not name an algorithm too.
+std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction);
+constexpr const char* kAutoOuterAlgorithm = "Auto";
+
 // The parameters solveFeti reads, with defaults and documentation:
 // "Outer Algorithm", "Result Check Factor", the outer algorithms' sublists
 // "Algorithm 1", "MSA", "Algorithm 2", and "FETI"/"Projected CG". Other

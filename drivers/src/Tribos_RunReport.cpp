@@ -1,0 +1,99 @@
+#include "Tribos_RunReport.hpp"
+
+namespace Tribos {
+
+namespace {
+
+IO::Summary kktSummary(const RunReport& r) {
+  IO::Summary k;
+  k.set("equilibrium", r.kkt.equilibrium).set("dirichlet", r.kkt.dirichlet).set("nonpenetration", r.kkt.nonpenetration);
+  k.set("complementarity", r.kkt.complementarity).set("friction_law", r.kkt.frictionLaw);
+  k.set("displacement_scale", r.kkt.displacementScale).set("force_scale", r.kkt.forceScale);
+  k.set("tolerance", r.tolerance).set("limit", r.limit);
+  return k;
+}
+
+void setOuter(const OuterAlgorithmReport& o, IO::Summary& s) {
+  s.set("outer_algorithm", o.name);
+  s.set("result_check_rounds", o.resultCheckRounds);
+  s.set("msa_iterations", o.msaIterations);
+  s.set("inner_iterations", o.innerIterations);
+  s.set("n_A_qpp", o.n_A_qpp);
+  s.set("n_A_qpq", o.n_A_qpq);
+  s.set("slip_bound_change", o.slipBoundChange);
+  s.set("history", o.history);
+}
+
+void setSemismooth(const SemismoothReport& m, IO::Summary& s) {
+  s.set("newton_iterations", m.newtonIterations);
+  s.set("residuals", m.residuals);
+  s.set("time_assembly_s", m.assemblySeconds);
+  s.set("time_reduction_s", m.reductionSeconds);
+  s.set("time_newton_s", m.newtonSeconds);
+}
+
+void setFeti(const FetiReport& f, IO::Summary& s) {
+  s.set("local_solver", f.localSolver);
+  s.set("time_factor_s", f.factorSeconds);
+  s.set("factor_memory_mb", f.factorMemoryMb);
+  s.set("dense_block_memory_mb", f.denseBlockMemoryMb);
+  s.set("F_applications", f.F_applications);
+  s.set("time_F_apply_s", f.F_seconds);
+  s.set("coarse_size", f.coarseSize);
+  s.set("coarse_factor_mb", f.coarseFactorMb);
+}
+
+}  // namespace
+
+IO::Summary RunReport::toSummary() const {
+  IO::Summary s;
+  s.set("problem", problem);
+  if (!input.empty()) s.set("input", input);
+  // Mesh.
+  s.set("algorithm", algorithm);
+  s.set("ranks", ranks);
+  s.set("subdomains", subdomains);
+  if (subdomainSize > 0) s.set("subdomain_size", subdomainSize);
+  s.set("element", element);
+  if (!meshFile.empty()) s.set("mesh_file", meshFile);
+  s.set("nodes", nodes);
+  s.set("cells", cells);
+  // Solve.
+  s.set("primal_dofs", primalDofs);
+  s.set("dual_dofs", dualDofs);
+  s.set("n_A", n_A);
+  s.set("outer_iterations", outerIterations);
+  if (relativeResidual) s.set("relative_residual", *relativeResidual);
+  if (!frictionLaw.empty()) s.set("friction_law", frictionLaw);
+  if (outer) setOuter(*outer, s);
+  if (semismooth) setSemismooth(*semismooth, s);
+  if (contact) {
+    IO::Summary c;
+    c.set("nodes", contact->nodes).set("active", contact->active).set("stick", contact->stick).set("slip", contact->slip);
+    s.set("contact", c);
+  }
+  if (!fclibExport.empty()) s.set("fclib_export", fclibExport);
+  if (feti) setFeti(*feti, s);
+  // Check.
+  s.set("kkt", kktSummary(*this));
+  s.set("solver_converged", solverConverged);
+  s.set("converged", converged);
+  s.set("stop_reason", stopReason);
+  if (!verifyNote.empty()) s.set("verify_note", verifyNote);
+  if (verifyRelativeDifference) s.set("verify_rel_diff_u", *verifyRelativeDifference);
+  // Cost.
+  s.set("time_setup_s", setupSeconds);
+  s.set("time_solve_s", solveSeconds);
+  s.set("max_abs_displacement", maxAbsDisplacement);
+  s.set("memory_estimate_mb", memoryEstimateMb);
+  s.set("peak_rss_mb", peakRssMb);
+  // Write.
+  if (!output.empty()) {
+    s.set("output", output);
+    s.set("parameters", parameters);
+    s.set("history_file", historyFile);
+  }
+  return s;
+}
+
+}  // namespace Tribos

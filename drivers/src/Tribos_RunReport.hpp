@@ -1,0 +1,82 @@
+// Tribos_RunReport.hpp: what a run found, step by step, in one typed record.
+// Each step of Tribos::run (read, mesh, assemble, solve, check, write) fills
+// its part; the JSON summary (stdout and BASE.json) is made from it in one
+// place, toSummary(), so that no solver writes into the summary and a load
+// history can report each step alike.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "Tribos_ResultKKT.hpp"
+#include "Tribos_Summary.hpp"
+
+namespace Tribos {
+
+// Contact nodes by status, over all ranks.
+struct ContactCountReport {
+  long long nodes = 0, active = 0, stick = 0, slip = 0;
+};
+
+// The FETI machinery of a run: local factorizations, the dual operator F and
+// the coarse problem (maxima over the ranks where a rank has its own).
+struct FetiReport {
+  std::string localSolver;
+  double factorSeconds = 0, factorMemoryMb = 0, denseBlockMemoryMb = 0;
+  long long F_applications = 0;
+  double F_seconds = 0;
+  long long coarseSize = 0;
+  double coarseFactorMb = 0;
+};
+
+// The outer contact algorithm of a FETI run.
+struct OuterAlgorithmReport {
+  std::string name;
+  int resultCheckRounds = 1;
+  long long msaIterations = 0, innerIterations = 0, n_A_qpp = 0, n_A_qpq = 0;
+  double slipBoundChange = 0;
+  std::vector<double> history;  // per outer step: the change of g (Coulomb) or ||g^P|| (Tresca)
+};
+
+// The semismooth* Newton method (a serial method on rank 0).
+struct SemismoothReport {
+  long long newtonIterations = 0;
+  std::vector<double> residuals;
+  double assemblySeconds = 0, reductionSeconds = 0, newtonSeconds = 0;
+};
+
+struct RunReport {
+  // Read: the problem and where it came from.
+  std::string problem, input;
+  // Mesh: the discretization and its decomposition.
+  std::string algorithm, element, meshFile;
+  int ranks = 1, subdomains = 0, subdomainSize = 0;  // subdomainSize: H, 0 when not sized
+  long long nodes = 0, cells = 0;
+  // Solve: the sizes, the work, and the method's own figures.
+  long long primalDofs = 0, dualDofs = 0, n_A = 0;
+  long long outerIterations = 0;
+  std::optional<double> relativeResidual;  // projected CG and the monolithic CG
+  std::string frictionLaw;                 // contact runs
+  std::optional<OuterAlgorithmReport> outer;
+  std::optional<ContactCountReport> contact;
+  std::optional<SemismoothReport> semismooth;
+  std::optional<FetiReport> feti;
+  std::string fclibExport;
+  // Check: the KKT residuals of the result and the verdict on them.
+  Fem::ResultKKT kkt;
+  double tolerance = 0, limit = 0;
+  bool solverConverged = false, converged = false;
+  std::string stopReason;
+  std::optional<double> verifyRelativeDifference;  // --verify
+  std::string verifyNote;
+  // The run's cost.
+  double setupSeconds = 0, solveSeconds = 0, maxAbsDisplacement = 0, memoryEstimateMb = 0, peakRssMb = 0;
+  // Write: the files of the result set.
+  std::string output, parameters, historyFile;
+
+  // The summary: every field that the run filled, under its JSON name.
+  IO::Summary toSummary() const;
+};
+
+}  // namespace Tribos
