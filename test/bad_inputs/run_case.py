@@ -1,19 +1,30 @@
 #!/usr/bin/python3
-"""One case of the bad-input suite (cases.txt), run on N ranks:
+"""One case of the bad-input suite (cases.txt), run on N ranks as a process:
 
   run_case.py CASES NAME --np N --work DIR -- MPIEXEC ... TRIBOS
+  run_case.py --generate DIR               every gen:NAME input as DIR/NAME.xml
+  run_case.py --check-table CASES -- IN_PROCESS
+                                           in_process.cpp reads CASES as this does
 
 A case line is  name | exit | stderr regex | input | arguments | check
   exit      the expected exit code (0 converged, 1 bad input, 2 not
-            converged, 3 run failure; docs/exit_codes.md)
-  regex     must match stderr (exit 1-3) or stdout (exit 0 with --help)
+            converged, 3 run failure; docs/exit_codes.md), followed by
+            "process" when the case runs as its own process, by this
+            script (ctest bad_input_NAME_npN): every case with a result set
+            (exit 0, 2) and the refusals that need a process. The others
+            (exit 1, 3) run in one process per rank count, in_process.cpp
+            calling the driver's main as a function, with the same checks.
+  regex     must match stderr (exit 1-3) or stdout (exit 0 with --help);
+            read by Python here, as an ECMAScript regex in-process
   input     input/NAME.xml, data/NAME.xml (test/data), gen:NAME (a file
-            written here, see GENERATED) or "-" for none
-  arguments more command-line arguments ({work}: the case's directory,
-            {out}: its output directory)
+            written into the case's directory, see GENERATED) or "-" for
+            none
+  arguments more command-line arguments, split as a POSIX shell does
+            (shlex.split; {work}: the case's directory, {out}: its output
+            directory; --output {out} unless given)
   check     optional Python expression over s (the summary), h5 (the
             result file) and a (its root attributes), e.g.
-            s['contact']['nodes'] == 0
+            s['contact']['nodes'] == 0 (process cases only)
 
 Whatever the case, the run must end within the timeout without a crash,
 and what it leaves must not lie:
@@ -108,6 +119,12 @@ GENERATED = {
 }
 
 
+def write_generated(name, path):
+    content = GENERATED[name]()
+    with (open(path, "wb") if isinstance(content, bytes) else open(path, "w", encoding="utf-8")) as f:
+        f.write(content)
+
+
 def parse_cases(path):
     cases = {}
     with open(path) as f:
@@ -118,8 +135,37 @@ def parse_cases(path):
             fields = [x.strip() for x in line.split("|")]
             fields += [""] * (6 - len(fields))
             name, code, regex, inp, args, check = fields[:6]
-            cases[name] = dict(exit=int(code), regex=regex, input=inp, args=args, check=check)
+            code, _, marker = code.partition(" ")
+            if marker.strip() not in ("", "process"):
+                raise ValueError("case %s: the exit column %r is not CODE or CODE process" % (name, fields[1]))
+            cases[name] = dict(exit=int(code), process=marker.strip() == "process", regex=regex, input=inp, args=args,
+                               check=check)
     return cases
+
+
+def check_table(cases_file, command):
+    """The table as in_process.cpp reads it (its --list: fields and argument
+    words in hex) is the table as read here, every line."""
+    p = subprocess.run(command + [cases_file, "--list"], capture_output=True, timeout=120)
+    if p.returncode != 0:
+        fail("%s --list: exit %d" % (" ".join(command), p.returncode), p.stdout.decode(errors="replace"),
+             p.stderr.decode(errors="replace"))
+    theirs = {}
+    for row in p.stdout.decode().splitlines():
+        cols = row.split("\t")
+        text = [bytes.fromhex(c).decode() for c in cols[:1] + cols[3:6] + cols[6:]]
+        theirs[text[0]] = dict(exit=int(cols[1]), process=cols[2] == "process", regex=text[1], input=text[2],
+                               check=text[3], words=text[4:])
+    ours = parse_cases(cases_file)
+    if list(theirs) != list(ours):
+        fail("in_process.cpp and run_case.py read other case names or another order (names in one only: %s)"
+             % sorted(set(theirs) ^ set(ours)))
+    for name, case in ours.items():
+        mine = dict(exit=case["exit"], process=case["process"], regex=case["regex"], input=case["input"],
+                    check=case["check"], words=shlex.split(case["args"]))
+        if theirs[name] != mine:
+            fail("case %s: in_process.cpp reads %r, run_case.py %r" % (name, theirs[name], mine))
+    print("ok: in_process.cpp and run_case.py read the %d cases of %s alike" % (len(ours), cases_file))
 
 
 def fail(msg, out="", err=""):
@@ -187,7 +233,15 @@ def check_parameters_reread(tribos, out_dir, summary, err):
 
 
 def main():
+    if sys.argv[1] == "--generate":
+        os.makedirs(sys.argv[2], exist_ok=True)
+        for name in GENERATED:
+            write_generated(name, os.path.join(sys.argv[2], name + ".xml"))
+        return
     sep = sys.argv.index("--")
+    if sys.argv[1] == "--check-table":
+        check_table(sys.argv[2], sys.argv[sep + 1:])
+        return
     cases_file, name = sys.argv[1], sys.argv[2]
     opts = sys.argv[3:sep]
     np_ = opts[opts.index("--np") + 1]
@@ -200,9 +254,7 @@ def main():
     inp = case["input"]
     if inp.startswith("gen:"):
         path = os.path.join(work, inp[4:] + ".xml")
-        content = GENERATED[inp[4:]]()
-        with (open(path, "wb") if isinstance(content, bytes) else open(path, "w", encoding="utf-8")) as f:
-            f.write(content)
+        write_generated(inp[4:], path)
         inp_args = [path]
     elif inp.startswith("input/"):
         inp_args = [os.path.join(SOURCE, inp)]
