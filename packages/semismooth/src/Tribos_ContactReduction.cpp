@@ -8,9 +8,11 @@
 #include <cstring>
 
 #include "Tribos_ArrayScan.hpp"
+#include "Tribos_ConstraintRows.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_LocalSolver.hpp"
 #include "Tribos_RigidMotions.hpp"
+#include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Semismooth {
@@ -39,7 +41,7 @@ class LocalPatternSolver : public PatternSolver {
 
 // Columns (t1, t2 = n x t1, n) of the rotation of a contact frame, row-major.
 std::array<double, 9> frameMatrix(const std::array<double, 3>& n, const std::array<double, 3>& t1) {
-  const std::array<double, 3> t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+  const Vec3 t2 = cross(n, t1);
   std::array<double, 9> R{};
   for (int a = 0; a < 3; ++a) {
     R[3 * a + 0] = t1[a];
@@ -49,20 +51,15 @@ std::array<double, 9> frameMatrix(const std::array<double, 3>& n, const std::arr
   return R;
 }
 
-// Orthonormal frame (t1, t2, n) with n the normalized outward normal.
+// Orthonormal frame (t1, t2, n) with n the normalized outward normal: the
+// tangents of the FETI contact rows (Feti::tangents), so that a node's
+// tangential forces and slip have the same components whichever method
+// solved it.
 std::array<double, 9> tangentFrame(const std::array<double, 3>& normal) {
-  const double len = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
-  TRIBOS_REQUIRE(len > 0, "contact node with a zero normal");
-  const std::array<double, 3> n{normal[0] / len, normal[1] / len, normal[2] / len};
-  // The coordinate axis least aligned with n gives a well-conditioned t1.
-  int axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (std::abs(n[k]) < std::abs(n[axis])) axis = k;
-  std::array<double, 3> e{0, 0, 0};
-  e[axis] = 1;
-  std::array<double, 3> t1{e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
-  const double l1 = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
-  for (double& v : t1) v /= l1;
+  TRIBOS_REQUIRE(norm(normal) > 0, "contact node with a zero normal");
+  const Vec3 n = normalized(normal);
+  std::array<double, 3> t1, t2;
+  Feti::tangents(n, t1, t2);
   return frameMatrix(n, t1);
 }
 
@@ -75,8 +72,7 @@ std::array<double, 9> prescribedTangentFrame(const std::array<double, 3>& normal
   std::array<double, 3> n = normal;
   for (int c = 0; c < 3; ++c)
     if (fixed[c]) n[c] = 0;
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  for (double& v : n) v /= len;
+  n = normalized(n);
   const int c1 = fixed[0] ? 0 : (fixed[1] ? 1 : 2);
   std::array<double, 3> t1{0, 0, 0};
   t1[c1] = 1;
@@ -124,7 +120,7 @@ LocalCsr rotate(const LocalCsr& K, const std::vector<const std::array<double, 9>
 }  // namespace
 
 PrescribedDirections classifyPrescribed(const std::array<double, 3>& normal, const std::array<bool, 3>& fixed) {
-  const double len = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  const double len = norm(normal);
   TRIBOS_REQUIRE(len > 0, "contact node with a zero normal");
   // Area-weighted normals of planar faces are exact up to round-off.
   const double tol = 1e-8;
