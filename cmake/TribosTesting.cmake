@@ -1,6 +1,8 @@
-# tribos_add_test(NAME name SOURCES ... LIBS ... [RANKS 1 2 3] [LABELS ...])
+# tribos_add_test(NAME name SOURCES ... LIBS ... [UNIT_TESTS] [RANKS 1 2 3] [LABELS ...] [ARGS ...])
 # Builds one test executable and registers it once per rank count; under root
 # mpiexec needs --allow-run-as-root, and 2-core machines need --oversubscribe.
+# UNIT_TESTS: the sources hold TEUCHOS_UNIT_TESTs, run by the shared main
+# (test/support/Tribos_UnitTestMain.cpp); without it a source has its main.
 set(TRIBOS_MPIEXEC_FLAGS --oversubscribe)
 execute_process(COMMAND id -u OUTPUT_VARIABLE _tribos_uid OUTPUT_STRIP_TRAILING_WHITESPACE)
 if(_tribos_uid STREQUAL "0")
@@ -11,14 +13,19 @@ endif()
 # include path of every test, never installed with the public headers.
 add_library(tribos_test_support INTERFACE)
 target_include_directories(tribos_test_support INTERFACE ${PROJECT_SOURCE_DIR}/test/support)
+add_library(tribos_unit_test_main STATIC ${PROJECT_SOURCE_DIR}/test/support/Tribos_UnitTestMain.cpp)
+target_link_libraries(tribos_unit_test_main PRIVATE tribos_core)
 
 function(tribos_add_test)
-  cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;RANKS;LABELS;ARGS" ${ARGN})
+  cmake_parse_arguments(T "UNIT_TESTS" "NAME" "SOURCES;LIBS;RANKS;LABELS;ARGS" ${ARGN})
   if(NOT T_RANKS)
     set(T_RANKS 1)
   endif()
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} tribos_test_support)
+  if(T_UNIT_TESTS)
+    target_link_libraries(${T_NAME} PRIVATE tribos_unit_test_main)
+  endif()
   foreach(np IN LISTS T_RANKS)
     add_test(NAME ${T_NAME}_np${np}
       COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${np} ${TRIBOS_MPIEXEC_FLAGS}
