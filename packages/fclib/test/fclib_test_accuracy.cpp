@@ -6,16 +6,14 @@
 #include <random>
 
 #include "Tribos_FCLIB_Accuracy.hpp"
+#include "Tribos_Vec3.hpp"
 #include "fclib_test_util.hpp"
 
 using namespace Tribos::FCLIB;
-using Vec3 = std::array<double, 3>;
+using Tribos::Vec3, Tribos::dot, Tribos::minus, Tribos::norm;
 
 namespace {
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
-Vec3 minus(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 bool inCone(const Vec3& r, double mu, double tol) {
   return std::hypot(r[1], r[2]) <= mu * r[0] + tol;
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Fem {
@@ -185,13 +186,8 @@ double vonMises(const std::array<double, 6>& s) {
 }
 
 std::vector<double> facetNodalAreas(const std::vector<Point>& X) {
-  auto cross = [](const Point& a, const Point& b, const Point& c) {
-    const Point u = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    return Point{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  };
-  auto norm = [](const Point& p) { return std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]); };
   if (X.size() == 3) {
-    const double area = 0.5 * norm(cross(X[0], X[1], X[2]));
+    const double area = 0.5 * norm(cross(minus(X[1], X[0]), minus(X[2], X[0])));
     return {area / 3, area / 3, area / 3};
   }
   TRIBOS_REQUIRE(X.size() == 4, "facet with " << X.size() << " nodes");
@@ -206,7 +202,7 @@ std::vector<double> facetNodalAreas(const std::vector<Point>& X) {
         xs[d] += sgn[a][0] * (1 + sgn[a][1] * t) / 4 * X[a][d];
         xt[d] += sgn[a][1] * (1 + sgn[a][0] * s) / 4 * X[a][d];
       }
-    const double J = norm(cross({0, 0, 0}, xs, xt));
+    const double J = norm(cross(xs, xt));
     for (int a = 0; a < 4; ++a) w[a] += (1 + sgn[a][0] * s) * (1 + sgn[a][1] * t) / 4 * J;
   }
   return w;

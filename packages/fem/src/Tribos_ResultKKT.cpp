@@ -9,6 +9,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_ContactKKT.hpp"
+#include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Fem {
@@ -26,8 +27,6 @@ double sumOver(double v, const Comm& comm) {
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, v, Teuchos::outArg(out));
   return out;
 }
-
-double dot(const std::array<double, 3>& a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 }  // namespace
 
@@ -105,7 +104,7 @@ ResultKKT resultKKT(const NodalVector& u, const NodalVector& Ku, const NodalVect
   double bondedGap = 0;
   for (const auto& c : contact) {
     // w: the relative displacement of the slave node and its partner.
-    double w[3];
+    Vec3 w;
     for (int d = 0; d < 3; ++d) w[d] = u.at(c.node)[d];
     for (const auto& [node, weight] : c.master)
       for (int d = 0; d < 3; ++d) w[d] -= weight * u.at(node)[d];
@@ -169,7 +168,7 @@ PrescribedRelativeMotion prescribedRelativeMotion(const std::map<long long, doub
 }
 
 bool tangentialAxis(const std::array<double, 3>& normal, int d) {
-  return std::abs(normal[d]) <= 1e-12 * std::sqrt(dot(normal, normal.data()));
+  return std::abs(normal[d]) <= 1e-12 * norm(normal);
 }
 
 }  // namespace
@@ -178,7 +177,7 @@ void requireNoPrescribedPenetration(const std::map<long long, double>& dirichlet
                                     const std::array<double, 3>& x, const std::array<double, 3>& normal, double gap,
                                     const std::vector<std::pair<int, double>>& master) {
   const auto m = prescribedRelativeMotion(dirichlet, node, x, master);
-  const double nn = std::sqrt(dot(normal, normal.data()));
+  const double nn = norm(normal);
   double wn = 0, scale = std::abs(gap);
   for (int d = 0; d < 3; ++d) {
     if (tangentialAxis(normal, d)) continue;

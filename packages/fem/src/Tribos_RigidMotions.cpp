@@ -6,6 +6,7 @@
 
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Fem {
@@ -58,10 +59,10 @@ void nameDirections(std::vector<std::array<double, 3>> dirs, const std::string& 
   std::vector<std::array<double, 3>> basis;
   for (auto d : dirs) {
     for (const auto& b : basis) {
-      const double s = d[0] * b[0] + d[1] * b[1] + d[2] * b[2];
+      const double s = dot(d, b);
       for (int a = 0; a < 3; ++a) d[a] -= s * b[a];
     }
-    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double len = norm(d);
     if (len < 1e-8) continue;
     for (double& v : d) v /= len;
     basis.push_back(d);

@@ -8,6 +8,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_ResultKKT.hpp"
+#include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Feti {
@@ -60,27 +61,24 @@ std::array<double, 3> faceNormal(const Mesh::Mesh& mesh, const std::string& face
       u[d] = x[v[quad ? 2 : 1]][d] - x[v[0]][d];
       w[d] = quad ? x[v[3]][d] - x[v[1]][d] : x[v[2]][d] - x[v[0]][d];
     }
-    const std::array<double, 3> a{(u[1] * w[2] - u[2] * w[1]) / 2, (u[2] * w[0] - u[0] * w[2]) / 2,
-                                  (u[0] * w[1] - u[1] * w[0]) / 2};
+    const Vec3 uw = cross(u, w), a{uw[0] / 2, uw[1] / 2, uw[2] / 2};
     for (int d = 0; d < 3; ++d) sum[d] += a[d];
     for (int node : v)
       for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], x[node][d]), hi[d] = std::max(hi[d], x[node][d]);
     area.push_back(a);
   }
-  const double len = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
-  TRIBOS_REQUIRE(len > 0, "contact surface '" << face << "' has no area");
-  std::array<double, 3> n{sum[0] / len, sum[1] / len, sum[2] / len};
+  TRIBOS_REQUIRE(norm(sum) > 0, "contact surface '" << face << "' has no area");
+  const Vec3 n = normalized(sum);
   // The rigid plane is one plane: every facet must face along n and every
   // node lie on the plane through the first, to round-off of the extent.
   const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   const auto& x0 = mesh.coords[facets[0].nodes[0]];
   for (size_t i = 0; i < facets.size(); ++i) {
     const auto& a = area[i];
-    const double al = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    bool planar = a[0] * n[0] + a[1] * n[1] + a[2] * n[2] >= (1 - 1e-10) * al;
+    bool planar = dot(a, n) >= (1 - 1e-10) * norm(a);
     for (int node : facets[i].nodes) {
       const auto& p = mesh.coords[node];
-      planar = planar && std::abs((p[0] - x0[0]) * n[0] + (p[1] - x0[1]) * n[1] + (p[2] - x0[2]) * n[2]) <= 1e-10 * extent;
+      planar = planar && std::abs(dot(minus(p, x0), n)) <= 1e-10 * extent;
     }
     TRIBOS_REQUIRE(planar, "contact surface '" << face << "' is not planar: its facet " << i << " (of cell "
                                                << facets[i].cell << ") leaves the plane of mean normal (" << n[0] << ", "
@@ -92,10 +90,8 @@ std::array<double, 3> faceNormal(const Mesh::Mesh& mesh, const std::string& face
 // Two unit tangents completing n to a right-handed orthonormal frame (n, t1, t2).
 void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::array<double, 3>& t2) {
   const std::array<double, 3> e = std::abs(n[0]) < 0.9 ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
-  t1 = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
-  const double s = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
-  for (double& v : t1) v /= s;
-  t2 = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+  t1 = normalized(cross(e, n));
+  t2 = cross(n, t1);
 }
 
 std::map<int, Mesh::NodeCopy> contactPartners(const Mesh::Discretization& disc,

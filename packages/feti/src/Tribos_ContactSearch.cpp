@@ -10,23 +10,12 @@
 #include "Tribos_ConstraintRows.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Loads.hpp"
+#include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Feti {
 
 namespace {
-
-using Vec3 = std::array<double, 3>;
-
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 unit(const Vec3& a) {
-  const double n = std::sqrt(dot(a, a));
-  return {a[0] / n, a[1] / n, a[2] / n};
-}
 
 // A point is on a facet when its parametric coordinates are inside up to
 // this (relative) tolerance: a slave node on the edge of a node-matching
@@ -43,7 +32,7 @@ struct Projection {
 
 // Triangle: the plane's closest point in barycentric coordinates.
 Projection projectOnTriangle(const Vec3& x, const std::vector<int>& v, const std::vector<Vec3>& X) {
-  const Vec3 &a = X[v[0]], e1 = sub(X[v[1]], a), e2 = sub(X[v[2]], a), r = sub(x, a);
+  const Vec3 &a = X[v[0]], e1 = minus(X[v[1]], a), e2 = minus(X[v[2]], a), r = minus(x, a);
   const double m11 = dot(e1, e1), m12 = dot(e1, e2), m22 = dot(e2, e2), det = m11 * m22 - m12 * m12;
   const double s = (dot(r, e1) * m22 - dot(r, e2) * m12) / det, t = (dot(r, e2) * m11 - dot(r, e1) * m12) / det;
   Projection p;
@@ -51,7 +40,7 @@ Projection projectOnTriangle(const Vec3& x, const std::vector<int>& v, const std
   const double sc = std::clamp(s, 0.0, 1.0), tc = std::clamp(t, 0.0, 1.0 - sc);
   p.weights = {{v[0], 1 - sc - tc}, {v[1], sc}, {v[2], tc}};
   for (int d = 0; d < 3; ++d) p.point[d] = a[d] + sc * e1[d] + tc * e2[d];
-  p.outwardNormal = unit(cross(e1, e2));
+  p.outwardNormal = normalized(cross(e1, e2));
   return p;
 }
 
@@ -74,7 +63,7 @@ Projection projectOnQuad(const Vec3& x, const std::vector<int>& v, const std::ve
   };
   for (int it = 0; it < 30; ++it) {
     evaluate();
-    const Vec3 r = sub(p, x);
+    const Vec3 r = minus(p, x);
     const double m11 = dot(dxi, dxi), m12 = dot(dxi, deta), m22 = dot(deta, deta), det = m11 * m22 - m12 * m12;
     const double g1 = dot(r, dxi), g2 = dot(r, deta);
     const double dx = -(g1 * m22 - g2 * m12) / det, de = -(g2 * m11 - g1 * m12) / det;
@@ -86,7 +75,7 @@ Projection projectOnQuad(const Vec3& x, const std::vector<int>& v, const std::ve
   xi = std::clamp(xi, -1.0, 1.0), eta = std::clamp(eta, -1.0, 1.0);
   evaluate();
   out.point = p;
-  out.outwardNormal = unit(cross(dxi, deta));
+  out.outwardNormal = normalized(cross(dxi, deta));
   for (int i = 0; i < 4; ++i) out.weights.push_back({v[i], (1 + sx[i] * xi) * (1 + sy[i] * eta) / 4});
   return out;
 }
@@ -162,7 +151,7 @@ void slaveOnMaster(const Mesh::Mesh& mesh, const ContactPair& pair, int index, c
       Projection p = facets[f].nodes.size() == 3 ? projectOnTriangle(x, facets[f].nodes, mesh.coords)
                                                   : projectOnQuad(x, facets[f].nodes, mesh.coords);
       if (!p.onFacet) continue;
-      p.distance = std::sqrt(dot(sub(p.point, x), sub(p.point, x)));
+      p.distance = norm(minus(p.point, x));
       if (p.distance < best.distance) best = std::move(p);
     }
     if (!best.onFacet || best.distance > pair.searchDistance) {
@@ -170,7 +159,7 @@ void slaveOnMaster(const Mesh::Mesh& mesh, const ContactPair& pair, int index, c
       continue;
     }
     const Vec3 n = {-best.outwardNormal[0], -best.outwardNormal[1], -best.outwardNormal[2]};
-    out.push_back(constraint(s, index, pair, n, dot(sub(best.point, x), n), significant(best.weights)));
+    out.push_back(constraint(s, index, pair, n, dot(minus(best.point, x), n), significant(best.weights)));
   }
 }
 
@@ -178,7 +167,7 @@ void slaveOnPlane(const Mesh::Mesh& mesh, const ContactPair& pair, int index, co
                   std::vector<ContactConstraint>& out, std::vector<int>& leftOut) {
   const Vec3& m = pair.planeNormal;
   for (int s : slaveNodes) {
-    const double gap = dot(sub(mesh.coords[s], pair.planePoint), m);
+    const double gap = dot(minus(mesh.coords[s], pair.planePoint), m);
     if (std::abs(gap) > pair.searchDistance) {
       leftOut.push_back(s);
       continue;
@@ -201,7 +190,7 @@ std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const 
     TRIBOS_REQUIRE(pair.searchDistance > 0, name << ": search distance " << pair.searchDistance << " must be positive");
     if (pair.master.empty()) {
       const Vec3& m = pair.planeNormal;
-      TRIBOS_REQUIRE(std::abs(std::sqrt(dot(m, m)) - 1) <= 1e-12 && std::isfinite(dot(pair.planePoint, pair.planePoint)),
+      TRIBOS_REQUIRE(std::abs(norm(m) - 1) <= 1e-12 && std::isfinite(dot(pair.planePoint, pair.planePoint)),
                      name << ": the rigid plane's normal (" << m[0] << ", " << m[1] << ", " << m[2]
                           << ") must be a unit vector and its point finite");
     } else {

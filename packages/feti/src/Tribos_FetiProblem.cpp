@@ -18,6 +18,7 @@
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_AllGather.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Feti {
@@ -223,7 +224,7 @@ void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOf
   std::map<int, const ContactConstraint*> constraintOf;
   for (const auto& c : fc.contact) {
     const auto& n = c.normal;
-    TRIBOS_REQUIRE(std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1) <= 1e-12,
+    TRIBOS_REQUIRE(std::abs(norm(n) - 1) <= 1e-12,
                    "FetiProblem: the contact normal (" << n[0] << ", " << n[1] << ", " << n[2] << ") of node " << c.node
                                                        << " is not a unit vector");
     constraintOf[c.node] = &c;
@@ -266,7 +267,7 @@ void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOf
 void planeConstraints(FetiConstraints& fc) {
   if (!fc.contact.empty()) return;
   const auto& n = fc.contactNormal;
-  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const double length = norm(n);
   for (const auto& r : fc.rows) {
     if (r.kind != DualRow::Normal) continue;
     TRIBOS_REQUIRE(std::abs(length - 1) <= 1e-12, "FetiProblem: the contact plane's normal ("

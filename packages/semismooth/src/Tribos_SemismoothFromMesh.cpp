@@ -12,6 +12,7 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_ResultKKT.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
+#include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Semismooth {
@@ -33,12 +34,12 @@ std::vector<ContactNode> contactFaceNodes(const Mesh::Mesh& mesh, const std::map
     const Fem::Point& p2 = X[2];
     const Fem::Point& p3 = nv == 4 ? X[3] : X[0];
     // Quadrilateral: (x2 - x0) x (x3 - x1); triangle: (x1 - x0) x (x2 - x0).
-    double e1[3], e2[3];
+    Vec3 e1, e2;
     for (int c = 0; c < 3; ++c) {
       e1[c] = nv == 4 ? p2[c] - p0[c] : p1[c] - p0[c];
       e2[c] = nv == 4 ? p3[c] - p1[c] : p2[c] - p0[c];
     }
-    const double nrm[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const Vec3 nrm = cross(e1, e2);
     const std::vector<double> w = Fem::facetNodalAreas(X);
     for (size_t a = 0; a < nv; ++a) {
       for (int c = 0; c < 3; ++c) normal[facet.nodes[a]][c] += nrm[c];
@@ -59,7 +60,7 @@ std::vector<ContactNode> contactFaceNodes(const Mesh::Mesh& mesh, const std::map
     if (kind == PrescribedDirections::Oblique) {
       const auto& X = mesh.coords[node];
       const auto& n = normal[node];
-      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      const double len = norm(n);
       std::string oblique;
       for (int c = 0; c < 3; ++c)
         if (fixed[c] && std::abs(n[c]) > 1e-8 * len) oblique += std::string(oblique.empty() ? "" : ", ") + "xyz"[c];
