@@ -1,7 +1,5 @@
 #include "Tribos_MemoryEstimate.hpp"
 
-#include <Teuchos_DefaultMpiComm.hpp>
-
 #include <mpi.h>
 
 #include <cctype>
@@ -15,6 +13,7 @@
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_LocalSolver.hpp"
+#include "Tribos_Reduce.hpp"
 
 namespace Tribos {
 
@@ -179,7 +178,7 @@ double parseMemorySize(const std::string& text, const std::string& what) {
 MemoryEstimate requireMemory(const Teuchos::ParameterList& params, double limit, bool verify, const RCP<const Comm>& comm,
                              const MeshSize* meshSize) {
   const MemoryEstimate mine = estimateMemory(params, comm->getSize(), comm->getRank(), verify, meshSize);
-  const MPI_Comm world = *Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm, true)->getRawMpiComm();
+  const MPI_Comm world = rawComm(*comm);
   MPI_Comm machine;
   MPI_Comm_split_type(world, MPI_COMM_TYPE_SHARED, comm->getRank(), MPI_INFO_NULL, &machine);
   double parts[2] = {mine.mesh, mine.solver}, sum[2] = {0, 0};

@@ -9,6 +9,7 @@
 
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_Reduce.hpp"
 #include "Tribos_RigidMotions.hpp"
 
 namespace Tribos {
@@ -71,12 +72,6 @@ RCP<const Vector> loadPart(const Feti::FetiDual& dual) {
   auto cv = p.c().getData();
   for (LO i : p.contact().normalRows) rv[i] += cv[i];
   return r;
-}
-
-double maxOver(double v, const Comm& comm) {
-  double out = v;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, v, Teuchos::outArg(out));
-  return out;
 }
 
 }  // namespace
@@ -238,9 +233,7 @@ void FetiContactProblem::checkHeldByContact() const {
     resist = std::max(resist, vv[cd_.normalRows[k]] + cd_.frictionCoefficient[k] * vt);
     frictionWork += cd_.slipBound[k] * vt;
   }
-  double resistAll = resist, frictionAll = frictionWork;
-  Teuchos::reduceAll(*p.comm(), Teuchos::REDUCE_MAX, resist, Teuchos::outArg(resistAll));
-  Teuchos::reduceAll(*p.comm(), Teuchos::REDUCE_SUM, frictionWork, Teuchos::outArg(frictionAll));
+  const double resistAll = maxOver(resist, *p.comm()), frictionAll = sumOver(frictionWork, *p.comm());
   if (resistAll <= 1e-10 * vScale && work_e > frictionAll * (1 + 1e-10))
     throw CollectiveError("the load moves the body rigidly (" + coarse.describeMotion(alpha) +
                 ") away from the contact, and no Dirichlet condition holds it: there is no equilibrium; "

@@ -1,34 +1,16 @@
 #include "Tribos_ResultKKT.hpp"
 
-#include <sstream>
-
-#include <Teuchos_CommHelpers.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
-#include "Tribos_Error.hpp"
 #include "Tribos_ContactKKT.hpp"
+#include "Tribos_Error.hpp"
+#include "Tribos_Reduce.hpp"
 #include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Fem {
-
-namespace {
-
-double maxOver(double v, const Comm& comm) {
-  double out = v;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, v, Teuchos::outArg(out));
-  return out;
-}
-
-double sumOver(double v, const Comm& comm) {
-  double out = v;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, v, Teuchos::outArg(out));
-  return out;
-}
-
-}  // namespace
 
 FrictionLaw::Kind FrictionLaw::parse(const std::string& name) {
   if (name == "Frictionless") return Frictionless;

@@ -17,15 +17,10 @@
 
 #include "Tribos_AllGather.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_Reduce.hpp"
 
 namespace Tribos {
 namespace Feti {
-
-namespace {
-MPI_Comm rawComm(const Comm& comm) {
-  return *dynamic_cast<const Teuchos::MpiComm<int>&>(comm).getRawMpiComm();
-}
-}  // namespace
 
 DualOperator::DualOperator(RCP<const FetiProblem> problem) : problem_(problem) {
   p_ = rcp(new Vector(problem->primalMap()));

@@ -18,16 +18,11 @@
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_AllGather.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_Reduce.hpp"
 #include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Feti {
-
-namespace {
-
-MPI_Comm rawComm(const Comm& comm) { return *dynamic_cast<const Teuchos::MpiComm<int>&>(comm).getRawMpiComm(); }
-
-}  // namespace
 
 namespace {
 

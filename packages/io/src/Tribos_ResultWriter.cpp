@@ -7,8 +7,6 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 
-#include <Teuchos_DefaultMpiComm.hpp>
-
 #include <cerrno>
 #include <cstdio>
 #include <sstream>
@@ -18,15 +16,12 @@
 #include "Tribos_QuietHdf5Errors.hpp"
 #include "Tribos_FileSystem.hpp"
 #include "Tribos_ParameterReader.hpp"
+#include "Tribos_Reduce.hpp"
 
 namespace Tribos {
 namespace IO {
 
 namespace {
-
-MPI_Comm rawComm(const RCP<const Comm>& comm) {
-  return *Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm, true)->getRawMpiComm();
-}
 
 // Offset of this rank's block and the global total of per-rank counts.
 std::pair<long long, long long> blockOffset(long long mine, MPI_Comm comm) {
@@ -156,7 +151,7 @@ class ParallelH5File {
     FirstFailure f(path_);
     const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
     if (!f.failed(fapl, "H5Pcreate", "a file access list") &&
-        !f.failed(H5Pset_fapl_mpio(fapl, rawComm(comm), MPI_INFO_NULL), "H5Pset_fapl_mpio", "the file"))
+        !f.failed(H5Pset_fapl_mpio(fapl, rawComm(*comm), MPI_INFO_NULL), "H5Pset_fapl_mpio", "the file"))
       f.failed(id_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "H5Fcreate", "the file");
     if (fapl >= 0) H5Pclose(fapl);
     agree(f.message);
@@ -548,7 +543,7 @@ void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, c
 
   // Everything is packed before the first collective HDF5 call: from there on
   // nothing may throw on one rank only.
-  const Content content(disc_, uOwned, nodeFields, cellFields, pointSets, rawComm(comm_));
+  const Content content(disc_, uOwned, nodeFields, cellFields, pointSets, rawComm(*comm_));
   std::string failure = writeHdf5(h5Path, content, attributes, reserveSpace_, comm_);
   if (!failure.empty()) failure = "cannot write the result file " + shownName + ": " + failure;
   if (failure.empty()) {
