@@ -51,6 +51,17 @@ class ByteBuffer {
     take(&s[0], s.size());
     return s;
   }
+  // The twin of put for code that lists its fields once for both ways:
+  // value becomes what put(value) packed.
+  template <class T>
+  void read(T& value) {
+    value = get<T>();
+  }
+  template <class T>
+  void read(std::vector<T>& values) {
+    values = getVector<T>();
+  }
+  void read(std::string& s) { s = getString(); }
 
   std::vector<char>& bytes() { return bytes_; }
   bool consumed() const { return at_ == bytes_.size(); }

@@ -32,6 +32,13 @@ struct DiscretizationAccess {
   static void pack(const Discretization& d, ByteBuffer& b);
   static Discretization unpack(ByteBuffer& b);
   static void finish(Discretization& d);
+  // The fields of a part besides its mesh, in the one order that pack and
+  // unpack share.
+  template <class D, class F>
+  static void forEachField(D& d, F&& f) {
+    f(d.spec), f(d.cellPart), f(d.subdomainBody), f(d.layout), f(d.myRank), f(d.numMeshNodes_), f(d.numMeshCells_);
+    f(d.meshNodes_), f(d.meshCells_), f(d.nodeIndex_), f(d.copyStart_), f(d.copy_);
+  }
 };
 
 WholeDecomposition DiscretizationAccess::decompose(const Mesh& mesh, const BoxSpec& spec, const DecompositionSpec& dec,
@@ -152,35 +159,13 @@ void DiscretizationAccess::finish(Discretization& d) {
 
 void DiscretizationAccess::pack(const Discretization& d, ByteBuffer& b) {
   packMesh(d.part, b);
-  b.put(d.spec);
-  b.put(d.cellPart);
-  b.put(d.subdomainBody);
-  b.put(d.layout);
-  b.put(d.myRank);
-  b.put(d.numMeshNodes_);
-  b.put(d.numMeshCells_);
-  b.put(d.meshNodes_);
-  b.put(d.meshCells_);
-  b.put(d.nodeIndex_);
-  b.put(d.copyStart_);
-  b.put(d.copy_);
+  forEachField(d, [&](const auto& field) { b.put(field); });
 }
 
 Discretization DiscretizationAccess::unpack(ByteBuffer& b) {
   Discretization d;
   d.part = unpackMesh(b);
-  d.spec = b.get<BoxSpec>();
-  d.cellPart = b.getVector<int>();
-  d.subdomainBody = b.getVector<int>();
-  d.layout = b.get<RankLayout>();
-  d.myRank = b.get<int>();
-  d.numMeshNodes_ = b.get<int>();
-  d.numMeshCells_ = b.get<int>();
-  d.meshNodes_ = b.getVector<int>();
-  d.meshCells_ = b.getVector<int>();
-  d.nodeIndex_ = b.getVector<long long>();
-  d.copyStart_ = b.getVector<int>();
-  d.copy_ = b.getVector<NodeCopy>();
+  forEachField(d, [&](auto& field) { b.read(field); });
   TRIBOS_REQUIRE(b.consumed(), "Discretization: the packed part has bytes left over");
   finish(d);
   return d;
