@@ -58,6 +58,16 @@ class ExodusFile {
     if (count > 0) check(ex_get_ids(id_, type, ids.data()), "the ids of its " + what);
     return ids;
   }
+  // The entries of a set: the elements of a side set (their side numbers
+  // in *sides) or the nodes of a node set (sides null); file numbers.
+  std::vector<int> set(ex_entity_type type, int id, const std::string& what, std::vector<int>* sides = nullptr) const {
+    int count = 0, factors = 0;
+    check(ex_get_set_param(id_, type, id, &count, &factors), what);
+    std::vector<int> entries(count);
+    if (sides) sides->assign(count, 0);
+    if (count > 0) check(ex_get_set(id_, type, id, entries.data(), sides ? sides->data() : nullptr), what);
+    return entries;
+  }
 
  private:
   std::string file_;
@@ -192,12 +202,10 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
   const std::vector<std::string> sideSetNames = uniqueNames(exo, EX_SIDE_SET, sideSetIds, "sideset_", "side set", file);
   for (size_t k = 0; k < sideSetIds.size(); ++k) {
     const std::string what = "side set '" + sideSetNames[k] + "'";
-    int count = 0, factors = 0;
-    exo.check(ex_get_set_param(exo.id(), EX_SIDE_SET, sideSetIds[k], &count, &factors), what);
-    std::vector<int> elements(count), sideNumbers(count);
-    if (count > 0) exo.check(ex_get_set(exo.id(), EX_SIDE_SET, sideSetIds[k], elements.data(), sideNumbers.data()), what);
+    std::vector<int> sideNumbers;
+    const std::vector<int> elements = exo.set(EX_SIDE_SET, sideSetIds[k], what, &sideNumbers);
     std::vector<Facet>& face = mesh.faces[sideSetNames[k]];
-    for (int s = 0; s < count; ++s) {
+    for (size_t s = 0; s < elements.size(); ++s) {
       const int e = elements[s] - 1, side = sideNumbers[s];
       TRIBOS_REQUIRE(e >= 0 && e < init.num_elem && cellOf[e] >= 0,
                      file << ": " << what << " names element " << elements[s] << ", which is in no element block");
@@ -219,10 +227,7 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
   const std::vector<std::string> nodeSetNames = uniqueNames(exo, EX_NODE_SET, nodeSetIds, "nodeset_", "node set", file);
   for (size_t k = 0; k < nodeSetIds.size(); ++k) {
     const std::string what = "node set '" + nodeSetNames[k] + "'";
-    int count = 0, factors = 0;
-    exo.check(ex_get_set_param(exo.id(), EX_NODE_SET, nodeSetIds[k], &count, &factors), what);
-    std::vector<int> nodes(count);
-    if (count > 0) exo.check(ex_get_set(exo.id(), EX_NODE_SET, nodeSetIds[k], nodes.data(), nullptr), what);
+    const std::vector<int> nodes = exo.set(EX_NODE_SET, nodeSetIds[k], what);
     std::vector<int>& set = mesh.nodeSets[nodeSetNames[k]];
     for (int n : nodes) {
       TRIBOS_REQUIRE(n >= 1 && n <= init.num_nodes, file << ": " << what << " names node " << n
