@@ -54,6 +54,38 @@ void checkIndices(const std::vector<int>& idx, std::size_t count, int bound,
                      " is outside [0, " + std::to_string(bound) + ")");
 }
 
+// The row (or column) of every entry of a compressed matrix, from the
+// pointers of its count rows (or columns); none without pointers (a
+// default-constructed SparseMatrix).
+std::vector<int> expandPointers(const std::vector<int>& ptr, int count) {
+  std::vector<int> index(ptr.empty() ? 0 : ptr[count]);
+  for (int r = 0; r < count; ++r)
+    for (int k = ptr[r]; k < ptr[r + 1]; ++k) index[k] = r;
+  return index;
+}
+
+// The first count entries of v (a file may store more than its pointers use).
+template <class T>
+std::vector<T> firstEntries(const std::vector<T>& v, int count) {
+  return std::vector<T>(v.begin(), v.begin() + count);
+}
+
+// A matrix compressed by rows (CSR: m + 1 pointers, the column of each
+// entry) or by columns (CSC: n + 1 pointers, the row of each entry),
+// checked, then expanded to triplets and canonicalized (the file need not
+// sort the entries of a row or column).
+SparseMatrix fromCompressed(int m, int n, bool byRows, const std::vector<int>& ptr, const std::vector<int>& index,
+                            const std::vector<double>& value, const std::string& what) {
+  checkShape(m, n, what);
+  const int outer = byRows ? m : n, inner = byRows ? n : m;
+  checkPointers(ptr, outer, std::min(index.size(), value.size()), what);
+  const int count = ptr[outer];
+  checkIndices(index, count, inner, "i", what);
+  const std::vector<int> expanded = expandPointers(ptr, outer), listed = firstEntries(index, count);
+  return byRows ? SparseMatrix::fromTriplets(m, n, expanded, listed, firstEntries(value, count), what)
+                : SparseMatrix::fromTriplets(m, n, listed, expanded, firstEntries(value, count), what);
+}
+
 }  // namespace
 
 void SparseMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
@@ -125,37 +157,18 @@ SparseMatrix SparseMatrix::fromTriplets(int m, int n, const std::vector<int>& ro
 SparseMatrix SparseMatrix::fromCSR(int m, int n, const std::vector<int>& rowptr,
                                    const std::vector<int>& column,
                                    const std::vector<double>& value, const std::string& what) {
-  checkShape(m, n, what);
-  checkPointers(rowptr, m, std::min(column.size(), value.size()), what);
-  const int count = rowptr[m];
-  checkIndices(column, count, n, "i", what);
-  // Expand to triplets and canonicalize; rows need not be sorted in the file.
-  std::vector<int> row(count);
-  for (int r = 0; r < m; ++r)
-    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) row[k] = r;
-  return fromTriplets(m, n, row, std::vector<int>(column.begin(), column.begin() + count),
-                      std::vector<double>(value.begin(), value.begin() + count), what);
+  return fromCompressed(m, n, true, rowptr, column, value, what);
 }
 
 SparseMatrix SparseMatrix::fromCSC(int m, int n, const std::vector<int>& colptr,
                                    const std::vector<int>& rowIndex,
                                    const std::vector<double>& value, const std::string& what) {
-  checkShape(m, n, what);
-  checkPointers(colptr, n, std::min(rowIndex.size(), value.size()), what);
-  const int count = colptr[n];
-  checkIndices(rowIndex, count, m, "i", what);
-  std::vector<int> column(count);
-  for (int c = 0; c < n; ++c)
-    for (int k = colptr[c]; k < colptr[c + 1]; ++k) column[k] = c;
-  return fromTriplets(m, n, std::vector<int>(rowIndex.begin(), rowIndex.begin() + count), column,
-                      std::vector<double>(value.begin(), value.begin() + count), what);
+  return fromCompressed(m, n, false, colptr, rowIndex, value, what);
 }
 
 void SparseMatrix::toTriplets(std::vector<int>& row, std::vector<int>& column) const {
-  row.resize(nnz());
+  row = expandPointers(rowptr, m);
   column = col;
-  for (int r = 0; r < m; ++r)
-    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) row[k] = r;
 }
 
 SparseMatrix::Asymmetry SparseMatrix::largestAsymmetry() const {
