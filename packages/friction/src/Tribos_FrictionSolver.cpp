@@ -331,8 +331,6 @@ RCP<const ParameterList> Algorithm2::validParameters() {
   return pl;
 }
 
-RCP<const ParameterList> Algorithm2::getValidParameters() const { return validParameters(); }
-
 double MSA::requestedTolerance() const {
   return std::max(tresca_.requestedTolerance(), params_.get<double>("Tolerance"));
 }
@@ -344,8 +342,7 @@ void MSA::setRequestedTolerance(double tolerance) {
 
 void MSA::setMaximumIterations(int iterations) { setValidated(params_, *validParameters(), "Maximum Iterations", iterations, "MSA"); }
 
-Algorithm2::Algorithm2(const ParameterList& params) : params_(params) {
-  params_.validateParametersAndSetDefaults(*validParameters());
+Algorithm2::Algorithm2(const ParameterList& params) : SingleLoopSolver(params, validParameters()) {
   const double ratio = params_.get<double>("Residual Balancing");
   if (ratio > 0 && ratio < 1)
     throw Error("Algorithm 2: Residual Balancing = " + std::to_string(ratio) +
@@ -488,14 +485,23 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
 
 // ---------------------------------------------------------------- factory
 
-double Algorithm2::requestedTolerance() const { return params_.get<double>("Relative Tolerance"); }
+// ---------------------------------------------------------------- SingleLoopSolver
 
-void Algorithm2::setRequestedTolerance(double tolerance) {
-  setValidated(params_, *validParameters(), "Relative Tolerance", tolerance, "Algorithm 2");
+SingleLoopSolver::SingleLoopSolver(const ParameterList& params, RCP<const ParameterList> valid)
+    : params_(params), valid_(valid) {
+  params_.validateParametersAndSetDefaults(*valid_);
 }
 
-void Algorithm2::setMaximumIterations(int iterations) {
-  setValidated(params_, *validParameters(), "Maximum Iterations", iterations, "Algorithm 2");
+double SingleLoopSolver::requestedTolerance() const { return params_.get<double>("Relative Tolerance"); }
+
+void SingleLoopSolver::setRequestedTolerance(double tolerance) {
+  setValidated(params_, *valid_, "Relative Tolerance", tolerance, valid_->name());
+  parametersChanged();
+}
+
+void SingleLoopSolver::setMaximumIterations(int iterations) {
+  setValidated(params_, *valid_, "Maximum Iterations", iterations, valid_->name());
+  parametersChanged();
 }
 
 const FrictionSolverRegistry& frictionSolvers() {

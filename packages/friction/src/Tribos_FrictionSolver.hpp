@@ -86,6 +86,30 @@ class FrictionSolver {
   RCP<Teuchos::FancyOStream> out_;
 };
 
+// An algorithm of one loop whose own list holds "Relative Tolerance" and
+// "Maximum Iterations" at its top (Algorithm 2, Semismooth Newton, NSGS):
+// the list, validated against the algorithm's valid parameters, and the
+// overrides of FrictionSolver that set those two there (refused, naming the
+// algorithm, outside the range the list documents).
+class SingleLoopSolver : public FrictionSolver {
+ public:
+  RCP<const Teuchos::ParameterList> getValidParameters() const override { return valid_; }
+  double requestedTolerance() const override;             // Relative Tolerance
+  void setRequestedTolerance(double tolerance) override;  // Relative Tolerance
+  void setMaximumIterations(int iterations) override;     // Maximum Iterations
+
+ protected:
+  // valid: the algorithm's validParameters(); its name names the algorithm.
+  SingleLoopSolver(const Teuchos::ParameterList& params, RCP<const Teuchos::ParameterList> valid);
+  // Called after an override changed the list (for values read once).
+  virtual void parametersChanged() {}
+
+  Teuchos::ParameterList params_;
+
+ private:
+  RCP<const Teuchos::ParameterList> valid_;
+};
+
 // Algorithm 1: SMALBE for G x = 0 with the inner minimization by block
 // Gauss-Seidel (MPRGP + MPGP, "Sweeps") or one joint MPGP. Without G the
 // inner solver runs alone to the tolerance.
@@ -125,18 +149,11 @@ class MSA : public FrictionSolver {
   Algorithm1 tresca_;
 };
 
-class Algorithm2 : public FrictionSolver {
+class Algorithm2 : public SingleLoopSolver {
  public:
   explicit Algorithm2(const Teuchos::ParameterList& params);
   FrictionStatus solve(const ContactDual& dual, Vector& x) override;
-  RCP<const Teuchos::ParameterList> getValidParameters() const override;
   static RCP<const Teuchos::ParameterList> validParameters();
-  double requestedTolerance() const override;
-  void setRequestedTolerance(double tolerance) override;  // Relative Tolerance
-  void setMaximumIterations(int iterations) override;     // Maximum Iterations
-
- private:
-  Teuchos::ParameterList params_;
 };
 
 // The parameter list an outer algorithm reads: a sublist of the "Solver"

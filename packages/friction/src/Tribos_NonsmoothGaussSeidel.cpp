@@ -326,10 +326,7 @@ RCP<const ParameterList> NonsmoothGaussSeidel::validParameters() {
   return pl;
 }
 
-RCP<const ParameterList> NonsmoothGaussSeidel::getValidParameters() const { return validParameters(); }
-
-NonsmoothGaussSeidel::NonsmoothGaussSeidel(const ParameterList& params) : params_(params) {
-  params_.validateParametersAndSetDefaults(*validParameters());
+NonsmoothGaussSeidel::NonsmoothGaussSeidel(const ParameterList& params) : SingleLoopSolver(params, validParameters()) {
   readSettings();
 }
 
@@ -338,18 +335,6 @@ void NonsmoothGaussSeidel::readSettings() {
   maxSweeps_ = params_.get<int>("Maximum Iterations");
   localTol_ = params_.get<double>("Local Tolerance");
   localMaxIt_ = params_.get<int>("Local Maximum Iterations");
-}
-
-double NonsmoothGaussSeidel::requestedTolerance() const { return tol_; }
-
-void NonsmoothGaussSeidel::setRequestedTolerance(double tolerance) {
-  setValidated(params_, *validParameters(), "Relative Tolerance", tolerance, "NSGS");
-  readSettings();
-}
-
-void NonsmoothGaussSeidel::setMaximumIterations(int iterations) {
-  setValidated(params_, *validParameters(), "Maximum Iterations", iterations, "NSGS");
-  readSettings();
 }
 
 FrictionStatus NonsmoothGaussSeidel::solve(const ContactDual&, Vector&) {

@@ -56,7 +56,7 @@ struct ExplicitCoulombProblem {
   int contacts = 0;
 };
 
-class NonsmoothGaussSeidel : public FrictionSolver {
+class NonsmoothGaussSeidel : public SingleLoopSolver {
  public:
   explicit NonsmoothGaussSeidel(const Teuchos::ParameterList& params);
   // Refused: the FETI dual is applied, not stored (use Algorithm2 or Semismooth Newton).
@@ -65,11 +65,7 @@ class NonsmoothGaussSeidel : public FrictionSolver {
   // returned r (formed from W at the last check). The stopping measure's
   // last call is on exactly the returned (r, u).
   FrictionStatus solve(const ExplicitCoulombProblem& problem, std::vector<double>& r, std::vector<double>& u) const;
-  RCP<const Teuchos::ParameterList> getValidParameters() const override;
   static RCP<const Teuchos::ParameterList> validParameters();
-  double requestedTolerance() const override;
-  void setRequestedTolerance(double tolerance) override;  // Relative Tolerance
-  void setMaximumIterations(int iterations) override;     // Maximum Iterations (sweeps)
 
   // The stopping test: measure(r, u) <= Relative Tolerance.
   using Measure = std::function<double(const std::vector<double>& r, const std::vector<double>& u)>;
@@ -79,7 +75,7 @@ class NonsmoothGaussSeidel : public FrictionSolver {
   // The list's values, read once per change: a lookup by name costs more
   // than a contact's step, and a solve of a small problem takes a few.
   void readSettings();
-  Teuchos::ParameterList params_;
+  void parametersChanged() override { readSettings(); }
   double tol_ = 0, localTol_ = 0;
   int maxSweeps_ = 0, localMaxIt_ = 0;
   Measure measure_;

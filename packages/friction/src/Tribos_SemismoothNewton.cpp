@@ -252,21 +252,7 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
   return pl;
 }
 
-RCP<const ParameterList> SemismoothNewton::getValidParameters() const { return validParameters(); }
-
-SemismoothNewton::SemismoothNewton(const ParameterList& params) : params_(params) {
-  params_.validateParametersAndSetDefaults(*validParameters());
-}
-
-double SemismoothNewton::requestedTolerance() const { return params_.get<double>("Relative Tolerance"); }
-
-void SemismoothNewton::setRequestedTolerance(double tolerance) {
-  setValidated(params_, *validParameters(), "Relative Tolerance", tolerance, "Semismooth Newton");
-}
-
-void SemismoothNewton::setMaximumIterations(int iterations) {
-  setValidated(params_, *validParameters(), "Maximum Iterations", iterations, "Semismooth Newton");
-}
+SemismoothNewton::SemismoothNewton(const ParameterList& params) : SingleLoopSolver(params, validParameters()) {}
 
 void SemismoothNewton::checkDualRows(long long rows) const {
   const int limit = params_.get<int>("Dense Limit");

@@ -91,15 +91,11 @@ class AlartCurnier {
   int n_;
 };
 
-class SemismoothNewton : public FrictionSolver {
+class SemismoothNewton : public SingleLoopSolver {
  public:
   explicit SemismoothNewton(const Teuchos::ParameterList& params);
   FrictionStatus solve(const ContactDual& dual, Vector& x) override;
-  RCP<const Teuchos::ParameterList> getValidParameters() const override;
   static RCP<const Teuchos::ParameterList> validParameters();
-  double requestedTolerance() const override;
-  void setRequestedTolerance(double tolerance) override;  // Relative Tolerance
-  void setMaximumIterations(int iterations) override;     // Maximum Iterations
   void checkDualRows(long long rows) const override;      // at most Dense Limit without an explicit matrix
 
   // A of the dual as an explicit sparse matrix: dual.A = scale * A.
@@ -117,7 +113,6 @@ class SemismoothNewton : public FrictionSolver {
   void iterate(const NewtonSystem& sys, std::vector<double>& z, FrictionStatus& st,
                std::chrono::steady_clock::time_point start) const;
 
-  Teuchos::ParameterList params_;
   const LocalCsr* explicitA_ = nullptr;
   double explicitScale_ = 1.0;
   RCP<NewtonLinearSolver> linear_;
