@@ -216,7 +216,6 @@ RCP<const ParameterList> validParameters() {
   solver.sublist("Monolithic").setParameters(*Fem::MonolithicSystem::getValidParameters());
   ParameterList& feti = solver.sublist("FETI", false, "Total FETI: local solver, gluing, dual solver");
   feti.setParameters(*Feti::FetiProblem::getValidParameters());
-  feti.sublist("Projected CG").setParameters(*Feti::ProjectedCG::getValidParameters());
   ParameterList& out = pl->sublist("Output", false, "result files");
   out.set("Directory", "output", "directory for the HDF5/XDMF files (overridden by --output)");
   out.set("Base Name", "solution", "file name without extension");

@@ -402,14 +402,11 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
                    RunReport& report) {
   const auto& solverParams = params.sublist("Solver");
   const auto& fetiParams = solverParams.sublist("FETI");
-  Teuchos::ParameterList problemParams;
-  for (const auto& name : {"Local Solver", "Gluing", "Formulation", "Dual Operator", "Dense Block Precision"})
-    problemParams.set(name, fetiParams.get<std::string>(name));
   const bool contact = params.sublist("Contact").get<bool>("Enabled");
   const Contact::PairFriction friction = contact ? Input::pairFriction(params) : Contact::PairFriction{{}};
   Progress::stage("FETI setup: assembly, gluing, coarse space");
   const auto t0 = std::chrono::steady_clock::now();
-  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, constraints, problemParams, comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, constraints, fetiParams, comm));
   Solution sol;
   sol.setupSeconds = seconds(t0);
   // The same solve an application runs on its own subdomains (Tribos_FetiSolve.hpp).

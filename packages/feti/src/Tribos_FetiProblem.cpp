@@ -18,6 +18,7 @@
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_AllGather.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_ProjectedCG.hpp"
 #include "Tribos_Reduce.hpp"
 #include "Tribos_Vec3.hpp"
 
@@ -348,6 +349,10 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
             "square root of the block size, so it suits tolerances down to about 1e-5; the written result is "
             "still recovered and checked in double)",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Double", "Single"))));
+    // The dual solver of a problem without contact reads its own sublist, so
+    // that the whole FETI list of an input is handed to the problem as it is.
+    pl->sublist("Projected CG", false, "the dual solver without contact (Feti::ProjectedCG)")
+        .setParameters(*ProjectedCG::getValidParameters());
   }
   return pl;
 }
