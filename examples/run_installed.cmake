@@ -31,14 +31,13 @@ if(MODE STREQUAL "install")
   foreach(f TribosConfig.cmake TribosConfigVersion.cmake TribosTargets.cmake FindMETIS.cmake FindCHOLMOD.cmake)
     require_file("${cmakedir}/${f}")
   endforeach()
-  # core is header-only (an INTERFACE target): no library file.
-  foreach(lib mesh fem qp friction feti contact semismooth io fclib fclib_solve driver)
+  foreach(lib core mesh fem qp friction feti contact semismooth io fclib fclib_solve driver)
     file(GLOB found "${PREFIX}/${LIBDIR}/libtribos_${lib}.*")
     if(NOT found)
       message(FATAL_ERROR "not installed: the library tribos_${lib} in ${PREFIX}/${LIBDIR}")
     endif()
   endforeach()
-  foreach(h Tribos_Types.hpp Tribos_Registry.hpp Tribos_QP.hpp Tribos_FrictionSolver.hpp Tribos_FetiContact.hpp
+  foreach(h Tribos_Types.hpp Tribos_Registry.hpp Tribos_FileSystem.hpp Tribos_QP.hpp Tribos_FrictionSolver.hpp Tribos_FetiContact.hpp
             Tribos_FetiProblem.hpp Tribos_Monolithic.hpp Tribos_ResultSet.hpp Tribos_FCLIB.hpp Tribos_FCLIB_Solve.hpp
             Tribos_SemismoothStarNewton.hpp Tribos_Input.hpp Tribos_Run.hpp)
     require_file("${PREFIX}/${INCLUDEDIR}/tribos/${h}")

@@ -14,7 +14,6 @@
 #include <utility>
 
 #include "Tribos_FileSystem.hpp"
-#include "Tribos_ParameterReader.hpp"
 #include "Tribos_QuietHdf5Errors.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_FileKind.hpp"

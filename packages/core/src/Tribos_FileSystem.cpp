@@ -15,7 +15,6 @@
 #include <filesystem>
 
 namespace Tribos {
-namespace IO {
 
 std::string systemReason(int errnoValue) { return std::strerror(errnoValue); }
 
@@ -132,5 +131,4 @@ bool sameFile(const std::string& a, const std::string& b) {
   return !ea && !eb && ra == rb;
 }
 
-}  // namespace IO
 }  // namespace Tribos

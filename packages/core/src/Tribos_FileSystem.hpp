@@ -1,8 +1,9 @@
-// Tribos_FileSystem.hpp: the POSIX file operations behind the output
-// transaction, each reporting failure as a message (empty on success) that
-// names the operation, the path and the system's reason, so that the message
-// can be shared by all ranks before anyone throws. And the two ways ranks
-// agree on an outcome: rank 0 decides, or the lowest failing rank speaks.
+// Tribos_FileSystem.hpp: the POSIX file operations behind every output
+// that is written atomically (the result set of io, the files of fclib),
+// each reporting failure as a message (empty on success) that names the
+// operation, the path and the system's reason, so that the message can be
+// shared by all ranks before anyone throws. And the two ways ranks agree on
+// an outcome: rank 0 decides, or the lowest failing rank speaks.
 #pragma once
 
 #include <string>
@@ -11,7 +12,6 @@
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
-namespace IO {
 
 // "No space left on device" etc. for an errno value.
 std::string systemReason(int errnoValue);
@@ -40,14 +40,30 @@ std::string syncPath(const std::string& path);
 std::string removeIfExists(const std::string& path);
 std::string renameFile(const std::string& from, const std::string& to);
 
-// Collective: the error of the lowest rank that has one (Tribos::agreeOnError,
-// core): used after every step that each rank does for itself.
-using Tribos::agreeOnError;
 // Collective: rank 0's error on every rank. Used after steps that only rank 0 does.
 std::string rootError(const Comm& comm, const std::string& errorOnRoot);
 // Collective: rank 0's value on every rank.
 std::string broadcastFromRoot(const Comm& comm, const std::string& value);
 long broadcastFromRoot(const Comm& comm, long value);
 
+// The output code of io and its callers name these IO::name, with
+// agreeOnError (Tribos_AgreeOnError.hpp), the error of the lowest failing
+// rank, used after every step that each rank does for itself.
+namespace IO {
+using Tribos::agreeOnError;
+using Tribos::broadcastFromRoot;
+using Tribos::directoryOf;
+using Tribos::fileNameOf;
+using Tribos::isTemporaryName;
+using Tribos::removeIfExists;
+using Tribos::renameFile;
+using Tribos::rootError;
+using Tribos::sameFile;
+using Tribos::syncPath;
+using Tribos::systemReason;
+using Tribos::temporaryName;
+using Tribos::temporaryPathFor;
+using Tribos::writeWholeFile;
 }  // namespace IO
+
 }  // namespace Tribos
