@@ -1,6 +1,6 @@
 // constraint_set.cpp: projection, feasible step, free/chopped/reduced
 // gradients and fixedOutside on a hand-made set whose answers follow from the
-// definitions (ALGORITHMS.md §3); input errors name the parameter.
+// definitions (docs/algorithms.md §3); input errors name the parameter.
 // Every rank holds the same 6-entry block: [lower 0, box [-1,1], fixed, free, circle r=2].
 #include "QPTestUtils.hpp"
 
