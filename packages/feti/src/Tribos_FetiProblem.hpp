@@ -1,7 +1,9 @@
-// Tribos_FetiProblem.hpp: Total FETI discretization of an elastic body split
-// into subdomains, optionally in contact with a rigid plane.
+// Tribos_FetiProblem.hpp: Total FETI discretization of elastic bodies split
+// into subdomains, optionally in contact with each other and with rigid
+// planes (node-to-segment rows, one constraint per slave node:
+// Tribos_ContactSearch.hpp) or glued to each other.
 //
-//   min 1/2 u'Ku - u'f   s.t.  B_E u = c_E (gluing + Dirichlet),  N u <= d,
+//   min 1/2 u'Ku - u'f   s.t.  B_E u = c_E (gluing + Dirichlet + glued pairs),  N u <= d,
 //   (+ Tresca/Coulomb friction on the tangential rows T1, T2)
 //
 // Every subdomain is floating (Dirichlet conditions are rows of B), so the
