@@ -470,6 +470,13 @@ class Checker {
       fail(name("spacedim") + " = " + std::to_string(value) + ", expected 2 or 3");
   }
 
+  // The rows of the contact vectors and of W, spacedim x contacts (the
+  // length of mu), once spacedim is checked.
+  std::size_t contactRows(int spacedim, std::size_t contacts) const {
+    this->spacedim(spacedim);
+    return contacts * static_cast<std::size_t>(spacedim);
+  }
+
   // 'why' (what an expected size is) is a text or a function that makes it:
   // messages are composed only when a check fails, since a problem is
   // validated at every solve.
@@ -615,9 +622,7 @@ void checkSolutions(const Solution* solution, const std::vector<Solution>& guess
 
 void validate(const LocalProblem& P, const std::string& context) {
   const Checker c(context, "/" + std::string(kLocalGroup));
-  c.spacedim(P.spacedim);
-  const std::size_t nc = P.mu.size();
-  const std::size_t m = nc * static_cast<std::size_t>(P.spacedim);
+  const std::size_t nc = P.mu.size(), m = c.contactRows(P.spacedim, nc);
   const auto why = [&] { return contactsWhy(nc, P.spacedim, c.name("vectors/mu")); };
   c.matrix(P.W, "W", m, m, why);
   c.size(P.q, "vectors/q", m, why);
@@ -634,9 +639,7 @@ void validate(const LocalProblem& P, const std::string& context) {
 
 void validate(const GlobalProblem& P, const std::string& context) {
   const Checker c(context, "/" + std::string(kGlobalGroup));
-  c.spacedim(P.spacedim);
-  const std::size_t nc = P.mu.size();
-  const std::size_t m = nc * static_cast<std::size_t>(P.spacedim);
+  const std::size_t nc = P.mu.size(), m = c.contactRows(P.spacedim, nc);
   const auto why = [&] { return contactsWhy(nc, P.spacedim, c.name("vectors/mu")); };
   const std::size_t ndof = P.f.size();
   const auto fWhy = [&] { return " (the length of " + c.name("vectors/f") + ")"; };
@@ -734,14 +737,21 @@ struct ProblemGroup {
     mu = readDoubles(vectors.get(), vectorsWhere, "mu");
     contact = contactDimension(mu.size(), spacedim, vectorsWhere);
   }
+
+  // A problem with the group's spacedim and friction coefficients.
+  template <class Problem>
+  Problem problem() const {
+    Problem P;
+    P.spacedim = spacedim;
+    P.mu = mu;
+    return P;
+  }
 };
 
 LocalProblem readLocal(const std::string& path) {
   QuietHdf5Errors quiet;
-  ProblemGroup g(path, kLocalGroup);
-  LocalProblem P;
-  P.spacedim = g.spacedim;
-  P.mu = g.mu;
+  const ProblemGroup g(path, kLocalGroup);
+  LocalProblem P = g.problem<LocalProblem>();
   P.q = readDoubles(g.vectors.get(), g.vectorsWhere, "q", g.contact.value, g.contact.source);
   P.W = readMatrix(g.group.get(), g.where, "W", g.contact, g.contact);
   readMixedPart(g.group.get(), g.vectors.get(), g.where, g.vectorsWhere, g.contact, P);
@@ -751,10 +761,8 @@ LocalProblem readLocal(const std::string& path) {
 
 GlobalProblem readGlobal(const std::string& path) {
   QuietHdf5Errors quiet;
-  ProblemGroup g(path, kGlobalGroup);
-  GlobalProblem P;
-  P.spacedim = g.spacedim;
-  P.mu = g.mu;
+  const ProblemGroup g(path, kGlobalGroup);
+  GlobalProblem P = g.problem<GlobalProblem>();
   P.f = readDoubles(g.vectors.get(), g.vectorsWhere, "f");
   const Dimension dofs{P.f.size(), " (the length of " + g.vectorsWhere.path("f") + ")"};
   P.w = readDoubles(g.vectors.get(), g.vectorsWhere, "w", g.contact.value, g.contact.source);
