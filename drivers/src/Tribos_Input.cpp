@@ -13,6 +13,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_Validators.hpp"
+#include "Tribos_Vec3.hpp"
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_GmshReader.hpp"
 #include "Tribos_MeshFile.hpp"
@@ -505,7 +506,7 @@ void validatePairs(const ParameterList& params) {
     const auto& n = pair.get<Array<double>>("Plane Normal");
     const auto& x = pair.get<Array<double>>("Plane Point");
     TRIBOS_REQUIRE(n.size() == 3 && x.size() == 3, "\"" << path << "/Plane Normal\" and \"Plane Point\" need 3 components");
-    TRIBOS_REQUIRE(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0, "\"" << path << "/Plane Normal\" is zero");
+    TRIBOS_REQUIRE(norm(Vec3{n[0], n[1], n[2]}) > 0, "\"" << path << "/Plane Normal\" is zero");
   }
   const auto& bodies = params.sublist("Bodies");
   for (auto it = bodies.begin(); it != bodies.end(); ++it) {
@@ -963,7 +964,7 @@ std::vector<Feti::ContactPair> contactPairs(const ParameterList& params, const M
     pair.glued = p.get<std::string>("Type") == "Glued";
     const auto& x = p.get<Array<double>>("Plane Point");
     const auto& n = p.get<Array<double>>("Plane Normal");
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double length = norm(Vec3{n[0], n[1], n[2]});
     for (int d = 0; d < 3; ++d) pair.planePoint[d] = x[d], pair.planeNormal[d] = n[d] / length;
     const double reach = p.get<double>("Search Distance");
     if (reach > 0) pair.searchDistance = reach;

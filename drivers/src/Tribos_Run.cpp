@@ -31,6 +31,7 @@
 #include "Tribos_OutputDirectory.hpp"
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_Progress.hpp"
+#include "Tribos_Reduce.hpp"
 #include "Tribos_ResultSet.hpp"
 #include "Tribos_ResultWriter.hpp"
 #include "Tribos_RigidMotions.hpp"
@@ -47,12 +48,6 @@ int requestedSubdomains(const Mesh::DecompositionSpec& d) {
 
 double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-double maxOverRanks(double v, const Comm& comm) {
-  double out = v;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, v, Teuchos::outArg(out));
-  return out;
 }
 
 // Von Mises stress, subdomain and rank of every local cell.
@@ -463,11 +458,11 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
   report.dualDofs = static_cast<long long>(problem->dualMap()->getGlobalNumElements());
   FetiReport feti;
   feti.localSolver = problem->localSolverName();
-  feti.factorSeconds = maxOverRanks(problem->factorTime(), *comm);
-  feti.factorMemoryMb = maxOverRanks(problem->factorMemoryMb(), *comm);
-  feti.denseBlockMemoryMb = maxOverRanks(problem->denseBlockMemoryMb(), *comm);
+  feti.factorSeconds = maxOver(problem->factorTime(), *comm);
+  feti.factorMemoryMb = maxOver(problem->factorMemoryMb(), *comm);
+  feti.denseBlockMemoryMb = maxOver(problem->denseBlockMemoryMb(), *comm);
   feti.F_applications = r.F_applications;
-  feti.F_seconds = maxOverRanks(r.F_seconds, *comm);
+  feti.F_seconds = maxOver(r.F_seconds, *comm);
   feti.coarseSize = r.coarseSize;
   feti.coarseFactorMb = r.coarseFactorMb;
   report.feti = feti;
@@ -522,9 +517,8 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
                         double maxMemory, const Comm& comm) {
   Mesh::Mesh mesh;
   std::vector<std::string> warnings;
-  std::string error;
-  if (comm.getRank() == 0) {
-    try {
+  checkOnEveryRank(comm, [&] {
+    if (comm.getRank() == 0) {
       mesh = Input::mesh(params, &warnings, memoryLimit(maxMemory));
       Input::checkMeshFaces(mesh, params);
       const auto& contact = params.sublist("Contact");
@@ -541,12 +535,8 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
                      "Mesh asks for " << S << " subdomain(s) but mesh file \"" << Input::meshFile(params) << "\" has "
                                       << mesh.numBodies() << " bodies, each of which needs at least one of its own "
                                       << "(Mesh/Subdomains, or Mesh/Subdomain Size)");
-    } catch (const Error& e) {
-      error = e.what();
     }
-  }
-  error = agreeOnError(comm, error);
-  if (!error.empty()) throw CollectiveError(error);
+  });
   for (const auto& w : warnings) std::cerr << "tribos: warning: " << w << std::endl;
   return mesh;
 }
@@ -566,9 +556,8 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
                                                     const Fem::LoadCase& loads, Input::Method method, const Comm& comm) {
   std::vector<std::string> notes;
   std::vector<Feti::ContactConstraint> constraints;
-  std::string error;
-  if (comm.getRank() == 0) {
-    try {
+  checkOnEveryRank(comm, [&] {
+    if (comm.getRank() == 0) {
       Input::checkScales(params, *whole);
       const auto dirichlet = Fem::constrainedDofs(*whole, loads.dirichlet);
       if (method == Input::Method::Monolithic)
@@ -590,12 +579,8 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
       } else if (method != Input::Method::Semismooth) {
         Contact::requireEveryBodyHeld(*whole, dirichlet, {}, {}, {});
       }
-    } catch (const Error& e) {
-      error = e.what();
     }
-  }
-  error = agreeOnError(comm, error);
-  if (!error.empty()) throw CollectiveError(error);
+  });
   for (const auto& n : notes) std::cerr << "tribos: warning: " << n << std::endl;
   return constraints;
 }
@@ -792,11 +777,11 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
 
   // Setup: from the start to a solver ready to iterate; solve: its iterations.
   const double meshSeconds = std::chrono::duration<double>(t1 - t0).count();
-  report.setupSeconds = maxOverRanks(meshSeconds + sol.setupSeconds, *comm);
-  report.solveSeconds = maxOverRanks(sol.solveSeconds, *comm);
+  report.setupSeconds = maxOver(meshSeconds + sol.setupSeconds, *comm);
+  report.solveSeconds = maxOver(sol.solveSeconds, *comm);
   report.maxAbsDisplacement = sol.u.normInf();
-  report.memoryEstimateMb = maxOverRanks(memory.total() / (1024.0 * 1024.0), *comm);
-  report.peakRssMb = maxOverRanks(IO::peakRssMb(), *comm);
+  report.memoryEstimateMb = maxOver(memory.total() / (1024.0 * 1024.0), *comm);
+  report.peakRssMb = maxOver(IO::peakRssMb(), *comm);
   if (outputDir) writeResult(params, *outputDir, d, sol, report, comm);
   return {report.toSummary(), report, report.converged, report.stopReason, outputDir != nullptr};
 }
