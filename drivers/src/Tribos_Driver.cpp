@@ -12,6 +12,7 @@
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_FailureReport.hpp"
+#include "Tribos_Reduce.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_InputXml.hpp"
 #include "Tribos_MemoryEstimate.hpp"
@@ -79,10 +80,6 @@ Args parse(const std::vector<std::string>& argv) {
   TRIBOS_REQUIRE(a.help || a.printParameters || !a.input.empty(), "no input file given\n" << kUsage);
   a.options.inputName = a.input;
   return a;
-}
-
-MPI_Comm rawComm(const RCP<const Comm>& comm) {
-  return *Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm, true)->getRawMpiComm();
 }
 
 // A failure the ranks did not agree on beforehand (FailureReport.hpp):
@@ -158,7 +155,7 @@ int runAndReport(const Args& args, const Teuchos::ParameterList& params, const R
 int runDriver(const std::vector<std::string>& argv, const RCP<const Comm>& comm) {
   const bool root = comm->getRank() == 0;
   // Made at start, before any rank can fail (a collective MPI_Comm_dup).
-  FailureChannel channel(rawComm(comm));
+  FailureChannel channel(rawComm(*comm));
   // What a process starts with, so that a second call in one process says
   // the same: the stage an early failure names, timers counting this run only.
   Progress::stage("start-up");

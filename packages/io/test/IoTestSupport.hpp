@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "Tribos_Discretization.hpp"
+#include "Tribos_TestSupport.hpp"
 #include "Tribos_FileSystem.hpp"
 #include "Tribos_ResultWriter.hpp"
 #include "Tribos_Types.hpp"
@@ -98,8 +99,6 @@ inline std::string readFile(const std::string& path) {
 }
 
 inline void writePlainFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
-
-inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // An nx x ny x nz Hex8 box in nx structured subdomains along x, spread over the ranks.
 inline Mesh::Discretization boxDiscretization(int nx, int ny, int nz, const Comm& comm) {

@@ -22,16 +22,6 @@ using namespace Tribos::Test;
 
 namespace {
 
-// The message of the Tribos::Error that f throws, "" if it throws none.
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 std::string decode(const std::string& bytes) { return IO::decodeXmlDocument(bytes, "doc"); }
 std::string decodeError(const std::string& bytes) {
   return errorOf([&] { decode(bytes); });

@@ -16,21 +16,14 @@
 #include "Tribos_Mesh.hpp"
 #include "Tribos_MeshFile.hpp"
 
+#include "Tribos_TestSupport.hpp"
+
 namespace {
 
 using namespace Tribos::Mesh;
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-template <class F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+using Tribos::Test::contains;
+using Tribos::Test::errorOf;
 
 std::string scratch(const std::string& name) {
   return "/tmp/tribos_bodies_test_" + std::to_string(getpid()) + "_" + name;

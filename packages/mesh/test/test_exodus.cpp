@@ -16,12 +16,14 @@
 #include "Tribos_MeshFile.hpp"
 #include "MeshTestGeometry.hpp"
 
+#include "Tribos_TestSupport.hpp"
+
 namespace {
 
 using namespace Tribos::Mesh;
 using namespace Tribos::Mesh::Test;
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using Tribos::Test::contains;
 
 std::string scratch(const std::string& name) {
   return "/tmp/tribos_exodus_test_" + std::to_string(getpid()) + "_" + name;

@@ -16,6 +16,8 @@
 #include "Tribos_GmshReader.hpp"
 #include "MeshTestGeometry.hpp"
 
+#include "Tribos_TestSupport.hpp"
+
 namespace {
 
 using namespace Tribos::Mesh;
@@ -99,7 +101,7 @@ std::string readError(const std::string& path, const MeshFileOptions& options = 
   return "";
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using Tribos::Test::contains;
 
 TEUCHOS_UNIT_TEST(Gmsh, ShippedBlock) {
   std::vector<std::string> warnings;

@@ -21,22 +21,15 @@
 #include "Tribos_GmshReader.hpp"
 #include "Tribos_MeshFile.hpp"
 
+#include "Tribos_TestSupport.hpp"
+
 namespace {
 
 using namespace Tribos::Mesh;
 namespace fs = std::filesystem;
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-template <class F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+using Tribos::Test::contains;
+using Tribos::Test::errorOf;
 
 // A directory of this test's own, removed at the end; TMPDIR points into it
 // so that the mesher's temporary directories can be counted.
