@@ -489,7 +489,7 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   std::vector<IO::PointSet> points;
   if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.contactNodes, *comm));
   IO::ResultAttributes attributes;
-  attributes.numbers = {{"converged", report.converged ? 1.0 : 0.0}, {"solver_converged", sol.solverConverged ? 1.0 : 0.0}};
+  attributes.numbers = {{"converged", report.converged ? 1.0 : 0.0}, {"solver_converged", report.solverConverged ? 1.0 : 0.0}};
   attributes.text = {{"problem", report.problem}, {"stop_reason", report.stopReason}};
   std::vector<double> uOwned;
   for (int n : disc.ownedNodes()) {
