@@ -4,7 +4,7 @@
 #   tribos_install_library(<target> [EXPORT_NAME <name>] [HEADER_DIR <dir>] [HEADERS <h>...])
 #
 # - include directories: HEADER_DIR (default src/ of the calling package) in
-#   the build tree, include/tribos once installed;
+#   the build tree; once installed include/tribos, then include/tribos/internal;
 # - the exported name Tribos::<name> (default: the target without its
 #   "tribos_" prefix, so tribos_qp is Tribos::qp) and the same name as an
 #   ALIAS in the build tree, so that code written against the installed
@@ -12,7 +12,9 @@
 # - installation of the library into the export set TribosTargets and of
 #   its headers: HEADERS, or every *.hpp of HEADER_DIR (the Trilinos idiom
 #   file(GLOB HEADERS ${DIR}/*.hpp): a header added to src/ is installed
-#   without touching any CMakeLists.txt).
+#   without touching any CMakeLists.txt). A header named in
+#   TRIBOS_PUBLIC_HEADERS goes to include/tribos, every other one to
+#   include/tribos/internal (see there).
 #
 # The package keeps its own add_library (adding a source is one line there)
 # and target_link_libraries; this function does the rest. Tribos::Tribos
@@ -21,6 +23,36 @@ include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(TRIBOS_INSTALL_INCLUDEDIR ${CMAKE_INSTALL_INCLUDEDIR}/tribos)
+set(TRIBOS_INSTALL_INTERNAL_INCLUDEDIR ${TRIBOS_INSTALL_INCLUDEDIR}/internal)
+
+# The public interface, by file name: what an application includes (the
+# umbrella Tribos.hpp and the headers of docs/embedding.md, the QP solvers,
+# the mesh readers, the result writers, FCLIB and the driver). They are
+# installed in include/tribos; the headers they are built from (kernels,
+# operators, solver internals) in include/tribos/internal, on the include
+# path after the public ones (a public header includes them by name), and
+# they may change in any release. The build tree keeps every header beside
+# its sources. A name here that no library installs is an error
+# (tribos_finish_package), so a renamed header cannot drop out silently.
+set(TRIBOS_PUBLIC_HEADERS
+  # core
+  Tribos_Types.hpp Tribos_Error.hpp Tribos_MpiStartup.hpp Tribos_Registry.hpp Tribos_LocalCsr.hpp
+  # mesh and fem
+  Tribos_Mesh.hpp Tribos_MeshFile.hpp Tribos_Decomposition.hpp Tribos_Discretization.hpp
+  Tribos_Elasticity.hpp Tribos_Assembly.hpp Tribos_Loads.hpp Tribos_NodalVector.hpp Tribos_RigidMotions.hpp
+  Tribos_Monolithic.hpp
+  # qp and friction
+  Tribos_QP.hpp Tribos_QP_Solver.hpp Tribos_QP_Status.hpp Tribos_QP_Factory.hpp Tribos_QP_ConstraintSet.hpp
+  Tribos_QP_EqualityConstraint.hpp Tribos_QP_MPRGP.hpp Tribos_QP_MPGP.hpp Tribos_QP_SMALBE.hpp
+  Tribos_FrictionSolver.hpp Tribos_ContactDual.hpp Tribos_DualTransform.hpp
+  # feti and contact: the embedding API (Tribos.hpp includes it all)
+  Tribos.hpp Tribos_FetiProblem.hpp Tribos_ConstraintRows.hpp Tribos_ContactSearch.hpp Tribos_FetiContact.hpp
+  Tribos_FetiSolve.hpp Tribos_ResultKKT.hpp
+  # semismooth, io, fclib, driver
+  Tribos_SemismoothStarNewton.hpp Tribos_ResultSet.hpp Tribos_ResultWriter.hpp Tribos_ParameterReader.hpp
+  Tribos_FCLIB.hpp Tribos_FCLIB_SparseMatrix.hpp Tribos_FCLIB_Accuracy.hpp Tribos_FCLIB_Solve.hpp
+  Tribos_FCLIB_Export.hpp Tribos_Driver.hpp Tribos_Input.hpp Tribos_Run.hpp Tribos_RunReport.hpp)
+
 set(TRIBOS_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/Tribos)
 
 function(tribos_install_library target)
@@ -52,7 +84,8 @@ function(tribos_install_library target)
   endif()
   target_include_directories(${target} ${scope}
     $<BUILD_INTERFACE:${header_dir}>
-    $<INSTALL_INTERFACE:${TRIBOS_INSTALL_INCLUDEDIR}>)
+    $<INSTALL_INTERFACE:${TRIBOS_INSTALL_INCLUDEDIR}>
+    $<INSTALL_INTERFACE:${TRIBOS_INSTALL_INTERNAL_INCLUDEDIR}>)
   # The headers use C++17: so must every code that includes them.
   target_compile_features(${target} ${scope} cxx_std_17)
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${L_EXPORT_NAME})
@@ -62,7 +95,19 @@ function(tribos_install_library target)
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-  install(FILES ${L_HEADERS} DESTINATION ${TRIBOS_INSTALL_INCLUDEDIR})
+  set(public_headers "")
+  set(internal_headers "")
+  foreach(h IN LISTS L_HEADERS)
+    get_filename_component(name "${h}" NAME)
+    if(name IN_LIST TRIBOS_PUBLIC_HEADERS)
+      list(APPEND public_headers "${h}")
+      set_property(GLOBAL APPEND PROPERTY TRIBOS_INSTALLED_PUBLIC_HEADERS "${name}")
+    else()
+      list(APPEND internal_headers "${h}")
+    endif()
+  endforeach()
+  install(FILES ${public_headers} DESTINATION ${TRIBOS_INSTALL_INCLUDEDIR})
+  install(FILES ${internal_headers} DESTINATION ${TRIBOS_INSTALL_INTERNAL_INCLUDEDIR})
   set_property(GLOBAL APPEND PROPERTY TRIBOS_LIBRARIES ${target})
 endfunction()
 
@@ -91,6 +136,12 @@ endfunction()
 # (every library), the export set, TribosConfig.cmake,
 # TribosConfigVersion.cmake and the Find modules the config needs.
 function(tribos_finish_package)
+  get_property(installed GLOBAL PROPERTY TRIBOS_INSTALLED_PUBLIC_HEADERS)
+  foreach(name IN LISTS TRIBOS_PUBLIC_HEADERS)
+    if(NOT name IN_LIST installed)
+      message(FATAL_ERROR "TRIBOS_PUBLIC_HEADERS (cmake/TribosPackage.cmake) names ${name}, which no library installs")
+    endif()
+  endforeach()
   get_property(libraries GLOBAL PROPERTY TRIBOS_LIBRARIES)
   add_library(tribos_all INTERFACE)
   target_link_libraries(tribos_all INTERFACE ${libraries})

@@ -2,9 +2,10 @@
 #
 # MODE=install: installs BUILD_DIR into a fresh PREFIX and checks the tree:
 #   the package config files, the Find modules, every library and program,
-#   the public headers (and no test-only header), and that the installed
+#   the public headers in include/tribos and internal ones apart in
+#   include/tribos/internal (and no test-only header), and that the installed
 #   program runs (tribos --print-parameters).
-# MODE=example: configures SOURCE in a fresh BINARY against PREFIX alone,
+# MODE=example: configures SOURCE (a C++-only project) in a fresh BINARY against PREFIX alone,
 #   checks that Tribos was found there, builds it and runs BINARY/EXAMPLE on
 #   RANKS ranks with the arguments ARGS (a list); it must exit 0.
 cmake_minimum_required(VERSION 3.18)
@@ -37,10 +38,19 @@ if(MODE STREQUAL "install")
       message(FATAL_ERROR "not installed: the library tribos_${lib} in ${PREFIX}/${LIBDIR}")
     endif()
   endforeach()
-  foreach(h Tribos_Types.hpp Tribos_Registry.hpp Tribos_FileSystem.hpp Tribos_QP.hpp Tribos_FrictionSolver.hpp Tribos_FetiContact.hpp
-            Tribos_FetiProblem.hpp Tribos_Monolithic.hpp Tribos_ResultSet.hpp Tribos_FCLIB.hpp Tribos_FCLIB_Solve.hpp
-            Tribos_SemismoothStarNewton.hpp Tribos_Input.hpp Tribos_Run.hpp)
+  # Public headers in include/tribos (the umbrella among them), the ones
+  # they are built from in include/tribos/internal and not beside them.
+  foreach(h Tribos.hpp Tribos_Types.hpp Tribos_Registry.hpp Tribos_QP.hpp Tribos_FrictionSolver.hpp Tribos_FetiContact.hpp
+            Tribos_FetiProblem.hpp Tribos_FetiSolve.hpp Tribos_Monolithic.hpp Tribos_ResultSet.hpp Tribos_FCLIB.hpp
+            Tribos_FCLIB_Solve.hpp Tribos_SemismoothStarNewton.hpp Tribos_Input.hpp Tribos_Run.hpp)
     require_file("${PREFIX}/${INCLUDEDIR}/tribos/${h}")
+  endforeach()
+  foreach(h Tribos_FileSystem.hpp Tribos_DenseBlas.hpp Tribos_AgreeOnError.hpp Tribos_SubdomainPseudoInverse.hpp
+            Tribos_FetiOperators.hpp Tribos_QP_Utils.hpp)
+    require_file("${PREFIX}/${INCLUDEDIR}/tribos/internal/${h}")
+    if(EXISTS "${PREFIX}/${INCLUDEDIR}/tribos/${h}")
+      message(FATAL_ERROR "internal header installed with the public ones: ${PREFIX}/${INCLUDEDIR}/tribos/${h}")
+    endif()
   endforeach()
   file(GLOB_RECURSE test_only "${PREFIX}/*TestSupport*")
   if(test_only)

@@ -1,0 +1,30 @@
+// Tribos.hpp: the embedding API in one include (target Tribos::contact or
+// Tribos::Tribos). An application that meshes and assembles its own bodies
+// gives Tribos its subdomains, the rows that tie them together and to the
+// world, and its contact conditions, and solves with the code the tribos
+// driver runs (docs/embedding.md walks through examples/embed):
+//
+//   Feti::FetiProblem            the subdomains and rows of B, checked
+//   Contact::solveFeti           the solve, its result and KKT residuals
+//
+// The result writers (Tribos_ResultWriter.hpp, Tribos::io), FCLIB
+// (Tribos_FCLIB.hpp, Tribos::fclib), the semismooth* method
+// (Tribos_SemismoothStarNewton.hpp) and the driver (Tribos_Run.hpp) are
+// included by name with their targets.
+#pragma once
+
+#include "Tribos_Assembly.hpp"
+#include "Tribos_ConstraintRows.hpp"
+#include "Tribos_ContactSearch.hpp"
+#include "Tribos_Discretization.hpp"
+#include "Tribos_Elasticity.hpp"
+#include "Tribos_Error.hpp"
+#include "Tribos_FetiContact.hpp"
+#include "Tribos_FetiProblem.hpp"
+#include "Tribos_FetiSolve.hpp"
+#include "Tribos_Loads.hpp"
+#include "Tribos_MeshFile.hpp"
+#include "Tribos_MpiStartup.hpp"
+#include "Tribos_NodalVector.hpp"
+#include "Tribos_ResultKKT.hpp"
+#include "Tribos_Types.hpp"
