@@ -46,8 +46,9 @@ set(TRIBOS_PUBLIC_HEADERS
   Tribos_QP_EqualityConstraint.hpp Tribos_QP_MPRGP.hpp Tribos_QP_MPGP.hpp Tribos_QP_SMALBE.hpp
   Tribos_FrictionSolver.hpp Tribos_ContactDual.hpp Tribos_DualTransform.hpp
   # feti and contact: the embedding API (Tribos.hpp includes it all)
-  Tribos.hpp Tribos_FetiProblem.hpp Tribos_ConstraintRows.hpp Tribos_ContactSearch.hpp Tribos_FetiContact.hpp
-  Tribos_FetiSolve.hpp Tribos_ResultKKT.hpp
+  Tribos.hpp Tribos_FetiProblem.hpp Tribos_ConstraintRows.hpp Tribos_ContactConstraint.hpp Tribos_ContactSearch.hpp
+  Tribos_FetiContact.hpp Tribos_FetiSolve.hpp Tribos_ResultKKT.hpp Tribos_TpetraSubdomain.hpp
+  Tribos_ContactConditions.hpp
   # semismooth, io, fclib, driver
   Tribos_SemismoothStarNewton.hpp Tribos_ResultSet.hpp Tribos_ResultWriter.hpp Tribos_ParameterReader.hpp
   Tribos_FCLIB.hpp Tribos_FCLIB_SparseMatrix.hpp Tribos_FCLIB_Accuracy.hpp Tribos_FCLIB_Solve.hpp

@@ -43,9 +43,10 @@ int main(int argc, char** argv) {
   Mesh::DecompositionSpec dec;
   dec.grid = {2, 2, 1};
   Mesh::Discretization disc(Mesh::generateBox(spec), spec, dec, comm->getSize(), comm->getRank());
-  Feti::ContactSpec contact;
+  Contact::ContactSpec contact;
   contact.enabled = true;
-  auto problem = rcp(new Feti::FetiProblem(disc, steel, loads, contact, Teuchos::ParameterList(), comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, steel, loads, Contact::faceContactConstraints(disc, contact, comm),
+                                           Teuchos::ParameterList(), comm));
   auto dual = rcp(new Feti::FetiDual(problem));
   Contact::FrictionSpec fs;
   fs.law = "Tresca";

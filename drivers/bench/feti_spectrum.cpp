@@ -135,7 +135,8 @@ int main(int argc, char** argv) {
   loads.dirichlet = {clamp};
   loads.tractions = {{"zmax", {0, 0, -1e7}}};
   Teuchos::ParameterList params;
-  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads, Feti::ContactSpec{}, params, comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads, std::vector<Feti::ContactConstraint>(),
+                                           params, comm));
   Feti::FetiDual dual(problem);
   const int m = static_cast<int>(problem->dualMap()->getGlobalNumElements());
   const int n = static_cast<int>(problem->primalMap()->getGlobalNumElements());

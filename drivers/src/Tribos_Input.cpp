@@ -948,16 +948,16 @@ PlaneContact planeContact(const ParameterList& params) {
   return pc;
 }
 
-std::vector<Feti::ContactPair> contactPairs(const ParameterList& params, const Mesh::Mesh& mesh) {
+std::vector<Contact::ContactPair> contactPairs(const ParameterList& params, const Mesh::Mesh& mesh) {
   const auto& contact = params.sublist("Contact");
   if (!contact.get<bool>("Enabled")) return {};
   const auto& pairs = contact.sublist("Pairs");
   if (pairs.numParams() == 0)
-    return {Feti::planeBeyondFace(mesh, contact.get<std::string>("Face"), contact.get<double>("Gap"))};
-  std::vector<Feti::ContactPair> out;
+    return {Contact::planeBeyondFace(mesh, contact.get<std::string>("Face"), contact.get<double>("Gap"))};
+  std::vector<Contact::ContactPair> out;
   for (auto it = pairs.begin(); it != pairs.end(); ++it) {
     const auto& p = pairs.sublist(pairs.name(it));
-    Feti::ContactPair pair;
+    Contact::ContactPair pair;
     pair.name = pairs.name(it);
     pair.slave = p.get<std::string>("Slave Surface");
     pair.master = p.get<std::string>("Master Surface");

@@ -122,7 +122,7 @@ Fem::Material material(const Teuchos::ParameterList& params);
 Fem::BodyMaterials materials(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
 // The contact pairs of the run: Contact/Pairs, or the rigid plane beyond
 // Contact/Face (planeBeyondFace) when there are none; empty without contact.
-std::vector<Feti::ContactPair> contactPairs(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
+std::vector<Contact::ContactPair> contactPairs(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
 // The friction of each pair of contactPairs() (glued pairs: frictionless).
 Contact::PairFriction pairFriction(const Teuchos::ParameterList& params);
 Fem::LoadCase loadCase(const Teuchos::ParameterList& params);

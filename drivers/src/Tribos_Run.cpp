@@ -523,7 +523,7 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
       Input::checkMeshFaces(mesh, params);
       const auto& contact = params.sublist("Contact");
       if (contact.get<bool>("Enabled") && contact.sublist("Pairs").numParams() == 0)
-        Feti::faceNormal(mesh, contact.get<std::string>("Face"));
+        Contact::faceNormal(mesh, contact.get<std::string>("Face"));
       // S = 0: sized by Subdomain Size from the mesh, at least one per
       // body and at most one per cell.
       const int S = requestedSubdomains(decomposition);
@@ -568,7 +568,7 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
         Progress::stage("contact search");
         const auto pairs = Input::contactPairs(params, *whole);
         try {
-          constraints = Feti::contactConstraints(*whole, pairs, &notes);
+          constraints = Contact::contactConstraints(*whole, pairs, &notes);
         } catch (const Error& e) {
           throw Error(std::string("Contact: ") + e.what());
         }

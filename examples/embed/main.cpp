@@ -180,9 +180,10 @@ std::vector<double> referenceSolve(int n, const RCP<const Comm>& comm, std::vect
   loads.dirichlet.push_back(clamp);
   loads.tractions.push_back({"zmax", {0, 0, -kPressure}});
   loads.tractions.push_back({"xmax", {-kPush, 0, 0}});
-  Feti::ContactSpec contact;
+  Contact::ContactSpec contact;
   contact.enabled = true;
-  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, contact, Teuchos::ParameterList(), comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, Contact::faceContactConstraints(disc, contact, comm),
+                                           Teuchos::ParameterList(), comm));
   Contact::FrictionSpec friction{"Coulomb", kFriction, 0.0};
   coords = whole.coords;
   // Every node on every rank: the comparison below looks nodes up by position.

@@ -5,15 +5,17 @@
 #include <map>
 #include <sstream>
 
+#include "Tribos_AgreeOnError.hpp"
 #include "Tribos_AllGather.hpp"
-#include "Tribos_ByteBuffer.hpp"
-#include "Tribos_ConstraintRows.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Loads.hpp"
+#include "Tribos_NodalVector.hpp"
 #include "Tribos_Vec3.hpp"
 
 namespace Tribos {
-namespace Feti {
+namespace Contact {
+
+using Feti::ContactConstraint;
 
 namespace {
 
@@ -211,7 +213,7 @@ std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const 
     const std::vector<double> area = Fem::faceNodalAreas(mesh, pair.slave);
     for (size_t i = first; i < out.size(); ++i) {
       ContactConstraint& c = out[i];
-      tangents(c.normal, c.t1, c.t2);
+      Feti::tangents(c.normal, c.t1, c.t2);
       c.area = area[c.node];
     }
     if (!leftOut.empty() && notes) {
@@ -241,74 +243,104 @@ ContactPair planeBeyondFace(const Mesh::Mesh& mesh, const std::string& face, dou
   return pair;
 }
 
-namespace {
-
-// Each constraint as doubles: node, pair, glued, normal, t1, t2, gap, area,
-// the number of master nodes, then (node, weight) per master node.
-std::vector<double> packConstraints(const std::vector<ContactConstraint>& list) {
-  std::vector<double> packed;
-  for (const auto& c : list) {
-    packed.insert(packed.end(), {double(c.node), double(c.pair), double(c.glued)});
-    for (const auto* v : {&c.normal, &c.t1, &c.t2}) packed.insert(packed.end(), v->begin(), v->end());
-    packed.insert(packed.end(), {c.gap, c.area, double(c.master.size())});
-    for (const auto& [node, weight] : c.master) packed.insert(packed.end(), {double(node), weight});
+std::vector<ContactConstraint> faceContactConstraints(const Mesh::Discretization& disc, const ContactSpec& contact,
+                                                      const RCP<const Comm>& comm) {
+  if (!contact.enabled) return {};
+  const Mesh::Mesh& part = disc.part;
+  std::vector<double> plane(7, 0.0);  // has facets, normal, point
+  checkOnEveryRank(*comm, [&] {
+    if (part.face(contact.face).empty()) return;
+    const ContactPair p = planeBeyondFace(part, contact.face, contact.gap);
+    plane = {1.0, p.planeNormal[0], p.planeNormal[1], p.planeNormal[2], p.planePoint[0], p.planePoint[1], p.planePoint[2]};
+  });
+  const std::vector<double> planes = allGatherv(plane, *comm);
+  ContactPair pair;
+  pair.name = pair.slave = contact.face;
+  bool found = false;
+  for (size_t r = 0; r < planes.size(); r += 7) {
+    if (planes[r] == 0.0) continue;
+    const std::array<double, 3> n{planes[r + 1], planes[r + 2], planes[r + 3]}, x{planes[r + 4], planes[r + 5], planes[r + 6]};
+    if (!found) pair.planeNormal = n, pair.planePoint = x, found = true;
+    double along = 0, offset = 0, size = 1;
+    for (int d = 0; d < 3; ++d) {
+      along += n[d] * pair.planeNormal[d];
+      offset += (x[d] - pair.planePoint[d]) * pair.planeNormal[d];
+      size = std::max({size, std::abs(x[d]), std::abs(pair.planePoint[d])});
+    }
+    TRIBOS_REQUIRE(along >= 1 - 1e-10 && std::abs(offset) <= 1e-10 * size,
+                   "contact surface '" << contact.face << "' is not planar: the parts of rank " << r / 7
+                                       << " and of a lower rank lie in different planes");
   }
-  return packed;
+  TRIBOS_REQUIRE(found, "contact surface '" << contact.face << "' has no facets");
+  std::vector<ContactConstraint> local;
+  checkOnEveryRank(*comm, [&] {
+    if (!part.faceNodes(contact.face).empty()) local = contactConstraints(part, {pair});
+  });
+  std::vector<int> nodes;
+  for (auto& c : local) nodes.push_back(c.node = disc.meshNode(c.node));
+  // A node on the face between two parts has facets in both.
+  const Fem::NodalLayout layout(nodes, comm);
+  std::vector<double> area(3 * static_cast<size_t>(layout.numHeld()), 0.0);
+  for (const auto& c : local) area[3 * static_cast<size_t>(layout.index(c.node))] = c.area;
+  layout.sumOverHolders(area);
+  for (auto& c : local) c.area = area[3 * static_cast<size_t>(layout.index(c.node))];
+  return local;
 }
 
-std::vector<ContactConstraint> unpackConstraints(const std::vector<double>& all) {
-  std::vector<ContactConstraint> out;
-  for (size_t i = 0; i < all.size();) {
-    ContactConstraint c;
-    c.node = static_cast<int>(all[i++]);
-    c.pair = static_cast<int>(all[i++]);
-    c.glued = all[i++] != 0.0;
-    for (auto* v : {&c.normal, &c.t1, &c.t2})
-      for (double& x : *v) x = all[i++];
-    c.gap = all[i++];
-    c.area = all[i++];
-    const size_t masters = static_cast<size_t>(all[i++]);
-    for (size_t m = 0; m < masters; ++m, i += 2) c.master.emplace_back(static_cast<int>(all[i]), all[i + 1]);
-    out.push_back(std::move(c));
+// Outward unit normal of a face of the box.
+std::array<double, 3> faceNormal(const std::string& face) {
+  static const std::map<std::string, std::array<double, 3>> normals = {
+      {"xmin", {-1, 0, 0}}, {"xmax", {1, 0, 0}}, {"ymin", {0, -1, 0}},
+      {"ymax", {0, 1, 0}},  {"zmin", {0, 0, -1}}, {"zmax", {0, 0, 1}}};
+  auto it = normals.find(face);
+  TRIBOS_REQUIRE(it != normals.end(), "contact face \"" << face << "\" unknown; valid: xmin, xmax, ymin, ymax, zmin, zmax");
+  return it->second;
+}
+
+std::array<double, 3> faceNormal(const Mesh::Mesh& mesh, const std::string& face) {
+  const auto& facets = mesh.face(face);
+  TRIBOS_REQUIRE(!facets.empty(), "contact surface '" << face << "' has no facets");
+  // Area vectors: half the cross product of the triangle's edges from its
+  // first node, or of the quadrilateral's diagonals (its mean plane). Built
+  // from coordinate differences, so a facet in an axis plane has exactly
+  // zero in-plane components and a box face gets the box table's normal.
+  std::array<double, 3> sum{0, 0, 0}, lo = mesh.coords[facets[0].nodes[0]], hi = lo;
+  std::vector<std::array<double, 3>> area;
+  area.reserve(facets.size());
+  for (const Mesh::Facet& f : facets) {
+    const auto& x = mesh.coords;
+    const auto& v = f.nodes;
+    const bool quad = v.size() == 4;
+    std::array<double, 3> u{}, w{};
+    for (int d = 0; d < 3; ++d) {
+      u[d] = x[v[quad ? 2 : 1]][d] - x[v[0]][d];
+      w[d] = quad ? x[v[3]][d] - x[v[1]][d] : x[v[2]][d] - x[v[0]][d];
+    }
+    const Vec3 uw = cross(u, w), a{uw[0] / 2, uw[1] / 2, uw[2] / 2};
+    for (int d = 0; d < 3; ++d) sum[d] += a[d];
+    for (int node : v)
+      for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], x[node][d]), hi[d] = std::max(hi[d], x[node][d]);
+    area.push_back(a);
   }
-  return out;
-}
-
-}  // namespace
-
-std::vector<ContactConstraint> gatherContactConstraints(const std::vector<ContactConstraint>& local, const Comm& comm) {
-  return unpackConstraints(allGatherv(packConstraints(local), comm));
-}
-
-std::vector<ContactConstraint> scatterContactConstraints(const std::vector<ContactConstraint>& onRoot,
-                                                         const Mesh::Discretization& disc, const Comm& comm, int root) {
-  const bool isRoot = comm.getRank() == root;
-  std::vector<int> slaves;
-  if (isRoot)
-    for (const auto& c : onRoot) slaves.push_back(c.node);
-  const auto owner = disc.askOwners(slaves, 1, [&](int, double* out) { out[0] = disc.myRank; }, comm);
-  if (!isRoot) {
-    ByteBuffer b = receiveBuffer(root, comm);
-    return unpackConstraints(b.getVector<double>());
+  TRIBOS_REQUIRE(norm(sum) > 0, "contact surface '" << face << "' has no area");
+  const Vec3 n = normalized(sum);
+  // The rigid plane is one plane: every facet must face along n and every
+  // node lie on the plane through the first, to round-off of the extent.
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const auto& x0 = mesh.coords[facets[0].nodes[0]];
+  for (size_t i = 0; i < facets.size(); ++i) {
+    const auto& a = area[i];
+    bool planar = dot(a, n) >= (1 - 1e-10) * norm(a);
+    for (int node : facets[i].nodes) {
+      const auto& p = mesh.coords[node];
+      planar = planar && std::abs(dot(minus(p, x0), n)) <= 1e-10 * extent;
+    }
+    TRIBOS_REQUIRE(planar, "contact surface '" << face << "' is not planar: its facet " << i << " (of cell "
+                                               << facets[i].cell << ") leaves the plane of mean normal (" << n[0] << ", "
+                                               << n[1] << ", " << n[2] << "); the contact partner is a rigid plane");
   }
-  std::vector<std::vector<ContactConstraint>> perRank(comm.getSize());
-  for (size_t i = 0; i < onRoot.size(); ++i) perRank[static_cast<int>(owner[i])].push_back(onRoot[i]);
-  for (int r = 0; r < comm.getSize(); ++r) {
-    if (r == root) continue;
-    ByteBuffer b;
-    b.put(packConstraints(perRank[r]));
-    sendBuffer(b, r, comm);
-  }
-  return perRank[root];
+  return n;
 }
 
-std::array<double, 3> relativeDisplacement(const ContactConstraint& c, const Fem::NodalVector& u) {
-  std::array<double, 3> w;
-  for (int d = 0; d < 3; ++d) w[d] = u.at(c.node)[d];
-  for (const auto& [node, weight] : c.master)
-    for (int d = 0; d < 3; ++d) w[d] -= weight * u.at(node)[d];
-  return w;
-}
-
-}  // namespace Feti
+}  // namespace Contact
 }  // namespace Tribos

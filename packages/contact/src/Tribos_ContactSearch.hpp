@@ -1,4 +1,5 @@
-// Tribos_ContactSearch.hpp: the contact constraints of a mesh, node by node.
+// Tribos_ContactSearch.hpp: the contact constraints of a mesh, node by node
+// (Feti::ContactConstraint, the form the rows of B take them in).
 //
 // A contact pair presses the nodes of a slave surface against a master
 // surface of another body, or against a rigid plane. Each slave node s gets
@@ -30,15 +31,14 @@
 #include <array>
 #include <limits>
 #include <string>
-#include <utility>
 #include <vector>
 
+#include "Tribos_ContactConstraint.hpp"
 #include "Tribos_Discretization.hpp"
-#include "Tribos_NodalVector.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
-namespace Feti {
+namespace Contact {
 
 struct ContactPair {
   std::string name;            // for messages (the input's sublist name)
@@ -51,45 +51,45 @@ struct ContactPair {
   double searchDistance = std::numeric_limits<double>::infinity();
 };
 
-// The constraint of one slave node (global mesh numbers).
-struct ContactConstraint {
-  int node = -1;                             // the slave node
-  int pair = -1;                             // index in the pair list
-  bool glued = false;
-  std::vector<std::pair<int, double>> master;  // master nodes and weights N_i (sum 1); empty: rigid plane
-  std::array<double, 3> normal{0, 0, 0}, t1{0, 0, 0}, t2{0, 0, 0};
-  double gap = 0.0;                          // (u_s - sum N_i u_i) . n <= gap
-  double area = 0.0;                         // the slave node's share of the slave surface
-};
-
 // The constraints of all pairs, ordered by pair, then slave node. A slave
 // node in two pairs, a pair whose slave and master surface coincide, a
 // plane normal that is not a unit vector and faces the mesh lacks are
 // refused (Tribos::Error naming the pair). Slave nodes that no master facet
 // within the search distance takes are left out, one line per pair added to
 // `notes` (counts and the first node ids).
-std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const std::vector<ContactPair>& pairs,
-                                                  std::vector<std::string>* notes = nullptr);
+std::vector<Feti::ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const std::vector<ContactPair>& pairs,
+                                                        std::vector<std::string>* notes = nullptr);
 
 // The rigid plane a distance gap beyond a planar face, parallel to it
 // (Contact/Face and Gap of a one-face run): every node of the face gets the
 // gap `gap` along the face's outward normal.
 ContactPair planeBeyondFace(const Mesh::Mesh& mesh, const std::string& face, double gap);
 
-// Every rank's constraints, in rank order, on every rank (for writers of a
-// global problem such as the FCLIB export). Collective.
-std::vector<ContactConstraint> gatherContactConstraints(const std::vector<ContactConstraint>& local, const Comm& comm);
+// Contact of one face with a rigid plane parallel to it: u . n <= gap at
+// every node of the face (n the outward normal of the face), two tangents
+// per node. The one-face case of ContactPair (planeBeyondFace).
+struct ContactSpec {
+  bool enabled = false;
+  std::string face = "zmin";
+  double gap = 0.0;
+};
 
-// The constraints that `root` found on the whole mesh, each sent to the rank
-// that owns its slave node (the rank of its contact rows): no rank holds
-// the list of another's. Collective.
-std::vector<ContactConstraint> scatterContactConstraints(const std::vector<ContactConstraint>& onRoot,
-                                                         const Mesh::Discretization& disc, const Comm& comm,
-                                                         int root = 0);
+// The constraints of ContactSpec on the ranks' parts of a decomposed mesh
+// (for Feti::FetiProblem): the plane of the lowest rank whose part has
+// facets on the face (each part checks its facets are planar, and the
+// parts' planes must agree), then each rank's constraints at the face's
+// nodes in its part (mesh node numbers), their areas summed over the ranks
+// holding a node. None when the contact is not enabled. Collective.
+std::vector<Feti::ContactConstraint> faceContactConstraints(const Mesh::Discretization& disc, const ContactSpec& contact,
+                                                            const RCP<const Comm>& comm);
 
-// The relative displacement (u_s - sum N_i u_i) of a constraint, from a
-// nodal displacement that holds its nodes.
-std::array<double, 3> relativeDisplacement(const ContactConstraint& c, const Fem::NodalVector& u);
+// Outward unit normal of a face of the box ("xmin", ..., "zmax").
+std::array<double, 3> faceNormal(const std::string& face);
+// Outward unit normal of a named face of a mesh, from its facets' geometry
+// (a box's faces or a Gmsh file's physical surfaces alike). Throws naming
+// the face when it is not planar ("contact surface 'bottom' is not planar"):
+// the contact partner is a rigid plane, which a curved surface cannot meet.
+std::array<double, 3> faceNormal(const Mesh::Mesh& mesh, const std::string& face);
 
-}  // namespace Feti
+}  // namespace Contact
 }  // namespace Tribos

@@ -427,7 +427,7 @@ struct BodyGroups {
 }  // namespace
 
 void requireEveryBodyHeld(const Mesh::Mesh& mesh, const std::map<long long, double>& dirichlet,
-                          const std::vector<Feti::ContactPair>& pairs, const PairFriction& friction,
+                          const std::vector<Contact::ContactPair>& pairs, const PairFriction& friction,
                           const std::vector<Feti::ContactConstraint>& constraints) {
   const int bodies = mesh.numBodies();
   // A body of each node (its first cell's); bodies sharing a node are bonded there.

@@ -21,6 +21,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include "Tribos_ContactDual.hpp"
+#include "Tribos_ContactSearch.hpp"
 #include "Tribos_DualTransform.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_FetiDual.hpp"
@@ -60,7 +61,7 @@ std::string runLaw(const PairFriction& friction);
 // group are found later, by the coarse space.) dirichlet: constrained dofs
 // 3 n + c of the mesh's nodes.
 void requireEveryBodyHeld(const Mesh::Mesh& mesh, const std::map<long long, double>& dirichlet,
-                          const std::vector<Feti::ContactPair>& pairs, const PairFriction& friction,
+                          const std::vector<Contact::ContactPair>& pairs, const PairFriction& friction,
                           const std::vector<Feti::ContactConstraint>& constraints);
 
 // Refuses (Tribos::Error naming the node) Dirichlet values that make a

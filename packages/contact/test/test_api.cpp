@@ -36,7 +36,7 @@ struct Brick {
   Mesh::DecompositionSpec dec;
   Fem::Material mat;
   Fem::LoadCase loads;
-  Feti::ContactSpec contact;
+  Contact::ContactSpec contact;
   Brick() {
     spec.type = Mesh::CellType::Tet4;
     spec.x = {0, 3};
@@ -80,9 +80,9 @@ Handover handover(const Brick& b, const Mesh::Discretization& disc) {
   const auto whole = Mesh::generateBox(b.spec);
   auto& fc = h.constraints;
   fc.dirichlet = Fem::constrainedDofs(whole, b.loads.dirichlet);
-  const auto contact = Feti::contactConstraints(whole, {Feti::planeBeyondFace(whole, "zmin", b.contact.gap)});
+  const auto contact = Contact::contactConstraints(whole, {Contact::planeBeyondFace(whole, "zmin", b.contact.gap)});
   fc.rows = Feti::meshConstraintRows(disc, fc.dirichlet, contact, "Orthonormal", false);
-  fc.contactNormal = Feti::faceNormal("zmin");
+  fc.contactNormal = Contact::faceNormal("zmin");
   const auto area = Fem::faceNodalAreas(whole, "zmin");
   for (int node : whole.faceNodes("zmin")) fc.contactArea[node] = area[node];
   return h;
@@ -97,7 +97,8 @@ TEUCHOS_UNIT_TEST(ApplicationInterface, SameAsMeshPathOnEveryRankCount) {
   const auto comm = Tpetra::getDefaultComm();
   const Brick b;
   const auto disc = b.disc(*comm);
-  auto meshProblem = rcp(new Feti::FetiProblem(disc, b.mat, b.loads, b.contact, Teuchos::ParameterList(), comm));
+  auto meshProblem = rcp(new Feti::FetiProblem(disc, b.mat, b.loads, Contact::faceContactConstraints(disc, b.contact, comm),
+                                               Teuchos::ParameterList(), comm));
   const auto viaMesh = Contact::solveFeti(meshProblem, kCoulomb, tight());
   const auto viaApp = solveApplication(handover(b, disc), comm);
   TEST_ASSERT(viaMesh.verdict.converged);
@@ -122,7 +123,7 @@ TEUCHOS_UNIT_TEST(ApplicationInterface, SameAsMeshPathOnEveryRankCount) {
 std::vector<Feti::DualRow> allRows(const Brick& b, const Handover& h, const Comm& comm) {
   std::vector<Feti::DualRow> rows;
   const auto mesh = Mesh::generateBox(b.spec);
-  const auto contact = Feti::contactConstraints(mesh, {Feti::planeBeyondFace(mesh, "zmin", b.contact.gap)});
+  const auto contact = Contact::contactConstraints(mesh, {Contact::planeBeyondFace(mesh, "zmin", b.contact.gap)});
   for (int r = 0; r < comm.getSize(); ++r) {
     const Mesh::Discretization disc(mesh, b.spec, b.dec, comm.getSize(), r);
     const auto own = Feti::meshConstraintRows(disc, h.constraints.dirichlet, contact, "Orthonormal", false);
@@ -222,7 +223,8 @@ TEUCHOS_UNIT_TEST(ApplicationInterface, NegativeFrictionRefused) {
   const auto comm = Tpetra::getDefaultComm();
   const Brick b;
   const auto disc = b.disc(*comm);  // outlives the problem, which refers to it
-  auto problem = rcp(new Feti::FetiProblem(disc, b.mat, b.loads, b.contact, Teuchos::ParameterList(), comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, b.mat, b.loads, Contact::faceContactConstraints(disc, b.contact, comm),
+                                           Teuchos::ParameterList(), comm));
   for (const Contact::FrictionSpec& bad : {Contact::FrictionSpec{"Coulomb", -0.3, 0.0},
                                           Contact::FrictionSpec{"Tresca", 0.0, -1e6},
                                           Contact::FrictionSpec{"Colomb", 0.3, 0.0}}) {

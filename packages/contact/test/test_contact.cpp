@@ -75,10 +75,11 @@ Teuchos::ParameterList tightSolverParams() {
 
 Result solve(const Setup& s, const RCP<const Comm>& comm) {
   auto disc = makeDisc(*comm);
-  Feti::ContactSpec contact;
+  Contact::ContactSpec contact;
   contact.enabled = true;
   contact.gap = s.gap;
-  auto problem = rcp(new Feti::FetiProblem(disc, kSteel, loads(s), contact, Teuchos::ParameterList(), comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, kSteel, loads(s), Contact::faceContactConstraints(disc, contact, comm),
+                                           Teuchos::ParameterList(), comm));
   auto dual = rcp(new Feti::FetiDual(problem));
   Contact::FrictionSpec fs;
   fs.law = s.law;

@@ -60,9 +60,10 @@ const Exported& exported() {
     const Fem::Material steel{21.2e10, 0.277};
     const double F = 0.3;
 
-    Feti::ContactSpec contact;
+    Contact::ContactSpec contact;
     contact.enabled = true;
-    auto problem = rcp(new Feti::FetiProblem(disc, steel, loads, contact, Teuchos::ParameterList(), comm));
+    auto problem = rcp(new Feti::FetiProblem(disc, steel, loads, Contact::faceContactConstraints(disc, contact, comm),
+                                             Teuchos::ParameterList(), comm));
     auto dual = rcp(new Feti::FetiDual(problem));
     Contact::FrictionSpec fs;
     fs.law = "Coulomb";

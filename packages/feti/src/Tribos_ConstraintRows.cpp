@@ -32,68 +32,6 @@ bool fixedDirection(const std::array<double, 3>& dir, const std::array<bool, 3>&
 
 }  // namespace
 
-// Outward unit normal of a face of the box.
-std::array<double, 3> faceNormal(const std::string& face) {
-  static const std::map<std::string, std::array<double, 3>> normals = {
-      {"xmin", {-1, 0, 0}}, {"xmax", {1, 0, 0}}, {"ymin", {0, -1, 0}},
-      {"ymax", {0, 1, 0}},  {"zmin", {0, 0, -1}}, {"zmax", {0, 0, 1}}};
-  auto it = normals.find(face);
-  TRIBOS_REQUIRE(it != normals.end(), "contact face \"" << face << "\" unknown; valid: xmin, xmax, ymin, ymax, zmin, zmax");
-  return it->second;
-}
-
-std::array<double, 3> faceNormal(const Mesh::Mesh& mesh, const std::string& face) {
-  const auto& facets = mesh.face(face);
-  TRIBOS_REQUIRE(!facets.empty(), "contact surface '" << face << "' has no facets");
-  // Area vectors: half the cross product of the triangle's edges from its
-  // first node, or of the quadrilateral's diagonals (its mean plane). Built
-  // from coordinate differences, so a facet in an axis plane has exactly
-  // zero in-plane components and a box face gets the box table's normal.
-  std::array<double, 3> sum{0, 0, 0}, lo = mesh.coords[facets[0].nodes[0]], hi = lo;
-  std::vector<std::array<double, 3>> area;
-  area.reserve(facets.size());
-  for (const Mesh::Facet& f : facets) {
-    const auto& x = mesh.coords;
-    const auto& v = f.nodes;
-    const bool quad = v.size() == 4;
-    std::array<double, 3> u{}, w{};
-    for (int d = 0; d < 3; ++d) {
-      u[d] = x[v[quad ? 2 : 1]][d] - x[v[0]][d];
-      w[d] = quad ? x[v[3]][d] - x[v[1]][d] : x[v[2]][d] - x[v[0]][d];
-    }
-    const Vec3 uw = cross(u, w), a{uw[0] / 2, uw[1] / 2, uw[2] / 2};
-    for (int d = 0; d < 3; ++d) sum[d] += a[d];
-    for (int node : v)
-      for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], x[node][d]), hi[d] = std::max(hi[d], x[node][d]);
-    area.push_back(a);
-  }
-  TRIBOS_REQUIRE(norm(sum) > 0, "contact surface '" << face << "' has no area");
-  const Vec3 n = normalized(sum);
-  // The rigid plane is one plane: every facet must face along n and every
-  // node lie on the plane through the first, to round-off of the extent.
-  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  const auto& x0 = mesh.coords[facets[0].nodes[0]];
-  for (size_t i = 0; i < facets.size(); ++i) {
-    const auto& a = area[i];
-    bool planar = dot(a, n) >= (1 - 1e-10) * norm(a);
-    for (int node : facets[i].nodes) {
-      const auto& p = mesh.coords[node];
-      planar = planar && std::abs(dot(minus(p, x0), n)) <= 1e-10 * extent;
-    }
-    TRIBOS_REQUIRE(planar, "contact surface '" << face << "' is not planar: its facet " << i << " (of cell "
-                                               << facets[i].cell << ") leaves the plane of mean normal (" << n[0] << ", "
-                                               << n[1] << ", " << n[2] << "); the contact partner is a rigid plane");
-  }
-  return n;
-}
-
-// Two unit tangents completing n to a right-handed orthonormal frame (n, t1, t2).
-void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::array<double, 3>& t2) {
-  const std::array<double, 3> e = std::abs(n[0]) < 0.9 ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
-  t1 = normalized(cross(e, n));
-  t2 = cross(n, t1);
-}
-
 std::map<int, Mesh::NodeCopy> contactPartners(const Mesh::Discretization& disc,
                                               const std::vector<ContactConstraint>& contact,
                                               std::map<long long, double>& dirichlet, const Comm& comm) {

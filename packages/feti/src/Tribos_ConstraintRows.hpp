@@ -14,21 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "Tribos_ContactSearch.hpp"
+#include "Tribos_ContactConstraint.hpp"
 #include "Tribos_Discretization.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
 namespace Feti {
-
-// Contact of one face with a rigid plane parallel to it: u . n <= gap at
-// every node of the face (n the outward normal of the face), two tangents
-// per node. The one-face case of ContactPair (planeBeyondFace).
-struct ContactSpec {
-  bool enabled = false;
-  std::string face = "zmin";
-  double gap = 0.0;
-};
 
 // The copy of a node in one subdomain that a row touches: the row's entry
 // at dof c of that copy (local dof 3 localNode + c) is weight * dir[c].
@@ -55,7 +46,7 @@ struct DualRow {
 
 // The contact structure of this rank's dual dofs (local indices): per
 // local contact node its rows and its constraint (frame, gap, master nodes,
-// pair, area; Tribos_ContactSearch.hpp).
+// pair, area; Tribos_ContactConstraint.hpp).
 struct LocalContact {
   std::vector<LO> normalRows;       // lambda_I rows, one per local contact node
   std::vector<LO> tangentRows;      // 2 per contact node: t1, t2 (-1: direction fixed by a Dirichlet condition)
@@ -82,7 +73,7 @@ struct DualConstraints {
 // of its subdomains; in the order of the node numbers): gluing of the subdomain copies of every node
 // ("Orthonormal", "Non-redundant" or "Full"), the Dirichlet conditions
 // (none when eliminateDirichlet: FETI-1 eliminates them in the subdomains)
-// and the contact constraints (contactConstraints()): per slave node a
+// and the contact constraints (Contact::contactConstraints()): per slave node a
 // normal row and the tangential rows, on the slave node's first copy and
 // the first copies of its master nodes (weights -N_i), leaving out the
 // directions that Dirichlet conditions fix at the slave node and at every
@@ -116,16 +107,6 @@ void distributeRows(std::vector<DualRow>& rows, const std::vector<int>& owner);
 DualConstraints assembleConstraints(const std::vector<DualRow>& rows, const RCP<const Map>& primalMap,
                                     const std::vector<GO>& primalOffsets,
                                     const std::vector<ContactConstraint>& contact);
-
-// Outward unit normal of a face of the box ("xmin", ..., "zmax").
-std::array<double, 3> faceNormal(const std::string& face);
-// Outward unit normal of a named face of a mesh, from its facets' geometry
-// (a box's faces or a Gmsh file's physical surfaces alike). Throws naming
-// the face when it is not planar ("contact surface 'bottom' is not planar"):
-// the contact partner is a rigid plane, which a curved surface cannot meet.
-std::array<double, 3> faceNormal(const Mesh::Mesh& mesh, const std::string& face);
-// Two unit tangents completing n to a right-handed orthonormal frame (n, t1, t2).
-void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::array<double, 3>& t2);
 
 }  // namespace Feti
 }  // namespace Tribos

@@ -385,63 +385,6 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMateri
   setup(std::move(fc), hasContact != 0, p);
 }
 
-namespace {
-
-// The rigid plane beyond a face, from the parts of the mesh: the plane of
-// the lowest rank whose part has facets on the face (each part checks its
-// facets are planar, and the parts' planes must agree), then each rank's
-// constraints at the face's nodes in its part, their areas summed over the
-// ranks holding a node. Collective.
-std::vector<ContactConstraint> faceContact(const Mesh::Discretization& disc, const ContactSpec& contact,
-                                           const RCP<const Comm>& comm) {
-  if (!contact.enabled) return {};
-  const Mesh::Mesh& part = disc.part;
-  std::vector<double> plane(7, 0.0);  // has facets, normal, point
-  checkOnEveryRank(*comm, [&] {
-    if (part.face(contact.face).empty()) return;
-    const ContactPair p = planeBeyondFace(part, contact.face, contact.gap);
-    plane = {1.0, p.planeNormal[0], p.planeNormal[1], p.planeNormal[2], p.planePoint[0], p.planePoint[1], p.planePoint[2]};
-  });
-  const std::vector<double> planes = allGatherv(plane, *comm);
-  ContactPair pair;
-  pair.name = pair.slave = contact.face;
-  bool found = false;
-  for (size_t r = 0; r < planes.size(); r += 7) {
-    if (planes[r] == 0.0) continue;
-    const std::array<double, 3> n{planes[r + 1], planes[r + 2], planes[r + 3]}, x{planes[r + 4], planes[r + 5], planes[r + 6]};
-    if (!found) pair.planeNormal = n, pair.planePoint = x, found = true;
-    double along = 0, offset = 0, size = 1;
-    for (int d = 0; d < 3; ++d) {
-      along += n[d] * pair.planeNormal[d];
-      offset += (x[d] - pair.planePoint[d]) * pair.planeNormal[d];
-      size = std::max({size, std::abs(x[d]), std::abs(pair.planePoint[d])});
-    }
-    TRIBOS_REQUIRE(along >= 1 - 1e-10 && std::abs(offset) <= 1e-10 * size,
-                   "contact surface '" << contact.face << "' is not planar: the parts of rank " << r / 7
-                                       << " and of a lower rank lie in different planes");
-  }
-  TRIBOS_REQUIRE(found, "contact surface '" << contact.face << "' has no facets");
-  std::vector<ContactConstraint> local;
-  checkOnEveryRank(*comm, [&] {
-    if (!part.faceNodes(contact.face).empty()) local = contactConstraints(part, {pair});
-  });
-  std::vector<int> nodes;
-  for (auto& c : local) nodes.push_back(c.node = disc.meshNode(c.node));
-  // A node on the face between two parts has facets in both.
-  const Fem::NodalLayout layout(nodes, comm);
-  std::vector<double> area(3 * static_cast<size_t>(layout.numHeld()), 0.0);
-  for (const auto& c : local) area[3 * static_cast<size_t>(layout.index(c.node))] = c.area;
-  layout.sumOverHolders(area);
-  for (auto& c : local) c.area = area[3 * static_cast<size_t>(layout.index(c.node))];
-  return local;
-}
-
-}  // namespace
-
-FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
-                         const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm)
-    : FetiProblem(disc, mat, loads, faceContact(disc, contact, comm), params, comm) {}
-
 FetiProblem::FetiProblem(std::vector<Fem::SubdomainSystem> localSubdomains, FetiConstraints constraints,
                          const Teuchos::ParameterList& params, const RCP<const Comm>& comm)
     : comm_(comm), systems_(std::move(localSubdomains)) {

@@ -1,7 +1,7 @@
 // Tribos_FetiProblem.hpp: Total FETI discretization of elastic bodies split
 // into subdomains, optionally in contact with each other and with rigid
 // planes (node-to-segment rows, one constraint per slave node:
-// Tribos_ContactSearch.hpp) or glued to each other.
+// Tribos_ContactConstraint.hpp) or glued to each other.
 //
 //   min 1/2 u'Ku - u'f   s.t.  B_E u = c_E (gluing + Dirichlet + glued pairs),  N u <= d,
 //   (+ Tresca/Coulomb friction on the tangential rows T1, T2)
@@ -53,7 +53,7 @@ struct FetiConstraints {
   // that rows of kind Dirichlet impose (the result check reads them here).
   std::map<long long, double> dirichlet;
   // The constraint of every node that has a Normal or Bonded row among the
-  // rows given on this rank (more are ignored; Tribos_ContactSearch.hpp): its frame (the normal row's and
+  // rows given on this rank (more are ignored; Tribos_ContactConstraint.hpp): its frame (the normal row's and
   // the tangential rows' directions), gap (the normal row's c), master
   // nodes (global numbers; the rows' further copies) and contact area (a
   // Tresca slip bound traction times it is the node's slip bound). The
@@ -74,17 +74,14 @@ class FetiProblem {
   // "Gluing" (Orthonormal | Non-redundant | Full), "Dual Operator" (Auto | Explicit | Implicit).
   // A decomposed mesh: assembles the subdomains of this rank (each body with
   // its material) and derives this rank's rows of B (meshConstraintRows)
-  // with the contact constraints `contact` of the free function
-  // contactConstraints() (none: no contact). A rank may be given every
-  // constraint or only those of the slave nodes it owns
+  // with the contact constraints `contact` (none: no contact), as the
+  // contact search finds them (Contact::contactConstraints on the whole
+  // mesh, Contact::faceContactConstraints on the ranks' parts). A rank may
+  // be given every constraint or only those of the slave nodes it owns
   // (scatterContactConstraints); it keeps the latter. Collective.
   FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
               const std::vector<ContactConstraint>& contact, const Teuchos::ParameterList& params,
               const RCP<const Comm>& comm);
-  // The one-face contact with a rigid plane parallel to it (planeBeyondFace),
-  // found on the ranks' parts.
-  FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
-              const ContactSpec& contact, const Teuchos::ParameterList& params, const RCP<const Comm>& comm);
   // Subdomains an application assembled: this rank's subdomains (ids
   // ascending, each rank a contiguous range, rank 0 first; K, f, the global
   // node numbers, the coordinates, and R, or empty R to have the rigid-body

@@ -92,7 +92,8 @@ FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm, Teuchos::FancyO
   p.set("Gluing", c.gluing);
   p.set("Formulation", c.formulation);
   p.set("Dual Operator", c.dualOperator);
-  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), Feti::ContactSpec{}, p, comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
+                                           p, comm));
   if (problem->explicitDualOperator()) {
     const double diff = explicitVsImplicit(*problem, *comm);
     out << "explicit vs implicit F x: relative difference " << diff << "\n";
@@ -232,7 +233,8 @@ void checkCoarseSpace(const Case& c, Teuchos::FancyOStream& out, bool& success) 
   Teuchos::ParameterList p;
   p.set("Gluing", c.gluing);
   p.set("Formulation", c.formulation);
-  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), Feti::ContactSpec{}, p, comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
+                                           p, comm));
   Feti::CoarseSpace coarse(problem);
   const int n = coarse.size();
   const LocalCsr A = coarse.gramian(nullptr);
@@ -302,7 +304,8 @@ TEUCHOS_UNIT_TEST(DualOperator, SinglePrecisionBlocks) {
   Teuchos::ParameterList p;
   p.set("Dual Operator", "Explicit");
   p.set("Dense Block Precision", "Single");
-  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), Feti::ContactSpec{}, p, comm));
+  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
+                                           p, comm));
   TEST_ASSERT(problem->explicitDualOperator());
   const double diff = explicitVsImplicit(*problem, *comm);
   out << "single-precision explicit vs implicit F x: relative difference " << diff << "\n";
@@ -321,7 +324,8 @@ TEUCHOS_UNIT_TEST(DualOperator, DenseFormEqualsApplications) {
     Teuchos::ParameterList p;
     p.set("Dual Operator", "Explicit");
     p.set("Dense Block Precision", precision);
-    auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), Feti::ContactSpec{}, p, comm));
+    auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
+                                             p, comm));
     std::vector<double> D;
     TEST_ASSERT(problem->formDenseF(D));
     const auto map = problem->dualMap();
@@ -352,32 +356,3 @@ TEUCHOS_UNIT_TEST(DualOperator, DenseFormEqualsApplications) {
   }
 }
 
-// The rigid plane's normal from the contact face's facets: the box table's
-// normals exactly, a rotated box's rotated normal, and a bent face refused.
-TEUCHOS_UNIT_TEST(ContactNormal, FromFacets) {
-  for (auto type : {Mesh::CellType::Tet4, Mesh::CellType::Hex8}) {
-    Mesh::BoxSpec spec;
-    spec.type = type;
-    spec.x = {-1, 2};
-    spec.cells = {3, 2, 2};
-    Mesh::Mesh mesh = Mesh::generateBox(spec);
-    for (const char* face : {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"})
-      TEST_ASSERT(Feti::faceNormal(mesh, face) == Feti::faceNormal(face));
-    // Rotated by 30 degrees about x: zmin's normal (0, 0, -1) turns with it.
-    const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
-    for (auto& p : mesh.coords) p = {p[0], c * p[1] - s * p[2], s * p[1] + c * p[2]};
-    const auto n = Feti::faceNormal(mesh, "zmin");
-    TEST_COMPARE(std::abs(n[0]) + std::abs(n[1] - s) + std::abs(n[2] + c), <, 1e-14);
-    auto& bent = mesh.faces["bent"];
-    bent = mesh.faces["zmin"];
-    bent.insert(bent.end(), mesh.faces["xmax"].begin(), mesh.faces["xmax"].end());
-    std::string message;
-    try {
-      Feti::faceNormal(mesh, "bent");
-    } catch (const std::exception& e) {
-      message = e.what();
-    }
-    out << message << "\n";
-    TEST_ASSERT(message.find("contact surface 'bent' is not planar") != std::string::npos);
-  }
-}
