@@ -142,9 +142,9 @@ void checkOutputs(const Args& a, const RCP<const Comm>& comm) {
   for (const auto& [flag, path] : outputs) {
     if (path.empty()) continue;
     IO::requireWritableFile(path, flag, comm);
-    TRIBOS_REQUIRE(!IO::sameFile(path, a.input), flag << ": " << path << " is the input file");
+    TRIBOS_REQUIRE(!sameFile(path, a.input), flag << ": " << path << " is the input file");
   }
-  TRIBOS_REQUIRE(a.summary.empty() || a.writeSolution.empty() || !IO::sameFile(a.summary, a.writeSolution),
+  TRIBOS_REQUIRE(a.summary.empty() || a.writeSolution.empty() || !sameFile(a.summary, a.writeSolution),
                  "--summary and --write-solution name the same file " << a.summary);
 }
 

@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
                                            Teuchos::ParameterList(), comm));
   auto dual = rcp(new Feti::FetiDual(problem));
   Contact::FrictionSpec fs;
-  fs.law = "Tresca";
+  fs.law = FrictionLaw::Tresca;
   fs.slipBoundTraction = slipTraction;
   Contact::FetiContactProblem cp(dual, fs);
   Teuchos::ParameterList p;

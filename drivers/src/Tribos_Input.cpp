@@ -20,6 +20,7 @@
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_FetiSolve.hpp"
+#include "Tribos_FrictionLaw.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
 #include "Tribos_ProjectedCG.hpp"
@@ -105,7 +106,7 @@ ParameterList pairItem(const ParameterList& contact) {
   p.set("Plane Normal", Array<double>(Teuchos::tuple<double>(0.0, 0.0, 1.0)),
         "rigid plane: its normal pointing out of the obstacle, towards the body (scaled to unit length)");
   p.set("Friction Law", contact.get<std::string>("Friction Law"), "Frictionless, Tresca or Coulomb",
-        choice(tuple<std::string>("Frictionless", "Tresca", "Coulomb")));
+        frictionLawValidator());
   p.set("Friction Coefficient", contact.get<double>("Friction Coefficient"), "Coulomb F", range<double>(0.0, 1e6));
   p.set("Slip Bound Traction", contact.get<double>("Slip Bound Traction"), "Tresca slip bound per area",
         range<double>(0.0, 1e300));
@@ -187,7 +188,7 @@ RCP<const ParameterList> validParameters() {
               "distance Gap beyond it, parallel to it. Not used with Pairs");
   contact.set("Gap", 0.0, "without Pairs: initial normal gap between the face and the plane. Not used with Pairs");
   contact.set("Friction Law", "Coulomb", "Frictionless, Tresca (given slip bound) or Coulomb (the default of every pair)",
-              choice(tuple<std::string>("Frictionless", "Tresca", "Coulomb")));
+              frictionLawValidator());
   contact.set("Friction Coefficient", 0.3, "Coulomb friction coefficient F (the default of every pair)",
               range<double>(0.0, 1e6));
   contact.set("Slip Bound Traction", 0.0, "Tresca slip bound as a traction, force per area (the default of every pair)",
@@ -204,9 +205,10 @@ RCP<const ParameterList> validParameters() {
              choice(tuple<std::string>("Auto", "Monolithic", "FETI")));
   Array<std::string> outer(1, Contact::kAutoOuterAlgorithm);
   for (const auto& name : outerAlgorithms()) outer.push_back(name);
+  for (const auto& alias : Friction::frictionSolvers().aliases()) outer.push_back(alias);
   solver.set("Outer Algorithm", Contact::kAutoOuterAlgorithm,
-             "contact problems: Auto (Algorithm2 for Coulomb friction, Tresca for Tresca friction and frictionless "
-             "contact); " + Friction::frictionSolvers().documentation() + "; " + kSemismooth +
+             "contact problems: Auto (Algorithm2 for Coulomb friction, Algorithm1 for Tresca friction and "
+             "frictionless contact); " + Friction::frictionSolvers().documentation() + "; " + kSemismooth +
                  " (Tresca or frictionless by the semismooth* Newton method)",
              choice(outer));
   // The result check's parameters, as the FETI solve defines them.
@@ -545,8 +547,10 @@ void validate(ParameterList& params, const std::string& source) {
     for (auto it = pairList.begin(); it != pairList.end(); ++it)
       unilateral = unilateral || pairList.sublist(pairList.name(it)).get<std::string>("Type") == "Contact";
     if (contact.get<bool>("Enabled") && unilateral) {
-      const std::string law = Contact::runLaw(pairFriction(params));
-      const std::string outer = Contact::outerAlgorithmFor(solver.get<std::string>("Outer Algorithm"), pairFriction(params));
+      const FrictionLaw law = Contact::runLaw(pairFriction(params));
+      const std::string outer = method(params) == Method::Semismooth
+                                    ? std::string(kSemismooth)
+                                    : Contact::outerAlgorithmFor(solver.get<std::string>("Outer Algorithm"), pairFriction(params));
       TRIBOS_REQUIRE(outer != kSemismooth || contact.sublist("Pairs").numParams() == 0,
                      "Solver/Outer Algorithm = " << kSemismooth << " solves one face against a rigid plane (Contact/Face, "
                                                  "Gap); Contact/Pairs needs a FETI outer algorithm");
@@ -555,11 +559,12 @@ void validate(ParameterList& params, const std::string& source) {
                          << kSemismooth << ", not by Solver/Type = Monolithic");
       // Which algorithms solve which law: the registry's compatibility query.
       auto solves = [&](const std::string& algorithm) {
-        return algorithm == kSemismooth ? law != "Coulomb" : Friction::frictionSolvers().accepts(algorithm, law);
+        return algorithm == kSemismooth ? law != FrictionLaw::Coulomb
+                                        : Friction::frictionSolvers().accepts(algorithm, frictionLawName(law));
       };
       std::string able;
       for (const auto& a : outerAlgorithms()) if (solves(a)) able += (able.empty() ? "" : " or ") + a;
-      TRIBOS_REQUIRE(solves(outer), "Contact/Friction Law = " << law << " needs Solver/Outer Algorithm = " << able
+      TRIBOS_REQUIRE(solves(outer), "Contact/Friction Law = " << frictionLawName(law) << " needs Solver/Outer Algorithm = " << able
                                                               << ", not " << outer);
       if (outer != kSemismooth) checkOuterAlgorithm(outer, solver);
       else checkSemismooth(solver.sublist(kSemismooth));
@@ -944,7 +949,7 @@ PlaneContact planeContact(const ParameterList& params) {
   pc.gap = contact.get<double>("Gap");
   // Frictionless: slip bound 0 whatever Slip Bound Traction says.
   pc.slipBoundTraction =
-      contact.get<std::string>("Friction Law") == "Frictionless" ? 0.0 : contact.get<double>("Slip Bound Traction");
+      frictionLaw(contact, "Friction Law") == FrictionLaw::Frictionless ? 0.0 : contact.get<double>("Slip Bound Traction");
   return pc;
 }
 
@@ -976,7 +981,7 @@ std::vector<Contact::ContactPair> contactPairs(const ParameterList& params, cons
 Contact::PairFriction pairFriction(const ParameterList& params) {
   auto spec = [](const ParameterList& list) {
     Contact::FrictionSpec f;
-    f.law = list.get<std::string>("Friction Law");
+    f.law = frictionLaw(list, "Friction Law");
     f.coefficient = list.get<double>("Friction Coefficient");
     f.slipBoundTraction = list.get<double>("Slip Bound Traction");
     return f;

@@ -118,7 +118,7 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
 Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh,
                                     const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
                                     RunReport& report, Contact::ContactNodeResults& nodes, bool& converged,
-                                    Fem::ResultKKT& kkt, IO::IterationHistory& history) {
+                                    Contact::ResultKKT& kkt, IO::IterationHistory& history) {
   const std::string law = params.sublist("Contact").get<std::string>("Friction Law");
   const Input::PlaneContact contact = Input::planeContact(params);
   // Every rank refuses, before rank 0 starts, a body the Dirichlet
@@ -141,7 +141,7 @@ Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mes
   if (comm.getRank() == 0 || distributed)
     r = Semismooth::solveFromMesh(mesh, mat, loads, contact.face, contact.gap, contact.slipBoundTraction, ssParams, verbose && comm.getRank() == 0 ? &std::cout : nullptr,
                                   distributed ? Teuchos::rcpFromRef(comm) : RCP<const Comm>());
-  std::vector<Fem::ContactNodeForce> forces;
+  std::vector<Contact::ContactNodeForce> forces;
   std::vector<double> Ku, f;
   if (comm.getRank() == 0) {
     u = r.u;
@@ -184,16 +184,15 @@ Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mes
   Teuchos::broadcast(comm, 0, &nres);
   residuals.resize(nres);
   if (nres > 0) Teuchos::broadcast(comm, 0, nres, residuals.data());
-  Fem::FrictionLaw friction;
-  friction.kind = Fem::FrictionLaw::parse(law);  // Tresca or Frictionless (the input refuses Coulomb here)
+  const FrictionLaw friction = frictionLawNamed(law);  // Tresca or Frictionless (the input refuses Coulomb here)
   const auto layout = Fem::NodalLayout::everyNode(mesh.numNodes(), Teuchos::rcpFromRef(comm));
   Fem::NodalVector uNodal(layout, u);
-  kkt = Fem::resultKKT(uNodal, Fem::NodalVector(layout, Ku), Fem::NodalVector(layout, f),
+  kkt = Contact::resultKKT(uNodal, Fem::NodalVector(layout, Ku), Fem::NodalVector(layout, f),
                        Fem::constrainedDofs(mesh, loads.dirichlet), friction, forces);
   long long counts[4] = {static_cast<long long>(nodes.nodes.size()), 0, 0, 0};
   for (int st : nodes.status) counts[1] += st > 0, counts[2] += st == 1, counts[3] += st == 2;
   Teuchos::broadcast(comm, 0, 4, counts);
-  report.frictionLaw = Fem::FrictionLaw::name(friction.kind);
+  report.frictionLaw = frictionLawName(friction);
   converged = info[0] != 0.0;
   SemismoothReport newton;
   newton.newtonIterations = static_cast<long long>(info[1]);
@@ -256,7 +255,7 @@ double requestedTolerance(const Teuchos::ParameterList& params) {
 // work of the forces on it (at most dofs U P) representable: values beyond
 // double precision (a modulus of 1e-299, loads of 1e308) are a numerical
 // breakdown, not a result.
-void requireRepresentable(const Fem::NodalVector& u, const Fem::ResultKKT& kkt, const std::string& method) {
+void requireRepresentable(const Fem::NodalVector& u, const Contact::ResultKKT& kkt, const std::string& method) {
   int finiteHere = allFinite(u.values()), finiteEverywhere = 0;
   Teuchos::reduceAll(*u.layout().comm(), Teuchos::REDUCE_MIN, finiteHere, Teuchos::outArg(finiteEverywhere));
   const bool finite = finiteEverywhere && std::isfinite(kkt.worst()) && std::isfinite(kkt.displacementScale) &&
@@ -302,7 +301,7 @@ std::vector<IO::RunFile> runFiles(const Teuchos::ParameterList& params, const Ru
   // effective parameters of the new result: the one input a run may replace
   // (it was read whole before). Every other output is still kept from it,
   // being kept from the parameters file.
-  if (!options.inputName.empty() && (rerun.empty() || !IO::sameFile(options.inputName, rerun)))
+  if (!options.inputName.empty() && (rerun.empty() || !sameFile(options.inputName, rerun)))
     files.push_back({"the input file", options.inputName, false});
   return files;
 }
@@ -338,7 +337,7 @@ struct Solution {
   Contact::ContactNodeResults contactNodes;
   bool solverConverged = false;
   std::string solverReason;
-  Fem::ResultKKT kkt;
+  Contact::ResultKKT kkt;
   double setupSeconds = 0, solveSeconds = 0;  // the solver's setup (assembly, factorization) and its iterations
   // The tolerance of the solver that ran, when it says (a contact run whose
   // pairs are all glued is solved by projected CG); 0: from the parameters.
@@ -386,8 +385,8 @@ Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discr
   sol.history.rows.push_back(finalRow(res.iterations, res.relativeResidual, res.iterations, sol.solveSeconds));
   // The residuals of the result from K and f assembled anew, as for FETI.
   Progress::stage("result check");
-  sol.kkt = Fem::resultKKT(sol.u, Fem::assembledProduct(systems, sol.u), Fem::assembledLoad(systems, sol.u.layoutPtr()),
-                           dirichlet, Fem::FrictionLaw{}, {});
+  sol.kkt = Contact::resultKKT(sol.u, Fem::assembledProduct(systems, sol.u), Fem::assembledLoad(systems, sol.u.layoutPtr()),
+                           dirichlet, FrictionLaw::Frictionless, {});
   return sol;
 }
 
@@ -432,7 +431,7 @@ Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& optio
     outer.slipBoundChange = st.slip_bound_change;
     outer.history = st.history;
     report.outer = outer;
-    report.frictionLaw = Contact::runLaw(friction);
+    report.frictionLaw = frictionLawName(Contact::runLaw(friction));
     report.outerIterations = st.outer_iterations;
     for (const auto& step : st.steps) {
       IO::HistoryRow row;
@@ -673,7 +672,7 @@ Solution solveStep(const Teuchos::ParameterList& params, const RunOptions& optio
 
 // Step "check": the result must be representable, and `converged` is a
 // promise about it: the solver stopped on its own test AND every KKT residual
-// of the result (Fem::resultKKT) is within Result Check Factor times the
+// of the result (Contact::resultKKT) is within Result Check Factor times the
 // requested tolerance. With --verify, the monolithic reference solve.
 void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, const Discretized& d,
                Solution& sol, const RCP<const Comm>& comm, RunReport& report) {
@@ -688,7 +687,7 @@ void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, 
     sol.history.rows.push_back(row);
   }
   report.tolerance = sol.tolerance > 0 ? sol.tolerance : requestedTolerance(params);
-  const auto verdict = Fem::resultVerdict(sol.kkt, sol.solverConverged, sol.solverReason, report.tolerance,
+  const auto verdict = Contact::resultVerdict(sol.kkt, sol.solverConverged, sol.solverReason, report.tolerance,
                                           params.sublist("Solver").get<double>("Result Check Factor"));
   report.kkt = sol.kkt;
   report.limit = verdict.limit;

@@ -64,7 +64,7 @@ struct RunReport {
   std::optional<FetiReport> feti;
   std::string fclibExport;
   // Check: the KKT residuals of the result and the verdict on them.
-  Fem::ResultKKT kkt;
+  Contact::ResultKKT kkt;
   double tolerance = 0, limit = 0;
   bool solverConverged = false, converged = false;
   std::string stopReason;

@@ -7,7 +7,7 @@
 #include "Tribos_QP_Projection.hpp"
 
 namespace Tribos {
-namespace Friction {
+namespace Contact {
 
 ContactKKT::ContactKKT(double forceScale, double displacementScale)
     : invP_(1.0 / forceScale), invU_(1.0 / displacementScale), PoverU_(forceScale / displacementScale) {
@@ -29,5 +29,5 @@ void ContactKKT::add(double lambdaN, double gap, const double* phiT, const doubl
   frictionLaw2_ = std::max(frictionLaw2_, r2);  // one square root, at the end
 }
 
-}  // namespace Friction
+}  // namespace Contact
 }  // namespace Tribos

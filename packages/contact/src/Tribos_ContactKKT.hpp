@@ -1,6 +1,6 @@
 // Tribos_ContactKKT.hpp: the contact part of the KKT conditions of a
 // solution, evaluated here for every source of contact results (the FETI and
-// semismooth* results through Fem::resultKKT, FCLIB's r and u):
+// semismooth* results through Contact::resultKKT, FCLIB's r and u):
 //   non-penetration  gap >= 0
 //   complementarity  lambda_N >= 0, lambda_N gap = 0
 //   friction law     phi_T = P_g(phi_T - c s)
@@ -19,7 +19,7 @@
 #include <cmath>
 
 namespace Tribos {
-namespace Friction {
+namespace Contact {
 
 class ContactKKT {
  public:
@@ -38,5 +38,5 @@ class ContactKKT {
   double nonpenetration_ = 0, complementarity_ = 0, frictionLaw2_ = 0;
 };
 
-}  // namespace Friction
+}  // namespace Contact
 }  // namespace Tribos

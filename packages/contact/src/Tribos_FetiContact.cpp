@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "Tribos_AgreeOnError.hpp"
+#include "Tribos_DirichletAtContact.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Reduce.hpp"
 #include "Tribos_RigidMotions.hpp"
@@ -77,9 +78,9 @@ RCP<const Vector> loadPart(const Feti::FetiDual& dual) {
 }  // namespace
 
 void checkFriction(const FrictionSpec& friction) {
-  const auto law = friction.law;
-  TRIBOS_REQUIRE(law == "Frictionless" || law == "Tresca" || law == "Coulomb",
-                 "friction law \"" << law << "\": valid laws are Frictionless, Tresca, Coulomb");
+  TRIBOS_REQUIRE(friction.law == FrictionLaw::Frictionless || friction.law == FrictionLaw::Tresca ||
+                     friction.law == FrictionLaw::Coulomb,
+                 "friction law " << static_cast<int>(friction.law) << ": valid laws are Frictionless, Tresca, Coulomb");
   TRIBOS_REQUIRE(std::isfinite(friction.coefficient) && friction.coefficient >= 0,
                  "friction coefficient " << friction.coefficient << ": must be a finite number >= 0");
   TRIBOS_REQUIRE(std::isfinite(friction.slipBoundTraction) && friction.slipBoundTraction >= 0,
@@ -93,16 +94,16 @@ const FrictionSpec& frictionOfPair(const PairFriction& friction, int pair) {
   return friction.size() == 1 ? friction[0] : friction[pair];
 }
 
-std::string runLaw(const PairFriction& friction) {
+FrictionLaw runLaw(const PairFriction& friction) {
   bool tresca = false, coulomb = false;
   for (const auto& f : friction) {
     checkFriction(f);
-    tresca = tresca || f.law == "Tresca";
-    coulomb = coulomb || f.law == "Coulomb";
+    tresca = tresca || f.law == FrictionLaw::Tresca;
+    coulomb = coulomb || f.law == FrictionLaw::Coulomb;
   }
   TRIBOS_REQUIRE(!(tresca && coulomb), "contact pairs with Tresca and with Coulomb friction in one run: no outer "
                                        "algorithm solves both; make them all Coulomb (or Tresca)");
-  return coulomb ? "Coulomb" : (tresca ? "Tresca" : "Frictionless");
+  return coulomb ? FrictionLaw::Coulomb : (tresca ? FrictionLaw::Tresca : FrictionLaw::Frictionless);
 }
 
 void requireNoPrescribedSlip(const std::vector<Feti::ContactConstraint>& contact, const PairFriction& friction,
@@ -110,7 +111,7 @@ void requireNoPrescribedSlip(const std::vector<Feti::ContactConstraint>& contact
                              const std::function<std::array<double, 3>(int)>& position) {
   if (dirichlet.empty()) return;
   for (const auto& c : contact)
-    if (!c.glued && frictionOfPair(friction, c.pair).law != "Frictionless")
+    if (!c.glued && frictionOfPair(friction, c.pair).law != FrictionLaw::Frictionless)
       Fem::requireNoPrescribedSlip(dirichlet, c.node, position(c.node), c.normal, c.master);
 }
 
@@ -147,8 +148,8 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
   cd_.frictionCoefficient.assign(nc, 0.0);
   for (size_t k = 0; k < nc; ++k) {
     const FrictionSpec& f = frictionOfPair(friction, lc.constraint[k].pair);
-    if (f.law == "Tresca") cd_.slipBound[k] = f.slipBoundTraction * lc.nodalArea[k];
-    if (f.law == "Coulomb") cd_.frictionCoefficient[k] = f.coefficient;
+    if (f.law == FrictionLaw::Tresca) cd_.slipBound[k] = f.slipBoundTraction * lc.nodalArea[k];
+    if (f.law == FrictionLaw::Coulomb) cd_.frictionCoefficient[k] = f.coefficient;
   }
   // F from the dense blocks, for the methods that need it densely.
   cd_.denseA = [dual] {
@@ -323,8 +324,8 @@ std::vector<char> FetiContactProblem::activeRows(const Vector& lambda, const std
   return mask;
 }
 
-std::vector<Fem::ContactNodeForce> ContactNodeResults::forces() const {
-  std::vector<Fem::ContactNodeForce> out(nodes.size());
+std::vector<Contact::ContactNodeForce> ContactNodeResults::forces() const {
+  std::vector<Contact::ContactNodeForce> out(nodes.size());
   for (size_t k = 0; k < nodes.size(); ++k) {
     out[k].node = nodes[k];
     out[k].normalForce = normalForce[k];
@@ -339,15 +340,15 @@ std::vector<Fem::ContactNodeForce> ContactNodeResults::forces() const {
   return out;
 }
 
-std::vector<Fem::ContactNodeForce> bondedForces(const Feti::FetiProblem& p, const Vector& lambda) {
+std::vector<Contact::ContactNodeForce> bondedForces(const Feti::FetiProblem& p, const Vector& lambda) {
   const auto& lc = p.contact();
   auto l = lambda.getData();
-  std::vector<Fem::ContactNodeForce> out;
+  std::vector<Contact::ContactNodeForce> out;
   for (size_t k = 0; k < lc.bondedConstraint.size(); ++k) {
     const Feti::ContactConstraint& cc = lc.bondedConstraint[k];
     double m[3];
     for (int j = 0; j < 3; ++j) m[j] = lc.bondedRows[3 * k + j] >= 0 ? l[lc.bondedRows[3 * k + j]] : 0.0;
-    Fem::ContactNodeForce f;
+    Contact::ContactNodeForce f;
     f.node = cc.node;
     f.bonded = true;
     f.normal = cc.normal;
@@ -387,7 +388,7 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVe
     const FrictionSpec& f = frictionOfPair(friction, cc.pair);
     out.nodes.push_back(cc.node);
     out.constraint.push_back(cc);
-    out.frictionCoefficient.push_back(f.law == "Coulomb" ? f.coefficient : 0.0);
+    out.frictionCoefficient.push_back(f.law == FrictionLaw::Coulomb ? f.coefficient : 0.0);
     out.normalForce.push_back(lN);
     out.gap.push_back(cc.gap - wn);
     out.slipBound.push_back(gk);
@@ -405,11 +406,10 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVe
   return out;
 }
 
-Fem::ResultKKT resultKKT(const Feti::FetiProblem& p, const Fem::NodalVector& uNodal, const ContactNodeResults& contact,
+Contact::ResultKKT resultKKT(const Feti::FetiProblem& p, const Fem::NodalVector& uNodal, const ContactNodeResults& contact,
                          const PairFriction& friction) {
-  Fem::FrictionLaw law;
-  law.kind = Fem::FrictionLaw::parse(runLaw(friction));
-  return Fem::resultKKT(uNodal, p.assembledProduct(uNodal), p.assembledLoad(), p.dirichlet(), law, contact.forces());
+  return Contact::resultKKT(uNodal, p.assembledProduct(uNodal), p.assembledLoad(), p.dirichlet(), runLaw(friction),
+                            contact.forces());
 }
 
 namespace {
@@ -467,7 +467,7 @@ void requireEveryBodyHeld(const Mesh::Mesh& mesh, const std::map<long long, doub
         continue;
       }
       const auto& f = frictionOfPair(friction, c.pair);
-      const bool tangential = c.glued || (f.law != "Frictionless" && (f.coefficient > 0 || f.slipBoundTraction > 0));
+      const bool tangential = c.glued || (f.law != FrictionLaw::Frictionless && (f.coefficient > 0 || f.slipBoundTraction > 0));
       for (const auto& d : {c.normal, c.t1, c.t2}) {
         held.push_back({local[c.node], d});
         if (!tangential) break;

@@ -23,6 +23,7 @@
 #include "Tribos_ContactDual.hpp"
 #include "Tribos_ContactSearch.hpp"
 #include "Tribos_DualTransform.hpp"
+#include "Tribos_FrictionLaw.hpp"
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_FetiDual.hpp"
 #include "Tribos_ResultKKT.hpp"
@@ -31,11 +32,11 @@ namespace Tribos {
 namespace Contact {
 
 struct FrictionSpec {
-  std::string law = "Frictionless";  // Frictionless | Tresca | Coulomb
+  FrictionLaw law = FrictionLaw::Frictionless;
   double coefficient = 0.0;          // Coulomb F
   double slipBoundTraction = 0.0;    // Tresca: traction bound, times nodal area gives g_k
 };
-// Throws Tribos::Error naming the entry: an unknown law, a coefficient or
+// Throws Tribos::Error naming the entry: a law out of the enum, a coefficient or
 // slip bound traction that is negative or not finite.
 void checkFriction(const FrictionSpec& friction);
 
@@ -47,7 +48,7 @@ const FrictionSpec& frictionOfPair(const PairFriction& friction, int pair);
 // pair is Coulomb (a frictionless pair has F = 0), else Tresca when a pair
 // is Tresca (a frictionless pair has g = 0), else Frictionless. Tresca and
 // Coulomb pairs in one run are refused (no outer algorithm solves both).
-std::string runLaw(const PairFriction& friction);
+FrictionLaw runLaw(const PairFriction& friction);
 
 // Refuses (Tribos::Error naming the bodies, the free motions and the pairs
 // acting within them) a group of bodies that can move rigidly as a whole.
@@ -138,9 +139,9 @@ struct ContactNodeResults {
   std::vector<int> status;        // 0 no contact, 1 stick, 2 slip
   // The nodes of glued pairs with their forces (not written: their relative
   // displacement is zero).
-  std::vector<Fem::ContactNodeForce> bonded;
+  std::vector<Contact::ContactNodeForce> bonded;
   // The forces as the result check takes them (contact and bonded nodes).
-  std::vector<Fem::ContactNodeForce> forces() const;
+  std::vector<Contact::ContactNodeForce> forces() const;
 };
 
 // The local contact nodes of the result: forces from lambda, slip and gap
@@ -151,11 +152,11 @@ ContactNodeResults contactResults(const Feti::FetiProblem& problem, const Fem::N
                                   ContactCounts& counts);
 
 // The forces between glued bodies at the local bonded nodes, from lambda.
-std::vector<Fem::ContactNodeForce> bondedForces(const Feti::FetiProblem& problem, const Vector& lambda);
+std::vector<Contact::ContactNodeForce> bondedForces(const Feti::FetiProblem& problem, const Vector& lambda);
 
-// The KKT residuals (Fem::resultKKT) of the written result: the nodal
+// The KKT residuals (Contact::resultKKT) of the written result: the nodal
 // displacement and the contact forces (none for a problem without contact).
-Fem::ResultKKT resultKKT(const Feti::FetiProblem& problem, const Fem::NodalVector& uNodal,
+Contact::ResultKKT resultKKT(const Feti::FetiProblem& problem, const Fem::NodalVector& uNodal,
                          const ContactNodeResults& contact, const PairFriction& friction);
 
 }  // namespace Contact

@@ -48,15 +48,15 @@ void checkResult(const Feti::FetiProblem& problem, const PairFriction& friction,
     r.contact = contactResults(problem, r.u, *r.lambda, r.status.slipBound, friction, r.counts);
   r.contact.bonded = bondedForces(problem, *r.lambda);
   r.kkt = resultKKT(problem, r.u, r.contact, friction);
-  r.verdict = Fem::resultVerdict(r.kkt, r.solverConverged, r.solverReason, r.tolerance,
+  r.verdict = Contact::resultVerdict(r.kkt, r.solverConverged, r.solverReason, r.tolerance,
                                  p.get<double>("Result Check Factor"));
 }
 
 }  // namespace
 
 std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction) {
-  if (requested != kAutoOuterAlgorithm) return requested;
-  return runLaw(friction) == "Coulomb" ? "Algorithm2" : "Tresca";
+  if (requested != kAutoOuterAlgorithm) return Friction::frictionSolvers().canonical(requested);
+  return runLaw(friction) == FrictionLaw::Coulomb ? "Algorithm2" : "Algorithm1";
 }
 
 RCP<const Teuchos::ParameterList> fetiSolveParameters() {
@@ -66,8 +66,8 @@ RCP<const Teuchos::ParameterList> fetiSolveParameters() {
     auto names = Friction::frictionSolvers().names();
     names.insert(names.begin(), kAutoOuterAlgorithm);
     pl->set("Outer Algorithm", kAutoOuterAlgorithm,
-            "contact problems: Auto (Algorithm2 for Coulomb friction, Tresca for Tresca friction and frictionless "
-            "contact); " + Friction::frictionSolvers().documentation(),
+            "contact problems: Auto (Algorithm2 for Coulomb friction, Algorithm1 for Tresca friction and "
+            "frictionless contact); " + Friction::frictionSolvers().documentation(),
             rcp(new Teuchos::StringValidator(Teuchos::Array<std::string>(names.begin(), names.end()))));
     pl->set("Result Check Factor", 100.0,
             "converged means every KKT residual of the written result (docs/friction.md) is at most this factor "
@@ -120,7 +120,7 @@ FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const Pai
   } else {
     FetiContactProblem cp(dual, friction);
     r.outerAlgorithm = outerAlgorithmFor(p.get<std::string>("Outer Algorithm"), friction);
-    const std::string runLawName = runLaw(friction);
+    const std::string runLawName = frictionLawName(runLaw(friction));
     TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, runLawName),
                    "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << runLawName << " friction ("
                                         << joinNames(Friction::frictionSolvers().accepting(runLawName)) << " do)");

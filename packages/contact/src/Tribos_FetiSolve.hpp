@@ -7,7 +7,7 @@
 //               dual problem (FetiContactProblem);
 // then the result an application writes: the nodal displacement, the
 // contact forces, slip and status per contact node, the KKT residuals of
-// that result node by node (Fem::resultKKT), and the verdict: converged
+// that result node by node (Contact::resultKKT), and the verdict: converged
 // means the solver stopped on its test AND the residuals are within
 // "Result Check Factor" times its requested tolerance.
 #pragma once
@@ -31,8 +31,8 @@ struct FetiSolveResult {
   RCP<Vector> primal;           // the subdomain displacements (FETI's primal vector)
   ContactNodeResults contact;   // this rank's contact nodes (empty without contact)
   ContactCounts counts;         // over all ranks
-  Fem::ResultKKT kkt;           // of u and the contact forces
-  Fem::ResultVerdict verdict;   // converged, limit, stop reason
+  Contact::ResultKKT kkt;           // of u and the contact forces
+  Contact::ResultVerdict verdict;   // converged, limit, stop reason
   double tolerance = 0;         // the solver's requested tolerance (of the first round)
   int rounds = 1;               // contact: solves until the result met the check (Result Check Rounds)
   // The solver's own report.

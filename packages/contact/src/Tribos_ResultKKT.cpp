@@ -10,18 +10,7 @@
 #include "Tribos_Vec3.hpp"
 
 namespace Tribos {
-namespace Fem {
-
-FrictionLaw::Kind FrictionLaw::parse(const std::string& name) {
-  if (name == "Frictionless") return Frictionless;
-  if (name == "Tresca") return Tresca;
-  if (name == "Coulomb") return Coulomb;
-  throw Error("unknown friction law \"" + name + "\"; valid: Frictionless, Tresca, Coulomb");
-}
-
-const char* FrictionLaw::name(Kind k) {
-  return k == Frictionless ? "Frictionless" : (k == Tresca ? "Tresca" : "Coulomb");
-}
+namespace Contact {
 
 double ResultKKT::worst(std::string* which) const {
   const std::pair<const char*, double> all[] = {{"equilibrium", equilibrium},
@@ -36,8 +25,8 @@ double ResultKKT::worst(std::string* which) const {
   return best.second;
 }
 
-NodalVector contactForces(const RCP<const NodalLayout>& layout, const std::vector<ContactNodeForce>& contact) {
-  NodalVector phi(layout);
+Fem::NodalVector contactForces(const RCP<const Fem::NodalLayout>& layout, const std::vector<ContactNodeForce>& contact) {
+  Fem::NodalVector phi(layout);
   for (const auto& c : contact)
     for (int d = 0; d < 3; ++d) {
       const double force = -c.normalForce * c.normal[d] + c.tangentialForce[d];
@@ -48,12 +37,12 @@ NodalVector contactForces(const RCP<const NodalLayout>& layout, const std::vecto
   return phi;
 }
 
-ResultKKT resultKKT(const NodalVector& u, const NodalVector& Ku, const NodalVector& f,
-                    const std::map<long long, double>& dirichlet, const FrictionLaw& law,
+ResultKKT resultKKT(const Fem::NodalVector& u, const Fem::NodalVector& Ku, const Fem::NodalVector& f,
+                    const std::map<long long, double>& dirichlet, FrictionLaw law,
                     const std::vector<ContactNodeForce>& contact) {
   TRIBOS_REQUIRE(!u.empty() && Ku.layoutPtr().get() == u.layoutPtr().get() && f.layoutPtr().get() == u.layoutPtr().get(),
                  "resultKKT: u, Ku and f must be nodal vectors of one layout");
-  const NodalLayout& layout = u.layout();
+  const Fem::NodalLayout& layout = u.layout();
   const Comm& comm = *layout.comm();
   const auto phi = contactForces(u.layoutPtr(), contact);
   ResultKKT res;
@@ -82,7 +71,7 @@ ResultKKT resultKKT(const NodalVector& u, const NodalVector& Ku, const NodalVect
   res.dirichlet = maxOver(dir, comm) / std::max(U, maxOver(ubarMax, comm));
 
   // Contact node by node (rank-local nodes, then the maximum over ranks).
-  Friction::ContactKKT kkt(P, U);
+  ContactKKT kkt(P, U);
   double bondedGap = 0;
   for (const auto& c : contact) {
     // w: the relative displacement of the slave node and its partner.
@@ -96,8 +85,8 @@ ResultKKT resultKKT(const NodalVector& u, const NodalVector& Ku, const NodalVect
       continue;
     }
     double g = 0;
-    if (law.kind == FrictionLaw::Tresca) g = c.slipBound;
-    if (law.kind == FrictionLaw::Coulomb) g = c.frictionCoefficient * std::max(c.normalForce, 0.0);
+    if (law == FrictionLaw::Tresca) g = c.slipBound;
+    if (law == FrictionLaw::Coulomb) g = c.frictionCoefficient * std::max(c.normalForce, 0.0);
     // Slip and friction force in the tangent plane, without the components
     // that Dirichlet conditions fix at the slave node and every master node.
     double s[3], phiT[3];
@@ -113,73 +102,6 @@ ResultKKT resultKKT(const NodalVector& u, const NodalVector& Ku, const NodalVect
   res.complementarity = maxOver(kkt.complementarity(), comm);
   res.frictionLaw = maxOver(kkt.frictionLaw(), comm);
   return res;
-}
-
-namespace {
-
-// Per axis d: whether Dirichlet conditions fix it at the slave node and
-// every master node, and then the prescribed relative displacement
-// w_d = ubar_s - sum N_i ubar_i and the size of the values (for round-off).
-struct PrescribedRelativeMotion {
-  std::array<bool, 3> fixed{};
-  std::array<double, 3> w{}, scale{};
-  std::string where;  // "contact node N at (x, y, z)"
-};
-
-PrescribedRelativeMotion prescribedRelativeMotion(const std::map<long long, double>& dirichlet, int node,
-                                                  const std::array<double, 3>& x,
-                                                  const std::vector<std::pair<int, double>>& master) {
-  PrescribedRelativeMotion m;
-  for (int d = 0; d < 3; ++d) {
-    auto value = [&](int n) {
-      const auto it = dirichlet.find(3LL * n + d);
-      return it == dirichlet.end() ? std::nan("") : it->second;
-    };
-    m.fixed[d] = !std::isnan(value(node));
-    m.w[d] = m.fixed[d] ? value(node) : 0.0;
-    m.scale[d] = std::abs(m.w[d]);
-    for (const auto& [mn, weight] : master) {
-      m.fixed[d] = m.fixed[d] && !std::isnan(value(mn));
-      if (m.fixed[d]) m.w[d] -= weight * value(mn), m.scale[d] = std::max(m.scale[d], std::abs(value(mn)));
-    }
-  }
-  std::ostringstream os;
-  os << "contact node " << node << " at (" << x[0] << ", " << x[1] << ", " << x[2] << ")";
-  m.where = os.str();
-  return m;
-}
-
-bool tangentialAxis(const std::array<double, 3>& normal, int d) {
-  return std::abs(normal[d]) <= 1e-12 * norm(normal);
-}
-
-}  // namespace
-
-void requireNoPrescribedPenetration(const std::map<long long, double>& dirichlet, int node,
-                                    const std::array<double, 3>& x, const std::array<double, 3>& normal, double gap,
-                                    const std::vector<std::pair<int, double>>& master) {
-  const auto m = prescribedRelativeMotion(dirichlet, node, x, master);
-  const double nn = norm(normal);
-  double wn = 0, scale = std::abs(gap);
-  for (int d = 0; d < 3; ++d) {
-    if (tangentialAxis(normal, d)) continue;
-    if (!m.fixed[d]) return;  // the normal motion is free: the contact rows decide
-    wn += normal[d] / nn * m.w[d];
-    scale = std::max(scale, m.scale[d]);
-  }
-  TRIBOS_REQUIRE(wn <= gap + 1e-10 * scale,
-                 m.where << ": its Dirichlet values move it " << wn - gap << " through the surface it contacts");
-}
-
-void requireNoPrescribedSlip(const std::map<long long, double>& dirichlet, int node, const std::array<double, 3>& x,
-                             const std::array<double, 3>& normal, const std::vector<std::pair<int, double>>& master) {
-  const auto m = prescribedRelativeMotion(dirichlet, node, x, master);
-  for (int d = 0; d < 3; ++d)
-    TRIBOS_REQUIRE(!tangentialAxis(normal, d) || !m.fixed[d] || std::abs(m.w[d]) <= 1e-10 * m.scale[d],
-                   m.where << ": its Dirichlet values make it slide " << m.w[d] << " along " << "xyz"[d]
-                           << " against the surface it contacts, with friction; friction against a prescribed "
-                              "sliding is not modelled: prescribe the motion away from the contact surface, the "
-                              "same value on both sides, or no friction");
 }
 
 ResultVerdict resultVerdict(const ResultKKT& kkt, bool solverConverged, const std::string& solverReason,
@@ -202,5 +124,5 @@ ResultVerdict resultVerdict(const ResultKKT& kkt, bool solverConverged, const st
   return v;
 }
 
-}  // namespace Fem
+}  // namespace Contact
 }  // namespace Tribos

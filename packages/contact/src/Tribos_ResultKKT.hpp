@@ -1,7 +1,7 @@
 // Tribos_ResultKKT.hpp: the KKT residuals of a contact result as the user
 // gets it: the single-valued nodal displacement u and the nodal contact
 // forces that are written to the result file. Every solution path (FETI,
-// semismooth*, ...) reports these figures, computed here and only here, so
+// semismooth*, the monolithic solve) reports these figures, computed here and only here, so
 // that `converged` means the same thing whichever solver produced u.
 //
 // The bodies (assembled stiffness K, load f, Dirichlet conditions u_D = ubar)
@@ -37,20 +37,12 @@
 #include <utility>
 #include <vector>
 
+#include "Tribos_FrictionLaw.hpp"
 #include "Tribos_NodalVector.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
-namespace Fem {
-
-// The friction law of the run: Frictionless, Tresca (slipBound per node) or
-// Coulomb (g = F lambda_N, F per node). A frictionless pair in a Tresca or
-// Coulomb run has g = 0 or F = 0.
-struct FrictionLaw {
-  enum Kind { Frictionless, Tresca, Coulomb } kind = Frictionless;
-  static Kind parse(const std::string& name);  // "Frictionless" | "Tresca" | "Coulomb"
-  static const char* name(Kind k);
-};
+namespace Contact {
 
 // One contact node of the result (rank-local; every contact node is held by
 // exactly one rank).
@@ -80,31 +72,14 @@ struct ResultKKT {
 // maximized over the owned nodes of all ranks. dirichlet: global dof
 // (3 node + c) -> prescribed value (read at the owned nodes and the contact
 // nodes). Collective over the layout's communicator.
-ResultKKT resultKKT(const NodalVector& u, const NodalVector& Ku, const NodalVector& f,
-                    const std::map<long long, double>& dirichlet, const FrictionLaw& law,
+ResultKKT resultKKT(const Fem::NodalVector& u, const Fem::NodalVector& Ku, const Fem::NodalVector& f,
+                    const std::map<long long, double>& dirichlet, FrictionLaw law,
                     const std::vector<ContactNodeForce>& contact);
-
-// The Dirichlet values at a contact node (at x) and its partners must leave
-// its contact conditions meaningful; both throw Tribos::Error naming the
-// node and its position otherwise.
-//  - A normal fixed at the slave node and every master node takes the node
-//    out of the contact set: right only if the values keep it from passing
-//    through its partner (requireNoPrescribedPenetration).
-//  - A tangential axis fixed there leaves the friction law (above): right
-//    only if the values prescribe no slip along it (a symmetry plane) or the
-//    contact has no friction, since friction would oppose a prescribed slip
-//    with a force that the Dirichlet reaction hides (requireNoPrescribedSlip,
-//    for contacts with friction).
-void requireNoPrescribedPenetration(const std::map<long long, double>& dirichlet, int node,
-                                    const std::array<double, 3>& x, const std::array<double, 3>& normal, double gap,
-                                    const std::vector<std::pair<int, double>>& master);
-void requireNoPrescribedSlip(const std::map<long long, double>& dirichlet, int node, const std::array<double, 3>& x,
-                             const std::array<double, 3>& normal, const std::vector<std::pair<int, double>>& master);
 
 // The contact force phi of the rank-local contact nodes and their reactions
 // on the master nodes, summed over the ranks, at the nodes of layout (which
 // must hold every slave and master node of contact). Collective.
-NodalVector contactForces(const RCP<const NodalLayout>& layout, const std::vector<ContactNodeForce>& contact);
+Fem::NodalVector contactForces(const RCP<const Fem::NodalLayout>& layout, const std::vector<ContactNodeForce>& contact);
 
 // `converged` is a promise about the result the user gets: the solver
 // stopped on its own test AND every KKT residual of the result is within
@@ -119,5 +94,5 @@ struct ResultVerdict {
 ResultVerdict resultVerdict(const ResultKKT& kkt, bool solverConverged, const std::string& solverReason,
                             double tolerance, double factor);
 
-}  // namespace Fem
+}  // namespace Contact
 }  // namespace Tribos

@@ -56,7 +56,7 @@ struct Brick {
   }
 };
 
-const Contact::FrictionSpec kCoulomb{"Coulomb", 0.3, 0.0};
+const Contact::FrictionSpec kCoulomb{FrictionLaw::Coulomb, 0.3, 0.0};
 
 Teuchos::ParameterList tight() {
   Teuchos::ParameterList p;
@@ -225,19 +225,29 @@ TEUCHOS_UNIT_TEST(ApplicationInterface, NegativeFrictionRefused) {
   const auto disc = b.disc(*comm);  // outlives the problem, which refers to it
   auto problem = rcp(new Feti::FetiProblem(disc, b.mat, b.loads, Contact::faceContactConstraints(disc, b.contact, comm),
                                            Teuchos::ParameterList(), comm));
-  for (const Contact::FrictionSpec& bad : {Contact::FrictionSpec{"Coulomb", -0.3, 0.0},
-                                          Contact::FrictionSpec{"Tresca", 0.0, -1e6},
-                                          Contact::FrictionSpec{"Colomb", 0.3, 0.0}}) {
+  for (const Contact::FrictionSpec& bad : {Contact::FrictionSpec{FrictionLaw::Coulomb, -0.3, 0.0},
+                                          Contact::FrictionSpec{FrictionLaw::Tresca, 0.0, -1e6},
+                                          Contact::FrictionSpec{static_cast<FrictionLaw>(7), 0.3, 0.0}}) {
     std::string message;
     try {
       Contact::solveFeti(problem, bad, tight());
     } catch (const Error& e) {
       message = e.what();
     }
-    out << bad.law << " " << bad.coefficient << " " << bad.slipBoundTraction << ": " << message << "\n";
+    out << static_cast<int>(bad.law) << " " << bad.coefficient << " " << bad.slipBoundTraction << ": " << message << "\n";
     TEST_ASSERT(message.find("must be a finite number >= 0") != std::string::npos ||
                 message.find("valid laws are") != std::string::npos);
   }
+  // A law by name: the names of the three laws, nothing else.
+  TEST_ASSERT(frictionLawNamed("Tresca") == FrictionLaw::Tresca);
+  std::string message;
+  try {
+    frictionLawNamed("Colomb", "Friction/Law");
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  out << message << "\n";
+  TEST_ASSERT(message.find("Friction/Law = \"Colomb\" is not a friction law") != std::string::npos);
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ struct Setup {
 struct Result {
   std::vector<double> u;           // nodal displacement, replicated
   std::vector<double> normalForce; // per contact node, gathered by mesh node (replicated, 0 elsewhere)
-  Fem::ResultKKT kkt;
+  Contact::ResultKKT kkt;
   Contact::ContactCounts counts;
   Friction::FrictionStatus status;
   double fixedPoint = 0;           // ||F lambda_N - g|| / ||g|| for Coulomb
@@ -82,7 +82,7 @@ Result solve(const Setup& s, const RCP<const Comm>& comm) {
                                            Teuchos::ParameterList(), comm));
   auto dual = rcp(new Feti::FetiDual(problem));
   Contact::FrictionSpec fs;
-  fs.law = s.law;
+  fs.law = frictionLawNamed(s.law);
   fs.coefficient = s.F;
   fs.slipBoundTraction = s.slipTraction;
   Contact::FetiContactProblem cp(dual, fs);

@@ -46,24 +46,4 @@ std::string rootError(const Comm& comm, const std::string& errorOnRoot);
 std::string broadcastFromRoot(const Comm& comm, const std::string& value);
 long broadcastFromRoot(const Comm& comm, long value);
 
-// The output code of io and its callers name these IO::name, with
-// agreeOnError (Tribos_AgreeOnError.hpp), the error of the lowest failing
-// rank, used after every step that each rank does for itself.
-namespace IO {
-using Tribos::agreeOnError;
-using Tribos::broadcastFromRoot;
-using Tribos::directoryOf;
-using Tribos::fileNameOf;
-using Tribos::isTemporaryName;
-using Tribos::removeIfExists;
-using Tribos::renameFile;
-using Tribos::rootError;
-using Tribos::sameFile;
-using Tribos::syncPath;
-using Tribos::systemReason;
-using Tribos::temporaryName;
-using Tribos::temporaryPathFor;
-using Tribos::writeWholeFile;
-}  // namespace IO
-
 }  // namespace Tribos

@@ -72,6 +72,13 @@ class Registry {
     return out;
   }
 
+  // The other names that are accepted (older names kept for inputs that use them).
+  std::vector<std::string> aliases() const {
+    std::vector<std::string> out;
+    for (const auto& a : aliases_) out.push_back(a.first);
+    return out;
+  }
+
   std::string namesText() const { return joinNames(names()); }
 
   // "CHOLMOD (supernodal Cholesky); KLU2 (...)", for parameter documentation.

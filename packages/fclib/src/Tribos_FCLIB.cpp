@@ -427,12 +427,12 @@ void writeSolutionAndGuesses(hid_t file, const Location& root, const Solution* s
     writeSolutionGroup(group.get(), where, std::to_string(k + 1), guesses[k]);
 }
 
-// Runs 'body' on a fresh HDF5 file at IO::temporaryPathFor(path) and renames it onto
+// Runs 'body' on a fresh HDF5 file at temporaryPathFor(path) and renames it onto
 // path only after the file is closed without error; on failure the temporary
 // file is removed and whatever was at path is left untouched.
 template <typename Body>
 void writeAtomically(const std::string& path, Body body) {
-  const std::string tmp = IO::temporaryPathFor(path);
+  const std::string tmp = temporaryPathFor(path);
   QuietHdf5Errors quiet;
   try {
     {

@@ -109,7 +109,7 @@ std::optional<Solution> readSolutionLeniently(const std::string& path,
 // Empty when the file has no /guesses group.
 std::vector<Solution> readGuesses(const std::string& path);
 
-// Writers create IO::temporaryPathFor(path) (Tribos_FileSystem.hpp) and rename it
+// Writers create temporaryPathFor(path) (Tribos_FileSystem.hpp) and rename it
 // onto path only once everything is written, so a failure never leaves a
 // truncated file in place of a good one. The problem is validated and the
 // solution and guesses checked (sizes, finite values) before anything is

@@ -16,10 +16,10 @@ namespace Tribos {
 namespace FCLIB {
 
 void buildFromFeti(const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh, const Fem::BodyMaterials& mat,
-                   const Fem::LoadCase& loads, const std::string& law, double coefficient, const Vector& u,
+                   const Fem::LoadCase& loads, FrictionLaw law, double coefficient, const Vector& u,
                    const Vector& lambda, GlobalProblem& out, Solution& solution) {
-  TRIBOS_REQUIRE(law == "Frictionless" || law == "Coulomb",
-                 "FCLIB export: friction law \"" << law << "\" has no FCLIB form (Frictionless or Coulomb only)");
+  TRIBOS_REQUIRE(law == FrictionLaw::Frictionless || law == FrictionLaw::Coulomb,
+                 "FCLIB export: friction law " << frictionLawName(law) << " has no FCLIB form (Frictionless or Coulomb only)");
   const auto& comm = problem.comm();
   const auto& disc = problem.discretization();
   const int numNodes = disc.numMeshNodes();
@@ -102,7 +102,7 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh
       solution.r.push_back(-sign[a] * e[1 + a]);
     }
     out.w.insert(out.w.end(), {e[4], 0.0, 0.0});
-    out.mu.push_back(law == "Coulomb" ? coefficient : 0.0);
+    out.mu.push_back(law == FrictionLaw::Coulomb ? coefficient : 0.0);
     ++nc;
   }
   out.H = SparseMatrix::fromTriplets(ndof, 3 * nc, rows, cols, vals, "FCLIB export: H");
@@ -114,7 +114,7 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh
 }
 
 void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh,
-                const Fem::BodyMaterials& mat, const Fem::LoadCase& loads, const std::string& law, double coefficient,
+                const Fem::BodyMaterials& mat, const Fem::LoadCase& loads, FrictionLaw law, double coefficient,
                 const Vector& u, const Vector& lambda, const Info& info) {
   GlobalProblem p;
   Solution s;

@@ -24,6 +24,7 @@
 #include <string>
 
 #include "Tribos_FCLIB.hpp"
+#include "Tribos_FrictionLaw.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_Types.hpp"
 
@@ -33,18 +34,18 @@ namespace FCLIB {
 // Builds the problem and the solution (v, u = H'v + w, r) from a solved FETI
 // contact problem. Collective over the FETI communicator; the result is
 // complete on rank 0 only (other ranks get empty objects). 'law' is
-// "Frictionless" or "Coulomb" (FCLIB has no Tresca friction: throws). A
+// Frictionless or Coulomb (FCLIB has no Tresca friction: throws). A
 // contact between bodies puts the master nodes' weights into H (the local
 // velocity is the relative one). wholeMesh: the mesh the problem's
 // discretization was cut from, read on rank 0 only (the FCLIB problem is
 // global: M is assembled there).
 void buildFromFeti(const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh, const Fem::BodyMaterials& mat,
-                   const Fem::LoadCase& loads, const std::string& law, double coefficient, const Vector& u,
+                   const Fem::LoadCase& loads, FrictionLaw law, double coefficient, const Vector& u,
                    const Vector& lambda, GlobalProblem& out, Solution& solution);
 
 // buildFromFeti, then writeGlobal on rank 0 (compressed rows).
 void exportFeti(const std::string& path, const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh,
-                const Fem::BodyMaterials& mat, const Fem::LoadCase& loads, const std::string& law, double coefficient,
+                const Fem::BodyMaterials& mat, const Fem::LoadCase& loads, FrictionLaw law, double coefficient,
                 const Vector& u, const Vector& lambda, const Info& info);
 
 }  // namespace FCLIB

@@ -264,7 +264,7 @@ class CountingOperator : public Operator {
   mutable long long count_ = 0;
 };
 
-// The contact KKT residuals of (r, u) (Friction::ContactKKT, as for FETI
+// The contact KKT residuals of (r, u) (Contact::ContactKKT, as for FETI
 // results) with g = mu r_N, the gap u_N and the slip u_T: forces and
 // velocities are compared through max|r| and a velocity scale that includes
 // the free velocity q (when every contact is closed and stuck, u is
@@ -276,7 +276,7 @@ void kktResiduals(const std::vector<double>& r, const std::vector<double>& u, co
     rep.kktNormal = rep.kktComplementarity = rep.kktFriction = std::numeric_limits<double>::quiet_NaN();
     return;
   }
-  Friction::ContactKKT kkt(std::max(normInf(r), 1e-300), std::max({normInf(u), normInf(q), 1e-300}));
+  Contact::ContactKKT kkt(std::max(normInf(r), 1e-300), std::max({normInf(u), normInf(q), 1e-300}));
   for (size_t k = 0; k < mu.size(); ++k)
     kkt.add(r[3 * k], u[3 * k], &r[3 * k + 1], &u[3 * k + 1], 2, mu[k] * std::max(r[3 * k], 0.0));
   rep.kktNormal = kkt.nonpenetration();

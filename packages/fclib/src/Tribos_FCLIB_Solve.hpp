@@ -166,7 +166,7 @@ struct SolveReport {
   int numericalRank = -1;        // eigenvalues above 1e-12 eigMax
   double timeSetup = 0, timeSolve = 0;
   // The contact KKT residuals of the returned r and u with g = mu r_N
-  // (Friction::ContactKKT, as for FETI results), next to err.
+  // (Contact::ContactKKT, as for FETI results), next to err.
   double kktNormal = 0, kktComplementarity = 0, kktFriction = 0;
   std::string note;              // e.g. why a guarantee does not apply
   // 'converged' is a promise about the returned result, not the solver's own

@@ -66,7 +66,7 @@ const Exported& exported() {
                                              Teuchos::ParameterList(), comm));
     auto dual = rcp(new Feti::FetiDual(problem));
     Contact::FrictionSpec fs;
-    fs.law = "Coulomb";
+    fs.law = FrictionLaw::Coulomb;
     fs.coefficient = F;
     Contact::FetiContactProblem cp(dual, fs);
     Teuchos::ParameterList tight;

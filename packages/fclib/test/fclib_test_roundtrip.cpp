@@ -68,7 +68,7 @@ void roundTrip(const Sample& s, Storage storage, Reader read, Writer write, Teuc
   TEST_EQUALITY(guesses.size(), guesses2.size());  // number of guesses
   for (std::size_t k = 0; k < std::min(guesses.size(), guesses2.size()); ++k)
     TEST_ASSERT(sameSolution(guesses[k], guesses2[k]));  // guess
-  std::ifstream tmp(Tribos::IO::temporaryPathFor(path));
+  std::ifstream tmp(Tribos::temporaryPathFor(path));
   TEST_ASSERT(!tmp.good());  // temporary file left behind
   std::remove(path.c_str());
   std::cout << s.name << ": round trip (" << storageName(storage) << ") done" << std::endl;
@@ -103,7 +103,7 @@ void failedWriteKeepsOldFile(Teuchos::FancyOStream& out, bool& success) {
   TEST_EQUALITY(readInfo(path).title, "good");  // old file damaged by a rejected write
 
   // Block the temporary file with a directory so that HDF5 cannot create it.
-  const std::string tmp = Tribos::IO::temporaryPathFor(path);
+  const std::string tmp = Tribos::temporaryPathFor(path);
   ::mkdir(tmp.c_str(), 0700);
   try {
     writeLocal(path, P, Info{"replaced", "", ""});

@@ -112,7 +112,7 @@ void checkCorruptions(const Problem& valid, const std::vector<Corruption<Problem
     expectError(c.label + " (write)", [&] { write(path, P, Info{}, nullptr, {}, Storage::CompressedRows); },
                 c.fragment, out, success);
     TEST_ASSERT(!exists(path));
-    TEST_ASSERT(!exists(Tribos::IO::temporaryPathFor(path)));  // a refused write left a file
+    TEST_ASSERT(!exists(Tribos::temporaryPathFor(path)));  // a refused write left a file
   }
   std::cout << cases.size() << " corruptions refused" << std::endl;
 }

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "Tribos_Error.hpp"
-#include "Tribos_ResultKKT.hpp"
+#include "Tribos_DirichletAtContact.hpp"
 #include "Tribos_Vec3.hpp"
 
 namespace Tribos {

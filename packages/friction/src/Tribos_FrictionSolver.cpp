@@ -508,8 +508,10 @@ const FrictionSolverRegistry& frictionSolvers() {
   static const FrictionSolverRegistry registry = [] {
     auto sub = [](const ParameterList& p, const char* n) { return p.isSublist(n) ? p.sublist(n) : ParameterList(n); };
     FrictionSolverRegistry r("outer algorithm");
-    r.add("Tresca", [=](const ParameterList& p) -> RCP<FrictionSolver> { return rcp(new Algorithm1(sub(p, "Algorithm 1"))); },
-          "Algorithm 1: SMALBE for the given slip bound", {"Frictionless", "Tresca"});
+    // (Named Tresca once: the alias keeps such inputs running.)
+    r.add("Algorithm1", [=](const ParameterList& p) -> RCP<FrictionSolver> { return rcp(new Algorithm1(sub(p, "Algorithm 1"))); },
+          "Algorithm 1: SMALBE for the given slip bound (Tresca friction, frictionless contact)",
+          {"Frictionless", "Tresca"}, {"Tresca"});
     r.add("MSA+Algorithm1",
           [=](const ParameterList& p) -> RCP<FrictionSolver> { return rcp(new MSA(sub(p, "MSA"), sub(p, "Algorithm 1"))); },
           "the method of successive approximations over Tresca problems", {"Coulomb"});

@@ -31,7 +31,7 @@ inline std::string scratchDirectory(const Comm& comm, const std::string& tag) {
     std::string pattern = std::string(base && *base ? base : "/tmp") + "/tribos_" + tag + "_XXXXXX";
     path = ::mkdtemp(&pattern[0]) ? pattern : "";
   }
-  return IO::broadcastFromRoot(comm, path);
+  return broadcastFromRoot(comm, path);
 }
 
 inline void removeTree(const std::string& path) {
@@ -87,7 +87,7 @@ inline std::vector<std::string> listDirectory(const std::string& path) {
 inline std::vector<std::string> temporariesIn(const std::string& path) {
   std::vector<std::string> found;
   for (const std::string& name : listDirectory(path))
-    if (IO::isTemporaryName(name) || name.find(".tmp") != std::string::npos) found.push_back(name);
+    if (isTemporaryName(name) || name.find(".tmp") != std::string::npos) found.push_back(name);
   return found;
 }
 

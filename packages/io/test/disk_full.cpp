@@ -92,7 +92,7 @@ void checkFailure(const Outcome& result, const std::string& dir, const RCP<const
                   bool& success) {
   out << "message: " << (result.committed ? "committed" : result.message) << "\n";
   TEST_ASSERT(result.runFailure);
-  const std::string rootMessage = IO::broadcastFromRoot(*comm, result.message);
+  const std::string rootMessage = broadcastFromRoot(*comm, result.message);
   TEST_EQUALITY(result.message, rootMessage);               // the same on every rank
   TEST_EQUALITY(result.message.find('\n'), std::string::npos);  // one line
   TEST_ASSERT(contains(result.message, "solution.h5"));       // names the file
@@ -129,7 +129,7 @@ std::string mountSmallDisk(const std::string& path, const std::string& size, con
     ::mkdir(path.c_str(), 0755);
     if (::mount("tribos_test", path.c_str(), "tmpfs", 0, ("size=" + size).c_str()) != 0) error = std::strerror(errno);
   }
-  return IO::rootError(comm, error);
+  return rootError(comm, error);
 }
 
 // Small tmpfs disks: 96k holds the old set, the lock and HDF5's metadata but
@@ -168,7 +168,7 @@ int exitStatusCase(const RCP<const Comm>& comm) {
   }
   if (result.committed) return 0;
   if (comm->getRank() == 0) std::cerr << "io_test_disk_full: error: " << result.message << std::endl;
-  const bool clean = IO::broadcastFromRoot(*comm, static_cast<long>(temporariesIn(dir.path()).empty())) != 0;
+  const bool clean = broadcastFromRoot(*comm, static_cast<long>(temporariesIn(dir.path()).empty())) != 0;
   if (!clean && comm->getRank() == 0) std::cout << "FAILED: temporaries left in " << dir.path() << std::endl;
   return result.runFailure && clean ? 3 : 1;
 }

@@ -47,7 +47,7 @@ std::string refusal(const std::string& label, const Comm& comm, Teuchos::FancyOS
   }
   out << label << ": " << (refused ? message : "not refused") << "\n";
   TEST_ASSERT(refused);
-  TEST_EQUALITY(message, IO::broadcastFromRoot(comm, message));  // the same message on every rank
+  TEST_EQUALITY(message, broadcastFromRoot(comm, message));  // the same message on every rank
   return message;
 }
 
@@ -63,7 +63,7 @@ std::string mountTmpfs(const std::string& path, unsigned long flags, const std::
     ::mkdir(path.c_str(), 0755);
     if (::mount("tribos_test", path.c_str(), "tmpfs", flags, options.c_str()) != 0) error = std::strerror(errno);
   }
-  return IO::rootError(comm, error);
+  return rootError(comm, error);
 }
 
 }  // namespace
@@ -72,7 +72,7 @@ TEUCHOS_UNIT_TEST(OutputDirectory, CreatesParentsAndLocks) {
   const auto comm = Tpetra::getDefaultComm();
   ScratchDirectory scratch(comm, "output_directory");
   const std::string path = scratch.path() + "/a/b/c";
-  const long rootPid = IO::broadcastFromRoot(*comm, static_cast<long>(::getpid()));
+  const long rootPid = broadcastFromRoot(*comm, static_cast<long>(::getpid()));
   IO::OutputDirectory dir(path + "/", comm);
   TEST_EQUALITY(dir.path(), path);  // without the trailing slash
   struct stat st = {};
@@ -80,7 +80,7 @@ TEUCHOS_UNIT_TEST(OutputDirectory, CreatesParentsAndLocks) {
   TEST_ASSERT(S_ISDIR(st.st_mode));
   const std::string tmp = dir.temporary("solution.h5");
   TEST_EQUALITY(tmp, path + "/.solution.h5." + std::to_string(rootPid) + ".tmp");
-  TEST_ASSERT(IO::isTemporaryName(IO::fileNameOf(tmp)));
+  TEST_ASSERT(isTemporaryName(fileNameOf(tmp)));
   if (comm->getRank() == 0) {
     const auto names = listDirectory(path);
     out << "files: " << names.size() << "\n";
@@ -95,7 +95,7 @@ TEUCHOS_UNIT_TEST(OutputDirectory, SecondInstanceRefused) {
   const auto comm = Tpetra::getDefaultComm();
   ScratchDirectory scratch(comm, "output_directory");
   const std::string base = scratch.path(), path = base + "/a/b/c";
-  const long rootPid = IO::broadcastFromRoot(*comm, static_cast<long>(::getpid()));
+  const long rootPid = broadcastFromRoot(*comm, static_cast<long>(::getpid()));
   IO::OutputDirectory dir(path, comm);
   std::string m = refusal("second instance", *comm, out, success, [&] { IO::OutputDirectory again(path, comm); });
   TEST_ASSERT(contains(m, holderOf(rootPid)));  // names the holder
@@ -110,7 +110,7 @@ TEUCHOS_UNIT_TEST(OutputDirectory, AnotherProcessRefused) {
   const auto comm = Tpetra::getDefaultComm();
   ScratchDirectory scratch(comm, "output_directory");
   const std::string path = scratch.path() + "/a/b/c";
-  const long rootPid = IO::broadcastFromRoot(*comm, static_cast<long>(::getpid()));
+  const long rootPid = broadcastFromRoot(*comm, static_cast<long>(::getpid()));
   IO::OutputDirectory dir(path, comm);
   if (comm->getRank() != 0) return;
   const pid_t child = ::fork();
@@ -158,7 +158,7 @@ TEUCHOS_UNIT_TEST(OutputDirectory, KilledHolderLeavesNoLock) {
     TEST_EQUALITY(c, 'y');
     ::close(ready[0]);
   }
-  const long childPid = IO::broadcastFromRoot(*comm, static_cast<long>(child));
+  const long childPid = broadcastFromRoot(*comm, static_cast<long>(child));
   const std::string m =
       refusal("held by a live process", *comm, out, success, [&] { IO::OutputDirectory dir(path, comm); });
   TEST_ASSERT(contains(m, "process " + std::to_string(childPid) + " on host"));  // names the child
@@ -386,11 +386,11 @@ TEUCHOS_UNIT_TEST(FileSystem, SameFileAndTemporaryPath) {
   ScratchDirectory scratch(self, "samefile");
   const std::string base = scratch.path();
   ::mkdir((base + "/d").c_str(), 0700);
-  TEST_ASSERT(IO::sameFile(base + "/d/../d/x", base + "/d/x"));  // neither exists
-  TEST_ASSERT(!IO::sameFile(base + "/d/x", base + "/d/y"));
+  TEST_ASSERT(sameFile(base + "/d/../d/x", base + "/d/x"));  // neither exists
+  TEST_ASSERT(!sameFile(base + "/d/x", base + "/d/y"));
   IO::writeFileAtomically(base + "/d/x", "x\n");
-  TEST_ASSERT(IO::sameFile(base + "/d/../d/x", base + "/d/x"));  // both exist
-  TEST_ASSERT(!IO::sameFile(base + "/d/x", base + "/d/y"));      // one exists
-  TEST_EQUALITY(IO::directoryOf(IO::temporaryPathFor(base + "/d/x")), base + "/d");
-  TEST_ASSERT(IO::isTemporaryName(IO::fileNameOf(IO::temporaryPathFor(base + "/d/x"))));
+  TEST_ASSERT(sameFile(base + "/d/../d/x", base + "/d/x"));  // both exist
+  TEST_ASSERT(!sameFile(base + "/d/x", base + "/d/y"));      // one exists
+  TEST_EQUALITY(directoryOf(temporaryPathFor(base + "/d/x")), base + "/d");
+  TEST_ASSERT(isTemporaryName(fileNameOf(temporaryPathFor(base + "/d/x"))));
 }

@@ -50,7 +50,7 @@ std::string expectCollective(const std::string& label, const Comm& comm, Teuchos
   }
   out << label << ": " << message << "\n";
   TEST_ASSERT(thrown);
-  TEST_EQUALITY(message, IO::broadcastFromRoot(comm, message));  // the same message on every rank
+  TEST_EQUALITY(message, broadcastFromRoot(comm, message));  // the same message on every rank
   return message;
 }
 

@@ -168,7 +168,7 @@ std::string expectCollective(const std::string& label, const Comm& comm, Teuchos
   }
   out << label << ": " << message << "\n";
   TEST_EQUALITY(kind, "expected");
-  TEST_EQUALITY(message, IO::broadcastFromRoot(comm, message));  // the same message on every rank
+  TEST_EQUALITY(message, broadcastFromRoot(comm, message));  // the same message on every rank
   TEST_EQUALITY(message.find('\n'), std::string::npos);          // one line
   return message;
 }

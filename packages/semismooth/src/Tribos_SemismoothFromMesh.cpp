@@ -9,6 +9,7 @@
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Assembly.hpp"
 #include "Tribos_Decomposition.hpp"
+#include "Tribos_DirichletAtContact.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_ResultKKT.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"

@@ -1,6 +1,6 @@
-// What a semismooth* result gives its writer and Fem::resultKKT: the
+// What a semismooth* result gives its writer and Contact::resultKKT: the
 // assembled vectors, the contact forces in the convention of
-// Fem::ContactNodeForce, the slip and the node status.
+// Contact::ContactNodeForce, the slip and the node status.
 #include <cmath>
 
 #include "Tribos_Error.hpp"
@@ -32,10 +32,10 @@ void addAssembledVectors(const ContactProblem& problem, SemismoothResult& result
 }
 
 // K u - f + lambdaN n + lambdaT = 0 at the free dofs and the plane's force
-// on the body is phi = -lambdaN n + phi_T (Fem::ResultKKT), so phi_T = -lambdaT.
-std::vector<Fem::ContactNodeForce> contactForces(const SemismoothResult& r) {
+// on the body is phi = -lambdaN n + phi_T (Contact::ResultKKT), so phi_T = -lambdaT.
+std::vector<Contact::ContactNodeForce> contactForces(const SemismoothResult& r) {
   requireContactData(r);
-  std::vector<Fem::ContactNodeForce> out(r.contactNodes.size());
+  std::vector<Contact::ContactNodeForce> out(r.contactNodes.size());
   for (size_t i = 0; i < out.size(); ++i) {
     out[i].node = r.contactNodes[i];
     out[i].normalForce = r.lambdaN[i];

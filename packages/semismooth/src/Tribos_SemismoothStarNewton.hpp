@@ -57,7 +57,7 @@ struct SemismoothResult {
   std::vector<double> slipBound, gap;
   // The assembled K u and f (3 per mesh node, global coordinates, Dirichlet
   // dofs included) and the Dirichlet map (dof -> value): what
-  // Fem::resultKKT needs besides the contact forces. Filled by
+  // Contact::resultKKT needs besides the contact forces. Filled by
   // solveFromMesh(), or by addAssembledVectors() after
   // SemismoothStarNewton::solve().
   std::vector<double> Ku, f;
@@ -145,11 +145,11 @@ class SemismoothStarNewton {
 // that was solved.
 void addAssembledVectors(const ContactProblem& problem, SemismoothResult& result);
 
-// The contact forces of the result for Fem::resultKKT and the output, one
+// The contact forces of the result for Contact::resultKKT and the output, one
 // per contact node: normalForce = lambdaN_i >= 0, tangentialForce = -lambdaT_i
 // (the friction force of the plane on the body, global coordinates),
 // slipBound = g_i.
-std::vector<Fem::ContactNodeForce> contactForces(const SemismoothResult& result);
+std::vector<Contact::ContactNodeForce> contactForces(const SemismoothResult& result);
 // The slip of each contact node on its (fixed) plane: the tangential
 // displacement u_i - (u_i.n_i) n_i, global coordinates.
 std::vector<std::array<double, 3>> contactSlip(const SemismoothResult& result);

@@ -9,7 +9,7 @@
 //      including the edge nodes on the symmetry planes (one tangential
 //      direction fixed) and the corner (both fixed), for every
 //      "Newton Solver" (and Dense Schur, KLU2, Nodal step sizes); the
-//      Fem::resultKKT figures of the result are below 1e-6. Again with the
+//      Contact::resultKKT figures of the result are below 1e-6. Again with the
 //      exact values prescribed as u_x on xmax and u_y on ymax (non-zero
 //      prescribed tangential values at contact nodes).
 //  (b) Tresca with a slip bound of 5 % and 30 % of p: the solution is not
@@ -93,20 +93,18 @@ std::map<int, double> nodalAreas(const Mesh::Mesh& mesh) {
   return area;
 }
 
-Fem::ResultKKT kkt(const Semismooth::SemismoothResult& r, Fem::FrictionLaw::Kind law) {
+Contact::ResultKKT kkt(const Semismooth::SemismoothResult& r, FrictionLaw law) {
   const auto comm = Tpetra::getDefaultComm();
-  Fem::FrictionLaw fl;
-  fl.kind = law;
   // Every contact node is held by one rank.
-  std::vector<Fem::ContactNodeForce> forces;
+  std::vector<Contact::ContactNodeForce> forces;
   if (comm->getRank() == 0) forces = Semismooth::contactForces(r);
   // The result is the same on every rank: held everywhere, owned by rank 0.
   const auto layout = Fem::NodalLayout::everyNode(static_cast<int>(r.u.size() / 3), comm);
-  return Fem::resultKKT(Fem::NodalVector(layout, r.u), Fem::NodalVector(layout, r.Ku), Fem::NodalVector(layout, r.f),
-                        r.dirichlet, fl, forces);
+  return Contact::resultKKT(Fem::NodalVector(layout, r.u), Fem::NodalVector(layout, r.Ku), Fem::NodalVector(layout, r.f),
+                        r.dirichlet, law, forces);
 }
 
-void printKKT(const std::string& what, const Fem::ResultKKT& k, Teuchos::FancyOStream& out) {
+void printKKT(const std::string& what, const Contact::ResultKKT& k, Teuchos::FancyOStream& out) {
   out << what << ": KKT equilibrium " << k.equilibrium << ", dirichlet " << k.dirichlet << ", nonpenetration "
             << k.nonpenetration << ", complementarity " << k.complementarity << ", friction " << k.frictionLaw << "\n";
 }
@@ -196,7 +194,7 @@ void frictionless(Mesh::CellType type, bool shifted, Teuchos::FancyOStream& out,
     // tangential directions are fixed cannot slide.
     TEST_EQUALITY(r.numStick.back(), (shifted ? 4 : 1));
     TEST_COMPARE(ds, <=, 1e-8 * strain);  // slip vs the exact one
-    const Fem::ResultKKT k = kkt(r, Fem::FrictionLaw::Frictionless);
+    const Contact::ResultKKT k = kkt(r, FrictionLaw::Frictionless);
     printKKT(what, k, out);
     std::string worst;
     const double worstValue = k.worst(&worst);
@@ -217,7 +215,7 @@ void tresca(Mesh::CellType type, double boundFraction, Teuchos::FancyOStream& ou
         << r.numStick.back() << ", slip " << r.numSlip.back() << "\n";
     TEST_ASSERT(r.converged);
     checkContactSet(b, r, what, out, success);
-    const Fem::ResultKKT k = kkt(r, Fem::FrictionLaw::Tresca);
+    const Contact::ResultKKT k = kkt(r, FrictionLaw::Tresca);
     printKKT(what, k, out);
     std::string worst;
     const double worstValue = k.worst(&worst);

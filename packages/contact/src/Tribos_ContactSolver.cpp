@@ -1,0 +1,178 @@
+#include "Tribos_ContactSolver.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_FrictionLaw.hpp"
+
+namespace Tribos {
+namespace Contact {
+
+namespace {
+
+constexpr const char* kFriction = "Friction";
+constexpr const char* kPair = "Pair ";
+
+// "Law", "Coefficient", "Slip Bound Traction": the friction of one pair.
+RCP<const Teuchos::ParameterList> frictionParameters() {
+  static RCP<Teuchos::ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::parameterList(kFriction);
+    pl->set("Law", frictionLawName(FrictionLaw::Frictionless),
+            "the friction law of the contact pairs: Frictionless, Tresca or Coulomb", frictionLawValidator());
+    pl->set("Coefficient", 0.0, "Coulomb friction coefficient F (slip bound F lambda_N)",
+            rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1e6)));
+    pl->set("Slip Bound Traction", 0.0,
+            "Tresca: the slip bound as a traction, force per area; a node's slip bound is this times its contact area",
+            rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1e300)));
+  }
+  return pl;
+}
+
+// Everything but "Friction": the solve's entries and the FetiProblem's.
+RCP<const Teuchos::ParameterList> solveAndProblemParameters() {
+  static RCP<Teuchos::ParameterList> pl;
+  if (pl.is_null()) {
+    pl = rcp(new Teuchos::ParameterList(*fetiSolveParameters()));
+    pl->setName("Contact Solver");
+    pl->sublist("FETI").setParameters(*Feti::FetiProblem::getValidParameters());
+  }
+  return pl;
+}
+
+// Teuchos' validation, its message (which names the entry and the list)
+// as a Tribos::Error.
+void validate(Teuchos::ParameterList& list, const Teuchos::ParameterList& valid, const std::string& where) {
+  try {
+    list.validateParametersAndSetDefaults(valid);
+  } catch (const std::exception& e) {
+    throw Error("ContactSolver: " + where + ": " + e.what());
+  }
+}
+
+// The friction a validated list states; finite values (a validator's range
+// lets NaN through).
+FrictionSpec frictionSpec(const Teuchos::ParameterList& list, const std::string& path) {
+  FrictionSpec f;
+  f.law = frictionLaw(list, "Law");
+  f.coefficient = list.get<double>("Coefficient");
+  f.slipBoundTraction = list.get<double>("Slip Bound Traction");
+  TRIBOS_REQUIRE(std::isfinite(f.coefficient), "ContactSolver: " << path << "/Coefficient is not finite");
+  TRIBOS_REQUIRE(std::isfinite(f.slipBoundTraction), "ContactSolver: " << path << "/Slip Bound Traction is not finite");
+  return f;
+}
+
+// k of a sublist "Pair <k>", or -1 when the name is not of that form.
+int pairNumber(const std::string& name) {
+  if (name.rfind(kPair, 0) != 0) return -1;
+  const std::string digits = name.substr(std::string(kPair).size());
+  if (digits.empty() || digits.size() > 6 || !std::all_of(digits.begin(), digits.end(), ::isdigit)) return -1;
+  return std::stoi(digits);
+}
+
+// The largest pair number of the problem's contact nodes (-1: none), on
+// every rank. Collective.
+int largestPair(const Feti::FetiProblem& problem) {
+  int mine = -1, largest = -1;
+  for (const auto& c : problem.contactConstraints()) mine = std::max(mine, c.pair);
+  Teuchos::reduceAll(*problem.comm(), Teuchos::REDUCE_MAX, mine, Teuchos::outArg(largest));
+  return largest;
+}
+
+}  // namespace
+
+PairFriction readPairFriction(Teuchos::ParameterList& friction) {
+  Teuchos::ParameterList own(kFriction);
+  std::map<int, Teuchos::ParameterList> pairs;
+  for (auto it = friction.begin(); it != friction.end(); ++it) {
+    const std::string& name = friction.name(it);
+    if (!friction.isSublist(name)) {
+      own.setEntry(name, friction.entry(it));
+      continue;
+    }
+    const int k = pairNumber(name);
+    TRIBOS_REQUIRE(k >= 0, "ContactSolver: Friction/" << name << " is not a parameter of Friction (Law, Coefficient, "
+                                                      << "Slip Bound Traction, or a sublist \"Pair <k>\", k the "
+                                                         "pair number of the contact conditions)");
+    pairs[k] = friction.sublist(name);
+  }
+  validate(own, *frictionParameters(), kFriction);
+  friction.setParameters(own);  // the defaults, in the caller's list
+  const FrictionSpec base = frictionSpec(own, kFriction);
+  if (pairs.empty()) return {base};
+  PairFriction out(pairs.rbegin()->first + 1, base);
+  for (auto& [k, list] : pairs) {
+    const std::string path = std::string(kFriction) + "/" + kPair + std::to_string(k);
+    validate(list, *frictionParameters(), path);  // its own entries, named by its path
+    Teuchos::ParameterList merged(own);
+    merged.setParameters(friction.sublist(kPair + std::to_string(k)));
+    out[k] = frictionSpec(merged, path);
+  }
+  return out;
+}
+
+RCP<const Teuchos::ParameterList> ContactSolver::getValidParameters() {
+  static RCP<Teuchos::ParameterList> pl;
+  if (pl.is_null()) {
+    pl = rcp(new Teuchos::ParameterList(*solveAndProblemParameters()));
+    pl->sublist(kFriction, false,
+                "the friction of every contact pair; a sublist \"Pair <k>\" with any of these entries overrides "
+                "them for the pair k of the contact conditions")
+        .setParameters(*frictionParameters());
+  }
+  return pl;
+}
+
+ContactSolver::ContactSolver(const RCP<const Feti::FetiProblem>& problem, const RCP<Teuchos::ParameterList>& params) {
+  setParameters(params);
+  setProblem(problem);
+}
+
+void ContactSolver::setParameters(const RCP<Teuchos::ParameterList>& params) {
+  const RCP<Teuchos::ParameterList> p = params.is_null() ? Teuchos::parameterList() : params;
+  // "Friction" holds sublists of free names ("Pair <k>"), which Teuchos'
+  // validation cannot take: it is read apart, the rest validated whole.
+  Teuchos::ParameterList friction = p->sublist(kFriction);
+  p->remove(kFriction);
+  try {
+    validate(*p, *solveAndProblemParameters(), "parameters");
+    friction_ = readPairFriction(friction);
+  } catch (...) {
+    p->sublist(kFriction).setParameters(friction);
+    throw;
+  }
+  p->sublist(kFriction).setParameters(friction);
+  params_ = p;
+  solved_ = false;
+}
+
+void ContactSolver::setProblem(const RCP<const Feti::FetiProblem>& problem) {
+  problem_ = problem;
+  solved_ = false;
+}
+
+SolveStatus ContactSolver::solve() {
+  TRIBOS_REQUIRE(!problem_.is_null(), "ContactSolver::solve: no problem; call setProblem() first");
+  if (params_.is_null()) setParameters(Teuchos::null);
+  // Pairs beyond the largest "Pair <k>" take the list's own friction.
+  PairFriction friction = friction_;
+  if (friction.size() > 1) friction.resize(std::max<size_t>(friction.size(), largestPair(*problem_) + 1), friction_[0]);
+  solved_ = false;
+  result_ = solveFeti(problem_, friction, *params_, out_);
+  solved_ = true;
+  return result_.verdict.converged ? SolveStatus::Converged : SolveStatus::Unconverged;
+}
+
+const FetiSolveResult& ContactSolver::getResult() const {
+  TRIBOS_REQUIRE(solved_, "ContactSolver::getResult: no result; call solve() first");
+  return result_;
+}
+
+}  // namespace Contact
+}  // namespace Tribos

@@ -1,0 +1,80 @@
+#include "Tribos_DirichletAtContact.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_Vec3.hpp"
+
+namespace Tribos {
+namespace Fem {
+
+namespace {
+
+// Per axis d: whether Dirichlet conditions fix it at the slave node and
+// every master node, and then the prescribed relative displacement
+// w_d = ubar_s - sum N_i ubar_i and the size of the values (for round-off).
+struct PrescribedRelativeMotion {
+  std::array<bool, 3> fixed{};
+  std::array<double, 3> w{}, scale{};
+  std::string where;  // "contact node N at (x, y, z)"
+};
+
+PrescribedRelativeMotion prescribedRelativeMotion(const std::map<long long, double>& dirichlet, int node,
+                                                  const std::array<double, 3>& x,
+                                                  const std::vector<std::pair<int, double>>& master) {
+  PrescribedRelativeMotion m;
+  for (int d = 0; d < 3; ++d) {
+    auto value = [&](int n) {
+      const auto it = dirichlet.find(3LL * n + d);
+      return it == dirichlet.end() ? std::nan("") : it->second;
+    };
+    m.fixed[d] = !std::isnan(value(node));
+    m.w[d] = m.fixed[d] ? value(node) : 0.0;
+    m.scale[d] = std::abs(m.w[d]);
+    for (const auto& [mn, weight] : master) {
+      m.fixed[d] = m.fixed[d] && !std::isnan(value(mn));
+      if (m.fixed[d]) m.w[d] -= weight * value(mn), m.scale[d] = std::max(m.scale[d], std::abs(value(mn)));
+    }
+  }
+  std::ostringstream os;
+  os << "contact node " << node << " at (" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+  m.where = os.str();
+  return m;
+}
+
+bool tangentialAxis(const std::array<double, 3>& normal, int d) {
+  return std::abs(normal[d]) <= 1e-12 * norm(normal);
+}
+
+}  // namespace
+
+void requireNoPrescribedPenetration(const std::map<long long, double>& dirichlet, int node,
+                                    const std::array<double, 3>& x, const std::array<double, 3>& normal, double gap,
+                                    const std::vector<std::pair<int, double>>& master) {
+  const auto m = prescribedRelativeMotion(dirichlet, node, x, master);
+  const double nn = norm(normal);
+  double wn = 0, scale = std::abs(gap);
+  for (int d = 0; d < 3; ++d) {
+    if (tangentialAxis(normal, d)) continue;
+    if (!m.fixed[d]) return;  // the normal motion is free: the contact rows decide
+    wn += normal[d] / nn * m.w[d];
+    scale = std::max(scale, m.scale[d]);
+  }
+  TRIBOS_REQUIRE(wn <= gap + 1e-10 * scale,
+                 m.where << ": its Dirichlet values move it " << wn - gap << " through the surface it contacts");
+}
+
+void requireNoPrescribedSlip(const std::map<long long, double>& dirichlet, int node, const std::array<double, 3>& x,
+                             const std::array<double, 3>& normal, const std::vector<std::pair<int, double>>& master) {
+  const auto m = prescribedRelativeMotion(dirichlet, node, x, master);
+  for (int d = 0; d < 3; ++d)
+    TRIBOS_REQUIRE(!tangentialAxis(normal, d) || !m.fixed[d] || std::abs(m.w[d]) <= 1e-10 * m.scale[d],
+                   m.where << ": its Dirichlet values make it slide " << m.w[d] << " along " << "xyz"[d]
+                           << " against the surface it contacts, with friction; friction against a prescribed "
+                              "sliding is not modelled: prescribe the motion away from the contact surface, the "
+                              "same value on both sides, or no friction");
+}
+
+}  // namespace Fem
+}  // namespace Tribos
