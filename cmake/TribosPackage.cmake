@@ -37,6 +37,7 @@ set(TRIBOS_INSTALL_INTERNAL_INCLUDEDIR ${TRIBOS_INSTALL_INCLUDEDIR}/internal)
 set(TRIBOS_PUBLIC_HEADERS
   # core
   Tribos_Types.hpp Tribos_Error.hpp Tribos_MpiStartup.hpp Tribos_Registry.hpp Tribos_LocalCsr.hpp
+  Tribos_FrictionLaw.hpp
   # mesh and fem
   Tribos_Mesh.hpp Tribos_MeshFile.hpp Tribos_Decomposition.hpp Tribos_Discretization.hpp
   Tribos_Elasticity.hpp Tribos_Assembly.hpp Tribos_Loads.hpp Tribos_NodalVector.hpp Tribos_RigidMotions.hpp
@@ -48,7 +49,7 @@ set(TRIBOS_PUBLIC_HEADERS
   # feti and contact: the embedding API (Tribos.hpp includes it all)
   Tribos.hpp Tribos_FetiProblem.hpp Tribos_ConstraintRows.hpp Tribos_ContactConstraint.hpp Tribos_ContactSearch.hpp
   Tribos_FetiContact.hpp Tribos_FetiSolve.hpp Tribos_ResultKKT.hpp Tribos_TpetraSubdomain.hpp
-  Tribos_ContactConditions.hpp
+  Tribos_ContactConditions.hpp Tribos_ContactSolver.hpp
   # semismooth, io, fclib, driver
   Tribos_SemismoothStarNewton.hpp Tribos_ResultSet.hpp Tribos_ResultWriter.hpp Tribos_ParameterReader.hpp
   Tribos_FCLIB.hpp Tribos_FCLIB_SparseMatrix.hpp Tribos_FCLIB_Accuracy.hpp Tribos_FCLIB_Solve.hpp

@@ -143,6 +143,7 @@ void ContactSolver::setParameters(const RCP<Teuchos::ParameterList>& params) {
   try {
     validate(*p, *solveAndProblemParameters(), "parameters");
     friction_ = readPairFriction(friction);
+    base_ = frictionSpec(friction, kFriction);
   } catch (...) {
     p->sublist(kFriction).setParameters(friction);
     throw;
@@ -162,7 +163,7 @@ SolveStatus ContactSolver::solve() {
   if (params_.is_null()) setParameters(Teuchos::null);
   // Pairs beyond the largest "Pair <k>" take the list's own friction.
   PairFriction friction = friction_;
-  if (friction.size() > 1) friction.resize(std::max<size_t>(friction.size(), largestPair(*problem_) + 1), friction_[0]);
+  if (friction.size() > 1) friction.resize(std::max<size_t>(friction.size(), largestPair(*problem_) + 1), base_);
   solved_ = false;
   result_ = solveFeti(problem_, friction, *params_, out_);
   solved_ = true;

@@ -78,6 +78,7 @@ class ContactSolver {
   RCP<const Feti::FetiProblem> problem_;
   RCP<Teuchos::ParameterList> params_;
   PairFriction friction_{FrictionSpec()};  // readPairFriction of "Friction"
+  FrictionSpec base_;                      // "Friction"'s own entries: pairs no "Pair <k>" names
   RCP<Teuchos::FancyOStream> out_;
   bool solved_ = false;
   FetiSolveResult result_;
