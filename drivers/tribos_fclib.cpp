@@ -235,7 +235,7 @@ void solveGlobal(const Args& args, const FCLIB::SolveOptions& options, const RCP
                  const FCLIB::Info& info, FCLIB::SolveReport& rep, Outcome& out) {
   const auto p = FCLIB::readGlobal(args.input);
   const auto stored = FCLIB::readSolutionLeniently(args.input, out.notes);
-  out.summary.set("kind", "global").set("contacts", p.numberOfContacts()).set("dofs", p.M.m);
+  out.summary.set("kind", "global").set("contacts", p.numberOfContacts()).set("dofs", p.M.rows);
   rep = FCLIB::solve(p, options, self);
   compareStored(
       stored, rep,

@@ -154,7 +154,7 @@ FCLIB::LocalProblem localOf(const FCLIB::GlobalProblem& g, const RCP<const Comm>
   const LocalCsr W = op.explicitMatrix();
   FCLIB::LocalProblem p;
   p.spacedim = 3;
-  p.W = FCLIB::SparseMatrix::fromCSR(n, n, W.rowptr, W.col, W.val, "W = H'M^-1 H");
+  p.W = FCLIB::fromCSR(n, n, W.rowptr, W.col, W.val, "W = H'M^-1 H");
   p.mu = g.mu;
   std::vector<double> vFree;
   M->solve(g.f, vFree);
@@ -178,8 +178,8 @@ struct Row {
 // invariant under c (it subtracts velocities from forces), so Siconos then
 // stops on the measure of the scaled problem while the table measures the
 // original one.
-NumericsMatrix* siconosMatrix(const FCLIB::SparseMatrix& W, double c, const std::string& storage) {
-  const int n = W.m;
+NumericsMatrix* siconosMatrix(const LocalCsr& W, double c, const std::string& storage) {
+  const int n = W.rows;
   if (storage == "dense") {
     NumericsMatrix* A = NM_create(NM_DENSE, n, n);
     std::fill(A->matrix0, A->matrix0 + static_cast<size_t>(n) * n, 0.0);
@@ -210,7 +210,7 @@ Row runSiconos(const std::string& name, const FCLIB::LocalProblem& p, const Args
   const int nc = p.numberOfContacts(), n = 3 * nc;
   row.time = std::numeric_limits<double>::infinity();
   std::vector<double> r(n), u(n);
-  const double c = args.scaleSiconos ? 1.0 / p.W.maxAbs() : 1.0;
+  const double c = args.scaleSiconos ? 1.0 / FCLIB::maxAbs(p.W) : 1.0;
   NumericsMatrix* W = nullptr;
   FrictionContactProblem* problem = nullptr;
   SolverOptions* options = nullptr;

@@ -1,9 +1,12 @@
 // Tribos_LocalCsr.hpp: a plain compressed-row matrix for data that lives on one
 // rank (subdomain stiffness matrices before they are wrapped in Tpetra, input
-// to direct solvers that want raw CSR arrays).
+// to direct solvers that want raw CSR arrays, the matrices of FCLIB files).
 #pragma once
 
+#include <string>
 #include <vector>
+
+#include "Tribos_Error.hpp"
 
 namespace Tribos {
 
@@ -21,6 +24,9 @@ struct LocalCsr {
   std::vector<int> rowptr{0}, col;
   std::vector<double> val;
 
+  // The number of stored entries (none without row pointers).
+  int nnz() const { return rowptr.empty() ? 0 : rowptr.back(); }
+
   // y = A x
   void multiply(const double* x, double* y) const {
     for (int i = 0; i < rows; ++i) {
@@ -28,6 +34,19 @@ struct LocalCsr {
       for (int k = rowptr[i]; k < rowptr[i + 1]; ++k) s += val[k] * x[col[k]];
       y[i] = s;
     }
+  }
+  // y = A x and y = A' x on vectors: x must have cols (rows) entries, y is
+  // resized to rows (cols).
+  void multiply(const std::vector<double>& x, std::vector<double>& y) const {
+    requireLength(x, cols, "multiply", "columns");
+    y.assign(rows, 0.0);
+    multiply(x.data(), y.data());
+  }
+  void multiplyTranspose(const std::vector<double>& x, std::vector<double>& y) const {
+    requireLength(x, rows, "multiplyTranspose", "rows");
+    y.assign(cols, 0.0);
+    for (int i = 0; i < rows; ++i)
+      for (int k = rowptr[i]; k < rowptr[i + 1]; ++k) y[col[k]] += val[k] * x[i];
   }
   // The principal submatrix on `keep` (ascending indices), columns renumbered.
   LocalCsr principalSubmatrix(const std::vector<int>& keep) const {
@@ -50,6 +69,13 @@ struct LocalCsr {
     return m;
   }
   CsrView view() const { return {rows, cols, rowptr.data(), col.data(), val.data()}; }
+
+ private:
+  static void requireLength(const std::vector<double>& x, int length, const char* product, const char* what) {
+    if (x.size() != static_cast<std::size_t>(length))
+      throw Error(std::string("LocalCsr::") + product + ": x has " + std::to_string(x.size()) + " entries, matrix has " +
+                  std::to_string(length) + " " + what);
+  }
 };
 
 }  // namespace Tribos

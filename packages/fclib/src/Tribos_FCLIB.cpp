@@ -276,11 +276,11 @@ void checkFiniteValues(const std::vector<double>& x, std::size_t used, const Loc
                  (std::isnan(x[k]) ? "nan" : "inf") + ")");
 }
 
-SparseMatrix buildMatrix(int m, int n, int nz, std::vector<int> p, std::vector<int> i,
+LocalCsr buildMatrix(int m, int n, int nz, std::vector<int> p, std::vector<int> i,
                          std::vector<double> x, const Location& where) {
   const std::string what = "FCLIB file " + where.file + ": " + where.group;
-  if (nz == -2) return SparseMatrix::fromCSR(m, n, p, i, x, what);
-  if (nz == -1) return SparseMatrix::fromCSC(m, n, p, i, x, what);
+  if (nz == -2) return fromCSR(m, n, p, i, x, what);
+  if (nz == -1) return fromCSC(m, n, p, i, x, what);
   // Triplets: only the first nz entries are meaningful (arrays may be nzmax long).
   for (const auto& [name, size] : {std::pair<const char*, std::size_t>{"p", p.size()},
                                    {"i", i.size()}, {"x", x.size()}})
@@ -290,13 +290,13 @@ SparseMatrix buildMatrix(int m, int n, int nz, std::vector<int> p, std::vector<i
   p.resize(nz);
   i.resize(nz);
   x.resize(nz);
-  return SparseMatrix::fromTriplets(m, n, i, p, x, what);
+  return fromTriplets(m, n, i, p, x, what);
 }
 
 // Reads a sparse matrix whose dimensions are already known from the stored
 // vectors: the declared m and n are checked before any array is read, so a
 // wrong header is reported as such and never sizes an allocation.
-SparseMatrix readMatrix(hid_t parent, const Location& parentWhere, const std::string& name,
+LocalCsr readMatrix(hid_t parent, const Location& parentWhere, const std::string& name,
                         const Dimension& rows, const Dimension& columns) {
   Handle group = openGroup(parent, parentWhere, name);
   const Location where = parentWhere.child(name);
@@ -317,7 +317,7 @@ SparseMatrix readMatrix(hid_t parent, const Location& parentWhere, const std::st
                                 nz == -2 ? " (m + 1 row pointers)" : " (n + 1 column pointers)");
   std::vector<int> i = readInts(g, where, "i");
   std::vector<double> x = readDoubles(g, where, "x");
-  SparseMatrix A = buildMatrix(m, n, nz, p, i, x, where);
+  LocalCsr A = buildMatrix(m, n, nz, p, i, x, where);
   const std::size_t used = nz < 0 ? static_cast<std::size_t>(p.back()) : nz;
   checkNzmax(g, where, used);
   checkFiniteValues(x, used, where);
@@ -375,13 +375,13 @@ void writeString(hid_t loc, const Location& where, const std::string& name,
 }
 
 void writeMatrix(hid_t parent, const Location& parentWhere, const std::string& name,
-                 const SparseMatrix& A, Storage storage) {
+                 const LocalCsr& A, Storage storage) {
   Handle group = createGroup(parent, parentWhere, name);
   const Location where = parentWhere.child(name);
   const hid_t g = group.get();
   writeInt(g, where, "nzmax", A.nnz());
-  writeInt(g, where, "m", A.m);
-  writeInt(g, where, "n", A.n);
+  writeInt(g, where, "m", A.rows);
+  writeInt(g, where, "n", A.cols);
   if (storage == Storage::CompressedRows) {
     writeInt(g, where, "nz", -2);
     // A 0 x n matrix built by hand may have no row pointer; the file needs one.
@@ -389,7 +389,7 @@ void writeMatrix(hid_t parent, const Location& parentWhere, const std::string& n
     writeInts(g, where, "i", A.col);
   } else {
     std::vector<int> row, column;
-    A.toTriplets(row, column);
+    toTriplets(A, row, column);
     writeInt(g, where, "nz", A.nnz());
     writeInts(g, where, "p", column);
     writeInts(g, where, "i", row);
@@ -504,18 +504,18 @@ class Checker {
              " is negative (a friction coefficient is >= 0)");
   }
 
-  // Canonical CSR as SparseMatrix documents it, m x n as the problem needs,
+  // Canonical CSR as Tribos_FCLIB_SparseMatrix.hpp documents it, m x n as the problem needs,
   // and finite entries (duplicates summed on reading may overflow).
   template <class Why>
-  void matrix(const SparseMatrix& A, const std::string& dataset, std::size_t m, std::size_t n,
+  void matrix(const LocalCsr& A, const std::string& dataset, std::size_t m, std::size_t n,
               const Why& why) const {
-    if (A.m < 0 || A.n < 0 || static_cast<std::size_t>(A.m) != m ||
-        static_cast<std::size_t>(A.n) != n)
-      fail(name(dataset) + " is " + std::to_string(A.m) + " x " + std::to_string(A.n) +
+    if (A.rows < 0 || A.cols < 0 || static_cast<std::size_t>(A.rows) != m ||
+        static_cast<std::size_t>(A.cols) != n)
+      fail(name(dataset) + " is " + std::to_string(A.rows) + " x " + std::to_string(A.cols) +
            ", expected " + std::to_string(m) + " x " + std::to_string(n) + text(why));
     structure(A, dataset);
     if (allFinite(A.val)) return;
-    for (int r = 0; r < A.m; ++r)
+    for (int r = 0; r < A.rows; ++r)
       for (int k = A.rowptr[r]; k < A.rowptr[r + 1]; ++k)
         if (!std::isfinite(A.val[k]))
           fail(name(dataset) + " has a non-finite entry (" + kind(A.val[k]) + ") at row " +
@@ -534,20 +534,20 @@ class Checker {
     return buffer;
   }
 
-  void structure(const SparseMatrix& A, const std::string& dataset) const {
+  void structure(const LocalCsr& A, const std::string& dataset) const {
     auto bad = [&](const std::string& why) {
       fail(name(dataset) + " is not a valid compressed-row matrix: " + why);
     };
-    if (A.rowptr.empty() && A.m == 0 && A.col.empty() && A.val.empty()) return;
-    if (A.rowptr.size() != static_cast<std::size_t>(A.m) + 1)
-      bad(std::to_string(A.rowptr.size()) + " row pointers for " + std::to_string(A.m) + " rows");
+    if (A.rowptr.empty() && A.rows == 0 && A.col.empty() && A.val.empty()) return;
+    if (A.rowptr.size() != static_cast<std::size_t>(A.rows) + 1)
+      bad(std::to_string(A.rowptr.size()) + " row pointers for " + std::to_string(A.rows) + " rows");
     if (A.rowptr[0] != 0) bad("the first row pointer is " + std::to_string(A.rowptr[0]));
     // Each test first as one flag over the whole array (a loop without a
     // branch per entry, which vectorizes), then, only when it fails, entry
     // by entry for the message.
     bool decreasing = false;
-    for (int r = 0; r < A.m; ++r) decreasing |= A.rowptr[r + 1] < A.rowptr[r];
-    for (int r = 0; decreasing && r < A.m; ++r)
+    for (int r = 0; r < A.rows; ++r) decreasing |= A.rowptr[r + 1] < A.rowptr[r];
+    for (int r = 0; decreasing && r < A.rows; ++r)
       if (A.rowptr[r + 1] < A.rowptr[r]) bad("row pointers decrease at row " + std::to_string(r));
     const std::size_t nnz = static_cast<std::size_t>(A.rowptr.back());
     if (A.col.size() != nnz || A.val.size() != nnz)
@@ -561,7 +561,7 @@ class Checker {
     //   row's last entry to the next row's first, are the steps down inside
     //   rows.
     std::uint32_t signs = 0;
-    const std::uint32_t last = static_cast<std::uint32_t>(A.n) - 1u;
+    const std::uint32_t last = static_cast<std::uint32_t>(A.cols) - 1u;
     int down = 0;
     if (nnz > 0) signs = static_cast<std::uint32_t>(A.col[0]) | (last - static_cast<std::uint32_t>(A.col[0]));
     for (std::size_t k = 1; k < nnz; ++k) {
@@ -569,16 +569,16 @@ class Checker {
       signs |= c | (last - c);
       down += A.col[k] <= A.col[k - 1];
     }
-    const bool outside = A.n == 0 ? nnz > 0 : (signs >> 31) != 0;
+    const bool outside = A.cols == 0 ? nnz > 0 : (signs >> 31) != 0;
     for (std::size_t k = 0; outside && k < nnz; ++k)
-      if (A.col[k] < 0 || A.col[k] >= A.n)
-        bad("column index " + std::to_string(A.col[k]) + " outside [0, " + std::to_string(A.n) +
+      if (A.col[k] < 0 || A.col[k] >= A.cols)
+        bad("column index " + std::to_string(A.col[k]) + " outside [0, " + std::to_string(A.cols) +
             ")");
-    for (int r = 1; r < A.m; ++r) {  // each boundary once (empty rows repeat it)
+    for (int r = 1; r < A.rows; ++r) {  // each boundary once (empty rows repeat it)
       const int k = A.rowptr[r];
       if (k > 0 && static_cast<std::size_t>(k) < nnz && k != A.rowptr[r - 1]) down -= A.col[k] <= A.col[k - 1];
     }
-    for (int r = 0; down > 0 && r < A.m; ++r)
+    for (int r = 0; down > 0 && r < A.rows; ++r)
       for (int k = A.rowptr[r] + 1; k < A.rowptr[r + 1]; ++k)
         if (A.col[k] <= A.col[k - 1])
           bad("row " + std::to_string(r) + " has column " + std::to_string(A.col[k]) + " after column " +

@@ -53,10 +53,10 @@ struct Info {
 // Mixed local problem: u = W r + V l + q, V' r + R l + s = 0; V, R, s are
 // absent for a pure contact problem (all shipped files).
 struct LocalProblem {
-  SparseMatrix W;
+  LocalCsr W;
   std::vector<double> q, mu;
   int spacedim = 3;
-  std::optional<SparseMatrix> V, R;
+  std::optional<LocalCsr> V, R;
   std::optional<std::vector<double>> s;
 
   int numberOfContacts() const { return static_cast<int>(mu.size()); }
@@ -64,10 +64,10 @@ struct LocalProblem {
 
 // Global problem: M v = H r + G l + f, G' v + b = 0, u = H' v + w.
 struct GlobalProblem {
-  SparseMatrix M, H;
+  LocalCsr M, H;
   std::vector<double> f, w, mu;
   int spacedim = 3;
-  std::optional<SparseMatrix> G;
+  std::optional<LocalCsr> G;
   std::optional<std::vector<double>> b;
 
   int numberOfContacts() const { return static_cast<int>(mu.size()); }

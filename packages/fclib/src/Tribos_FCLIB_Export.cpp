@@ -71,7 +71,7 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh
       vals.push_back(cv(k));
     }
   }
-  out.M = SparseMatrix::fromTriplets(ndof, ndof, rows, cols, vals, "FCLIB export: stiffness");
+  out.M = fromTriplets(ndof, ndof, rows, cols, vals, "FCLIB export: stiffness");
   out.f.assign(ndof, 0.0);
   {
     auto fv = mono.rhs()->getData();
@@ -105,7 +105,7 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh
     out.mu.push_back(law == FrictionLaw::Coulomb ? coefficient : 0.0);
     ++nc;
   }
-  out.H = SparseMatrix::fromTriplets(ndof, 3 * nc, rows, cols, vals, "FCLIB export: H");
+  out.H = fromTriplets(ndof, 3 * nc, rows, cols, vals, "FCLIB export: H");
   out.spacedim = 3;
   solution.v = v;
   out.H.multiplyTranspose(v, solution.u);

@@ -53,22 +53,16 @@ std::string libraryReason(const std::string& what) {
 
 }  // namespace
 
-MassSolver::MassSolver(const SparseMatrix& M, const std::string& name, const std::string& source) {
-  if (M.m != M.n) throw Error("MassSolver: M is not square");
-  if (M.m == 0) return;  // no degrees of freedom: nothing to factor, v is empty
-  LocalCsr A;
-  A.rows = M.m;
-  A.cols = M.n;
-  A.rowptr = M.rowptr;
-  A.col = M.col;
-  A.val = M.val;
+MassSolver::MassSolver(const LocalCsr& M, const std::string& name, const std::string& source) {
+  if (M.rows != M.cols) throw Error("MassSolver: M is not square");
+  if (M.rows == 0) return;  // no degrees of freedom: nothing to factor, v is empty
   const auto t0 = std::chrono::steady_clock::now();
-  const std::string what = "M (/fclib_global/M, " + std::to_string(M.m) + " x " + std::to_string(M.n) + ", " +
+  const std::string what = "M (/fclib_global/M, " + std::to_string(M.rows) + " x " + std::to_string(M.cols) + ", " +
                            std::to_string(M.nnz()) + " entries)";
   Progress::stage("factorization of " + what + " by " + name);
   solver_ = createLocalSolver(name);
   try {
-    solver_->factor(A);
+    solver_->factor(M);
   } catch (const std::exception& e) {
     const std::string reason = libraryReason(e.what());
     throw Error(source + ": " + what + " is singular (or not positive definite): its " + name +
@@ -92,9 +86,9 @@ SolveM MassSolver::function() const {
 
 // ---------------------------------------------------------------- DelassusOperator
 
-DelassusOperator::DelassusOperator(const SparseMatrix& W, const RCP<const Map>& map) : W_(&W), map_(map) {}
+DelassusOperator::DelassusOperator(const LocalCsr& W, const RCP<const Map>& map) : W_(&W), map_(map) {}
 
-DelassusOperator::DelassusOperator(const SparseMatrix& H, std::shared_ptr<const MassSolver> M,
+DelassusOperator::DelassusOperator(const LocalCsr& H, std::shared_ptr<const MassSolver> M,
                                    const RCP<const Map>& map)
     : H_(&H), M_(std::move(M)), map_(map) {}
 
@@ -129,7 +123,7 @@ std::vector<double> DelassusOperator::dense() const {
   std::vector<double> D(static_cast<size_t>(n) * n), e(n, 0.0), col;
   if (H_) {
     // All columns with one multi-right-hand-side solve: H e_j is column j of H.
-    const int ndof = H_->m;
+    const int ndof = H_->rows;
     std::vector<double> HE(static_cast<size_t>(ndof) * n, 0.0), MHE(HE.size());
     for (int i = 0; i < ndof; ++i)
       for (int k = H_->rowptr[i]; k < H_->rowptr[i + 1]; ++k) HE[static_cast<size_t>(H_->col[k]) * ndof + i] = H_->val[k];
@@ -151,14 +145,9 @@ std::vector<double> DelassusOperator::dense() const {
 }
 
 LocalCsr DelassusOperator::explicitMatrix() const {
+  if (W_) return *W_;  // n x n, as validate() checked
   LocalCsr A;
   A.rows = A.cols = static_cast<int>(map_->getGlobalNumElements());
-  if (W_) {
-    A.rowptr = W_->rowptr;
-    A.col = W_->col;
-    A.val = W_->val;
-    return A;
-  }
   const std::vector<double> D = dense();
   const int n = A.rows;
   for (int i = 0; i < n; ++i) {
@@ -574,10 +563,10 @@ void Solver::resetLimits() const {
 
 std::string Solver::source() const { return options_.source.empty() ? kContext : options_.source; }
 
-void Solver::requireSymmetric(const SparseMatrix& W) const {
-  if (!needsSymmetricW_ || W.m == 0) return;
-  const SparseMatrix::Asymmetry worst = W.largestAsymmetry();
-  const double scale = W.maxAbs(), difference = std::abs(worst.value - worst.mirror);
+void Solver::requireSymmetric(const LocalCsr& W) const {
+  if (!needsSymmetricW_ || W.rows == 0) return;
+  const Asymmetry worst = largestAsymmetry(W);
+  const double scale = maxAbs(W), difference = std::abs(worst.value - worst.mirror);
   if (difference <= options_.symmetryTolerance * scale) return;
   std::ostringstream os;
   os << std::setprecision(6) << source() << ": W (/fclib_local/W) is not symmetric: W(" << worst.row << ", "
@@ -645,11 +634,10 @@ SolveReport Solver::solve(const LocalProblem& problem) const {
   resetLimits();
   const int n = 3 * problem.numberOfContacts();
   SolveReport rep;
-  if (problem.W.isZero()) {
+  if (isZero(problem.W)) {
     rep = solveWithZeroW(problem.q, problem.mu, options_);
   } else if (auto* nsgs = dynamic_cast<Friction::NonsmoothGaussSeidel*>(solver_.get())) {
-    const CsrView W{problem.W.m, problem.W.n, problem.W.rowptr.data(), problem.W.col.data(), problem.W.val.data()};
-    rep = solveExplicit(W, problem.q, problem.mu, options_, *nsgs);
+    rep = solveExplicit(problem.W.view(), problem.q, problem.mu, options_, *nsgs);
     if (n <= options_.denseSpectrumLimit) spectrum(DelassusOperator(problem.W, serialMap(n, comm_)), n, rep);
     kktResiduals(rep.r, rep.u, problem.mu, problem.q, rep);
   } else {
@@ -678,7 +666,7 @@ SolveReport Solver::solve(const GlobalProblem& problem) const {
   for (size_t i = 0; i < q.size(); ++i) q[i] += problem.w[i];
   const double reduction = seconds(t0);
   SolveReport rep;
-  if (problem.H.isZero()) {  // W = H'M^-1 H = 0
+  if (isZero(problem.H)) {  // W = H'M^-1 H = 0
     rep = solveWithZeroW(q, problem.mu, options_);
   } else if (auto* nsgs = dynamic_cast<Friction::NonsmoothGaussSeidel*>(solver_.get())) {
     DelassusOperator op(problem.H, M, map);

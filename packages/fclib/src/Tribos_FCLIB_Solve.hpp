@@ -52,7 +52,7 @@ class MassSolver {
   // symmetric positive definite). A failed factorization throws
   // Tribos::Error "<source>: M (...) is singular (or not positive definite)
   // ...", source naming the problem (its file).
-  MassSolver(const SparseMatrix& M, const std::string& name, const std::string& source = "FCLIB solve");
+  MassSolver(const LocalCsr& M, const std::string& name, const std::string& source = "FCLIB solve");
   void solve(const std::vector<double>& b, std::vector<double>& x) const;
   // Without degrees of freedom (M is 0 x 0) nothing is factored and every
   // solve is empty.
@@ -74,8 +74,8 @@ class MassSolver {
 // matrix (local problem) or H' M^-1 H (global problem).
 class DelassusOperator : public Operator {
  public:
-  DelassusOperator(const SparseMatrix& W, const RCP<const Map>& map);
-  DelassusOperator(const SparseMatrix& H, std::shared_ptr<const MassSolver> M, const RCP<const Map>& map);
+  DelassusOperator(const LocalCsr& W, const RCP<const Map>& map);
+  DelassusOperator(const LocalCsr& H, std::shared_ptr<const MassSolver> M, const RCP<const Map>& map);
   RCP<const Map> getDomainMap() const override { return map_; }
   RCP<const Map> getRangeMap() const override { return map_; }
   void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode = Teuchos::NO_TRANS, SC alpha = 1,
@@ -89,8 +89,8 @@ class DelassusOperator : public Operator {
   LocalCsr explicitMatrix() const;
 
  private:
-  const SparseMatrix* W_ = nullptr;
-  const SparseMatrix* H_ = nullptr;
+  const LocalCsr* W_ = nullptr;
+  const LocalCsr* H_ = nullptr;
   std::shared_ptr<const MassSolver> M_;
   RCP<const Map> map_;
   mutable std::vector<double> x_, y_, z_;
@@ -212,7 +212,7 @@ class Solver {
  private:
   void resetLimits() const;
   // Refuses a nonsymmetric W when the method needs W symmetric.
-  void requireSymmetric(const SparseMatrix& W) const;
+  void requireSymmetric(const LocalCsr& W) const;
   std::string source() const;
   SolveOptions options_;
   RCP<const Comm> comm_;

@@ -55,8 +55,7 @@ void checkIndices(const std::vector<int>& idx, std::size_t count, int bound,
 }
 
 // The row (or column) of every entry of a compressed matrix, from the
-// pointers of its count rows (or columns); none without pointers (a
-// default-constructed SparseMatrix).
+// pointers of its count rows (or columns); none without pointers.
 std::vector<int> expandPointers(const std::vector<int>& ptr, int count) {
   std::vector<int> index(ptr.empty() ? 0 : ptr[count]);
   for (int r = 0; r < count; ++r)
@@ -74,46 +73,22 @@ std::vector<T> firstEntries(const std::vector<T>& v, int count) {
 // entry) or by columns (CSC: n + 1 pointers, the row of each entry),
 // checked, then expanded to triplets and canonicalized (the file need not
 // sort the entries of a row or column).
-SparseMatrix fromCompressed(int m, int n, bool byRows, const std::vector<int>& ptr, const std::vector<int>& index,
-                            const std::vector<double>& value, const std::string& what) {
+LocalCsr fromCompressed(int m, int n, bool byRows, const std::vector<int>& ptr, const std::vector<int>& index,
+                        const std::vector<double>& value, const std::string& what) {
   checkShape(m, n, what);
   const int outer = byRows ? m : n, inner = byRows ? n : m;
   checkPointers(ptr, outer, std::min(index.size(), value.size()), what);
   const int count = ptr[outer];
   checkIndices(index, count, inner, "i", what);
   const std::vector<int> expanded = expandPointers(ptr, outer), listed = firstEntries(index, count);
-  return byRows ? SparseMatrix::fromTriplets(m, n, expanded, listed, firstEntries(value, count), what)
-                : SparseMatrix::fromTriplets(m, n, listed, expanded, firstEntries(value, count), what);
+  return byRows ? fromTriplets(m, n, expanded, listed, firstEntries(value, count), what)
+                : fromTriplets(m, n, listed, expanded, firstEntries(value, count), what);
 }
 
 }  // namespace
 
-void SparseMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
-  if (x.size() != static_cast<std::size_t>(n))
-    throw Error("SparseMatrix::multiply: x has " + std::to_string(x.size()) +
-                             " entries, matrix has " + std::to_string(n) + " columns");
-  y.assign(m, 0.0);
-  for (int r = 0; r < m; ++r) {
-    double sum = 0.0;
-    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) sum += val[k] * x[col[k]];
-    y[r] = sum;
-  }
-}
-
-void SparseMatrix::multiplyTranspose(const std::vector<double>& x, std::vector<double>& y) const {
-  if (x.size() != static_cast<std::size_t>(m))
-    throw Error("SparseMatrix::multiplyTranspose: x has " +
-                             std::to_string(x.size()) + " entries, matrix has " +
-                             std::to_string(m) + " rows");
-  y.assign(n, 0.0);
-  for (int r = 0; r < m; ++r)
-    for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) y[col[k]] += val[k] * x[r];
-}
-
-SparseMatrix SparseMatrix::fromTriplets(int m, int n, const std::vector<int>& row,
-                                        const std::vector<int>& column,
-                                        const std::vector<double>& value,
-                                        const std::string& what) {
+LocalCsr fromTriplets(int m, int n, const std::vector<int>& row, const std::vector<int>& column,
+                      const std::vector<double>& value, const std::string& what) {
   checkShape(m, n, what);
   const std::size_t count = row.size();
   if (column.size() != count || value.size() != count)
@@ -132,9 +107,9 @@ SparseMatrix SparseMatrix::fromTriplets(int m, int n, const std::vector<int>& ro
     return row[a] != row[b] ? row[a] < row[b] : column[a] < column[b];
   });
 
-  SparseMatrix A;
-  A.m = m;
-  A.n = n;
+  LocalCsr A;
+  A.rows = m;
+  A.cols = n;
   A.rowptr.assign(static_cast<std::size_t>(m) + 1, 0);
   A.col.reserve(count);
   A.val.reserve(count);
@@ -154,34 +129,34 @@ SparseMatrix SparseMatrix::fromTriplets(int m, int n, const std::vector<int>& ro
   return A;
 }
 
-SparseMatrix SparseMatrix::fromCSR(int m, int n, const std::vector<int>& rowptr,
-                                   const std::vector<int>& column,
-                                   const std::vector<double>& value, const std::string& what) {
+LocalCsr fromCSR(int m, int n, const std::vector<int>& rowptr, const std::vector<int>& column,
+                 const std::vector<double>& value, const std::string& what) {
   return fromCompressed(m, n, true, rowptr, column, value, what);
 }
 
-SparseMatrix SparseMatrix::fromCSC(int m, int n, const std::vector<int>& colptr,
-                                   const std::vector<int>& rowIndex,
-                                   const std::vector<double>& value, const std::string& what) {
+LocalCsr fromCSC(int m, int n, const std::vector<int>& colptr, const std::vector<int>& rowIndex,
+                 const std::vector<double>& value, const std::string& what) {
   return fromCompressed(m, n, false, colptr, rowIndex, value, what);
 }
 
-void SparseMatrix::toTriplets(std::vector<int>& row, std::vector<int>& column) const {
-  row = expandPointers(rowptr, m);
-  column = col;
+void toTriplets(const LocalCsr& A, std::vector<int>& row, std::vector<int>& column) {
+  row = expandPointers(A.rowptr, A.rows);
+  column = A.col;
 }
 
-SparseMatrix::Asymmetry SparseMatrix::largestAsymmetry() const {
-  if (m != n) throw Error("SparseMatrix::asymmetry: matrix is not square");
+Asymmetry largestAsymmetry(const LocalCsr& A) {
+  if (A.rows != A.cols) throw Error("FCLIB::asymmetry: matrix is not square");
+  const auto &rowptr = A.rowptr, &col = A.col;
+  const auto& val = A.val;
   // Look up A_ji by binary search in the (sorted) row j; a missing entry is 0.
-  auto entry = [this](int r, int c) {
+  auto entry = [&](int r, int c) {
     auto first = col.begin() + rowptr[r], last = col.begin() + rowptr[r + 1];
     auto it = std::lower_bound(first, last, c);
     return (it != last && *it == c) ? val[it - col.begin()] : 0.0;
   };
   Asymmetry worst;
   double largest = 0.0;
-  for (int r = 0; r < m; ++r)
+  for (int r = 0; r < A.rows; ++r)
     for (int k = rowptr[r]; k < rowptr[r + 1]; ++k) {
       const double mirror = entry(col[k], r), difference = std::abs(val[k] - mirror);
       if (difference > largest) largest = difference, worst = {r, col[k], val[k], mirror};
@@ -189,18 +164,18 @@ SparseMatrix::Asymmetry SparseMatrix::largestAsymmetry() const {
   return worst;
 }
 
-double SparseMatrix::asymmetry() const {
-  const Asymmetry a = largestAsymmetry();
+double asymmetry(const LocalCsr& A) {
+  const Asymmetry a = largestAsymmetry(A);
   return std::abs(a.value - a.mirror);
 }
 
-bool SparseMatrix::isZero() const {
-  return std::all_of(val.begin(), val.end(), [](double v) { return v == 0.0; });
+bool isZero(const LocalCsr& A) {
+  return std::all_of(A.val.begin(), A.val.end(), [](double v) { return v == 0.0; });
 }
 
-double SparseMatrix::maxAbs() const {
+double maxAbs(const LocalCsr& A) {
   double worst = 0.0;
-  for (double v : val) worst = std::max(worst, std::abs(v));
+  for (double v : A.val) worst = std::max(worst, std::abs(v));
   return worst;
 }
 
@@ -209,9 +184,8 @@ bool bitwiseEqual(const std::vector<double>& a, const std::vector<double>& b) {
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
-bool bitwiseEqual(const SparseMatrix& a, const SparseMatrix& b) {
-  return a.m == b.m && a.n == b.n && a.rowptr == b.rowptr && a.col == b.col &&
-         bitwiseEqual(a.val, b.val);
+bool bitwiseEqual(const LocalCsr& a, const LocalCsr& b) {
+  return a.rows == b.rows && a.cols == b.cols && a.rowptr == b.rowptr && a.col == b.col && bitwiseEqual(a.val, b.val);
 }
 
 }  // namespace FCLIB

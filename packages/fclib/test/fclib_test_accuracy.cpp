@@ -9,6 +9,7 @@
 #include "Tribos_Vec3.hpp"
 #include "fclib_test_util.hpp"
 
+using namespace Tribos;
 using namespace Tribos::FCLIB;
 using Tribos::Vec3, Tribos::dot, Tribos::minus, Tribos::norm;
 
@@ -76,7 +77,7 @@ ExactContacts buildExactContacts() {
   return e;
 }
 
-SparseMatrix randomSPD(int n, std::mt19937& gen) {
+LocalCsr randomSPD(int n, std::mt19937& gen) {
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   std::vector<double> B(n * n);
   for (double& b : B) b = uni(gen);
@@ -90,7 +91,7 @@ SparseMatrix randomSPD(int n, std::mt19937& gen) {
       col.push_back(j);
       val.push_back(s);
     }
-  return SparseMatrix::fromTriplets(n, n, row, col, val, "randomSPD");
+  return fromTriplets(n, n, row, col, val, "randomSPD");
 }
 
 void checkLocalExactSolution(Teuchos::FancyOStream& out, bool& success) {
@@ -140,7 +141,7 @@ void checkGlobalExactSolution(Teuchos::FancyOStream& out, bool& success) {
         col.push_back(j);
         val.push_back(uni(gen));
       }
-  P.H = SparseMatrix::fromTriplets(ndof, m, row, col, val, "H");
+  P.H = fromTriplets(ndof, m, row, col, val, "H");
   // Pick v, then f and w so that M v = H r + f and u = H' v + w.
   std::vector<double> v(ndof), Mv, Hr, Htv;
   for (double& x : v) x = uni(gen);

@@ -27,20 +27,20 @@ void checkLocal(const Sample& s, Teuchos::FancyOStream& out, bool& success) {
   const LocalProblem P = readLocal(path);
   TEST_EQUALITY(P.spacedim, 3);  // spacedim
   TEST_EQUALITY(P.numberOfContacts(), s.contacts);  // contacts
-  TEST_EQUALITY(P.W.m, 3 * s.contacts);
-  TEST_EQUALITY(P.W.n, 3 * s.contacts);
+  TEST_EQUALITY(P.W.rows, 3 * s.contacts);
+  TEST_EQUALITY(P.W.cols, 3 * s.contacts);
   TEST_EQUALITY(P.q.size(), 3u * s.contacts);
   TEST_ASSERT(frictionCoefficientsValid(P.mu));
   TEST_ASSERT(allFinite(P.W.val));
   TEST_ASSERT(allFinite(P.q));
   // W = H' M^{-1} H is symmetric positive semi-definite up to rounding.
-  const double asym = P.W.asymmetry(), scale = P.W.maxAbs();
+  const double asym = asymmetry(P.W), scale = maxAbs(P.W);
   std::cout << std::setprecision(3) << s.name << ": local, " << P.numberOfContacts()
-            << " contacts, W " << P.W.m << " x " << P.W.n << " nnz " << P.W.nnz()
+            << " contacts, W " << P.W.rows << " x " << P.W.cols << " nnz " << P.W.nnz()
             << ", max|W - W'| = " << asym << " (relative " << asym / scale << ")" << std::endl;
   TEST_COMPARE(asym, <=, 1e-8 * scale);  // W asymmetry
   // Diagonal of a PSD matrix is non-negative.
-  for (int r = 0; r < P.W.m; ++r)
+  for (int r = 0; r < P.W.rows; ++r)
     for (int k = P.W.rowptr[r]; k < P.W.rowptr[r + 1]; ++k)
       if (P.W.col[k] == r) TEST_COMPARE(P.W.val[k], >=, 0.0);  // W
   TEST_ASSERT(!P.V);
@@ -54,27 +54,27 @@ void checkGlobal(const Sample& s, Teuchos::FancyOStream& out, bool& success) {
   TEST_EQUALITY(P.spacedim, 3);  // spacedim
   TEST_EQUALITY(P.numberOfContacts(), s.contacts);  // contacts
   // Orientation: H is ndof x 3nc (M v = H r + f, u = H' v + w).
-  TEST_EQUALITY(P.H.m, P.M.n);
-  TEST_EQUALITY(P.H.n, 3 * s.contacts);  // H
-  TEST_ASSERT(P.f.size() == static_cast<std::size_t>(P.M.m));
+  TEST_EQUALITY(P.H.rows, P.M.cols);
+  TEST_EQUALITY(P.H.cols, 3 * s.contacts);  // H
+  TEST_ASSERT(P.f.size() == static_cast<std::size_t>(P.M.rows));
   TEST_EQUALITY(P.w.size(), 3u * s.contacts);
   TEST_ASSERT(frictionCoefficientsValid(P.mu));
   TEST_ASSERT(allFinite(P.M.val));
   TEST_ASSERT(allFinite(P.H.val));
   TEST_ASSERT(allFinite(P.f));
   TEST_ASSERT(allFinite(P.w));
-  const double asym = P.M.asymmetry(), scale = P.M.maxAbs();
+  const double asym = asymmetry(P.M), scale = maxAbs(P.M);
   std::cout << std::setprecision(3) << s.name << ": global, " << P.numberOfContacts()
-            << " contacts, M " << P.M.m << " x " << P.M.n << " nnz " << P.M.nnz() << ", H "
-            << P.H.m << " x " << P.H.n << " nnz " << P.H.nnz() << ", max|M - M'| = " << asym
+            << " contacts, M " << P.M.rows << " x " << P.M.cols << " nnz " << P.M.nnz() << ", H "
+            << P.H.rows << " x " << P.H.cols << " nnz " << P.H.nnz() << ", max|M - M'| = " << asym
             << " (relative " << asym / scale << ")" << std::endl;
   // The LMGC exports of M are symmetric only to about 1.5e-7 relative (their
   // values look rounded to single precision); Box_Stacks' diagonal M is exact.
   TEST_COMPARE(asym, <=, 1e-6 * scale);  // M asymmetry
   // Every contact is seen by some degree of freedom: no empty column of H.
-  std::vector<int> columnCount(P.H.n, 0);
+  std::vector<int> columnCount(P.H.cols, 0);
   for (int c : P.H.col) ++columnCount[c];
-  for (int c = 0; c < P.H.n; ++c) TEST_COMPARE(columnCount[c], >, 0);  // H column
+  for (int c = 0; c < P.H.cols; ++c) TEST_COMPARE(columnCount[c], >, 0);  // H column
 }
 
 void checkSolutionAndGuesses(const Sample& s, Teuchos::FancyOStream& out, bool& success) {

@@ -11,12 +11,13 @@
 #include "Tribos_FileSystem.hpp"
 #include "fclib_test_util.hpp"
 
+using namespace Tribos;
 using namespace Tribos::FCLIB;
 using fclib_test::Sample;
 
 namespace {
 
-bool sameOptionalMatrix(const std::optional<SparseMatrix>& a, const std::optional<SparseMatrix>& b) {
+bool sameOptionalMatrix(const std::optional<LocalCsr>& a, const std::optional<LocalCsr>& b) {
   return a.has_value() == b.has_value() && (!a || bitwiseEqual(*a, *b));
 }
 

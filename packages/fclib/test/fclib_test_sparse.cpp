@@ -1,5 +1,6 @@
-// SparseMatrix conversions and products, the compressed-column path of the
-// reader (no sample uses it), and the error message for a missing dataset.
+// FCLIB matrices (LocalCsr) read from each storage and their products, the
+// compressed-column path of the reader (no sample uses it), and the error
+// message for a missing dataset.
 #include <Teuchos_UnitTestHarness.hpp>
 #include <hdf5.h>
 
@@ -8,6 +9,7 @@
 #include "Tribos_FCLIB.hpp"
 #include "fclib_test_util.hpp"
 
+using namespace Tribos;
 using namespace Tribos::FCLIB;
 
 namespace {
@@ -19,18 +21,18 @@ namespace {
 const int kRows = 4, kCols = 3;
 const double kDense[kRows][kCols] = {{1, 0, 2}, {0, 0, 3}, {4, 5, 0}, {0, 6, 0}};
 
-SparseMatrix fromCSCExample() {
-  return SparseMatrix::fromCSC(kRows, kCols, {0, 2, 4, 6}, {0, 2, 3, 2, 1, 0},
+LocalCsr fromCSCExample() {
+  return fromCSC(kRows, kCols, {0, 2, 4, 6}, {0, 2, 3, 2, 1, 0},
                                {1, 4, 6, 5, 3, 2}, "csc");
 }
 
 void checkConversions(Teuchos::FancyOStream& out, bool& success) {
-  const SparseMatrix csr =
-      SparseMatrix::fromCSR(kRows, kCols, {0, 2, 3, 5, 6}, {2, 0, 2, 1, 0, 1},
+  const LocalCsr csr =
+      fromCSR(kRows, kCols, {0, 2, 3, 5, 6}, {2, 0, 2, 1, 0, 1},
                             {2, 1, 3, 5, 4, 6}, "csr");  // unsorted rows on purpose
-  const SparseMatrix csc = fromCSCExample();
+  const LocalCsr csc = fromCSCExample();
   // Triplets in scrambled order, with (2,0) split into 1 + 3.
-  const SparseMatrix tri = SparseMatrix::fromTriplets(
+  const LocalCsr tri = fromTriplets(
       kRows, kCols, {3, 2, 0, 1, 2, 0, 2}, {1, 0, 2, 2, 1, 0, 0}, {6, 1, 2, 3, 5, 1, 3}, "tri");
   TEST_ASSERT(bitwiseEqual(csr, csc));  // CSR and CSC differ
   TEST_ASSERT(bitwiseEqual(csr, tri));  // CSR and triplets differ
@@ -63,11 +65,11 @@ void expectThrow(F f, const std::string& what, Teuchos::FancyOStream& out, bool&
 }
 
 void checkValidation(Teuchos::FancyOStream& out, bool& success) {
-  expectThrow([] { SparseMatrix::fromTriplets(2, 2, {0, 2}, {0, 0}, {1, 1}, "row out of range"); },
+  expectThrow([] { fromTriplets(2, 2, {0, 2}, {0, 0}, {1, 1}, "row out of range"); },
               "row out of range", out, success);
-  expectThrow([] { SparseMatrix::fromCSR(2, 2, {0, 2, 1}, {0, 1}, {1, 1}, "bad pointers"); },
+  expectThrow([] { fromCSR(2, 2, {0, 2, 1}, {0, 1}, {1, 1}, "bad pointers"); },
               "decreasing pointers", out, success);
-  expectThrow([] { SparseMatrix::fromCSC(2, 2, {0, 1, 3}, {0, 1}, {1, 1}, "short"); },
+  expectThrow([] { fromCSC(2, 2, {0, 1, 3}, {0, 1}, {1, 1}, "short"); },
               "pointers past the data", out, success);
 }
 
@@ -153,14 +155,14 @@ TEUCHOS_UNIT_TEST(SparseMatrix, LargestAsymmetry) {
   // [ 2   1   0 ]
   // [ 1.5 3   4 ]   (2, 1) not stored: |4 - 0| is the largest difference
   // [ 0   0   5 ]
-  const SparseMatrix A = SparseMatrix::fromCSR(3, 3, {0, 2, 5, 6}, {0, 1, 0, 1, 2, 2}, {2, 1, 1.5, 3, 4, 5}, "A");
-  const SparseMatrix::Asymmetry worst = A.largestAsymmetry();
+  const LocalCsr A = fromCSR(3, 3, {0, 2, 5, 6}, {0, 1, 0, 1, 2, 2}, {2, 1, 1.5, 3, 4, 5}, "A");
+  const Asymmetry worst = largestAsymmetry(A);
   TEST_EQUALITY(worst.row, 1);
   TEST_EQUALITY(worst.col, 2);
   TEST_EQUALITY(worst.value, 4.0);
   TEST_EQUALITY(worst.mirror, 0.0);
-  TEST_EQUALITY(A.asymmetry(), 4.0);
-  const SparseMatrix S = SparseMatrix::fromCSR(2, 2, {0, 2, 4}, {0, 1, 0, 1}, {2, -1, -1, 2}, "S");
-  TEST_EQUALITY(S.largestAsymmetry().row, -1);
-  TEST_EQUALITY(S.asymmetry(), 0.0);
+  TEST_EQUALITY(asymmetry(A), 4.0);
+  const LocalCsr S = fromCSR(2, 2, {0, 2, 4}, {0, 1, 0, 1}, {2, -1, -1, 2}, "S");
+  TEST_EQUALITY(largestAsymmetry(S).row, -1);
+  TEST_EQUALITY(asymmetry(S), 0.0);
 }

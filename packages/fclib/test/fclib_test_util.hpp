@@ -55,9 +55,9 @@ inline std::string scratchPath(const std::string& test, const std::string& name)
 // Dense Cholesky of a small SPD matrix (test utility only: O(n^3), n <= ~1000).
 class DenseCholesky {
  public:
-  explicit DenseCholesky(const Tribos::FCLIB::SparseMatrix& A) : n_(A.m), L_(A.m * A.m, 0.0) {
-    if (A.m != A.n) throw std::runtime_error("DenseCholesky: matrix is not square");
-    for (int r = 0; r < A.m; ++r)
+  explicit DenseCholesky(const Tribos::LocalCsr& A) : n_(A.rows), L_(A.rows * A.rows, 0.0) {
+    if (A.rows != A.cols) throw std::runtime_error("DenseCholesky: matrix is not square");
+    for (int r = 0; r < A.rows; ++r)
       for (int k = A.rowptr[r]; k < A.rowptr[r + 1]; ++k) L_[r * n_ + A.col[k]] += A.val[k];
     for (int j = 0; j < n_; ++j) {
       double d = at(j, j);

@@ -120,7 +120,7 @@ void checkCorruptions(const Problem& valid, const std::vector<Corruption<Problem
 // No contacts: r and u are empty, and a global problem still has v = M^-1 f.
 void checkZeroContacts(const GlobalProblem& global, Teuchos::FancyOStream& out, bool& success) {
   LocalProblem L;
-  L.W = SparseMatrix::fromTriplets(0, 0, {}, {}, {}, "empty W");
+  L.W = fromTriplets(0, 0, {}, {}, {}, "empty W");
   const SolveReport lr = solve(L, SolveOptions(), serialComm());
   TEST_ASSERT(lr.converged);
   TEST_ASSERT(lr.r.empty());
@@ -129,7 +129,7 @@ void checkZeroContacts(const GlobalProblem& global, Teuchos::FancyOStream& out, 
   GlobalProblem G = global;
   G.mu.clear();
   G.w.clear();
-  G.H = SparseMatrix::fromTriplets(G.M.m, 0, {}, {}, {}, "empty H");
+  G.H = fromTriplets(G.M.rows, 0, {}, {}, {}, "empty H");
   const SolveReport gr = solve(G, SolveOptions(), serialComm());
   std::vector<double> Mv;
   G.M.multiply(gr.v, Mv);
@@ -279,7 +279,7 @@ TEUCHOS_UNIT_TEST(Validate, ColumnOrderWithEmptyRows) {
   LocalProblem P;
   P.mu = {0.3, 0.5};
   P.q = {-1, 0, 0, -1, 0, 0};
-  P.W.m = P.W.n = 6;
+  P.W.rows = P.W.cols = 6;
   // rows 0 and 4 hold entries; rows 1-3 and 5 are empty; row 0 ends at
   // column 5 and row 4 starts at column 0 (a step down across the boundary).
   P.W.rowptr = {0, 2, 2, 2, 2, 4, 4};
