@@ -4,7 +4,6 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <map>
 #include <string>
 
@@ -56,15 +55,13 @@ void validate(Teuchos::ParameterList& list, const Teuchos::ParameterList& valid,
   }
 }
 
-// The friction a validated list states; finite values (a validator's range
-// lets NaN through).
-FrictionSpec frictionSpec(const Teuchos::ParameterList& list, const std::string& path) {
+// The friction a validated list states (the validators' ranges refuse
+// values that are not finite).
+FrictionSpec frictionSpec(const Teuchos::ParameterList& list) {
   FrictionSpec f;
   f.law = frictionLaw(list, "Law");
   f.coefficient = list.get<double>("Coefficient");
   f.slipBoundTraction = list.get<double>("Slip Bound Traction");
-  TRIBOS_REQUIRE(std::isfinite(f.coefficient), "ContactSolver: " << path << "/Coefficient is not finite");
-  TRIBOS_REQUIRE(std::isfinite(f.slipBoundTraction), "ContactSolver: " << path << "/Slip Bound Traction is not finite");
   return f;
 }
 
@@ -104,7 +101,7 @@ PairFriction readPairFriction(Teuchos::ParameterList& friction) {
   }
   validate(own, *frictionParameters(), kFriction);
   friction.setParameters(own);  // the defaults, in the caller's list
-  const FrictionSpec base = frictionSpec(own, kFriction);
+  const FrictionSpec base = frictionSpec(own);
   if (pairs.empty()) return {base};
   PairFriction out(pairs.rbegin()->first + 1, base);
   for (auto& [k, list] : pairs) {
@@ -112,7 +109,7 @@ PairFriction readPairFriction(Teuchos::ParameterList& friction) {
     validate(list, *frictionParameters(), path);  // its own entries, named by its path
     Teuchos::ParameterList merged(own);
     merged.setParameters(friction.sublist(kPair + std::to_string(k)));
-    out[k] = frictionSpec(merged, path);
+    out[k] = frictionSpec(merged);
   }
   return out;
 }
@@ -143,7 +140,7 @@ void ContactSolver::setParameters(const RCP<Teuchos::ParameterList>& params) {
   try {
     validate(*p, *solveAndProblemParameters(), "parameters");
     friction_ = readPairFriction(friction);
-    base_ = frictionSpec(friction, kFriction);
+    base_ = frictionSpec(friction);
   } catch (...) {
     p->sublist(kFriction).setParameters(friction);
     throw;

@@ -39,7 +39,6 @@ LocalCsr compress(Entries rows) {
 // The rows of a RowMatrix, its column indices taken to local row indices
 // (the subdomain's dofs) through the global numbers.
 LocalCsr copyRows(const RowMatrix& K, const std::string& name) {
-  TRIBOS_REQUIRE(K.isFillComplete(), name << ": K is not fill-complete; call K->fillComplete() first");
   const Map& rows = *K.getRowMap();
   const Map& cols = *K.getColMap();
   const int n = static_cast<int>(K.getNodeNumRows());
@@ -110,6 +109,12 @@ void requireOnMap(const MultiVector& v, const Map& map, const std::string& what,
 
 // The maps of K: one process, 3 nodes rows, domain = range (= row map).
 void requireMaps(const TpetraSubdomain& s, const RowMatrix* rowMatrix, const std::string& name) {
+  // A matrix has its domain and range maps (and the column map the copy
+  // reads) once fill-complete.
+  TRIBOS_REQUIRE(!rowMatrix || rowMatrix->isFillComplete(),
+                 name << ": K is not fill-complete; call K->fillComplete() first");
+  TRIBOS_REQUIRE(!s.K->getDomainMap().is_null() && !s.K->getRangeMap().is_null(),
+                 name << ": K has no domain or range map");
   const Map& domain = *s.K->getDomainMap();
   const int processes = domain.getComm()->getSize();
   TRIBOS_REQUIRE(processes == 1, name << ": K is distributed over " << processes
