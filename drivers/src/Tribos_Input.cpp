@@ -947,9 +947,9 @@ PlaneContact planeContact(const ParameterList& params) {
   PlaneContact pc;
   pc.face = contact.get<std::string>("Face");
   pc.gap = contact.get<double>("Gap");
+  pc.law = frictionLaw(contact, "Friction Law");
   // Frictionless: slip bound 0 whatever Slip Bound Traction says.
-  pc.slipBoundTraction =
-      frictionLaw(contact, "Friction Law") == FrictionLaw::Frictionless ? 0.0 : contact.get<double>("Slip Bound Traction");
+  pc.slipBoundTraction = pc.law == FrictionLaw::Frictionless ? 0.0 : contact.get<double>("Slip Bound Traction");
   return pc;
 }
 

@@ -17,6 +17,7 @@
 #include "Tribos_Loads.hpp"
 #include "Tribos_MeshFile.hpp"
 #include "Tribos_Monolithic.hpp"
+#include "Tribos_SemismoothSolve.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
 #include "Tribos_Types.hpp"
 
@@ -129,10 +130,7 @@ Fem::LoadCase loadCase(const Teuchos::ParameterList& params);
 
 // The rigid-plane contact of the semismooth* method: Contact/Face, Gap and
 // the slip bound per unit area (Slip Bound Traction; 0 when frictionless).
-struct PlaneContact {
-  std::string face;
-  double gap = 0.0, slipBoundTraction = 0.0;
-};
+using PlaneContact = Semismooth::PlaneContact;
 PlaneContact planeContact(const Teuchos::ParameterList& params);
 // The whole semismooth* problem of a validated list, on the mesh of
 // mesh(params): what the prism benchmark and tests solve.

@@ -12,18 +12,13 @@
 #include "Tribos_ArrayScan.hpp"
 #include "Tribos_Assembly.hpp"
 #include "Tribos_ConstraintRows.hpp"
-#include "Tribos_ContactReduction.hpp"
 #include "Tribos_Error.hpp"
-#include "Tribos_FCLIB_Export.hpp"
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_FetiSolve.hpp"
-#include "Tribos_FetiDual.hpp"
 #include "Tribos_FileSystem.hpp"
-#include "Tribos_FrictionSolver.hpp"
 #include "Tribos_GmshReader.hpp"
 #include "Tribos_History.hpp"
 #include "Tribos_MeshBroadcast.hpp"
-#include "Tribos_ProjectedCG.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_InputXml.hpp"
 #include "Tribos_MemoryEstimate.hpp"
@@ -36,7 +31,7 @@
 #include "Tribos_ResultWriter.hpp"
 #include "Tribos_RigidMotions.hpp"
 #include "Tribos_RunReport.hpp"
-#include "Tribos_SemismoothStarNewton.hpp"
+#include "Tribos_SolveMethod.hpp"
 
 namespace Tribos {
 
@@ -44,10 +39,6 @@ namespace {
 
 int requestedSubdomains(const Mesh::DecompositionSpec& d) {
   return d.partitioner == "METIS" ? d.subdomains : d.grid[0] * d.grid[1] * d.grid[2];
-}
-
-double seconds(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // Von Mises stress, subdomain and rank of every local cell.
@@ -109,117 +100,6 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
   return ps;
 }
 
-// Tresca friction (or frictionless contact) by the semismooth* Newton
-// method, a serial method on the whole mesh (held by every rank). Rank 0
-// solves (with "CG+MueLu" all ranks take part in the CG solves); the
-// contact results stay on rank 0, the displacement is
-// broadcast (held on every rank, owned by rank 0), and the KKT residuals of
-// the result are computed as for FETI.
-Fem::NodalVector solveSemismooth(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh,
-                                    const Fem::Material& mat, const Fem::LoadCase& loads, const Comm& comm, bool verbose,
-                                    RunReport& report, Contact::ContactNodeResults& nodes, bool& converged,
-                                    Contact::ResultKKT& kkt, IO::IterationHistory& history) {
-  const std::string law = params.sublist("Contact").get<std::string>("Friction Law");
-  const Input::PlaneContact contact = Input::planeContact(params);
-  // Every rank refuses, before rank 0 starts, a body the Dirichlet
-  // conditions do not hold (the method eliminates them and factors K_rr) and
-  // Dirichlet values the contact face cannot take.
-  checkOnEveryRank(comm, [&] {
-    const auto dirichlet = Fem::constrainedDofs(mesh, loads.dirichlet);
-    Fem::requireRigidMotionsHeld(mesh.coords, dirichlet, "semismooth*", Semismooth::kSemicoerciveAdvice);
-    Semismooth::contactFaceNodes(mesh, dirichlet, contact.face, contact.gap, contact.slipBoundTraction);
-  });
-  std::vector<double> u(3 * static_cast<size_t>(mesh.numNodes()), 0.0);
-  double info[5] = {0};
-  std::vector<double> residuals;
-  // "CG+MueLu" spreads its CG solves over all ranks (each rank holds the
-  // whole problem); the factorizing Newton solvers run on rank 0 alone.
-  const auto& ssParams = params.sublist("Solver").sublist("SemismoothStarNewton");
-  const bool distributed = Semismooth::newtonSolvers().create(ssParams.get<std::string>("Newton Solver"))->space ==
-                           Semismooth::NewtonSolverKind::FullSpace;
-  Semismooth::SemismoothResult r;
-  if (comm.getRank() == 0 || distributed)
-    r = Semismooth::solveFromMesh(mesh, mat, loads, contact.face, contact.gap, contact.slipBoundTraction, ssParams, verbose && comm.getRank() == 0 ? &std::cout : nullptr,
-                                  distributed ? Teuchos::rcpFromRef(comm) : RCP<const Comm>());
-  std::vector<Contact::ContactNodeForce> forces;
-  std::vector<double> Ku, f;
-  if (comm.getRank() == 0) {
-    u = r.u;
-    Ku = r.Ku;
-    f = r.f;
-    residuals = r.residuals;
-    info[0] = r.converged;
-    info[1] = r.iterations;
-    info[2] = r.assemblySeconds;
-    info[3] = r.reductionSeconds;
-    info[4] = r.solverSeconds;
-    forces = Semismooth::contactForces(r);
-    const auto slip = Semismooth::contactSlip(r);
-    const auto status = Semismooth::contactStatus(r);
-    for (size_t i = 0; i < forces.size(); ++i) {
-      nodes.nodes.push_back(forces[i].node);
-      Feti::ContactConstraint c;  // the rigid plane of the one contact face
-      c.node = forces[i].node;
-      c.pair = 0;
-      c.normal = forces[i].normal;
-      c.gap = forces[i].gap;
-      nodes.constraint.push_back(c);
-      nodes.frictionCoefficient.push_back(0.0);
-      nodes.normalForce.push_back(forces[i].normalForce);
-      nodes.slipBound.push_back(forces[i].slipBound);
-      nodes.status.push_back(status[i]);
-      nodes.gap.push_back(r.gap[i]);
-      for (int d = 0; d < 3; ++d) {
-        nodes.tangentialForce.push_back(forces[i].tangentialForce[d]);
-        nodes.slip.push_back(slip[i][d]);
-      }
-    }
-  }
-  for (auto* v : {&u, &Ku, &f}) {
-    v->resize(u.size());
-    Teuchos::broadcast(comm, 0, static_cast<int>(v->size()), v->data());
-  }
-  Teuchos::broadcast(comm, 0, 5, info);
-  int nres = static_cast<int>(residuals.size());
-  Teuchos::broadcast(comm, 0, &nres);
-  residuals.resize(nres);
-  if (nres > 0) Teuchos::broadcast(comm, 0, nres, residuals.data());
-  const FrictionLaw friction = frictionLawNamed(law);  // Tresca or Frictionless (the input refuses Coulomb here)
-  const auto layout = Fem::NodalLayout::everyNode(mesh.numNodes(), Teuchos::rcpFromRef(comm));
-  Fem::NodalVector uNodal(layout, u);
-  kkt = Contact::resultKKT(uNodal, Fem::NodalVector(layout, Ku), Fem::NodalVector(layout, f),
-                       Fem::constrainedDofs(mesh, loads.dirichlet), friction, forces);
-  long long counts[4] = {static_cast<long long>(nodes.nodes.size()), 0, 0, 0};
-  for (int st : nodes.status) counts[1] += st > 0, counts[2] += st == 1, counts[3] += st == 2;
-  Teuchos::broadcast(comm, 0, 4, counts);
-  report.frictionLaw = frictionLawName(friction);
-  converged = info[0] != 0.0;
-  SemismoothReport newton;
-  newton.newtonIterations = static_cast<long long>(info[1]);
-  newton.residuals = residuals;
-  newton.assemblySeconds = info[2];
-  newton.reductionSeconds = info[3];
-  newton.newtonSeconds = info[4];
-  report.semismooth = newton;
-  report.outerIterations = newton.newtonIterations;
-  // One row per residual, the last one after the last Newton step (the list
-  // may start with the residual of the initial approximation, step 0); the
-  // method times its whole solve only (the last row gets it) and makes no
-  // Hessian multiplications of a dual.
-  for (size_t k = 0; k < residuals.size(); ++k) {
-    IO::HistoryRow row;
-    row.iteration = static_cast<long long>(info[1]) - static_cast<long long>(residuals.size() - 1 - k);
-    row.relativeResidual = residuals[k];
-    row.n_A = 0;
-    history.rows.push_back(row);
-  }
-  report.primalDofs = 3LL * mesh.numNodes();
-  report.dualDofs = 0;
-  report.n_A = 0;
-  report.contact = ContactCountReport{counts[0], counts[1], counts[2], counts[3]};
-  return uNodal;
-}
-
 // The decomposition of the run. The semismooth* method is serial: subdomains
 // only spread the output over the ranks, so a decomposition coarser than the
 // run is refined by METIS.
@@ -234,21 +114,6 @@ Mesh::DecompositionSpec decompositionFor(const Teuchos::ParameterList& params, i
     decomposition.subdomains = numRanks;
   }
   return decomposition;
-}
-
-// The tolerance the user asked of the solver that ran: the outer contact
-// algorithm's relative tolerance (the loosest of its stopping tests), the
-// projected CG's, the semismooth* method's or the monolithic CG's.
-double requestedTolerance(const Teuchos::ParameterList& params) {
-  const auto& solver = params.sublist("Solver");
-  switch (Input::method(params)) {
-    case Input::Method::Monolithic: return solver.sublist("Monolithic").get<double>("Tolerance");
-    case Input::Method::FetiLinear: return solver.sublist("FETI").sublist("Projected CG").get<double>("Tolerance");
-    case Input::Method::Semismooth: return solver.sublist("SemismoothStarNewton").get<double>("Tolerance");
-    case Input::Method::FetiContact: break;
-  }
-  const auto outer = Contact::outerAlgorithmFor(solver.get<std::string>("Outer Algorithm"), Input::pairFriction(params));
-  return Friction::frictionSolvers().create(outer, solver)->requestedTolerance();
 }
 
 // The displacement and the KKT figures of the result must be finite, and the
@@ -319,162 +184,13 @@ std::unique_ptr<IO::OutputDirectory> prepareOutput(const Teuchos::ParameterList&
   return dir;
 }
 
-// The mesh step's result: the whole mesh on rank 0 (on every rank for the
-// semismooth* method, a serial method; kept on rank 0 for the FCLIB export,
-// a global problem; else released once cut), this rank's part, its
-// materials, the loads, and the contact constraints of its slave nodes.
-struct Discretized {
-  std::unique_ptr<Mesh::Mesh> whole;
-  Mesh::Discretization disc;
-  Fem::BodyMaterials materials;
-  Fem::LoadCase loads;
-  std::vector<Feti::ContactConstraint> constraints;
-};
-
-// What a solver leaves for the result check and the files.
-struct Solution {
-  Fem::NodalVector u;  // nodal displacement at the nodes this rank holds
-  Contact::ContactNodeResults contactNodes;
-  bool solverConverged = false;
-  std::string solverReason;
-  Contact::ResultKKT kkt;
-  double setupSeconds = 0, solveSeconds = 0;  // the solver's setup (assembly, factorization) and its iterations
-  // The tolerance of the solver that ran, when it says (a contact run whose
-  // pairs are all glued is solved by projected CG); 0: from the parameters.
-  double tolerance = 0;
-  IO::IterationHistory history;  // BASE.history.csv
-};
-
-// The history row of a solver that reports its final state only (projected
-// CG and the monolithic CG keep no residual per iteration): the iterations,
-// the final relative residual and the work of the whole solve.
-IO::HistoryRow finalRow(long long iterations, double relativeResidual, long long n_A, double seconds) {
-  IO::HistoryRow row;
-  row.iteration = iterations;
-  row.relativeResidual = relativeResidual;
-  row.n_A = static_cast<double>(n_A);
-  row.seconds = seconds;
-  return row;
-}
-
-Solution solveMonolithic(const Teuchos::ParameterList& params, const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
-                         const Fem::LoadCase& loads, const RCP<const Comm>& comm, RunReport& report) {
-  // (The whole mesh was checked to hold every rigid motion: validateOnRoot.)
-  const auto dirichlet = Fem::constrainedDofs(disc, loads.dirichlet);
-  Progress::stage("assembly");
-  const auto t0 = std::chrono::steady_clock::now();
-  Fem::MonolithicSystem system(disc, mat, loads, comm);
-  Solution sol;
-  sol.setupSeconds = seconds(t0);
-  Progress::stage("monolithic solve");
-  const auto t1 = std::chrono::steady_clock::now();
-  const auto res = system.solve(params.sublist("Solver").sublist("Monolithic"));
-  sol.solveSeconds = seconds(t1);
-  // The rank keeps the nodes of its part (the writer's cells).
-  std::vector<Fem::SubdomainSystem> systems;
-  for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s)
-    systems.push_back(Fem::assembleSubdomain(disc, s, mat, loads));
-  sol.u = res.u;
-  sol.solverConverged = res.converged;
-  if (!res.converged) sol.solverReason = "monolithic CG: maximum iterations";
-  report.primalDofs = static_cast<long long>(system.matrix()->getGlobalNumRows());
-  report.dualDofs = 0;
-  report.outerIterations = res.iterations;
-  report.n_A = res.iterations;
-  report.relativeResidual = res.relativeResidual;
-  sol.history.rows.push_back(finalRow(res.iterations, res.relativeResidual, res.iterations, sol.solveSeconds));
-  // The residuals of the result from K and f assembled anew, as for FETI.
-  Progress::stage("result check");
-  sol.kkt = Contact::resultKKT(sol.u, Fem::assembledProduct(systems, sol.u), Fem::assembledLoad(systems, sol.u.layoutPtr()),
-                           dirichlet, FrictionLaw::Frictionless, {});
-  return sol;
-}
-
-Solution solveFeti(const Teuchos::ParameterList& params, const RunOptions& options, const Mesh::Discretization& disc,
-                   const Mesh::Mesh& wholeMesh, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
-                   const std::vector<Feti::ContactConstraint>& constraints, const RCP<const Comm>& comm,
-                   RunReport& report) {
-  const auto& solverParams = params.sublist("Solver");
-  const auto& fetiParams = solverParams.sublist("FETI");
-  const bool contact = params.sublist("Contact").get<bool>("Enabled");
-  const Contact::PairFriction friction = contact ? Input::pairFriction(params) : Contact::PairFriction{{}};
-  Progress::stage("FETI setup: assembly, gluing, coarse space");
-  const auto t0 = std::chrono::steady_clock::now();
-  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, constraints, fetiParams, comm));
-  Solution sol;
-  sol.setupSeconds = seconds(t0);
-  // The same solve an application runs on its own subdomains (Tribos_FetiSolve.hpp).
-  const auto r = Contact::solveFeti(problem, friction, solverParams,
-                                    options.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
-                                                    : RCP<Teuchos::FancyOStream>());
-  sol.u = r.u;
-  sol.contactNodes = r.contact;
-  sol.kkt = r.kkt;
-  sol.solverConverged = r.solverConverged;
-  sol.solverReason = r.solverReason;
-  sol.solveSeconds = r.solveSeconds;
-  sol.tolerance = r.tolerance;
-  report.n_A = r.n_A;
-  if (!problem->hasContact()) {
-    report.outerIterations = r.iterations;
-    report.relativeResidual = r.relativeResidual;
-    sol.history.rows.push_back(finalRow(r.iterations, r.relativeResidual, r.n_A, r.solveSeconds));
-  } else {
-    const auto& st = r.status;
-    OuterAlgorithmReport outer;
-    outer.name = r.outerAlgorithm;
-    outer.resultCheckRounds = r.rounds;
-    outer.msaIterations = st.msa_iterations;
-    outer.innerIterations = st.inner_iterations;
-    outer.n_A_qpp = static_cast<long long>(st.n_A_qpp);
-    outer.n_A_qpq = static_cast<long long>(st.n_A_qpq);
-    outer.slipBoundChange = st.slip_bound_change;
-    outer.history = st.history;
-    report.outer = outer;
-    report.frictionLaw = frictionLawName(Contact::runLaw(friction));
-    report.outerIterations = st.outer_iterations;
-    for (const auto& step : st.steps) {
-      IO::HistoryRow row;
-      row.iteration = step.iteration;
-      row.relativeResidual = step.projectedGradient;
-      row.gLambda = step.normGx;
-      row.slipBoundChange = step.slipBoundChange;
-      row.n_A = static_cast<double>(step.n_A);
-      row.seconds = step.seconds;
-      sol.history.rows.push_back(row);
-    }
-    report.contact = ContactCountReport{r.counts.nodes, r.counts.active, r.counts.stick, r.counts.slip};
-    if (!options.exportFclib.empty()) {
-      // FCLIB global problem: assembled K, contact rows in the local frame, gaps, F (docs/fclib.md).
-      Progress::stage("FCLIB export");
-      FCLIB::Info info{params.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + r.outerAlgorithm, ""};
-      FCLIB::exportFeti(options.exportFclib, *problem, wholeMesh, mat, loads, Contact::runLaw(friction), friction[0].coefficient,
-                        *r.primal, *r.lambda, info);
-      report.fclibExport = options.exportFclib;
-    }
-  }
-  report.primalDofs = static_cast<long long>(problem->primalMap()->getGlobalNumElements());
-  report.dualDofs = static_cast<long long>(problem->dualMap()->getGlobalNumElements());
-  FetiReport feti;
-  feti.localSolver = problem->localSolverName();
-  feti.factorSeconds = maxOver(problem->factorTime(), *comm);
-  feti.factorMemoryMb = maxOver(problem->factorMemoryMb(), *comm);
-  feti.denseBlockMemoryMb = maxOver(problem->denseBlockMemoryMb(), *comm);
-  feti.F_applications = r.F_applications;
-  feti.F_seconds = maxOver(r.F_seconds, *comm);
-  feti.coarseSize = r.coarseSize;
-  feti.coarseFactorMb = r.coarseFactorMb;
-  report.feti = feti;
-  return sol;
-}
-
 // The result files: Base Name .h5 (with the verdict as root attributes),
 // .xmf, .parameters.xml (the effective parameters, defaults filled and the
 // directory the run wrote to: the run again), .history.csv (one row per outer
 // iteration, Tribos_History.hpp) and .json (the summary, written last: a set
 // without it is incomplete).
 void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory& dir, const Discretized& d,
-                 const Solution& sol, RunReport& report, const RCP<const Comm>& comm) {
+                 const StepSolution& sol, RunReport& report, const RCP<const Comm>& comm) {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::output"));
   Progress::stage("writing results");
   const auto& disc = d.disc;
@@ -486,16 +202,16 @@ void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory
   const std::string h5 = files.add(names.h5), xmf = files.add(names.xmf), xml = files.add(names.parameters),
                     csv = files.add(names.history), json = files.add(names.summary);
   std::vector<IO::PointSet> points;
-  if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.contactNodes, *comm));
+  if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.result.contact, *comm));
   IO::ResultAttributes attributes;
   attributes.numbers = {{"converged", report.converged ? 1.0 : 0.0}, {"solver_converged", report.solverConverged ? 1.0 : 0.0}};
   attributes.text = {{"problem", report.problem}, {"stop_reason", report.stopReason}};
   std::vector<double> uOwned;
   for (int n : disc.ownedNodes()) {
-    const double* un = sol.u.at(disc.meshNode(n));
+    const double* un = sol.result.u.at(disc.meshNode(n));
     uOwned.insert(uOwned.end(), un, un + 3);
   }
-  IO::ResultWriter(disc, comm).write(h5, names.h5, xmf, uOwned, {}, cellFields(disc, d.materials, sol.u), points, attributes);
+  IO::ResultWriter(disc, comm).write(h5, names.h5, xmf, uOwned, {}, cellFields(disc, d.materials, sol.result.u), points, attributes);
   Teuchos::ParameterList effective = params;
   effective.sublist("Output").set("Directory", dir.path());
   IO::writeTextFile(xml, Input::toXml(effective), comm);
@@ -632,9 +348,7 @@ Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& opt
     whole = std::make_unique<Mesh::Mesh>();
   auto materials = Input::materials(params, disc.part);
   Discretized d{std::move(whole), std::move(disc), std::move(materials), std::move(loads), std::move(constraints)};
-  report.algorithm = method == Input::Method::Semismooth   ? "SemismoothStarNewton"
-                     : method == Input::Method::Monolithic ? "Monolithic"
-                                                           : "FETI";
+  report.algorithm = solveMethodName(method);
   report.ranks = comm.getSize();
   report.subdomains = d.disc.numSubdomains();
   report.subdomainSize = decomposition.size;
@@ -646,28 +360,10 @@ Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& opt
 }
 
 // Step "solve" (assembly included: each method assembles what it needs): by
-// the method the parameters choose (Input::method).
-Solution solveStep(const Teuchos::ParameterList& params, const RunOptions& options, const Discretized& d,
-                   const RCP<const Comm>& comm, RunReport& report) {
-  switch (Input::method(params)) {
-    case Input::Method::Semismooth: {
-      Progress::stage("semismooth* Newton");
-      Solution sol;
-      const auto t0 = std::chrono::steady_clock::now();
-      sol.u = solveSemismooth(params, *d.whole, Input::material(params), d.loads, *comm, options.verbose, report,
-                              sol.contactNodes, sol.solverConverged, sol.kkt, sol.history);
-      sol.solveSeconds = seconds(t0);
-      if (!sol.history.rows.empty()) sol.history.rows.back().seconds = sol.solveSeconds;
-      if (!sol.solverConverged) sol.solverReason = "semismooth*: maximum Newton iterations";
-      return sol;
-    }
-    case Input::Method::Monolithic:
-      return solveMonolithic(params, d.disc, d.materials, d.loads, comm, report);
-    case Input::Method::FetiLinear:
-    case Input::Method::FetiContact:
-      break;
-  }
-  return solveFeti(params, options, d.disc, *d.whole, d.materials, d.loads, d.constraints, comm, report);
+// the registered method the parameters choose (Input::method).
+StepSolution solveStep(const Teuchos::ParameterList& params, const RunOptions& options, const Discretized& d,
+                       const RCP<const Comm>& comm, RunReport& report) {
+  return solveMethods().create(report.algorithm, params, options, comm)->solve(d, report);
 }
 
 // Step "check": the result must be representable, and `converged` is a
@@ -675,25 +371,25 @@ Solution solveStep(const Teuchos::ParameterList& params, const RunOptions& optio
 // of the result (Contact::resultKKT) is within Result Check Factor times the
 // requested tolerance. With --verify, the monolithic reference solve.
 void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, const Discretized& d,
-               Solution& sol, const RCP<const Comm>& comm, RunReport& report) {
+               StepSolution& sol, const RCP<const Comm>& comm, RunReport& report) {
   const Input::Method method = Input::method(params);
-  requireRepresentable(sol.u, sol.kkt,
+  const Contact::SolveResult& r = sol.result;
+  requireRepresentable(r.u, r.kkt,
                        method == Input::Method::Semismooth ? "the semismooth* method" : "the " + report.algorithm + " solve");
   // A solver that stopped before its first step still has a history: the
   // solve as one row, so that every result's file has a row to read.
   if (sol.history.rows.empty()) {
     IO::HistoryRow row;
-    row.seconds = sol.solveSeconds;
+    row.seconds = r.solveSeconds;
     sol.history.rows.push_back(row);
   }
-  report.tolerance = sol.tolerance > 0 ? sol.tolerance : requestedTolerance(params);
-  const auto verdict = Contact::resultVerdict(sol.kkt, sol.solverConverged, sol.solverReason, report.tolerance,
-                                          params.sublist("Solver").get<double>("Result Check Factor"));
-  report.kkt = sol.kkt;
-  report.limit = verdict.limit;
-  report.solverConverged = sol.solverConverged;
-  report.converged = verdict.converged;
-  report.stopReason = verdict.stopReason;
+  // The verdict of the method's result (Contact::resultVerdict, computed once).
+  report.tolerance = r.tolerance;
+  report.kkt = r.kkt;
+  report.limit = r.verdict.limit;
+  report.solverConverged = r.solverConverged;
+  report.converged = r.verdict.converged;
+  report.stopReason = r.verdict.stopReason;
   if (!options.verify) return;
   if (method == Input::Method::FetiContact || method == Input::Method::Semismooth) {
     report.verifyNote = "--verify compares with the monolithic linear solve; it does not apply to contact problems";
@@ -703,9 +399,9 @@ void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, 
   Fem::MonolithicSystem reference(d.disc, d.materials, d.loads, comm);
   const auto ref = reference.solve(params.sublist("Solver").sublist("Monolithic"));
   // Both hold the nodes of the rank's part.
-  Fem::NodalVector difference(sol.u.layoutPtr());
+  Fem::NodalVector difference(r.u.layoutPtr());
   for (int node : difference.layout().nodes())
-    for (int c = 0; c < 3; ++c) difference.at(node)[c] = ref.u.at(node)[c] - sol.u.at(node)[c];
+    for (int c = 0; c < 3; ++c) difference.at(node)[c] = ref.u.at(node)[c] - r.u.at(node)[c];
   report.verifyRelativeDifference = difference.norm2() / std::max(ref.u.norm2(), 1e-300);
 }
 
@@ -771,14 +467,14 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
 
   const Discretized d = meshStep(params, options, std::move(whole), decomposition, *comm, report);
   const auto t1 = std::chrono::steady_clock::now();
-  Solution sol = solveStep(params, options, d, comm, report);
+  StepSolution sol = solveStep(params, options, d, comm, report);
   checkStep(params, options, d, sol, comm, report);
 
   // Setup: from the start to a solver ready to iterate; solve: its iterations.
   const double meshSeconds = std::chrono::duration<double>(t1 - t0).count();
   report.setupSeconds = maxOver(meshSeconds + sol.setupSeconds, *comm);
-  report.solveSeconds = maxOver(sol.solveSeconds, *comm);
-  report.maxAbsDisplacement = sol.u.normInf();
+  report.solveSeconds = maxOver(sol.result.solveSeconds, *comm);
+  report.maxAbsDisplacement = sol.result.u.normInf();
   report.memoryEstimateMb = maxOver(memory.total() / (1024.0 * 1024.0), *comm);
   report.peakRssMb = maxOver(IO::peakRssMb(), *comm);
   if (outputDir) writeResult(params, *outputDir, d, sol, report, comm);

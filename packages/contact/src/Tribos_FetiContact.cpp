@@ -324,21 +324,6 @@ std::vector<char> FetiContactProblem::activeRows(const Vector& lambda, const std
   return mask;
 }
 
-std::vector<Contact::ContactNodeForce> ContactNodeResults::forces() const {
-  std::vector<Contact::ContactNodeForce> out(nodes.size());
-  for (size_t k = 0; k < nodes.size(); ++k) {
-    out[k].node = nodes[k];
-    out[k].normalForce = normalForce[k];
-    for (int d = 0; d < 3; ++d) out[k].tangentialForce[d] = tangentialForce[3 * k + d];
-    out[k].slipBound = slipBound[k];
-    out[k].frictionCoefficient = frictionCoefficient[k];
-    out[k].normal = constraint[k].normal;
-    out[k].gap = constraint[k].gap;
-    out[k].master = constraint[k].master;
-  }
-  out.insert(out.end(), bonded.begin(), bonded.end());
-  return out;
-}
 
 std::vector<Contact::ContactNodeForce> bondedForces(const Feti::FetiProblem& p, const Vector& lambda) {
   const auto& lc = p.contact();
@@ -369,7 +354,6 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVe
   for (LO i : lc.normalRows) maxLN = std::max(maxLN, l[i]);
   maxLN = maxOver(maxLN, comm);
   ContactNodeResults out;
-  long long local[4] = {static_cast<long long>(lc.normalRows.size()), 0, 0, 0};
   for (size_t k = 0; k < lc.normalRows.size(); ++k) {
     const double lN = l[lc.normalRows[k]];
     const LO t1 = lc.tangentRows[2 * k], t2 = lc.tangentRows[2 * k + 1];
@@ -379,9 +363,6 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVe
     // tangential force on the friction bound.
     int status = 0;
     if (lN > 1e-8 * maxLN) status = (gk <= 0 || std::hypot(l1, l2) >= (1 - 1e-6) * gk) ? 2 : 1;
-    if (status > 0) ++local[1];
-    if (status == 1) ++local[2];
-    if (status == 2) ++local[3];
     const Feti::ContactConstraint& cc = lc.constraint[k];
     const auto w = Feti::relativeDisplacement(cc, uNodal);
     const double wn = w[0] * cc.normal[0] + w[1] * cc.normal[1] + w[2] * cc.normal[2];
@@ -400,9 +381,7 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVe
     }
     out.status.push_back(status);
   }
-  long long global[4];
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 4, local, global);
-  counts = {global[0], global[1], global[2], global[3]};
+  counts = countContacts(out, comm);
   return out;
 }
 

@@ -27,6 +27,7 @@
 #include "Tribos_FrictionSolver.hpp"
 #include "Tribos_FetiDual.hpp"
 #include "Tribos_ResultKKT.hpp"
+#include "Tribos_SolveResult.hpp"
 
 namespace Tribos {
 namespace Contact {
@@ -121,27 +122,6 @@ class FetiContactProblem {
   Friction::DualTransformChain transforms_;
   RCP<const Feti::FetiDual> dual_;
   Friction::ContactDual cd_;
-};
-
-struct ContactCounts {
-  long long nodes = 0, active = 0, stick = 0, slip = 0;
-};
-
-// Node-wise results of the local contact nodes (rank-local), as written.
-struct ContactNodeResults {
-  std::vector<int> nodes;
-  std::vector<Feti::ContactConstraint> constraint;  // frame, initial gap, master nodes, pair
-  std::vector<double> frictionCoefficient;          // Coulomb F of the node's pair (0 for the other laws)
-  // Forces on the slave node; slip: the relative tangential displacement;
-  // gap: the current normal gap d - w.n.
-  std::vector<double> normalForce, tangentialForce /*3 per node*/, slip /*3 per node*/, gap;
-  std::vector<double> slipBound;  // g of the solution (Tresca, Coulomb F lambda_N), 0 when frictionless
-  std::vector<int> status;        // 0 no contact, 1 stick, 2 slip
-  // The nodes of glued pairs with their forces (not written: their relative
-  // displacement is zero).
-  std::vector<Contact::ContactNodeForce> bonded;
-  // The forces as the result check takes them (contact and bonded nodes).
-  std::vector<Contact::ContactNodeForce> forces() const;
 };
 
 // The local contact nodes of the result: forces from lambda, slip and gap

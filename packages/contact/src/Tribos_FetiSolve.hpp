@@ -21,29 +21,19 @@
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_ResultKKT.hpp"
+#include "Tribos_SolveResult.hpp"
 
 namespace Tribos {
 namespace Contact {
 
-struct FetiSolveResult {
-  Fem::NodalVector u;           // nodal displacement at the nodes this rank holds (problem->nodalLayout())
+// The shared result (Tribos_SolveResult.hpp) and what FETI adds to it.
+struct FetiSolveResult : SolveResult {
   RCP<Vector> lambda;           // the multipliers of B (this rank's rows)
   RCP<Vector> primal;           // the subdomain displacements (FETI's primal vector)
-  ContactNodeResults contact;   // this rank's contact nodes (empty without contact)
-  ContactCounts counts;         // over all ranks
-  Contact::ResultKKT kkt;           // of u and the contact forces
-  Contact::ResultVerdict verdict;   // converged, limit, stop reason
-  double tolerance = 0;         // the solver's requested tolerance (of the first round)
   int rounds = 1;               // contact: solves until the result met the check (Result Check Rounds)
-  // The solver's own report.
-  bool solverConverged = false;
-  std::string solverReason;
   std::string outerAlgorithm;            // empty without contact
   Friction::FrictionStatus status;       // contact: the outer algorithm's status
-  int iterations = 0;                    // projected CG iterations or outer iterations
-  long long n_A = 0;                     // applications of F in the solve
   double relativeResidual = 0;           // projected CG
-  double solveSeconds = 0;
   // The dual operator and the coarse problem, for performance reports: all
   // applications of F (the solver's n_A, the power iterations, the setup's)
   // and their wall time on this rank; the coarse dimension (6S in TFETI) and

@@ -1,0 +1,248 @@
+#include "Tribos_SolveMethod.hpp"
+
+#include <chrono>
+#include <iostream>
+
+#include "Tribos_Assembly.hpp"
+#include "Tribos_FCLIB_Export.hpp"
+#include "Tribos_FetiProblem.hpp"
+#include "Tribos_FetiSolve.hpp"
+#include "Tribos_Monolithic.hpp"
+#include "Tribos_Progress.hpp"
+#include "Tribos_Reduce.hpp"
+#include "Tribos_SemismoothSolve.hpp"
+
+namespace Tribos {
+
+namespace {
+
+using Teuchos::ParameterList;
+
+double seconds(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The history row of a solver that reports its final state only (projected
+// CG and the monolithic CG keep no residual per iteration): the iterations,
+// the final relative residual and the work of the whole solve.
+IO::HistoryRow finalRow(long long iterations, double relativeResidual, long long n_A, double seconds) {
+  IO::HistoryRow row;
+  row.iteration = iterations;
+  row.relativeResidual = relativeResidual;
+  row.n_A = static_cast<double>(n_A);
+  row.seconds = seconds;
+  return row;
+}
+
+// The members every method keeps: what its maker was given.
+class MethodBase : public SolveMethod {
+ public:
+  MethodBase(const ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm)
+      : params_(params), options_(options), comm_(comm) {}
+
+ protected:
+  double resultCheckFactor() const { return params_.sublist("Solver").get<double>("Result Check Factor"); }
+  const ParameterList& params_;
+  const RunOptions& options_;
+  RCP<const Comm> comm_;
+};
+
+// The assembled problem by CG + MueLu; the residuals of the result from K
+// and f assembled anew per subdomain, as for FETI.
+class MonolithicMethod : public MethodBase {
+ public:
+  using MethodBase::MethodBase;
+  StepSolution solve(const Discretized& d, RunReport& report) const override {
+    // (The whole mesh was checked to hold every rigid motion before any work.)
+    const auto dirichlet = Fem::constrainedDofs(d.disc, d.loads.dirichlet);
+    Progress::stage("assembly");
+    const auto t0 = std::chrono::steady_clock::now();
+    Fem::MonolithicSystem system(d.disc, d.materials, d.loads, comm_);
+    StepSolution sol;
+    sol.setupSeconds = seconds(t0);
+    Progress::stage("monolithic solve");
+    const auto t1 = std::chrono::steady_clock::now();
+    const auto& list = params_.sublist("Solver").sublist("Monolithic");
+    const auto res = system.solve(list);
+    auto& r = sol.result;
+    r.solveSeconds = seconds(t1);
+    r.u = res.u;
+    r.solverConverged = res.converged;
+    if (!res.converged) r.solverReason = "monolithic CG: maximum iterations";
+    r.iterations = res.iterations;
+    r.tolerance = list.get<double>("Tolerance");
+    report.primalDofs = static_cast<long long>(system.matrix()->getGlobalNumRows());
+    report.dualDofs = 0;
+    report.outerIterations = res.iterations;
+    report.n_A = res.iterations;
+    report.relativeResidual = res.relativeResidual;
+    sol.history.rows.push_back(finalRow(res.iterations, res.relativeResidual, res.iterations, r.solveSeconds));
+    Progress::stage("result check");
+    // The rank keeps the nodes of its part (the writer's cells).
+    std::vector<Fem::SubdomainSystem> systems;
+    for (int s = d.disc.firstLocalSubdomain(); s < d.disc.endLocalSubdomain(); ++s)
+      systems.push_back(Fem::assembleSubdomain(d.disc, s, d.materials, d.loads));
+    r.kkt = Contact::resultKKT(r.u, Fem::assembledProduct(systems, r.u), Fem::assembledLoad(systems, r.u.layoutPtr()),
+                               dirichlet, FrictionLaw::Frictionless, {});
+    r.verdict = Contact::resultVerdict(r.kkt, r.solverConverged, r.solverReason, r.tolerance, resultCheckFactor());
+    return sol;
+  }
+};
+
+// Total FETI, the solve an application runs on its own subdomains
+// (Contact::solveFeti), with the FCLIB export of a contact problem.
+class FetiMethod : public MethodBase {
+ public:
+  using MethodBase::MethodBase;
+  StepSolution solve(const Discretized& d, RunReport& report) const override {
+    const auto& solverParams = params_.sublist("Solver");
+    const bool contact = params_.sublist("Contact").get<bool>("Enabled");
+    const Contact::PairFriction friction = contact ? Input::pairFriction(params_) : Contact::PairFriction{{}};
+    Progress::stage("FETI setup: assembly, gluing, coarse space");
+    const auto t0 = std::chrono::steady_clock::now();
+    auto problem = rcp(new Feti::FetiProblem(d.disc, d.materials, d.loads, d.constraints, solverParams.sublist("FETI"), comm_));
+    StepSolution sol;
+    sol.setupSeconds = seconds(t0);
+    const auto r = Contact::solveFeti(problem, friction, solverParams,
+                                      options_.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
+                                                       : RCP<Teuchos::FancyOStream>());
+    sol.result = r;
+    report.n_A = r.n_A;
+    if (!problem->hasContact()) {
+      report.outerIterations = r.iterations;
+      report.relativeResidual = r.relativeResidual;
+      sol.history.rows.push_back(finalRow(r.iterations, r.relativeResidual, r.n_A, r.solveSeconds));
+    } else {
+      reportContact(r, friction, report, sol.history);
+      if (!options_.exportFclib.empty()) exportFclib(*problem, d, friction, r, report);
+    }
+    report.primalDofs = static_cast<long long>(problem->primalMap()->getGlobalNumElements());
+    report.dualDofs = static_cast<long long>(problem->dualMap()->getGlobalNumElements());
+    FetiReport feti;
+    feti.localSolver = problem->localSolverName();
+    feti.factorSeconds = maxOver(problem->factorTime(), *comm_);
+    feti.factorMemoryMb = maxOver(problem->factorMemoryMb(), *comm_);
+    feti.denseBlockMemoryMb = maxOver(problem->denseBlockMemoryMb(), *comm_);
+    feti.F_applications = r.F_applications;
+    feti.F_seconds = maxOver(r.F_seconds, *comm_);
+    feti.coarseSize = r.coarseSize;
+    feti.coarseFactorMb = r.coarseFactorMb;
+    report.feti = feti;
+    return sol;
+  }
+
+ private:
+  // The outer algorithm's report and one history row per outer step.
+  static void reportContact(const Contact::FetiSolveResult& r, const Contact::PairFriction& friction,
+                            RunReport& report, IO::IterationHistory& history) {
+    const auto& st = r.status;
+    OuterAlgorithmReport outer;
+    outer.name = r.outerAlgorithm;
+    outer.resultCheckRounds = r.rounds;
+    outer.msaIterations = st.msa_iterations;
+    outer.innerIterations = st.inner_iterations;
+    outer.n_A_qpp = static_cast<long long>(st.n_A_qpp);
+    outer.n_A_qpq = static_cast<long long>(st.n_A_qpq);
+    outer.slipBoundChange = st.slip_bound_change;
+    outer.history = st.history;
+    report.outer = outer;
+    report.frictionLaw = frictionLawName(Contact::runLaw(friction));
+    report.outerIterations = st.outer_iterations;
+    for (const auto& step : st.steps) {
+      IO::HistoryRow row;
+      row.iteration = step.iteration;
+      row.relativeResidual = step.projectedGradient;
+      row.gLambda = step.normGx;
+      row.slipBoundChange = step.slipBoundChange;
+      row.n_A = static_cast<double>(step.n_A);
+      row.seconds = step.seconds;
+      history.rows.push_back(row);
+    }
+    report.contact = ContactCountReport{r.counts.nodes, r.counts.active, r.counts.stick, r.counts.slip};
+  }
+
+  // FCLIB global problem: assembled K, contact rows in the local frame,
+  // gaps, F (docs/fclib.md); the whole mesh is on rank 0.
+  void exportFclib(const Feti::FetiProblem& problem, const Discretized& d, const Contact::PairFriction& friction,
+                   const Contact::FetiSolveResult& r, RunReport& report) const {
+    Progress::stage("FCLIB export");
+    FCLIB::Info info{params_.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + r.outerAlgorithm, ""};
+    FCLIB::exportFeti(options_.exportFclib, problem, *d.whole, d.materials, d.loads, Contact::runLaw(friction),
+                      friction[0].coefficient, *r.primal, *r.lambda, info);
+    report.fclibExport = options_.exportFclib;
+  }
+};
+
+// The semismooth* method on the whole mesh, which every rank holds.
+class SemismoothMethod : public MethodBase {
+ public:
+  using MethodBase::MethodBase;
+  StepSolution solve(const Discretized& d, RunReport& report) const override {
+    Progress::stage("semismooth* Newton");
+    const auto plane = Input::planeContact(params_);  // Tresca or frictionless (the input refuses Coulomb here)
+    const auto r = Semismooth::solvePlaneContact(
+        *d.whole, Input::material(params_), d.loads, plane, params_.sublist("Solver").sublist("SemismoothStarNewton"),
+        resultCheckFactor(), comm_, options_.verbose ? &std::cout : nullptr);
+    StepSolution sol;
+    sol.result = r;
+    SemismoothReport newton;
+    newton.newtonIterations = r.iterations;
+    newton.residuals = r.residuals;
+    newton.assemblySeconds = r.assemblySeconds;
+    newton.reductionSeconds = r.reductionSeconds;
+    newton.newtonSeconds = r.newtonSeconds;
+    report.semismooth = newton;
+    report.frictionLaw = frictionLawName(plane.law);
+    report.outerIterations = r.iterations;
+    report.primalDofs = 3LL * d.whole->numNodes();
+    report.dualDofs = 0;
+    report.n_A = 0;
+    report.contact = ContactCountReport{r.counts.nodes, r.counts.active, r.counts.stick, r.counts.slip};
+    // One row per residual, the last one after the last Newton step (the list
+    // may start with the residual of the initial approximation, step 0); the
+    // method times its whole solve only (the last row gets it) and makes no
+    // Hessian multiplications of a dual.
+    for (size_t k = 0; k < r.residuals.size(); ++k) {
+      IO::HistoryRow row;
+      row.iteration = static_cast<long long>(r.iterations) - static_cast<long long>(r.residuals.size() - 1 - k);
+      row.relativeResidual = r.residuals[k];
+      row.n_A = 0;
+      sol.history.rows.push_back(row);
+    }
+    if (!sol.history.rows.empty()) sol.history.rows.back().seconds = r.solveSeconds;
+    return sol;
+  }
+};
+
+template <class Method>
+SolveMethodRegistry::Maker maker() {
+  return [](const ParameterList& params, const RunOptions& options, const RCP<const Comm>& comm) -> RCP<SolveMethod> {
+    return rcp(new Method(params, options, comm));
+  };
+}
+
+}  // namespace
+
+const SolveMethodRegistry& solveMethods() {
+  static const SolveMethodRegistry registry = [] {
+    SolveMethodRegistry r("solution method");
+    r.add("Monolithic", maker<MonolithicMethod>(), "the assembled problem by CG + MueLu (no contact)");
+    r.add("FETI", maker<FetiMethod>(), "Total FETI: projected CG, or the outer contact algorithm");
+    r.add("SemismoothStarNewton", maker<SemismoothMethod>(),
+          "one face on a rigid plane, Tresca or frictionless, by the semismooth* Newton method");
+    return r;
+  }();
+  return registry;
+}
+
+const char* solveMethodName(Input::Method method) {
+  switch (method) {
+    case Input::Method::Monolithic: return "Monolithic";
+    case Input::Method::Semismooth: return "SemismoothStarNewton";
+    case Input::Method::FetiLinear:
+    case Input::Method::FetiContact: break;
+  }
+  return "FETI";
+}
+
+}  // namespace Tribos

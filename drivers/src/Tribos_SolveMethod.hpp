@@ -1,0 +1,71 @@
+// Tribos_SolveMethod.hpp: the step "solve" of a run, by the method the
+// parameters choose (Input::method, the one place that reads Solver/Type,
+// Contact/Enabled and Solver/Outer Algorithm together), each registered by
+// name in Belos' factory style:
+//   "Monolithic"            the assembled global problem by CG + MueLu (no contact)
+//   "FETI"                  Total FETI: projected CG, or with contact the outer
+//                           algorithm of Solver/Outer Algorithm
+//   "SemismoothStarNewton"  one face on a rigid plane, Tresca or frictionless,
+//                           by the semismooth* Newton method (serial)
+// Every method returns the shared result (Contact::SolveResult: the nodal
+// displacement, the contact nodes, the KKT residuals of that result and the
+// verdict on them, computed once by Contact::resultVerdict) with its history
+// rows, and fills its own part of the run report.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Tribos_ContactConstraint.hpp"
+#include "Tribos_Discretization.hpp"
+#include "Tribos_Elasticity.hpp"
+#include "Tribos_History.hpp"
+#include "Tribos_Input.hpp"
+#include "Tribos_Loads.hpp"
+#include "Tribos_Mesh.hpp"
+#include "Tribos_Registry.hpp"
+#include "Tribos_Run.hpp"
+#include "Tribos_RunReport.hpp"
+#include "Tribos_SolveResult.hpp"
+
+namespace Tribos {
+
+// The mesh step's result: the whole mesh on rank 0 (on every rank for the
+// semismooth* method, a serial method; kept on rank 0 for the FCLIB export,
+// a global problem; else released once cut), this rank's part, its
+// materials, the loads, and the contact constraints of its slave nodes.
+struct Discretized {
+  std::unique_ptr<Mesh::Mesh> whole;
+  Mesh::Discretization disc;
+  Fem::BodyMaterials materials;
+  Fem::LoadCase loads;
+  std::vector<Feti::ContactConstraint> constraints;
+};
+
+// What a method leaves for the result check and the files.
+struct StepSolution {
+  Contact::SolveResult result;
+  double setupSeconds = 0;       // the method's setup (assembly, factorization); result.solveSeconds: its iterations
+  IO::IterationHistory history;  // BASE.history.csv
+};
+
+class SolveMethod {
+ public:
+  virtual ~SolveMethod() = default;
+  // Solves d, assembling what the method needs; fills the method's part of
+  // report (sizes, iterations, its own sublist). Collective.
+  virtual StepSolution solve(const Discretized& d, RunReport& report) const = 0;
+};
+
+// Makers take the validated parameters, the run's options and communicator.
+using SolveMethodRegistry =
+    Registry<SolveMethod, const Teuchos::ParameterList&, const RunOptions&, const RCP<const Comm>&>;
+const SolveMethodRegistry& solveMethods();
+
+// The registered name of a method.
+const char* solveMethodName(Input::Method method);
+
+}  // namespace Tribos

@@ -1,0 +1,61 @@
+// Tribos_SolveResult.hpp: the result of a solve as every method returns it
+// (FETI with or without contact, the semismooth* method, the monolithic
+// solve), and what the result check and the result files read: the nodal
+// displacement, the contact nodes with their forces, slip and status, the
+// KKT residuals of that result (Contact::resultKKT) and the verdict on it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "Tribos_ContactConstraint.hpp"
+#include "Tribos_NodalVector.hpp"
+#include "Tribos_ResultKKT.hpp"
+
+namespace Tribos {
+namespace Contact {
+
+struct ContactCounts {
+  long long nodes = 0, active = 0, stick = 0, slip = 0;
+};
+
+// Node-wise results of the local contact nodes (rank-local), as written.
+struct ContactNodeResults {
+  std::vector<int> nodes;
+  std::vector<Feti::ContactConstraint> constraint;  // frame, initial gap, master nodes, pair
+  std::vector<double> frictionCoefficient;          // Coulomb F of the node's pair (0 for the other laws)
+  // Forces on the slave node; slip: the relative tangential displacement;
+  // gap: the current normal gap d - w.n.
+  std::vector<double> normalForce, tangentialForce /*3 per node*/, slip /*3 per node*/, gap;
+  std::vector<double> slipBound;  // g of the solution (Tresca, Coulomb F lambda_N), 0 when frictionless
+  std::vector<int> status;        // 0 no contact, 1 stick, 2 slip
+  // The nodes of glued pairs with their forces (not written: their relative
+  // displacement is zero).
+  std::vector<ContactNodeForce> bonded;
+  // The forces as the result check takes them (contact and bonded nodes).
+  std::vector<ContactNodeForce> forces() const;
+};
+
+// The shared part of every method's result. Collective quantities (counts,
+// kkt, verdict, the solver's report) are the same on every rank; u and
+// contact are this rank's.
+struct SolveResult {
+  Fem::NodalVector u;           // nodal displacement at the nodes this rank holds
+  ContactNodeResults contact;   // this rank's contact nodes (empty without contact)
+  ContactCounts counts;         // over all ranks
+  ResultKKT kkt;                // of u and the contact forces
+  ResultVerdict verdict;        // converged, limit, stop reason (resultVerdict, once)
+  double tolerance = 0;         // the solver's requested tolerance (what the verdict measures against)
+  // The solver's own report.
+  bool solverConverged = false;
+  std::string solverReason;
+  int iterations = 0;           // the method's own iterations (CG, outer, Newton)
+  long long n_A = 0;            // applications of the dual operator F (0 for primal methods)
+  double solveSeconds = 0;
+};
+
+// counts over all ranks of the contact nodes in `nodes` (each held by one rank).
+ContactCounts countContacts(const ContactNodeResults& nodes, const Comm& comm);
+
+}  // namespace Contact
+}  // namespace Tribos
