@@ -73,7 +73,7 @@ elseif(MODE STREQUAL "example")
   # Only the scratch prefix: no package registry, no tree of this build.
   run("configure ${EXAMPLE}" "${CMAKE_COMMAND}" -S "${SOURCE}" -B "${BINARY}" -DCMAKE_BUILD_TYPE=Release
       "-DCMAKE_PREFIX_PATH=${PREFIX}" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
-      "-DCMAKE_C_COMPILER=${CMAKE_C_COMPILER}" "-DCMAKE_CXX_COMPILER=${CMAKE_CXX_COMPILER}")
+      "-DCMAKE_CXX_COMPILER=${CMAKE_CXX_COMPILER}")
   file(STRINGS "${BINARY}/CMakeCache.txt" tribos_dir REGEX "^Tribos_DIR:")
   string(REGEX REPLACE "^[^=]*=" "" tribos_dir "${tribos_dir}")
   string(FIND "${tribos_dir}" "${PREFIX}/" at)

@@ -1,42 +1,45 @@
 // embed: an application that meshes and assembles a contact problem its own
-// way and solves it through Tribos' public API (FetiProblem from assembled
-// subdomains, Contact::solveFeti).
+// way, as a Trilinos code does, and solves it through Tribos' embedding API
+// (#include <Tribos.hpp>).
 //
 // The body: the block [0,2]x[0,1]x[0,1] of steel, two subdomains [0,1] and
 // [1,2] along x (one per rank on 2 ranks), n hexahedra per unit length. It
 // is clamped at x = 0, pressed onto a rigid plane z = 0 by the traction
 // (0,0,-4e7) on z = 1 and pushed by (-2e7,0,0) on x = 2, with Coulomb
-// friction F = 0.3 on the plane. The application numbers the nodes, builds
-// each subdomain's K and f from Tribos' element matrices, and writes the rows
-// of B itself: gluing at x = 1 (orthonormal pairs), the clamp, and the
-// normal and tangential rows of the bottom nodes.
+// friction F = 0.3 on the plane. The application numbers the nodes and
+// assembles each subdomain's K as a Tpetra::CrsMatrix (element matrices
+// summed in by insertGlobalValues) and f as a Tpetra::Vector; it writes the
+// gluing and clamp rows of B, and states the contact as one condition per
+// bottom node (its copy, the plane's outward normal, the gap, its area):
+// Tribos builds the contact rows in its own frame. Every choice, friction
+// included, is one parameter list; Contact::ContactSolver solves.
 //
-// Checks (exit 1 if one fails): the solve converged (its KKT residuals, node
-// by node, within the result check), and the displacement equals Tribos' own
-// solve of the same block from its mesh generator to 1e-6.
+// Checks (exit 1 if one fails): the solve converged, every KKT residual of
+// the result (equilibrium, Dirichlet values, non-penetration,
+// complementarity, friction law; node by node) within the result check;
+// the displacement equals Tribos' own solve of the same block from its mesh
+// generator to 1e-6; the contact has a stick and a slip zone.
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_DefaultSerialComm.hpp>
 #include <Teuchos_ParameterList.hpp>
 #include <Tpetra_Core.hpp>
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Vector.hpp>
 
+#include <Tribos.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <map>
 #include <vector>
 
-#include "Tribos_Assembly.hpp"
-#include "Tribos_Discretization.hpp"
-#include "Tribos_Elasticity.hpp"
-#include "Tribos_FetiProblem.hpp"
-#include "Tribos_FetiSolve.hpp"
-#include "Tribos_Loads.hpp"
-#include "Tribos_MpiStartup.hpp"
-
 using namespace Tribos;
 
 namespace {
 
-const double kE = 21.2e10, kNu = 0.277, kPressure = 4e7, kPush = 2e7, kFriction = 0.3;
+const double kE = 21.2e10, kNu = 0.277, kPressure = 4e7, kPush = 2e7;
 
 // The application's structured grid: (2n+1) x (n+1) x (n+1) nodes.
 struct Grid {
@@ -48,63 +51,82 @@ struct Grid {
   int local(int s, int i, int j, int k) const { return (i - s * n) + (n + 1) * (j + (n + 1) * k); }
 };
 
-// One subdomain: K from Tribos' Hex8 element matrix, f from the tractions
-// (a bilinear facet carries a quarter of its force at each corner).
-Fem::SubdomainSystem assemble(const Grid& g, int s) {
-  const int n = g.n, nl = (n + 1) * (n + 1) * (n + 1);
-  Fem::SubdomainSystem sys;
-  sys.id = s;
-  sys.nodes.resize(nl);
-  sys.coords.resize(nl);
-  for (int k = 0; k <= n; ++k)
-    for (int j = 0; j <= n; ++j)
-      for (int i = s * n; i <= (s + 1) * n; ++i) {
-        sys.nodes[g.local(s, i, j, k)] = g.node(i, j, k);
-        sys.coords[g.local(s, i, j, k)] = g.x(i, j, k);
-      }
+// Subdomain s's dofs on one process: local dof 3 localNode + c has the
+// global number 3 node + c (any global numbering would do).
+RCP<const Map> dofMap(const std::vector<int>& nodes) {
+  Teuchos::Array<GO> dofs;
+  for (int node : nodes)
+    for (int c = 0; c < 3; ++c) dofs.push_back(3LL * node + c);
+  return rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(), dofs(), 0,
+                     rcp(new Teuchos::SerialComm<int>())));
+}
+
+// K from Tribos' Hex8 element matrix, summed into a CrsMatrix.
+RCP<CrsMatrix> stiffness(const Grid& g, int s, const RCP<const Map>& map) {
   Fem::Material mat;
   mat.E = kE;
   mat.nu = kNu;
-  std::map<std::pair<int, int>, double> entries;
+  auto K = rcp(new CrsMatrix(map, 8 * 24));  // room for every element's entries of a row before they merge
+  const int n = g.n;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = s * n; i < (s + 1) * n; ++i) {
-        const int c[8][3] = {{i, j, k},         {i + 1, j, k},         {i + 1, j + 1, k},     {i, j + 1, k},
-                             {i, j, k + 1},     {i + 1, j, k + 1},     {i + 1, j + 1, k + 1}, {i, j + 1, k + 1}};
+        const int c[8][3] = {{i, j, k},     {i + 1, j, k},     {i + 1, j + 1, k},     {i, j + 1, k},
+                             {i, j, k + 1}, {i + 1, j, k + 1}, {i + 1, j + 1, k + 1}, {i, j + 1, k + 1}};
         std::vector<Fem::Point> X(8);
-        int ln[8];
-        for (int a = 0; a < 8; ++a) X[a] = g.x(c[a][0], c[a][1], c[a][2]), ln[a] = g.local(s, c[a][0], c[a][1], c[a][2]);
+        Teuchos::Array<GO> dofs(24);
+        for (int a = 0; a < 8; ++a) {
+          X[a] = g.x(c[a][0], c[a][1], c[a][2]);
+          for (int q = 0; q < 3; ++q) dofs[3 * a + q] = 3LL * g.node(c[a][0], c[a][1], c[a][2]) + q;
+        }
         const auto Ke = Fem::elementStiffness(Mesh::CellType::Hex8, X, mat);
-        for (int a = 0; a < 24; ++a)
-          for (int b = 0; b < 24; ++b) entries[{3 * ln[a / 3] + a % 3, 3 * ln[b / 3] + b % 3}] += Ke[a * 24 + b];
+        for (int a = 0; a < 24; ++a) K->insertGlobalValues(dofs[a], dofs(), Teuchos::ArrayView<const SC>(&Ke[24 * a], 24));
       }
-  sys.K.rows = sys.K.cols = 3 * nl;
-  sys.K.rowptr.assign(1, 0);
-  int row = 0;
-  for (const auto& [rc, v] : entries) {
-    while (row < rc.first) sys.K.rowptr.push_back(static_cast<int>(sys.K.col.size())), ++row;
-    sys.K.col.push_back(rc.second);
-    sys.K.val.push_back(v);
-  }
-  while (row < 3 * nl) sys.K.rowptr.push_back(static_cast<int>(sys.K.col.size())), ++row;
-  sys.f.assign(3 * nl, 0.0);
+  K->fillComplete();
+  return K;
+}
+
+// f from the tractions (a bilinear facet carries a quarter of its force at
+// each corner).
+RCP<Vector> load(const Grid& g, int s, const RCP<const Map>& map) {
+  auto f = rcp(new Vector(map));
+  const int n = g.n;
   const double quarter = 0.25 / (n * n);  // a quarter of a facet's area
   for (int j = 0; j < n; ++j)
     for (int i = s * n; i < (s + 1) * n; ++i)  // top facets: (0, 0, -p)
       for (int a = 0; a < 2; ++a)
-        for (int b = 0; b < 2; ++b) sys.f[3 * g.local(s, i + a, j + b, n) + 2] -= kPressure * quarter;
+        for (int b = 0; b < 2; ++b) f->sumIntoLocalValue(3 * g.local(s, i + a, j + b, n) + 2, -kPressure * quarter);
   if (s == 1)
     for (int k = 0; k < n; ++k)
       for (int j = 0; j < n; ++j)  // end facets x = 2: (-q, 0, 0)
         for (int a = 0; a < 2; ++a)
-          for (int b = 0; b < 2; ++b) sys.f[3 * g.local(s, 2 * n, j + a, k + b)] -= kPush * quarter;
-  // R left empty: FetiProblem builds the rigid-body modes from the coordinates.
-  return sys;
+          for (int b = 0; b < 2; ++b) f->sumIntoLocalValue(3 * g.local(s, 2 * n, j + a, k + b), -kPush * quarter);
+  return f;
 }
 
-// The rows of B, all of them on every rank (FetiProblem keeps each rank's
-// own; a larger application gives each rank only the rows of its subdomains).
-Feti::FetiConstraints constraints(const Grid& g) {
+Feti::TpetraSubdomain subdomain(const Grid& g, int s) {
+  const int n = g.n;
+  Feti::TpetraSubdomain sub;
+  sub.id = s;
+  sub.nodes.resize((n + 1) * (n + 1) * (n + 1));
+  sub.coords.resize(sub.nodes.size());
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = s * n; i <= (s + 1) * n; ++i) {
+        sub.nodes[g.local(s, i, j, k)] = g.node(i, j, k);
+        sub.coords[g.local(s, i, j, k)] = g.x(i, j, k);
+      }
+  const auto map = dofMap(sub.nodes);
+  sub.K = stiffness(g, s, map);
+  sub.f = load(g, s, map);
+  // R left null: Tribos builds the six rigid-body modes from the coordinates.
+  return sub;
+}
+
+// The gluing and clamp rows of B, all of them on every rank (FetiProblem
+// keeps each rank's own; a larger application gives each rank only the
+// rows of its subdomains).
+Feti::FetiConstraints glueAndClamp(const Grid& g) {
   const int n = g.n;
   Feti::FetiConstraints fc;
   const double w = 1.0 / std::sqrt(2.0);
@@ -123,46 +145,49 @@ Feti::FetiConstraints constraints(const Grid& g) {
         glue.dir[c] = 1.0;
         fc.rows.push_back(glue);
       }
-  // Contact with the plane z = 0 (outward normal -e_z, gap 0) in the frame
-  // Tribos uses for a plane (Feti::tangents), on the subdomain of the lowest
-  // number that holds the node; the clamped nodes are held already.
-  fc.contactNormal = {0, 0, -1};
-  fc.contactGap = 0.0;
-  std::array<double, 3> t1, t2;
-  Feti::tangents(fc.contactNormal, t1, t2);
-  for (int j = 0; j <= n; ++j)
-    for (int i = 1; i <= 2 * n; ++i) {
-      const int s = i <= n ? 0 : 1;
-      Feti::DualRow r{Feti::DualRow::Normal};
-      r.node = g.node(i, j, 0);
-      r.copies = {{s, g.local(s, i, j, 0), 1.0}};
-      r.dir = {0, 0, -1};
-      fc.rows.push_back(r);
-      r.kind = Feti::DualRow::Tangent1;
-      r.dir = t1;
-      fc.rows.push_back(r);
-      r.kind = Feti::DualRow::Tangent2;
-      r.dir = t2;
-      fc.rows.push_back(r);
-      // Area of the bottom face around the node (for traction slip bounds;
-      // Coulomb's bound F lambda_N does not use it).
-      const double ax = (i == 0 || i == 2 * n) ? 0.5 : 1.0, ay = (j == 0 || j == n) ? 0.5 : 1.0;
-      fc.contactArea[r.node] = ax * ay / (n * n);
-    }
   return fc;
 }
 
-// Algorithm 2 to a tight tolerance, so that two solves of the same problem
-// (rows in another order) agree to 1e-6.
-Teuchos::ParameterList solverParameters() {
-  Teuchos::ParameterList p("Solver");
-  p.set("Outer Algorithm", "Algorithm2");
-  p.sublist("Algorithm 2").set("Relative Tolerance", 1e-9);
+// Contact with the plane z = 0 (outward normal -e_z, gap 0) at every bottom
+// node that is not clamped, on the subdomain of lowest number that holds
+// it. The area of the bottom face around the node is Tresca's; Coulomb's
+// bound F lambda_N does not use it.
+std::vector<Feti::ContactCondition> bottomContact(const Grid& g) {
+  const int n = g.n;
+  std::vector<Feti::ContactCondition> conditions;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 1; i <= 2 * n; ++i) {
+      Feti::ContactCondition c;
+      c.node = g.node(i, j, 0);
+      c.subdomain = i <= n ? 0 : 1;
+      c.localNode = g.local(c.subdomain, i, j, 0);
+      c.normal = {0, 0, -1};
+      c.gap = 0.0;
+      const double ax = i == 2 * n ? 0.5 : 1.0, ay = (j == 0 || j == n) ? 0.5 : 1.0;
+      c.area = ax * ay / (n * n);
+      conditions.push_back(c);
+    }
+  return conditions;
+}
+
+// Every choice in one list (ContactSolver::getValidParameters() documents
+// it): the FETI problem's (defaults: TFETI, CHOLMOD), the outer algorithm,
+// Algorithm 2 to a tight tolerance (so that two solves of the same problem
+// with rows in another order agree to 1e-6), and the friction.
+RCP<Teuchos::ParameterList> parameters() {
+  auto p = Teuchos::parameterList("embed");
+  p->sublist("FETI");
+  p->set("Outer Algorithm", "Algorithm2");
+  p->sublist("Algorithm 2").set("Relative Tolerance", 1e-9);
+  p->sublist("Friction").set("Law", "Coulomb").set("Coefficient", 0.3);
   return p;
 }
 
-// The same block from Tribos' own mesh generator and constructor.
-std::vector<double> referenceSolve(int n, const RCP<const Comm>& comm, std::vector<Fem::Point>& coords) {
+// The same block from Tribos' own mesh generator, solved by the same
+// solver object: every node's displacement on every rank (the comparison
+// looks nodes up by position), and the nodes' coordinates.
+std::vector<double> referenceSolve(int n, Contact::ContactSolver& solver, const Teuchos::ParameterList& feti,
+                                   const RCP<const Comm>& comm, std::vector<Fem::Point>& coords) {
   Mesh::BoxSpec spec;
   spec.type = Mesh::CellType::Hex8;
   spec.x = {0, 2};
@@ -182,12 +207,11 @@ std::vector<double> referenceSolve(int n, const RCP<const Comm>& comm, std::vect
   loads.tractions.push_back({"xmax", {-kPush, 0, 0}});
   Contact::ContactSpec contact;
   contact.enabled = true;
-  auto problem = rcp(new Feti::FetiProblem(disc, mat, loads, Contact::faceContactConstraints(disc, contact, comm),
-                                           Teuchos::ParameterList(), comm));
-  Contact::FrictionSpec friction{"Coulomb", kFriction, 0.0};
+  solver.setProblem(rcp(
+      new Feti::FetiProblem(disc, mat, loads, Contact::faceContactConstraints(disc, contact, comm), feti, comm)));
+  solver.solve();
   coords = whole.coords;
-  // Every node on every rank: the comparison below looks nodes up by position.
-  return Contact::solveFeti(problem, friction, solverParameters()).u.gathered();
+  return solver.getResult().u.gathered();
 }
 
 }  // namespace
@@ -204,17 +228,23 @@ int main(int argc, char** argv) {
   }
   try {
     const Grid g{n};
+    const auto params = parameters();
+    Contact::ContactSolver solver;
+    solver.setParameters(params);  // validated before any work, defaults filled in
+
     // This rank's subdomains: both on one rank, one each on two.
-    std::vector<Fem::SubdomainSystem> mine;
+    std::vector<Feti::TpetraSubdomain> mine;
     for (int s = 0; s < 2; ++s)
-      if (comm->getSize() == 1 || s == comm->getRank()) mine.push_back(assemble(g, s));
-    Teuchos::ParameterList fetiParams;  // defaults: TFETI, CHOLMOD
-    auto problem = rcp(new Feti::FetiProblem(std::move(mine), constraints(g), fetiParams, comm));
-    const Contact::FrictionSpec friction{"Coulomb", kFriction, 0.0};
-    const auto r = Contact::solveFeti(problem, friction, solverParameters());
+      if (comm->getSize() == 1 || s == comm->getRank()) mine.push_back(subdomain(g, s));
+    Feti::FetiConstraints rows = glueAndClamp(g);
+    Feti::addContactConditions(rows, bottomContact(g), *comm);
+    const auto problem = Feti::createFetiProblem(mine, std::move(rows), params->sublist("FETI"), comm);
+    solver.setProblem(problem);
+    const bool converged = solver.solve() == Contact::SolveStatus::Converged;
+    const Contact::FetiSolveResult r = solver.getResult();  // a copy: the reference solve below reuses the solver
 
     std::vector<Fem::Point> coords;
-    const auto ref = referenceSolve(n, comm, coords);
+    const auto ref = referenceSolve(n, solver, params->sublist("FETI"), comm, coords);
     // The reference numbers nodes as the application does (x fastest);
     // compare by coordinates all the same. r.u holds the displacement of
     // the nodes of this rank's subdomains; each rank compares the nodes it
@@ -235,18 +265,21 @@ int main(int argc, char** argv) {
     }
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 2, local, global);
     const double rel = global[0] / global[1];
+    const auto& kkt = r.kkt;
+    const bool kktHolds = std::max({kkt.equilibrium, kkt.dirichlet, kkt.nonpenetration, kkt.complementarity,
+                                    kkt.frictionLaw}) <= r.verdict.limit;
     if (root) {
       std::cout << "embed: " << problem->primalMap()->getGlobalNumElements() << " primal dofs, "
                 << problem->dualMap()->getGlobalNumElements() << " dual, " << r.counts.nodes << " contact nodes ("
-                << r.counts.stick << " stick, " << r.counts.slip << " slip), " << r.iterations << " "
+                << r.counts.stick << " stick, " << r.counts.slip << " slip), " << solver.getNumIters() << " "
                 << r.outerAlgorithm << " iterations, n_A = " << r.n_A << "\n"
-                << "kkt equilibrium " << r.kkt.equilibrium << " dirichlet " << r.kkt.dirichlet << " nonpenetration "
-                << r.kkt.nonpenetration << " complementarity " << r.kkt.complementarity << " friction_law "
-                << r.kkt.frictionLaw << " limit " << r.verdict.limit << "\n"
-                << "converged " << (r.verdict.converged ? "true" : "false") << " (" << r.verdict.stopReason << ")\n"
+                << "kkt equilibrium " << kkt.equilibrium << " dirichlet " << kkt.dirichlet << " nonpenetration "
+                << kkt.nonpenetration << " complementarity " << kkt.complementarity << " friction_law "
+                << kkt.frictionLaw << " limit " << r.verdict.limit << "\n"
+                << "converged " << (converged ? "true" : "false") << " (" << r.verdict.stopReason << ")\n"
                 << "max |u - u_tribos_mesh| / max |u| = " << rel << "\n";
     }
-    const bool ok = r.verdict.converged && rel <= 1e-6 && r.counts.slip > 0 && r.counts.stick > 0;
+    const bool ok = converged && kktHolds && rel <= 1e-6 && r.counts.slip > 0 && r.counts.stick > 0;
     if (root && !ok) std::cerr << "embed: FAILED\n";
     return ok ? 0 : 1;
   } catch (const std::exception& e) {
