@@ -73,6 +73,13 @@ int pairNumber(const std::string& name) {
   return std::stoi(digits);
 }
 
+// Whether a "Friction" list has "Pair <k>" sublists.
+bool namesPairs(const Teuchos::ParameterList& friction) {
+  for (auto it = friction.begin(); it != friction.end(); ++it)
+    if (friction.isSublist(friction.name(it))) return true;
+  return false;
+}
+
 // The largest pair number of the problem's contact nodes (-1: none), on
 // every rank. Collective.
 int largestPair(const Feti::FetiProblem& problem) {
@@ -141,6 +148,7 @@ void ContactSolver::setParameters(const RCP<Teuchos::ParameterList>& params) {
     validate(*p, *solveAndProblemParameters(), "parameters");
     friction_ = readPairFriction(friction);
     base_ = frictionSpec(friction);
+    perPair_ = namesPairs(friction);
   } catch (...) {
     p->sublist(kFriction).setParameters(friction);
     throw;
@@ -158,9 +166,10 @@ void ContactSolver::setProblem(const RCP<const Feti::FetiProblem>& problem) {
 SolveStatus ContactSolver::solve() {
   TRIBOS_REQUIRE(!problem_.is_null(), "ContactSolver::solve: no problem; call setProblem() first");
   if (params_.is_null()) setParameters(Teuchos::null);
-  // Pairs beyond the largest "Pair <k>" take the list's own friction.
+  // Pairs beyond the largest "Pair <k>" take the list's own friction (a
+  // list of one entry would apply to every pair).
   PairFriction friction = friction_;
-  if (friction.size() > 1) friction.resize(std::max<size_t>(friction.size(), largestPair(*problem_) + 1), base_);
+  if (perPair_) friction.resize(std::max<size_t>(friction.size(), largestPair(*problem_) + 1), base_);
   solved_ = false;
   result_ = solveFeti(problem_, friction, *params_, out_);
   solved_ = true;

@@ -79,6 +79,7 @@ class ContactSolver {
   RCP<Teuchos::ParameterList> params_;
   PairFriction friction_{FrictionSpec()};  // readPairFriction of "Friction"
   FrictionSpec base_;                      // "Friction"'s own entries: pairs no "Pair <k>" names
+  bool perPair_ = false;                   // "Friction" has "Pair <k>" sublists
   RCP<Teuchos::FancyOStream> out_;
   bool solved_ = false;
   FetiSolveResult result_;

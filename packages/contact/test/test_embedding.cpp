@@ -269,13 +269,16 @@ Contact::FetiSolveResult oldPath(const Grid& g, const RCP<const Comm>& comm) {
 }
 
 // The embedding API: TpetraSubdomain, contact conditions, ContactSolver.
+// pair: the contact conditions' pair; params: the solver's list.
 Contact::FetiSolveResult newPath(const Grid& g, const RCP<const Comm>& comm, Stiffness how,
-                                 Contact::SolveStatus& status) {
+                                 Contact::SolveStatus& status, int pair = 0,
+                                 const RCP<Teuchos::ParameterList>& params = parameters()) {
   std::vector<Feti::TpetraSubdomain> subdomains;
   for (const auto& d : mine(g, *comm)) subdomains.push_back(tpetraSubdomain(d, how));
   Feti::FetiConstraints constraints = glueAndClamp(g);
-  Feti::addContactConditions(constraints, bottom(g), *comm);
-  const auto params = parameters();
+  auto conditions = bottom(g);
+  for (auto& c : conditions) c.pair = pair;
+  Feti::addContactConditions(constraints, conditions, *comm);
   Contact::ContactSolver solver;
   solver.setParameters(params);
   solver.setProblem(Feti::createFetiProblem(subdomains, std::move(constraints), params->sublist("FETI"), comm));
@@ -524,6 +527,27 @@ TEUCHOS_UNIT_TEST(Embedding, ParameterRefusals) {
   TEST_ASSERT(p->sublist("Friction").isParameter("Law"));
   TEST_ASSERT(contains(errorOf([] { Contact::ContactSolver().solve(); }), "no problem; call setProblem() first"));
   TEST_ASSERT(contains(errorOf([] { Contact::ContactSolver().getResult(); }), "no result; call solve() first"));
+}
+
+// A pair that no "Pair <k>" names takes the list's own friction: the
+// conditions of pair 2 with "Pair 0" (F = 0.9) given solve as the old path
+// with F = 0.3 everywhere.
+TEUCHOS_UNIT_TEST(Embedding, UnnamedPairTakesTheListsFriction) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Grid g;
+  const auto before = oldPath(g, comm);
+  auto params = parameters();
+  params->sublist("Friction").sublist("Pair 0").set("Coefficient", 0.9);
+  Contact::SolveStatus status;
+  const auto after = newPath(g, comm, Stiffness::Crs, status, 2, params);
+  TEST_ASSERT(status == Contact::SolveStatus::Converged);
+  TEST_EQUALITY(after.counts.slip, before.counts.slip);
+  TEST_ASSERT(difference(after.u, before.u, *comm) <= 1e-12);
+  // and pair 0 itself takes its own F = 0.9: fewer nodes slip.
+  const auto pair0 = newPath(g, comm, Stiffness::Crs, status, 0, params);
+  TEST_ASSERT(status == Contact::SolveStatus::Converged);
+  out << "slip nodes: F = 0.3 " << before.counts.slip << ", F = 0.9 " << pair0.counts.slip << "\n";
+  TEST_ASSERT(pair0.counts.slip < before.counts.slip);
 }
 
 // "Friction" and its "Pair <k>" sublists become the friction of each pair;
