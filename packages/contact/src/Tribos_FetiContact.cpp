@@ -115,8 +115,9 @@ void requireNoPrescribedSlip(const std::vector<Feti::ContactConstraint>& contact
       Fem::requireNoPrescribedSlip(dirichlet, c.node, position(c.node), c.normal, c.master);
 }
 
-FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const PairFriction& friction)
-    : scaling_(rcp(new Friction::ScalingTransform(20))), dual_(dual) {
+FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const PairFriction& friction, double normPFP)
+    : scaling_(normPFP > 0 ? Friction::ScalingTransform::withNorm(normPFP) : rcp(new Friction::ScalingTransform(20))),
+      dual_(dual) {
   runLaw(friction);  // checks every pair's law
   const auto& lc = dual->problem().contact();
   // A problem from a mesh: its Dirichlet values must not make a contact
@@ -346,7 +347,8 @@ std::vector<Contact::ContactNodeForce> bondedForces(const Feti::FetiProblem& p, 
 }
 
 ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVector& uNodal, const Vector& lambda,
-                                  const std::vector<double>& g, const PairFriction& friction, ContactCounts& counts) {
+                                  const std::vector<double>& g, const PairFriction& friction, ContactCounts& counts,
+                                  const Fem::NodalVector* previous) {
   const Comm& comm = *p.comm();
   const auto& lc = p.contact();
   auto l = lambda.getData();
@@ -365,6 +367,10 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVe
     if (lN > 1e-8 * maxLN) status = (gk <= 0 || std::hypot(l1, l2) >= (1 - 1e-6) * gk) ? 2 : 1;
     const Feti::ContactConstraint& cc = lc.constraint[k];
     const auto w = Feti::relativeDisplacement(cc, uNodal);
+    if (previous) {
+      const auto wPrevious = Feti::relativeDisplacement(cc, *previous);
+      out.previousRelative.insert(out.previousRelative.end(), wPrevious.begin(), wPrevious.end());
+    }
     const double wn = w[0] * cc.normal[0] + w[1] * cc.normal[1] + w[2] * cc.normal[2];
     const FrictionSpec& f = frictionOfPair(friction, cc.pair);
     out.nodes.push_back(cc.node);

@@ -87,7 +87,9 @@ struct FetiContactSolution {
 
 class FetiContactProblem {
  public:
-  FetiContactProblem(RCP<const Feti::FetiDual> dual, const PairFriction& friction);
+  // normPFP: ||PFP|| when known (the same problem at another load, norm());
+  // 0 estimates it by power steps.
+  FetiContactProblem(RCP<const Feti::FetiDual> dual, const PairFriction& friction, double normPFP = 0);
   FetiContactProblem(RCP<const Feti::FetiDual> dual, const FrictionSpec& friction)
       : FetiContactProblem(dual, PairFriction{friction}) {}
   const Friction::ContactDual& contactDual() const { return cd_; }
@@ -106,6 +108,7 @@ class FetiContactProblem {
   static RCP<const Teuchos::ParameterList> getValidParameters();
   // The factor s of the scaled dual problem (s PFP, s P(h - F lambda~)), s = 1/||PFP||.
   SC scale() const { return scaling_->scale(); }
+  SC norm() const { return scaling_->norm(); }
 
  private:
   // Local dual rows: equality rows plus the normal and/or tangential rows.
@@ -127,9 +130,11 @@ class FetiContactProblem {
 // The local contact nodes of the result: forces from lambda, slip and gap
 // from the written (nodal, single-valued) displacement. g: the slip bound of
 // the solution (local, one per contact node), empty for frictionless.
+// previous: the nodal displacement of the previous load step (none: a
+// single step), whose relative displacements the friction law starts from.
 ContactNodeResults contactResults(const Feti::FetiProblem& problem, const Fem::NodalVector& uNodal,
                                   const Vector& lambda, const std::vector<double>& g, const PairFriction& friction,
-                                  ContactCounts& counts);
+                                  ContactCounts& counts, const Fem::NodalVector* previous = nullptr);
 
 // The forces between glued bodies at the local bonded nodes, from lambda.
 std::vector<Contact::ContactNodeForce> bondedForces(const Feti::FetiProblem& problem, const Vector& lambda);

@@ -39,17 +39,119 @@ Teuchos::ParameterList validatedSolveParameters(const Teuchos::ParameterList& pa
 
 // The result the user gets, from r.primal and r.lambda: the nodal
 // displacement, the contact forces, the KKT residuals and the verdict
-// against r.tolerance.
+// against r.tolerance. previous: the nodal displacement of the previous
+// load step (the origin of the slip), or none.
 void checkResult(const Feti::FetiProblem& problem, const PairFriction& friction, const Teuchos::ParameterList& p,
-                 FetiSolveResult& r) {
+                 FetiSolveResult& r, const Fem::NodalVector* previous) {
   Progress::stage("result check");
   r.u = problem.nodalDisplacement(*r.primal);
   if (problem.hasContact())
-    r.contact = contactResults(problem, r.u, *r.lambda, r.status.slipBound, friction, r.counts);
+    r.contact = contactResults(problem, r.u, *r.lambda, r.status.slipBound, friction, r.counts, previous);
   r.contact.bonded = bondedForces(problem, *r.lambda);
   r.kkt = resultKKT(problem, r.u, r.contact, friction);
   r.verdict = Contact::resultVerdict(r.kkt, r.solverConverged, r.solverReason, r.tolerance,
-                                 p.get<double>("Result Check Factor"));
+                                     p.get<double>("Result Check Factor"));
+}
+
+// What a load step continues from: the previous step's multipliers (the
+// start of the iterations) and nodal displacement (the origin of the slip),
+// the norm of the contact dual (the same operator), and the counts of F
+// before the step. Empty: a solve from rest.
+struct Continuation {
+  RCP<const Vector> lambda;
+  const Fem::NodalVector* u = nullptr;
+  double normPFP = 0;
+  long long F_applications = 0;
+  double F_seconds = 0;
+};
+
+// A dense algorithm's size limit, before the coarse space and the solve
+// (the same dual size, hence the same refusal, on every rank).
+void checkDualSize(const Feti::FetiProblem& problem, const PairFriction& friction, const Teuchos::ParameterList& p) {
+  if (!problem.hasContact()) return;
+  try {
+    Friction::FrictionSolverFactory()
+        .create(outerAlgorithmFor(p.get<std::string>("Outer Algorithm"), friction), p)
+        ->checkDualRows(static_cast<long long>(problem.dualMap()->getGlobalNumElements()));
+  } catch (const Error& e) {
+    throw CollectiveError(e.what());
+  }
+}
+
+// The solve of one dual problem: projected CG without contact, else the
+// outer algorithm in rounds until the result meets its check; then the
+// result the user gets. normPFP: set to the norm of the contact dual.
+FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFriction& friction,
+                          const Teuchos::ParameterList& p, RCP<Teuchos::FancyOStream> out, const Continuation& from,
+                          double* normPFP) {
+  const Feti::FetiProblem& problem = dual->problem();
+  FetiSolveResult r;
+  r.lambda = rcp(new Vector(problem.dualMap()));
+  PairFriction law = friction;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!problem.hasContact()) {
+    Progress::stage("projected CG");
+    const auto& pcgParams = p.sublist("FETI").sublist("Projected CG");
+    Feti::ProjectedCG pcg(pcgParams);
+    if (!out.is_null()) pcg.setOutputStream(out);
+    const auto st = pcg.solve(*dual, *r.lambda);
+    r.iterations = st.iterations;
+    r.n_A = st.n_A;
+    r.relativeResidual = st.relativeResidual;
+    r.solverConverged = st.converged;
+    if (!st.converged) r.solverReason = "projected CG: maximum iterations";
+    r.tolerance = pcgParams.get<double>("Tolerance");
+    r.primal = dual->recoverPrimal(*r.lambda);
+    law = {FrictionSpec()};  // no contact forces to check
+  } else {
+    FetiContactProblem cp(dual, friction, from.normPFP);
+    if (normPFP) *normPFP = cp.norm();
+    r.outerAlgorithm = outerAlgorithmFor(p.get<std::string>("Outer Algorithm"), friction);
+    const std::string runLawName = frictionLawName(runLaw(friction));
+    TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, runLawName),
+                   "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << runLawName << " friction ("
+                                        << joinNames(Friction::frictionSolvers().accepting(runLawName)) << " do)");
+    // A later load step starts from the multipliers of the one before:
+    // x = lambda_prev - lambda(0), lambda(0) the chain's back map of x = 0.
+    RCP<const Vector> start;
+    if (!from.lambda.is_null()) {
+      auto x = rcp(new Vector(*from.lambda, Teuchos::Copy));
+      x->update(-1.0, *cp.multipliers(Vector(problem.dualMap())), 1.0);
+      start = x;
+    }
+    // Rounds: a solve that meets its own test with a result that misses the
+    // check is asked again from its result, the tolerance tightened by the
+    // miss (Friction::tightenedTolerance); the check keeps the first
+    // tolerance, so converged still means factor x what was asked for.
+    const int rounds = p.get<int>("Result Check Rounds");
+    double requested = 0;
+    for (int round = 1; round <= rounds; ++round) {
+      Progress::stage("contact solve: " + r.outerAlgorithm + (round > 1 ? ", round " + std::to_string(round) : ""));
+      const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested);
+      if (round == 1) r.tolerance = sol.requestedTolerance;
+      requested = sol.requestedTolerance;
+      r.status = round == 1 ? sol.status : Friction::followedBy(r.status, sol.status);
+      r.iterations = r.status.outer_iterations;
+      r.n_A += sol.n_A;
+      r.solverConverged = sol.status.converged;
+      r.solverReason = sol.status.reason;
+      r.lambda->assign(*sol.lambda);
+      r.primal = sol.u;
+      r.rounds = round;
+      checkResult(problem, friction, p, r, from.u);
+      if (!r.solverConverged || r.verdict.converged || round == rounds || Friction::atTightestTolerance(requested))
+        break;
+      requested = Friction::tightenedTolerance(requested, r.verdict.limit, r.kkt.worst());
+      start = sol.x;
+    }
+  }
+  r.solveSeconds = secondsSince(t0);
+  r.F_applications = dual->F()->applications() - from.F_applications;
+  r.F_seconds = dual->F()->seconds() - from.F_seconds;
+  r.coarseSize = dual->coarse().size();
+  r.coarseFactorMb = dual->coarse().factorMemoryMb();
+  if (!problem.hasContact()) checkResult(problem, law, p, r, nullptr);
+  return r;
 }
 
 }  // namespace
@@ -87,76 +189,36 @@ RCP<const Teuchos::ParameterList> fetiSolveParameters() {
 FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, const PairFriction& friction,
                           const Teuchos::ParameterList& params, RCP<Teuchos::FancyOStream> out) {
   const Teuchos::ParameterList p = validatedSolveParameters(params);
-  if (problem->hasContact()) {
-    // A dense algorithm's size limit, before the coarse space and the solve
-    // (the same dual size, hence the same refusal, on every rank).
-    try {
-      Friction::FrictionSolverFactory()
-          .create(outerAlgorithmFor(p.get<std::string>("Outer Algorithm"), friction), p)
-          ->checkDualRows(static_cast<long long>(problem->dualMap()->getGlobalNumElements()));
-    } catch (const Error& e) {
-      throw CollectiveError(e.what());
-    }
+  checkDualSize(*problem, friction, p);
+  return solveDual(rcp(new Feti::FetiDual(problem)), friction, p, out, Continuation(), nullptr);
+}
+
+FetiLoadSteps::FetiLoadSteps(const RCP<Feti::FetiProblem>& problem, const PairFriction& friction,
+                             const Teuchos::ParameterList& params, RCP<Teuchos::FancyOStream> out)
+    : problem_(problem), friction_(friction), params_(validatedSolveParameters(params)), out_(out) {
+  checkDualSize(*problem_, friction_, params_);
+}
+
+FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
+  problem_->setLoads(loads);
+  Continuation from;
+  if (steps_ > 0) {
+    // Friction acts on the slip since the previous step: the tangential
+    // rows measure B_T (u - u_prev).
+    problem_->setTangentialOffset(*primal_);
+    from.lambda = lambda_;
+    from.u = &u_;
+    from.normPFP = normPFP_;
+    from.F_applications = operators_->F()->applications();
+    from.F_seconds = operators_->F()->seconds();
   }
-  auto dual = rcp(new Feti::FetiDual(problem));
-  FetiSolveResult r;
-  r.lambda = rcp(new Vector(problem->dualMap()));
-  PairFriction law = friction;
-  const auto t0 = std::chrono::steady_clock::now();
-  if (!problem->hasContact()) {
-    Progress::stage("projected CG");
-    const auto& pcgParams = p.sublist("FETI").sublist("Projected CG");
-    Feti::ProjectedCG pcg(pcgParams);
-    if (!out.is_null()) pcg.setOutputStream(out);
-    const auto st = pcg.solve(*dual, *r.lambda);
-    r.iterations = st.iterations;
-    r.n_A = st.n_A;
-    r.relativeResidual = st.relativeResidual;
-    r.solverConverged = st.converged;
-    if (!st.converged) r.solverReason = "projected CG: maximum iterations";
-    r.tolerance = pcgParams.get<double>("Tolerance");
-    r.primal = dual->recoverPrimal(*r.lambda);
-    law = {FrictionSpec()};  // no contact forces to check
-  } else {
-    FetiContactProblem cp(dual, friction);
-    r.outerAlgorithm = outerAlgorithmFor(p.get<std::string>("Outer Algorithm"), friction);
-    const std::string runLawName = frictionLawName(runLaw(friction));
-    TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, runLawName),
-                   "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << runLawName << " friction ("
-                                        << joinNames(Friction::frictionSolvers().accepting(runLawName)) << " do)");
-    // Rounds: a solve that meets its own test with a result that misses the
-    // check is asked again from its result, the tolerance tightened by the
-    // miss (Friction::tightenedTolerance); the check keeps the first
-    // tolerance, so converged still means factor x what was asked for.
-    const int rounds = p.get<int>("Result Check Rounds");
-    double requested = 0;
-    RCP<const Vector> start;
-    for (int round = 1; round <= rounds; ++round) {
-      Progress::stage("contact solve: " + r.outerAlgorithm + (round > 1 ? ", round " + std::to_string(round) : ""));
-      const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested);
-      if (round == 1) r.tolerance = sol.requestedTolerance;
-      requested = sol.requestedTolerance;
-      r.status = round == 1 ? sol.status : Friction::followedBy(r.status, sol.status);
-      r.iterations = r.status.outer_iterations;
-      r.n_A += sol.n_A;
-      r.solverConverged = sol.status.converged;
-      r.solverReason = sol.status.reason;
-      r.lambda->assign(*sol.lambda);
-      r.primal = sol.u;
-      r.rounds = round;
-      checkResult(*problem, friction, p, r);
-      if (!r.solverConverged || r.verdict.converged || round == rounds || Friction::atTightestTolerance(requested))
-        break;
-      requested = Friction::tightenedTolerance(requested, r.verdict.limit, r.kkt.worst());
-      start = sol.x;
-    }
-  }
-  r.solveSeconds = secondsSince(t0);
-  r.F_applications = dual->F()->applications();
-  r.F_seconds = dual->F()->seconds();
-  r.coarseSize = dual->coarse().size();
-  r.coarseFactorMb = dual->coarse().factorMemoryMb();
-  if (!problem->hasContact()) checkResult(*problem, law, p, r);
+  auto dual = operators_.is_null() ? rcp(new Feti::FetiDual(problem_)) : rcp(new Feti::FetiDual(problem_, *operators_));
+  if (operators_.is_null()) operators_ = dual;
+  auto r = solveDual(dual, friction_, params_, out_, from, &normPFP_);
+  lambda_ = r.lambda;
+  primal_ = r.primal;
+  u_ = r.u;
+  ++steps_;
   return r;
 }
 

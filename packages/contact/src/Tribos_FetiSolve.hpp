@@ -68,5 +68,33 @@ inline FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, co
   return solveFeti(problem, PairFriction{friction}, params, out);
 }
 
+// A FETI problem of a decomposed mesh solved at a sequence of loads, a
+// quasi-static load history (docs/load_history.md): K, its factors, B, F's
+// operator and the coarse space are built once and serve every step; each
+// step starts from the previous step's multipliers, and its friction acts
+// on the slip since the previous step (FetiProblem::setTangentialOffset),
+// contact on the gap of the reference geometry.
+class FetiLoadSteps {
+ public:
+  // params as solveFeti takes them; validated here. Collective.
+  FetiLoadSteps(const RCP<Feti::FetiProblem>& problem, const PairFriction& friction,
+                const Teuchos::ParameterList& params, RCP<Teuchos::FancyOStream> out = Teuchos::null);
+  // The next step at loads (FetiProblem::setLoads). The first step is the
+  // static solve of solveFeti. Collective.
+  FetiSolveResult solve(const Fem::LoadCase& loads);
+  int completedSteps() const { return steps_; }
+
+ private:
+  RCP<Feti::FetiProblem> problem_;
+  PairFriction friction_;
+  Teuchos::ParameterList params_;
+  RCP<Teuchos::FancyOStream> out_;
+  RCP<const Feti::FetiDual> operators_;  // the first step's dual: F and the coarse space
+  int steps_ = 0;
+  double normPFP_ = 0;
+  RCP<const Vector> lambda_, primal_;  // of the previous step
+  Fem::NodalVector u_;
+};
+
 }  // namespace Contact
 }  // namespace Tribos

@@ -14,7 +14,9 @@
 //   complementarity  lambda_N >= 0, lambda_N (d - w.n) = 0
 //   friction         phi_T = P_g(phi_T - c s)      (|phi_T| <= g, phi_T opposes the slip s when |phi_T| = g)
 // where phi_s = -lambda_N n + phi_T is the force on the slave node, -N_i
-// phi_s its reaction on master node i, s = w - (w.n) n the relative slip, g
+// phi_s its reaction on master node i, s = v - (v.n) n the relative slip
+// with v = w - w_prev the relative motion since the previous load step
+// (w_prev = 0 for a single step: friction acts on the slip increment), g
 // the slip bound (Tresca: given; Coulomb: F lambda_N; frictionless: 0) and
 // P_g the projection on the disk of radius g. Tangential components that
 // Dirichlet conditions fix at the slave node and its master nodes are left
@@ -55,6 +57,9 @@ struct ContactNodeForce {
   std::array<double, 3> normal{0, 0, -1};  // n, unit, pointing from the slave node into its partner
   double gap = 0.0;                     // d
   std::vector<std::pair<int, double>> master;  // master nodes and weights N_i; empty: a rigid plane
+  // w at the previous load step: friction acts on the slip since then,
+  // the tangential part of w - previousRelative (zero for a single step).
+  std::array<double, 3> previousRelative{0, 0, 0};
   // A glued pair's node: w = 0 (its violation max|w|/U counts as
   // non-penetration), no complementarity, no friction law.
   bool bonded = false;

@@ -16,6 +16,8 @@ std::vector<ContactNodeForce> ContactNodeResults::forces() const {
     out[k].normal = constraint[k].normal;
     out[k].gap = constraint[k].gap;
     out[k].master = constraint[k].master;
+    if (!previousRelative.empty())
+      for (int d = 0; d < 3; ++d) out[k].previousRelative[d] = previousRelative[3 * k + d];
   }
   out.insert(out.end(), bonded.begin(), bonded.end());
   return out;

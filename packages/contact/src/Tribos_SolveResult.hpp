@@ -29,6 +29,10 @@ struct ContactNodeResults {
   std::vector<double> normalForce, tangentialForce /*3 per node*/, slip /*3 per node*/, gap;
   std::vector<double> slipBound;  // g of the solution (Tresca, Coulomb F lambda_N), 0 when frictionless
   std::vector<int> status;        // 0 no contact, 1 stick, 2 slip
+  // The relative displacement w at the previous load step (3 per node;
+  // empty for a single step): the result check's friction law acts on the
+  // slip since then.
+  std::vector<double> previousRelative;
   // The nodes of glued pairs with their forces (not written: their relative
   // displacement is zero).
   std::vector<ContactNodeForce> bonded;

@@ -51,25 +51,14 @@ void addEntry(LocalCsr& A, int i, int j, double v) {
 
 }  // namespace
 
-SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
-                                  const LoadCase& loads) {
-  SubdomainSystem sys;
-  sys.id = sub.id;
-  sys.nodes = sub.nodes;
-  const int npc = mesh.nodesPerCell(), nl = static_cast<int>(sub.nodes.size());
-  sys.K = dofPattern(nl, sub.connectivity, npc);
-  sys.f.assign(3 * nl, 0.0);
+std::vector<double> subdomainLoad(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const LoadCase& loads) {
+  const int npc = mesh.nodesPerCell();
+  std::vector<double> f(3 * sub.nodes.size(), 0.0);
   const bool hasVolumeForce = loads.volumeForce[0] != 0 || loads.volumeForce[1] != 0 || loads.volumeForce[2] != 0;
-  for (size_t k = 0; k < sub.cells.size(); ++k) {
+  for (size_t k = 0; hasVolumeForce && k < sub.cells.size(); ++k) {
     const int* ln = &sub.connectivity[k * npc];
-    const auto X = cellCoordinates(mesh, sub.cells[k]);
-    const auto Ke = elementStiffness(mesh.type, X, mat.ofCell(mesh, sub.cells[k]));
-    for (int a = 0; a < 3 * npc; ++a)
-      for (int b = 0; b < 3 * npc; ++b) addEntry(sys.K, 3 * ln[a / 3] + a % 3, 3 * ln[b / 3] + b % 3, Ke[a * 3 * npc + b]);
-    if (hasVolumeForce) {
-      const auto fe = cellVolumeForces(mesh.type, X, loads.volumeForce);
-      for (int a = 0; a < 3 * npc; ++a) sys.f[3 * ln[a / 3] + a % 3] += fe[a];
-    }
+    const auto fe = cellVolumeForces(mesh.type, cellCoordinates(mesh, sub.cells[k]), loads.volumeForce);
+    for (int a = 0; a < 3 * npc; ++a) f[3 * ln[a / 3] + a % 3] += fe[a];
   }
   // Tractions act on the facets whose cell belongs to this subdomain.
   std::vector<char> mine(mesh.numCells(), 0);
@@ -81,8 +70,26 @@ SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain&
       for (int n : facet.nodes) X.push_back(mesh.coords[n]);
       const auto fe = facetTractionForces(X, t.traction);
       for (size_t a = 0; a < facet.nodes.size(); ++a)
-        for (int d = 0; d < 3; ++d) sys.f[3 * sub.localNode(facet.nodes[a]) + d] += fe[3 * a + d];
+        for (int d = 0; d < 3; ++d) f[3 * sub.localNode(facet.nodes[a]) + d] += fe[3 * a + d];
     }
+  return f;
+}
+
+SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
+                                  const LoadCase& loads) {
+  SubdomainSystem sys;
+  sys.id = sub.id;
+  sys.nodes = sub.nodes;
+  const int npc = mesh.nodesPerCell(), nl = static_cast<int>(sub.nodes.size());
+  sys.K = dofPattern(nl, sub.connectivity, npc);
+  for (size_t k = 0; k < sub.cells.size(); ++k) {
+    const int* ln = &sub.connectivity[k * npc];
+    const auto X = cellCoordinates(mesh, sub.cells[k]);
+    const auto Ke = elementStiffness(mesh.type, X, mat.ofCell(mesh, sub.cells[k]));
+    for (int a = 0; a < 3 * npc; ++a)
+      for (int b = 0; b < 3 * npc; ++b) addEntry(sys.K, 3 * ln[a / 3] + a % 3, 3 * ln[b / 3] + b % 3, Ke[a * 3 * npc + b]);
+  }
+  sys.f = subdomainLoad(mesh, sub, loads);
   sys.coords.resize(nl);
   for (int n = 0; n < nl; ++n) sys.coords[n] = mesh.coords[sub.nodes[n]];
   sys.R = rigidBodyModes(sys.coords);
@@ -94,6 +101,10 @@ SubdomainSystem assembleSubdomain(const Mesh::Discretization& disc, int s, const
   SubdomainSystem sys = assembleSubdomain(disc.part, disc.subdomain(s), mat, loads);
   for (int& n : sys.nodes) n = disc.meshNode(n);
   return sys;
+}
+
+std::vector<double> subdomainLoad(const Mesh::Discretization& disc, int s, const LoadCase& loads) {
+  return subdomainLoad(disc.part, disc.subdomain(s), loads);
 }
 
 RCP<CrsMatrix> toTpetra(const LocalCsr& A, const RCP<const Comm>& comm) {

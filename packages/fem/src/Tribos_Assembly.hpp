@@ -31,6 +31,12 @@ SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain&
 SubdomainSystem assembleSubdomain(const Mesh::Discretization& disc, int s, const BodyMaterials& mat,
                                   const LoadCase& loads);
 
+// The load vector f of a subdomain alone (3 per local node): the volume
+// force of its cells and the tractions on the facets of its cells; what
+// assembleSubdomain puts in f, again for another load of the same mesh.
+std::vector<double> subdomainLoad(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const LoadCase& loads);
+std::vector<double> subdomainLoad(const Mesh::Discretization& disc, int s, const LoadCase& loads);
+
 // Cell node coordinates.
 std::vector<Point> cellCoordinates(const Mesh::Mesh& mesh, int cell);
 

@@ -3,20 +3,33 @@
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Vector.hpp>
 
+#include "Tribos_Error.hpp"
+
 namespace Tribos {
 namespace Feti {
 
 FetiDual::FetiDual(RCP<const FetiProblem> problem) : problem_(problem) {
   F_ = rcp(new DualOperator(problem));
   coarse_ = rcp(new CoarseSpace(problem));
+  loadTerms();
+}
+
+FetiDual::FetiDual(RCP<const FetiProblem> problem, const FetiDual& same)
+    : problem_(problem), F_(same.F_), coarse_(same.coarse_) {
+  TRIBOS_REQUIRE(problem.get() == same.problem_.get(), "FetiDual: the operators of another problem");
+  loadTerms();
+}
+
+void FetiDual::loadTerms() {
+  const FetiProblem& p = *problem_;
   // h = B K+ f - c
-  Vector z(problem->primalMap());
-  problem->applyKplus(problem->f(), z);
-  h_ = rcp(new Vector(problem->dualMap()));
-  problem->B()->apply(z, *h_);
-  h_->update(-1.0, problem->c(), 1.0);
-  problem->applyRt(problem->f(), e_);
-  lambdaTilde_ = rcp(new Vector(problem->dualMap()));
+  Vector z(p.primalMap());
+  p.applyKplus(p.f(), z);
+  h_ = rcp(new Vector(p.dualMap()));
+  p.B()->apply(z, *h_);
+  h_->update(-1.0, p.c(), 1.0);
+  p.applyRt(p.f(), e_);
+  lambdaTilde_ = rcp(new Vector(p.dualMap()));
   coarse_->particularSolution(e_, *lambdaTilde_);
 }
 

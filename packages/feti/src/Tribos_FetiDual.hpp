@@ -13,6 +13,10 @@ namespace Feti {
 class FetiDual {
  public:
   explicit FetiDual(RCP<const FetiProblem> problem);
+  // The dual of the same problem at other loads (FetiProblem::setLoads,
+  // setTangentialOffset): F and the coarse space of `same` (which depend on
+  // K and B only), h, e and lambda~ anew.
+  FetiDual(RCP<const FetiProblem> problem, const FetiDual& same);
 
   const FetiProblem& problem() const { return *problem_; }
   RCP<DualOperator> F() const { return F_; }
@@ -33,6 +37,8 @@ class FetiDual {
   RCP<CoarseSpace> coarse_;
   RCP<Vector> h_, lambdaTilde_;
   std::vector<double> e_;
+  // h, e and lambda~ of the problem's current loads.
+  void loadTerms();
 };
 
 }  // namespace Feti

@@ -281,6 +281,20 @@ void planeConstraints(FetiConstraints& fc) {
   }
 }
 
+// The Dirichlet rows among `rows` that rank `me` owns, numbered as
+// assembleConstraints numbers its rows: (local row, dof 3 node + c).
+std::vector<std::pair<LO, long long>> dirichletRowsOf(const std::vector<DualRow>& rows, int me) {
+  std::vector<std::pair<LO, long long>> out;
+  LO row = 0;
+  for (const auto& r : rows) {
+    if (r.owner != me) continue;
+    if (r.kind == DualRow::Dirichlet)
+      out.push_back({row, 3LL * r.node + (r.dir[0] != 0.0 ? 0 : r.dir[1] != 0.0 ? 1 : 2)});
+    ++row;
+  }
+  return out;
+}
+
 // Drops the rows of other ranks (owners set by distributeRows) and the
 // contact constraints of nodes without a Normal or Bonded row here. An
 // application gives every rank either all rows or only its own; anything
@@ -364,6 +378,7 @@ FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMateri
   Teuchos::ParameterList p(params);
   p.validateParametersAndSetDefaults(*getValidParameters(), 0);
   const bool feti1 = p.get<std::string>("Formulation") == "FETI-1";
+  feti1_ = feti1;
   FetiConstraints fc;
   fc.dirichlet = Fem::constrainedDofs(disc, loads.dirichlet);
   for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s) {
@@ -405,6 +420,33 @@ FetiProblem::FetiProblem(std::vector<Fem::SubdomainSystem> localSubdomains, Feti
   setup(std::move(constraints), contact, p);
 }
 
+void FetiProblem::setLoads(const Fem::LoadCase& loads) {
+  TRIBOS_REQUIRE(disc_ != nullptr && !feti1_, "FetiProblem::setLoads: only a TFETI problem of a decomposed mesh takes "
+                                              "other loads (FETI-1 eliminated the Dirichlet values in its subdomains)");
+  auto fv = f_->getDataNonConst();
+  size_t k = 0;
+  for (auto& sys : systems_) {
+    sys.f = Fem::subdomainLoad(*disc_, sys.id, loads);
+    for (double v : sys.f) fv[k++] = v;
+  }
+  // The conditions fix the same dofs at every time (a curve scales a
+  // value); the partners' values are asked of their owners again.
+  auto values = Fem::constrainedDofs(*disc_, loads.dirichlet);
+  contactPartners(*disc_, contactConstraints_, values, *comm_);
+  auto cv = constraints_.c->getDataNonConst();
+  for (const auto& [row, dof] : dirichletRows_) cv[row] = values.at(dof);
+  for (auto& [dof, value] : dirichlet_) value = values.at(dof);
+}
+
+void FetiProblem::setTangentialOffset(const Vector& previousPrimal) {
+  Vector Bu(dualMap());
+  B()->apply(previousPrimal, Bu);
+  auto bv = Bu.getData();
+  auto cv = constraints_.c->getDataNonConst();
+  for (LO row : constraints_.contact.tangentRows)
+    if (row >= 0) cv[row] = bv[row];
+}
+
 const Mesh::Discretization& FetiProblem::discretization() const {
   TRIBOS_REQUIRE(disc_ != nullptr, "FetiProblem: the problem was given as assembled subdomains, not as a mesh");
   return *disc_;
@@ -439,6 +481,7 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
   if (!disc_) checkOnEveryRank(*comm_, [&] { checkRows(fc.rows, primalOffsets_, fc); });
   distributeRows(fc.rows, numbering.owner);
   keepOwnRows(fc, *comm_);
+  if (disc_) dirichletRows_ = dirichletRowsOf(fc.rows, comm_->getRank());
   constraints_ = assembleConstraints(fc.rows, primalMap_, primalOffsets_, fc.contact);
   contactConstraints_ = std::move(fc.contact);
   nodalLayout_ = makeNodalLayout();

@@ -154,6 +154,19 @@ class FetiProblem {
   // at the nodes of nodalLayout().
   const std::map<long long, double>& dirichlet() const { return dirichlet_; }
 
+  // A load history (docs/load_history.md) changes the right-hand sides only;
+  // K, its factors, B and the coarse space stay.
+  // The loads of a decomposed mesh (first constructor, TFETI) at another
+  // time: the same Dirichlet dofs with other values, other tractions and
+  // volume force. Re-assembles f, the Dirichlet rows' c and dirichlet().
+  // Throws Error for a problem without a mesh or in FETI-1 (whose
+  // subdomains eliminated the Dirichlet values). Collective.
+  void setLoads(const Fem::LoadCase& loads);
+  // c on the tangential contact rows: (B u)_T of a previous primal
+  // displacement u, so that friction acts on the slip since u (B_T u = c_T
+  // is stick); a zero u restores the static problem.
+  void setTangentialOffset(const Vector& previousPrimal);
+
   double factorTime() const { return Kplus_->factorSeconds(); }
   double factorMemoryMb() const { return Kplus_->memoryMb(); }
   double denseBlockMemoryMb() const { return Kplus_->denseBlockMemoryMb(); }
@@ -176,6 +189,10 @@ class FetiProblem {
   RCP<const Fem::NodalLayout> makeNodalLayout() const;
 
   const Mesh::Discretization* disc_ = nullptr;
+  bool feti1_ = false;
+  // This rank's Dirichlet rows (first constructor): local dual row and the
+  // global dof (3 node + c) whose value is its c.
+  std::vector<std::pair<LO, long long>> dirichletRows_;
   int numNodes_ = 0;
   bool hasContact_ = false;
   RCP<const Comm> comm_;

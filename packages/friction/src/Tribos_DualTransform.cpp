@@ -144,7 +144,7 @@ void ProjectionTransform::forward(ContactDual& dual) {
 void ScalingTransform::forward(ContactDual& dual) {
   TRIBOS_REQUIRE(!dual.A.is_null() && !dual.b.is_null(), "ScalingTransform: the problem has no A or no b");
   long ignored = 0;
-  norm_ = QP::estimateNorm(*dual.A, powerSteps_, ignored);
+  if (powerSteps_ > 0) norm_ = QP::estimateNorm(*dual.A, powerSteps_, ignored);
   scale_ = 1.0 / norm_;
   dual.A = rcp(new ScaledOperator(dual.A, scale_));
   // ||s A|| <= s norm_ = 1 by the same estimate: the solvers reuse it.

@@ -89,6 +89,13 @@ class ProjectionTransform : public DualTransform {
 class ScalingTransform : public DualTransform {
  public:
   explicit ScalingTransform(int powerSteps) : powerSteps_(powerSteps) {}
+  // A known ||A|| (the same operator scaled before, e.g. at another load):
+  // no power steps.
+  static RCP<ScalingTransform> withNorm(SC norm) {
+    auto t = rcp(new ScalingTransform(0));
+    t->norm_ = norm;
+    return t;
+  }
   void forward(ContactDual& dual) override;
   void back(Vector&) const override {}
   SC norm() const { return norm_; }    // ||A|| before the scaling (estimate)
