@@ -1,6 +1,9 @@
 #include "Tribos_ResultSet.hpp"
 
+#include <dirent.h>
 #include <sys/stat.h>
+
+#include <cerrno>
 
 #include "Tribos_Error.hpp"
 #include "Tribos_FileSystem.hpp"
@@ -21,10 +24,31 @@ std::string checkWritten(const std::vector<std::pair<std::string, std::string>>&
   return "";
 }
 
-std::string replace(const std::vector<std::pair<std::string, std::string>>& files, const std::string& dir) {
+// Files of the directory whose names `stale` accepts, removed.
+std::string removeStale(const std::string& dir, const std::function<bool(const std::string&)>& stale) {
+  if (!stale) return "";
+  DIR* d = ::opendir(dir.c_str());
+  if (!d) return "cannot list " + dir + ": " + systemReason(errno);
+  std::vector<std::string> found;
+  while (const dirent* e = ::readdir(d))
+    if (stale(e->d_name)) found.push_back(dir + "/" + e->d_name);
+  ::closedir(d);
+  std::string error;
+  for (auto f = found.begin(); error.empty() && f != found.end(); ++f) error = removeIfExists(*f);
+  return error;
+}
+
+// removeOldFirst: the old set may be another run's, whose files the new ones
+// would contradict: it loses its completion marker (the last file) first,
+// then every other file, then the stale files outside it. Otherwise the old
+// set is a part of the new one and each file is replaced by its rename.
+std::string replace(const std::vector<std::pair<std::string, std::string>>& files, const std::string& dir,
+                    bool removeOldFirst, const std::function<bool(const std::string&)>& stale) {
   std::string error = checkWritten(files);
-  // The old set loses its completion marker (the last file) first.
-  for (auto f = files.rbegin(); error.empty() && f != files.rend(); ++f) error = removeIfExists(f->first);
+  if (removeOldFirst) {
+    for (auto f = files.rbegin(); error.empty() && f != files.rend(); ++f) error = removeIfExists(f->first);
+    if (error.empty()) error = removeStale(dir, stale);
+  }
   for (auto f = files.begin(); error.empty() && f != files.end(); ++f) error = renameFile(f->second, f->first);
   if (error.empty()) error = syncPath(dir);
   return error;
@@ -44,8 +68,15 @@ std::string ResultSet::add(const std::string& name) {
   return files_.back().second;
 }
 
-void ResultSet::commit() {
-  const std::string error = rootError(*comm_, comm_->getRank() == 0 ? replace(files_, dir_.path()) : "");
+void ResultSet::commit() { commitBy(true); }
+
+void ResultSet::commitExtension() { commitBy(false); }
+
+void ResultSet::removeAtCommit(std::function<bool(const std::string&)> stale) { stale_ = std::move(stale); }
+
+void ResultSet::commitBy(bool removeOldFirst) {
+  const std::string error =
+      rootError(*comm_, comm_->getRank() == 0 ? replace(files_, dir_.path(), removeOldFirst, stale_) : "");
   if (!error.empty()) throw RunFailure("cannot replace the results in " + dir_.path() + ": " + error);
 }
 

@@ -5,6 +5,7 @@
 // a new data file beside an old summary.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,14 +37,34 @@ class ResultSet {
   // its summary. Failure on rank 0 -> every rank throws Tribos::RunFailure.
   void commit();
 
+  // Files of an earlier result under other names than this set's that must
+  // not survive beside it (the data files of a time series of more steps, or
+  // of one step): at commit(), once the old set's files are removed and
+  // before the new ones are renamed, rank 0 removes every file of the
+  // directory whose name `stale` accepts. Temporaries never match (their
+  // names are hidden). Not collective; call it on every rank alike.
+  void removeAtCommit(std::function<bool(const std::string& fileName)> stale);
+
+  // Collective, for a set that extends the one this run committed before
+  // (the next step of a time series, whose earlier files stay true): rank 0
+  // checks the temporaries as commit() does, then renames each over its
+  // final name in the order added, the summary last, and removes nothing:
+  // the directory never lacks a summary, and the one it holds (the previous
+  // or this set's) describes files that are all complete. Failure on rank 0
+  // -> every rank throws Tribos::RunFailure.
+  void commitExtension();
+
   // Removes (rank 0) the temporaries that were not committed: error paths,
   // exceptions. Not collective.
   ~ResultSet();
 
  private:
+  void commitBy(bool removeOldFirst);
+
   const OutputDirectory& dir_;
   RCP<const Comm> comm_;
   std::vector<std::pair<std::string, std::string>> files_;  // final path, temporary path
+  std::function<bool(const std::string&)> stale_;
 };
 
 // Collective: rank 0 writes text to path (e.g. a temporary of a ResultSet) and

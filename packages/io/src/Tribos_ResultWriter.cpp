@@ -357,56 +357,54 @@ std::string xmlEscaped(const std::string& s) {
   return out;
 }
 
-void xdmfDataItem(std::ostream& os, const std::string& h5, const std::string& dataset, long long rows, int cols,
+// The lines of an index, indented by `pad` spaces.
+void xdmfDataItem(std::ostream& os, int pad, const std::string& h5, const std::string& dataset, long long rows, int cols,
                   const char* numberType) {
-  os << "        <DataItem Dimensions=\"" << rows << " " << cols << "\" NumberType=\"" << numberType
+  os << std::string(pad, ' ') << "<DataItem Dimensions=\"" << rows << " " << cols << "\" NumberType=\"" << numberType
      << "\" Precision=\"8\" Format=\"HDF\">" << xmlEscaped(h5) << ":" << xmlEscaped(dataset) << "</DataItem>\n";
 }
 
-void xdmfAttribute(std::ostream& os, const std::string& h5, const std::string& group, const Field& f, long long n,
-                   const char* center) {
-  os << "      <Attribute Name=\"" << xmlEscaped(f.name) << "\" AttributeType=\""
+void xdmfAttribute(std::ostream& os, int pad, const std::string& h5, const std::string& group,
+                   const ResultLayout::FieldLayout& f, long long n, const char* center) {
+  os << std::string(pad, ' ') << "<Attribute Name=\"" << xmlEscaped(f.name) << "\" AttributeType=\""
      << (f.components == 1 ? "Scalar" : "Vector") << "\" Center=\"" << center << "\">\n";
-  xdmfDataItem(os, h5, group + "/" + f.name, n, f.components, "Float");
-  os << "      </Attribute>\n";
+  xdmfDataItem(os, pad + 2, h5, group + "/" + f.name, n, f.components, "Float");
+  os << std::string(pad, ' ') << "</Attribute>\n";
 }
 
-// The sizes of everything written, identical on every rank.
-struct Totals {
-  long long nodes = 0, cells = 0;
-  std::vector<long long> points;  // per point set
-};
-
-std::string xdmfIndex(const std::string& h5, const Mesh::Mesh& mesh, const Totals& n,
-                      const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
-                      const std::vector<PointSet>& pointSets) {
-  const int npc = mesh.nodesPerCell();
-  std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n"
-    << "    <Grid Name=\"body\" GridType=\"Uniform\">\n"
-    << "      <Topology TopologyType=\"" << (mesh.type == Mesh::CellType::Tet4 ? "Tetrahedron" : "Hexahedron")
+// The grids of one result file (the body, then one per point set), each
+// element at `pad` spaces and its children deeper.
+void xdmfGrids(std::ostream& x, int pad, const std::string& h5, const ResultLayout& n) {
+  const std::string in(pad, ' ');
+  x << in << "<Grid Name=\"body\" GridType=\"Uniform\">\n"
+    << in << "  <Topology TopologyType=\"" << (n.cellType == Mesh::CellType::Tet4 ? "Tetrahedron" : "Hexahedron")
     << "\" NumberOfElements=\"" << n.cells << "\">\n";
-  xdmfDataItem(x, h5, "/mesh/topology", n.cells, npc, "Int");
-  x << "      </Topology>\n      <Geometry GeometryType=\"XYZ\">\n";
-  xdmfDataItem(x, h5, "/mesh/geometry", n.nodes, 3, "Float");
-  x << "      </Geometry>\n";
-  xdmfAttribute(x, h5, "/nodes", Field{"displacement", 3, {}}, n.nodes, "Node");
-  for (const Field& f : nodeFields) xdmfAttribute(x, h5, "/nodes", f, n.nodes, "Node");
-  for (const Field& f : cellFields) xdmfAttribute(x, h5, "/cells", f, n.cells, "Cell");
-  x << "    </Grid>\n";
-  for (size_t k = 0; k < pointSets.size(); ++k) {
-    const PointSet& ps = pointSets[k];
+  xdmfDataItem(x, pad + 4, h5, "/mesh/topology", n.cells, n.nodesPerCell, "Int");
+  x << in << "  </Topology>\n" << in << "  <Geometry GeometryType=\"XYZ\">\n";
+  xdmfDataItem(x, pad + 4, h5, "/mesh/geometry", n.nodes, 3, "Float");
+  x << in << "  </Geometry>\n";
+  for (const auto& f : n.nodeFields) xdmfAttribute(x, pad + 2, h5, "/nodes", f, n.nodes, "Node");
+  for (const auto& f : n.cellFields) xdmfAttribute(x, pad + 2, h5, "/cells", f, n.cells, "Cell");
+  x << in << "</Grid>\n";
+  for (const auto& ps : n.pointSets) {
     const std::string group = "/points/" + ps.name;
-    x << "    <Grid Name=\"" << xmlEscaped(ps.name) << "\" GridType=\"Uniform\">\n"
-      << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n.points[k]
-      << "\" NodesPerElement=\"1\"/>\n      <Geometry GeometryType=\"XYZ\">\n";
-    xdmfDataItem(x, h5, group + "/geometry", n.points[k], 3, "Float");
-    x << "      </Geometry>\n";
-    for (const Field& f : ps.fields) xdmfAttribute(x, h5, group, f, n.points[k], "Node");
-    x << "    </Grid>\n";
+    x << in << "<Grid Name=\"" << xmlEscaped(ps.name) << "\" GridType=\"Uniform\">\n"
+      << in << "  <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << ps.points
+      << "\" NodesPerElement=\"1\"/>\n" << in << "  <Geometry GeometryType=\"XYZ\">\n";
+    xdmfDataItem(x, pad + 4, h5, group + "/geometry", ps.points, 3, "Float");
+    x << in << "  </Geometry>\n";
+    for (const auto& f : ps.fields) xdmfAttribute(x, pad + 2, h5, group, f, ps.points, "Node");
+    x << in << "</Grid>\n";
   }
-  x << "  </Domain>\n</Xdmf>\n";
-  return x.str();
+}
+
+const char* kXdmfHead = "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
+const char* kXdmfTail = "  </Domain>\n</Xdmf>\n";
+
+std::vector<ResultLayout::FieldLayout> fieldLayouts(const std::vector<Field>& fields) {
+  std::vector<ResultLayout::FieldLayout> layouts;
+  for (const Field& f : fields) layouts.push_back({f.name, f.components});
+  return layouts;
 }
 
 // What decides the sequence of collective calls (names, components, counts of
@@ -469,7 +467,13 @@ struct Content {
     const long long nOwned = static_cast<long long>(disc.ownedNodes().size());
     const long long nCells = static_cast<long long>(mesh.numCells());
     const auto nodeBlock = blockOffset(nOwned, comm), cellBlock = blockOffset(nCells, comm);
-    totals = {nodeBlock.second, cellBlock.second, {}};
+    layout.cellType = mesh.type;
+    layout.nodesPerCell = npc;
+    layout.nodes = nodeBlock.second;
+    layout.cells = cellBlock.second;
+    layout.nodeFields = fieldLayouts(nodeFields);
+    layout.nodeFields.insert(layout.nodeFields.begin(), {"displacement", 3});
+    layout.cellFields = fieldLayouts(cellFields);
     groups = {"/mesh", "/nodes", "/cells", "/points"};
     blocks = {block("/mesh/geometry", xyz, nodeBlock, nOwned, 3), block("/mesh/topology", topo, cellBlock, nCells, npc),
               block("/nodes/displacement", disp, nodeBlock, nOwned, 3)};
@@ -478,7 +482,7 @@ struct Content {
     for (size_t k = 0; k < pointSets.size(); ++k) {
       const long long np = static_cast<long long>(pointSets[k].coords.size());
       const auto pointBlock = blockOffset(np, comm);
-      totals.points.push_back(pointBlock.second);
+      layout.pointSets.push_back({pointSets[k].name, pointBlock.second, fieldLayouts(pointSets[k].fields)});
       groups.push_back("/points/" + pointSets[k].name);
       blocks.push_back(block(groups.back() + "/geometry", pointXyz[k], pointBlock, np, 3));
       for (const Field& f : pointSets[k].fields)
@@ -490,7 +494,7 @@ struct Content {
   std::vector<double> xyz, disp;
   std::vector<long long> topo;
   std::vector<std::vector<double>> pointXyz;
-  Totals totals;
+  ResultLayout layout;  // the same on every rank
   std::vector<std::string> groups;
   std::vector<Block> blocks;
 };
@@ -527,10 +531,10 @@ std::string writeHdf5(const std::string& path, const Content& content, const Res
 
 ResultWriter::ResultWriter(const Mesh::Discretization& disc, const RCP<const Comm>& comm) : disc_(disc), comm_(comm) {}
 
-void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, const std::string& xmfPath,
-                         const std::vector<double>& uOwned, const std::vector<Field>& nodeFields,
-                         const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets,
-                         const ResultAttributes& attributes) const {
+ResultLayout ResultWriter::writeData(const std::string& h5Path, const std::string& h5Name,
+                                     const std::vector<double>& uOwned, const std::vector<Field>& nodeFields,
+                                     const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets,
+                                     const ResultAttributes& attributes) const {
   const std::string shownName = directoryOf(h5Path) + "/" + h5Name;
   // Arguments first: a wrong one must stop every rank before the first HDF5 call.
   const std::string signature = layoutSignature(h5Name, nodeFields, cellFields, pointSets, attributes);
@@ -544,19 +548,57 @@ void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, c
   // Everything is packed before the first collective HDF5 call: from there on
   // nothing may throw on one rank only.
   const Content content(disc_, uOwned, nodeFields, cellFields, pointSets, rawComm(*comm_));
-  std::string failure = writeHdf5(h5Path, content, attributes, reserveSpace_, comm_);
-  if (!failure.empty()) failure = "cannot write the result file " + shownName + ": " + failure;
-  if (failure.empty()) {
-    const std::string xmfError =
-        comm_->getRank() == 0
-            ? writeWholeFile(xmfPath, xdmfIndex(h5Name, disc_.part, content.totals, nodeFields, cellFields, pointSets))
-            : "";
-    failure = rootError(*comm_, xmfError.empty() ? "" : "cannot write the XDMF index of " + shownName + ": " + xmfError);
+  const std::string failure = writeHdf5(h5Path, content, attributes, reserveSpace_, comm_);
+  if (!failure.empty()) {
+    if (comm_->getRank() == 0) removeIfExists(h5Path);
+    throw RunFailure("cannot write the result file " + shownName + ": " + failure);
   }
+  return content.layout;
+}
+
+void ResultWriter::write(const std::string& h5Path, const std::string& h5Name, const std::string& xmfPath,
+                         const std::vector<double>& uOwned, const std::vector<Field>& nodeFields,
+                         const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets,
+                         const ResultAttributes& attributes) const {
+  ResultLayout layout;
+  try {
+    layout = writeData(h5Path, h5Name, uOwned, nodeFields, cellFields, pointSets, attributes);
+  } catch (const RunFailure&) {
+    // The index goes with its data file, as it always has: no index is left
+    // at xmfPath for a data file that failed.
+    if (comm_->getRank() == 0) removeIfExists(xmfPath);
+    throw;
+  }
+  const std::string xmfError = comm_->getRank() == 0 ? writeWholeFile(xmfPath, xdmfIndex(h5Name, layout)) : "";
+  const std::string failure = rootError(
+      *comm_, xmfError.empty() ? "" : "cannot write the XDMF index of " + directoryOf(h5Path) + "/" + h5Name + ": " + xmfError);
   if (!failure.empty()) {
     if (comm_->getRank() == 0) removeIfExists(h5Path), removeIfExists(xmfPath);
     throw RunFailure(failure);
   }
+}
+
+std::string xdmfIndex(const std::string& h5Name, const ResultLayout& layout) {
+  std::ostringstream x;
+  x << kXdmfHead;
+  xdmfGrids(x, 4, h5Name, layout);
+  x << kXdmfTail;
+  return x.str();
+}
+
+std::string xdmfTimeSeries(const std::vector<SeriesStep>& steps) {
+  std::ostringstream x;
+  x << kXdmfHead << "    <Grid Name=\"steps\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (size_t k = 0; k < steps.size(); ++k) {
+    char time[32];
+    std::snprintf(time, sizeof time, "%.17g", steps[k].time);  // read back to the same double
+    x << "      <Grid Name=\"step " << k + 1 << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+      << "        <Time Value=\"" << time << "\"/>\n";
+    xdmfGrids(x, 8, steps[k].h5Name, steps[k].layout);
+    x << "      </Grid>\n";
+  }
+  x << "    </Grid>\n" << kXdmfTail;
+  return x.str();
 }
 
 void writeFileAtomically(const std::string& path, const std::string& text) {

@@ -38,6 +38,30 @@ struct ResultAttributes {
   std::vector<std::pair<std::string, double>> numbers;    // e.g. converged (1/0), solver_converged
 };
 
+// What one write put in its HDF5 file, as an XDMF grid describes it; the
+// same on every rank. The datasets are /mesh/geometry (nodes x 3),
+// /mesh/topology (cells x nodesPerCell, integers: rows of /mesh/geometry),
+// /nodes/NAME (nodes x components; displacement first), /cells/NAME
+// (cells x components), and per point set /points/SET/geometry (points x 3)
+// and /points/SET/NAME (points x components).
+struct ResultLayout {
+  struct FieldLayout {
+    std::string name;
+    int components = 1;
+  };
+  struct PointSetLayout {
+    std::string name;
+    long long points = 0;
+    std::vector<FieldLayout> fields;
+  };
+  Mesh::CellType cellType = Mesh::CellType::Hex8;
+  int nodesPerCell = 8;
+  long long nodes = 0, cells = 0;
+  std::vector<FieldLayout> nodeFields;  // displacement first, then the caller's
+  std::vector<FieldLayout> cellFields;
+  std::vector<PointSetLayout> pointSets;
+};
+
 class ResultWriter {
  public:
   ResultWriter(const Mesh::Discretization& disc, const RCP<const Comm>& comm);
@@ -58,6 +82,14 @@ class ResultWriter {
              const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets = {},
              const ResultAttributes& attributes = {}) const;
 
+  // The HDF5 file alone (what write() writes to h5Path, with the same checks
+  // and failures; on failure rank 0 removes the partial file), returning
+  // what it holds so that the caller can index it, e.g. as one step of a
+  // time series (Tribos_StepSeries.hpp). Collective.
+  ResultLayout writeData(const std::string& h5Path, const std::string& h5Name, const std::vector<double>& uOwned,
+                         const std::vector<Field>& nodeFields, const std::vector<Field>& cellFields,
+                         const std::vector<PointSet>& pointSets = {}, const ResultAttributes& attributes = {}) const;
+
   // Before HDF5 writes anything, rank 0 checks that the file fits (fallocate
   // of a bound of its size, released again), and before the data it reserves
   // the file's blocks: a full disk, a quota or a file size limit then fails
@@ -72,6 +104,24 @@ class ResultWriter {
   RCP<const Comm> comm_;
   bool reserveSpace_ = true;
 };
+
+// The XDMF index of one result file h5Name (a name relative to the index):
+// a grid "body" of the mesh with its node and cell fields, and one grid of
+// vertices per point set. What write() writes to xmfPath.
+std::string xdmfIndex(const std::string& h5Name, const ResultLayout& layout);
+
+// One step of a time series: its pseudo-time and the result file that holds it.
+struct SeriesStep {
+  double time = 0;
+  std::string h5Name;  // relative to the index
+  ResultLayout layout;
+};
+
+// The XDMF index of a time series, which ParaView plays: a temporal
+// collection (Grid "steps", GridType="Collection" CollectionType="Temporal")
+// with, per step in the order given, a spatial collection "step K" holding
+// <Time Value="t"/> and the grids xdmfIndex gives that step's file.
+std::string xdmfTimeSeries(const std::vector<SeriesStep>& steps);
 
 // Writes text to path atomically: to path's directory under a temporary name
 // unique to this process (.NAME.<pid>.tmp), flushed to the device, then

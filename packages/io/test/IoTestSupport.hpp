@@ -3,15 +3,18 @@
 #pragma once
 
 #include <dirent.h>
+#include <hdf5.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <Teuchos_UnitTestHarness.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "Tribos_Discretization.hpp"
@@ -123,6 +126,58 @@ inline std::vector<double> displacementOf(const Mesh::Discretization& disc) {
     for (int d = 0; d < 3; ++d) u.push_back(displacementAt(disc.part.coords[n], disc.meshNode(n), d));
   return u;
 }
+
+// Read access to a finished file (serial HDF5, rank 0).
+class H5Reader {
+ public:
+  explicit H5Reader(const std::string& path) : id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT)) {}
+  ~H5Reader() {
+    if (id >= 0) H5Fclose(id);
+  }
+  bool has(const std::string& dataset) const {
+    const hid_t d = H5Dopen2(id, dataset.c_str(), H5P_DEFAULT);
+    if (d >= 0) H5Dclose(d);
+    return d >= 0;
+  }
+  std::vector<long long> shape(const std::string& dataset) const {
+    const hid_t d = H5Dopen2(id, dataset.c_str(), H5P_DEFAULT);
+    if (d < 0) return {};
+    const hid_t space = H5Dget_space(d);
+    hsize_t dims[8];
+    const int rank = H5Sget_simple_extent_dims(space, dims, nullptr);
+    H5Sclose(space);
+    H5Dclose(d);
+    return std::vector<long long>(dims, dims + std::max(rank, 0));
+  }
+  template <class T>
+  std::vector<T> read(const std::string& dataset) const {
+    long long n = 1;
+    for (long long d : shape(dataset)) n *= d;
+    std::vector<T> values(static_cast<size_t>(n));
+    const hid_t d = H5Dopen2(id, dataset.c_str(), H5P_DEFAULT);
+    const hid_t type = std::is_same<T, double>::value ? H5T_NATIVE_DOUBLE : H5T_NATIVE_LLONG;
+    if (d >= 0 && n > 0) H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    if (d >= 0) H5Dclose(d);
+    return values;
+  }
+  std::string text(const std::string& attribute) const {
+    const hid_t a = H5Aopen(id, attribute.c_str(), H5P_DEFAULT);
+    if (a < 0) return "<missing>";
+    const hid_t type = H5Aget_type(a);
+    std::string value(H5Tget_size(type), '\0');
+    H5Aread(a, type, &value[0]);
+    H5Tclose(type);
+    H5Aclose(a);
+    return value.substr(0, value.find('\0'));
+  }
+  double number(const std::string& attribute) const {
+    double v = -12345;
+    const hid_t a = H5Aopen(id, attribute.c_str(), H5P_DEFAULT);
+    if (a >= 0) H5Aread(a, H5T_NATIVE_DOUBLE, &v), H5Aclose(a);
+    return v;
+  }
+  hid_t id;
+};
 
 }  // namespace Test
 }  // namespace Tribos
