@@ -70,11 +70,15 @@ class ComponentsValidator : public Teuchos::ParameterEntryValidator {
 const char* const kFaceDoc =
     "named boundary face: xmin, xmax, ymin, ymax, zmin, zmax of the box, or a physical surface name of Mesh/File";
 
+const char* const kCurveDoc =
+    "name of a curve of Load Curves: at the time t of a step the load is Value x curve(t); empty: Value x min(t, 1)";
+
 ParameterList makeDirichletItem() {
   ParameterList p("Dirichlet item");
   p.set("Face", "xmin", kFaceDoc);
   p.set("Components", "xyz", "fixed components", rcp(new ComponentsValidator));
   p.set("Value", Array<double>(3, 0.0), "prescribed displacement (x, y, z)");
+  p.set("Curve", "", kCurveDoc);
   return p;
 }
 
@@ -82,6 +86,16 @@ ParameterList makeTractionItem() {
   ParameterList p("Traction item");
   p.set("Face", "xmax", kFaceDoc);
   p.set("Value", Array<double>(3, 0.0), "surface traction (x, y, z), force per area");
+  p.set("Curve", "", kCurveDoc);
+  return p;
+}
+
+// Both entries are required (validateCurves): a default would give a curve
+// of the other's length that its author never wrote.
+ParameterList makeCurveItem() {
+  ParameterList p("Load Curve item");
+  p.set("Times", Array<double>(), "pseudo-times of the curve's points: at least 2, strictly increasing");
+  p.set("Values", Array<double>(), "the curve's value at each of Times (linear between them, not extrapolated)");
   return p;
 }
 
@@ -93,6 +107,10 @@ const ParameterList& dirichletItem() {
 }
 const ParameterList& tractionItem() {
   static const ParameterList p = makeTractionItem();
+  return p;
+}
+const ParameterList& curveItem() {
+  static const ParameterList p = makeCurveItem();
   return p;
 }
 
@@ -176,9 +194,20 @@ RCP<const ParameterList> validParameters() {
               "one sublist per body with its own \"Material\" (Young's Modulus, Poisson's Ratio); a body named "
               "here must exist in the mesh (the box is the one body \"body\"); bodies not named take Material");
   ParameterList& bc = pl->sublist("Boundary Conditions", false, "Dirichlet conditions and loads");
-  bc.sublist("Dirichlet", false, "one sublist per condition: Face, Components, Value");
-  bc.sublist("Traction", false, "one sublist per load: Face, Value");
+  bc.sublist("Dirichlet", false, "one sublist per condition: Face, Components, Value, Curve");
+  bc.sublist("Traction", false, "one sublist per load: Face, Value, Curve");
   bc.set("Volume Force", Array<double>(3, 0.0), "volume force density (x, y, z)");
+  bc.set("Volume Force Curve", "",
+         "name of a curve of Load Curves: at the time t of a step the volume force is Volume Force x curve(t); "
+         "empty: Volume Force x min(t, 1)");
+  ParameterList& steps = pl->sublist("Load Steps", false,
+                                     "the load history: the pseudo-times at which the problem is solved, in order");
+  steps.set("Times", Array<double>(1, 1.0),
+            "step times: finite, positive, strictly increasing; at t = 1 every load without a Curve has its full "
+            "Value. The default, one step at t = 1, is the static problem");
+  pl->sublist("Load Curves", false,
+              "one sublist per piecewise-linear curve, named by the loads' Curve: Times (at least 2, strictly "
+              "increasing) and Values of the same length; a curve a load uses must cover every step time");
   ParameterList& contact = pl->sublist("Contact", false,
                                        "contact pairs (Pairs), or one face against a rigid plane parallel to it "
                                        "(Face, Gap)");
@@ -314,6 +343,18 @@ void validateNamedItems(ParameterList& collection, const ParameterList& item, co
   }
 }
 
+// Load Curves: each a sublist with both Times and Values (types checked as
+// every value's); their lengths and order are the curve's (loadCurve()).
+void validateCurves(ParameterList& curves, const std::string& path) {
+  for (auto it = curves.begin(); it != curves.end(); ++it) {
+    const std::string name = curves.name(it), full = path + "/" + name;
+    TRIBOS_REQUIRE(curves.isSublist(name), "parameter \"" << full << "\" must be a sublist with keys: Times, Values");
+    for (const char* key : {"Times", "Values"})
+      TRIBOS_REQUIRE(curves.sublist(name).isParameter(key), "\"" << full << "\" has no \"" << key << "\"");
+  }
+  validateNamedItems(curves, curveItem(), path);
+}
+
 // Recursive validation with messages naming the full path of the parameter.
 void validateLevel(ParameterList& user, const ParameterList& valid, const std::string& path) {
   for (auto it = user.begin(); it != user.end(); ++it) {
@@ -336,6 +377,8 @@ void validateLevel(ParameterList& user, const ParameterList& valid, const std::s
       validateItems(user.sublist(name), dirichletItem(), full);
     } else if (full == "Boundary Conditions/Traction") {
       validateItems(user.sublist(name), tractionItem(), full);
+    } else if (full == "Load Curves") {
+      validateCurves(user.sublist(name), full);
     } else if (full == "Contact/Pairs") {
       validateNamedItems(user.sublist(name), pairItem(user), full);
     } else if (full == "Bodies") {
@@ -523,6 +566,75 @@ void validatePairs(const ParameterList& params) {
   }
 }
 
+// The Curve parameters of the loads, with their paths: every Dirichlet
+// condition, every traction, the volume force.
+std::vector<std::pair<std::string, std::string>> curveReferences(const ParameterList& params) {
+  std::vector<std::pair<std::string, std::string>> refs;
+  const auto& bc = params.sublist("Boundary Conditions");
+  for (const char* kind : {"Dirichlet", "Traction"}) {
+    const auto& list = bc.sublist(kind);
+    for (auto it = list.begin(); it != list.end(); ++it)
+      refs.emplace_back("Boundary Conditions/" + std::string(kind) + "/" + list.name(it) + "/Curve",
+                        list.sublist(list.name(it)).get<std::string>("Curve"));
+  }
+  refs.emplace_back("Boundary Conditions/Volume Force Curve", bc.get<std::string>("Volume Force Curve"));
+  return refs;
+}
+
+void validateStepTimes(const std::vector<double>& times) {
+  TRIBOS_REQUIRE(!times.empty(), "\"Load Steps/Times\" is empty; give at least one step time (without Load Steps "
+                                 "the run is one step at t = 1)");
+  for (size_t i = 0; i < times.size(); ++i) {
+    TRIBOS_REQUIRE(std::isfinite(times[i]), "\"Load Steps/Times\": Times[" << i << "] = " << times[i] << " is not finite");
+    TRIBOS_REQUIRE(times[i] > 0, "\"Load Steps/Times\": Times[" << i << "] = " << times[i]
+                                                             << " is not positive; step times are positive (at t = 1 "
+                                                                "the loads without a Curve have their full Value)");
+    TRIBOS_REQUIRE(i == 0 || times[i] > times[i - 1], "\"Load Steps/Times\" must be strictly increasing; Times["
+                                                          << i << "] = " << times[i] << " follows Times[" << i - 1
+                                                          << "] = " << times[i - 1]);
+  }
+}
+
+// Step times, every curve (its own checks), and every Curve a load names:
+// defined, and covering every step time (a curve is not extrapolated).
+void validateLoadHistory(const ParameterList& params) {
+  const auto times = loadStepTimes(params);
+  validateStepTimes(times);
+  const auto& curves = params.sublist("Load Curves");
+  for (auto it = curves.begin(); it != curves.end(); ++it) loadCurve(params, curves.name(it));
+  for (const auto& [path, name] : curveReferences(params)) {
+    if (name.empty()) continue;
+    TRIBOS_REQUIRE(curves.isSublist(name), "parameter \"" << path << "\" = \"" << name
+                                                           << "\": Load Curves defines no curve of that name; "
+                                                           << (curves.numParams() ? "its curves are: " + joinNames(curves)
+                                                                                  : std::string("it defines none")));
+    const Fem::LoadCurve curve = loadCurve(params, name);
+    for (double t : times)
+      TRIBOS_REQUIRE(curve.covers(t), "parameter \"" << path << "\" = \"" << name << "\": \"Load Curves/" << name
+                                                      << "\" is defined on [" << curve.times().front() << ", "
+                                                      << curve.times().back() << "] and does not cover the step time "
+                                                      << t << " of Load Steps/Times; a load curve is not extrapolated");
+  }
+}
+
+// What the solvers cannot do over several steps, refused before any work.
+void validateStepSolvers(const ParameterList& params) {
+  const size_t steps = loadStepTimes(params).size();
+  if (steps <= 1) return;
+  const Method m = method(params);
+  TRIBOS_REQUIRE(m != Method::Semismooth,
+                 "\"Load Steps/Times\" has " << steps << " steps, but Solver/Outer Algorithm = " << kSemismooth
+                                              << " solves one static step: its Tresca history (the slip bound acting on "
+                                                 "the slip increment of each step) is not implemented; use Algorithm1 "
+                                                 "or MSA+Algorithm1, or one step");
+  const bool feti = m == Method::FetiLinear || m == Method::FetiContact;
+  TRIBOS_REQUIRE(!feti || params.sublist("Solver").sublist("FETI").get<std::string>("Formulation") != "FETI-1",
+                 "\"Load Steps/Times\" has "
+                     << steps << " steps, but Solver/FETI/Formulation = FETI-1 eliminates the Dirichlet values "
+                                 "from the subdomain matrices once, so they cannot follow their curves from step to "
+                                 "step; use Formulation = TFETI (Dirichlet conditions as rows of B), or one step");
+}
+
 }  // namespace
 
 void validate(ParameterList& params, const std::string& source) {
@@ -572,6 +684,8 @@ void validate(ParameterList& params, const std::string& source) {
     const auto& vf = params.sublist("Boundary Conditions").get<Array<double>>("Volume Force");
     TRIBOS_REQUIRE(vf.size() == 3, "\"Boundary Conditions/Volume Force\" needs 3 components");
     requireFinite(params, "");
+    validateLoadHistory(params);
+    validateStepSolvers(params);
     validateMaterial(params.sublist("Material"));
     validateOutput(params.sublist("Output"));
     validateProblemName(params.get<std::string>("Problem Name"));
@@ -607,6 +721,8 @@ void applyOverride(ParameterList& params, const std::string& assignment) {
     const std::string& p = parts[i];
     if (at == "Boundary Conditions/Dirichlet" || at == "Boundary Conditions/Traction") {
       valid = at == "Boundary Conditions/Dirichlet" ? &dirichletItem() : &tractionItem();
+    } else if (at == "Load Curves") {
+      valid = &curveItem();
     } else if (at == "Contact/Pairs" || at == "Bodies") {
       // Any name; typed as the item (its defaults do not matter here).
       static const ParameterList pair = pairItem(validParameters()->sublist("Contact"));
@@ -622,8 +738,8 @@ void applyOverride(ParameterList& params, const std::string& assignment) {
   }
   const std::string& key = parts.back();
   TRIBOS_REQUIRE(at != "Boundary Conditions/Dirichlet" && at != "Boundary Conditions/Traction" &&
-                     at != "Contact/Pairs" && at != "Bodies",
-                 "--set \"" << assignment << "\": name a key inside a condition, pair or body, e.g. \"" << path
+                     at != "Contact/Pairs" && at != "Bodies" && at != "Load Curves",
+                 "--set \"" << assignment << "\": name a key inside a condition, pair, body or curve, e.g. \"" << path
                              << "/NAME/...\"");
   TRIBOS_REQUIRE(valid->isParameter(key) && !valid->isSublist(key),
                  "--set \"" << assignment << "\": unknown parameter \"" << path << "\"; valid: " << joinNames(*valid));
@@ -697,6 +813,27 @@ std::string quoted(const std::string& path, double value) {
 
 }  // namespace
 
+namespace {
+
+// The largest |curve(t)| over the step times of the curve `name` ("": the
+// ramp): a load's largest multiple of its Value in the run.
+double largestFactor(const ParameterList& params, const std::string& name) {
+  const Fem::LoadCurve curve = loadCurve(params, name);
+  double largest = 0;
+  for (double t : loadStepTimes(params)) largest = std::max(largest, std::abs(curve(t)));
+  return largest;
+}
+
+// How a load's scale names its curve: nothing for the ramp (at most 1).
+std::string curveFactorText(const ParameterList& params, const std::string& name) {
+  if (name.empty()) return "";
+  std::ostringstream os;
+  os << " times \"Load Curves/" << name << "\" (at most " << largestFactor(params, name) << " over the steps)";
+  return os.str();
+}
+
+}  // namespace
+
 void checkScales(const ParameterList& params, const Mesh::Mesh& mesh) {
   const double L = meshExtent(mesh);
   std::ostringstream extent;
@@ -715,24 +852,31 @@ void checkScales(const ParameterList& params, const Mesh::Mesh& mesh) {
     requireScale(E * L, false, os.str());
     softest = std::min(softest, E);
   }
-  // Loads: their resultant over the mesh, and the displacement they cause in the softest material.
+  // Loads: their resultant over the mesh, and the displacement they cause in the softest material
+  // (each with its curve's largest value over the steps: the load's largest in the run).
   const auto& bc = params.sublist("Boundary Conditions");
+  const std::string volumeCurve = bc.get<std::string>("Volume Force Curve");
   std::vector<std::pair<std::string, double>> loads = {
-      {"Boundary Conditions/Volume Force", maxAbs(bc.get<Array<double>>("Volume Force")) * L * L * L}};
+      {"\"Boundary Conditions/Volume Force\"" + curveFactorText(params, volumeCurve),
+       maxAbs(bc.get<Array<double>>("Volume Force")) * L * L * L * largestFactor(params, volumeCurve)}};
   const auto& tractions = bc.sublist("Traction");
-  for (auto it = tractions.begin(); it != tractions.end(); ++it)
-    loads.emplace_back("Boundary Conditions/Traction/" + tractions.name(it) + "/Value",
-                       maxAbs(tractions.sublist(tractions.name(it)).get<Array<double>>("Value")) * L * L);
+  for (auto it = tractions.begin(); it != tractions.end(); ++it) {
+    const auto& item = tractions.sublist(tractions.name(it));
+    const std::string curve = item.get<std::string>("Curve");
+    loads.emplace_back("\"Boundary Conditions/Traction/" + tractions.name(it) + "/Value\"" +
+                           curveFactorText(params, curve),
+                       maxAbs(item.get<Array<double>>("Value")) * L * L * largestFactor(params, curve));
+  }
   // The Tresca slip bounds act as loads where the contact slips.
   const auto& contact = params.sublist("Contact");
   const auto& pairs = contact.sublist("Pairs");
-  loads.emplace_back("Contact/Slip Bound Traction", contact.get<double>("Slip Bound Traction") * L * L);
+  loads.emplace_back("\"Contact/Slip Bound Traction\"", contact.get<double>("Slip Bound Traction") * L * L);
   for (auto it = pairs.begin(); it != pairs.end(); ++it)
-    loads.emplace_back("Contact/Pairs/" + pairs.name(it) + "/Slip Bound Traction",
+    loads.emplace_back("\"Contact/Pairs/" + pairs.name(it) + "/Slip Bound Traction\"",
                        pairs.sublist(pairs.name(it)).get<double>("Slip Bound Traction") * L * L);
-  for (const auto& [path, resultant] : loads) {
+  for (const auto& [load, resultant] : loads) {  // load: the quoted path, and its curve
     std::ostringstream os;
-    os << "\"" << path << "\"" << extent.str() << " gives a resultant force of about " << resultant;
+    os << load << extent.str() << " gives a resultant force of about " << resultant;
     requireScale(resultant, true, os.str());
     os << " and a displacement of about " << resultant / (softest * L) << " in the softest material";
     requireScale(resultant / (softest * L), true, os.str());
@@ -741,8 +885,11 @@ void checkScales(const ParameterList& params, const Mesh::Mesh& mesh) {
   const auto& dirichlet = bc.sublist("Dirichlet");
   for (auto it = dirichlet.begin(); it != dirichlet.end(); ++it) {
     const std::string path = "Boundary Conditions/Dirichlet/" + dirichlet.name(it) + "/Value";
-    const double u = maxAbs(dirichlet.sublist(dirichlet.name(it)).get<Array<double>>("Value"));
-    requireScale(u, true, quoted(path, u) + " (its largest component)");
+    const auto& item = dirichlet.sublist(dirichlet.name(it));
+    const std::string curve = item.get<std::string>("Curve");
+    const double u = maxAbs(item.get<Array<double>>("Value"));
+    requireScale(u * largestFactor(params, curve), true,
+                 quoted(path, u) + " (its largest component)" + curveFactorText(params, curve));
   }
   requireScale(std::abs(contact.get<double>("Gap")), true, quoted("Contact/Gap", contact.get<double>("Gap")));
   for (auto it = pairs.begin(); it != pairs.end(); ++it) {
@@ -941,6 +1088,40 @@ Fem::LoadCase loadCase(const ParameterList& params) {
   loads.volumeForce = {vf[0], vf[1], vf[2]};
   return loads;
 }
+
+std::vector<double> loadStepTimes(const ParameterList& params) {
+  if (!params.isSublist("Load Steps")) return {1.0};
+  const auto& times = params.sublist("Load Steps").get<Array<double>>("Times");
+  return std::vector<double>(times.begin(), times.end());
+}
+
+Fem::LoadCurve loadCurve(const ParameterList& params, const std::string& name) {
+  if (name.empty()) return Fem::LoadCurve();
+  const auto& curves = params.sublist("Load Curves");
+  TRIBOS_REQUIRE(curves.isSublist(name), "Load Curves defines no curve \"" << name << "\"");
+  const auto& curve = curves.sublist(name);
+  const auto& t = curve.get<Array<double>>("Times");
+  const auto& v = curve.get<Array<double>>("Values");
+  return Fem::LoadCurve({t.begin(), t.end()}, {v.begin(), v.end()}, "\"Load Curves/" + name + "\"");
+}
+
+Fem::LoadHistory loadHistory(const ParameterList& params) {
+  Fem::LoadHistory history;
+  history.base = loadCase(params);
+  const auto& bc = params.sublist("Boundary Conditions");
+  auto curvesOf = [&](const ParameterList& items) {
+    std::vector<Fem::LoadCurve> curves;
+    for (auto it = items.begin(); it != items.end(); ++it)
+      curves.push_back(loadCurve(params, items.sublist(items.name(it)).get<std::string>("Curve")));
+    return curves;
+  };
+  history.dirichletCurves = curvesOf(bc.sublist("Dirichlet"));
+  history.tractionCurves = curvesOf(bc.sublist("Traction"));
+  history.volumeForceCurve = loadCurve(params, bc.get<std::string>("Volume Force Curve"));
+  return history;
+}
+
+Fem::LoadCase loadCaseAt(const ParameterList& params, double t) { return Fem::loadCaseAt(loadHistory(params), t); }
 
 PlaneContact planeContact(const ParameterList& params) {
   const auto& contact = params.sublist("Contact");

@@ -1,5 +1,6 @@
 // Tribos_Input.hpp: the XML parameter file of a Tribos run. Sublists "Mesh",
-// "Material", "Boundary Conditions", "Contact", "Solver", "Output"; every entry
+// "Material", "Boundary Conditions", "Load Steps", "Load Curves", "Contact",
+// "Solver", "Output"; every entry
 // is validated against validParameters() before any work, so a misspelled key
 // or an unknown choice stops the run with a message naming it.
 #pragma once
@@ -14,6 +15,7 @@
 #include "Tribos_Discretization.hpp"
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_Elasticity.hpp"
+#include "Tribos_LoadCurve.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_MeshFile.hpp"
 #include "Tribos_Monolithic.hpp"
@@ -33,11 +35,14 @@ struct MeshSize {
 namespace Input {
 
 // The complete tree of valid parameters with defaults and documentation.
-// Sublists of "Boundary Conditions/Dirichlet" and ".../Traction" may have any
-// name; each is checked against the item lists returned here.
+// Sublists of "Boundary Conditions/Dirichlet", ".../Traction" and "Load
+// Curves" may have any name; each is checked against the item lists returned
+// here.
 RCP<const Teuchos::ParameterList> validParameters();
 const Teuchos::ParameterList& dirichletItem();
 const Teuchos::ParameterList& tractionItem();
+// The items of "Load Curves": Times and Values, both required.
+const Teuchos::ParameterList& curveItem();
 // The items of "Contact/Pairs" (friction defaults taken from the Contact
 // list given) and of "Bodies" (material defaults from the Material given).
 Teuchos::ParameterList pairItem(const Teuchos::ParameterList& contact);
@@ -126,7 +131,22 @@ Fem::BodyMaterials materials(const Teuchos::ParameterList& params, const Mesh::M
 std::vector<Contact::ContactPair> contactPairs(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
 // The friction of each pair of contactPairs() (glued pairs: frictionless).
 Contact::PairFriction pairFriction(const Teuchos::ParameterList& params);
+// Every load at its full Value (the static problem: the run without Load
+// Steps and Curves); the base of loadHistory().
 Fem::LoadCase loadCase(const Teuchos::ParameterList& params);
+
+// The load history (docs/load_history.md). Load Steps/Times: the times at
+// which the run solves, {1} without Load Steps.
+std::vector<double> loadStepTimes(const Teuchos::ParameterList& params);
+// Load Curves/NAME as a curve whose messages name its path; "" the ramp
+// min(t, 1) of a load without a Curve.
+Fem::LoadCurve loadCurve(const Teuchos::ParameterList& params, const std::string& name);
+// loadCase() with the curve of each load (validate() checked that every
+// curve named exists and covers every step time).
+Fem::LoadHistory loadHistory(const Teuchos::ParameterList& params);
+// The loads at time t: each Value times its curve at t (min(t, 1) without
+// one); equals loadCase() at t = 1 for an input without Curves.
+Fem::LoadCase loadCaseAt(const Teuchos::ParameterList& params, double t);
 
 // The rigid-plane contact of the semismooth* method: Contact/Face, Gap and
 // the slip bound per unit area (Slip Bound Traction; 0 when frictionless).

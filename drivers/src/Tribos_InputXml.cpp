@@ -55,8 +55,8 @@ void copyEntry(const ParameterList& user, const ParameterList& valid, const std:
 
 void documented(const ParameterList& user, const ParameterList& valid, const std::string& path, ParameterList& out);
 
-// Dirichlet and Traction conditions, contact pairs and bodies: sublists of
-// any name, in input order, each checked against one item list.
+// Dirichlet and Traction conditions, load curves, contact pairs and bodies:
+// sublists of any name, in input order, each checked against one item list.
 void documentedItems(const ParameterList& user, const ParameterList& item, ParameterList& out) {
   for (auto it = user.begin(); it != user.end(); ++it) {
     const std::string& name = user.name(it);
@@ -76,6 +76,8 @@ void documented(const ParameterList& user, const ParameterList& valid, const std
       documentedItems(user.sublist(name), dirichletItem(), out.sublist(name));
     } else if (full == "Boundary Conditions/Traction") {
       documentedItems(user.sublist(name), tractionItem(), out.sublist(name));
+    } else if (full == "Load Curves") {
+      documentedItems(user.sublist(name), curveItem(), out.sublist(name));
     } else if (full == "Contact/Pairs") {
       documentedItems(user.sublist(name), pairItem(user), out.sublist(name));
     } else if (full == "Bodies") {

@@ -444,6 +444,11 @@ void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& optio
                  "--export-fclib writes a FETI contact problem; this run is "
                      << (params.sublist("Contact").get<bool>("Enabled") ? "solved by the semismooth* method"
                                                                         : "a linear problem without contact"));
+  // An FCLIB file holds one problem, without the state a step hands to the next.
+  const size_t steps = Input::loadStepTimes(params).size();
+  TRIBOS_REQUIRE(options.exportFclib.empty() || steps == 1,
+                 "--export-fclib writes one contact problem; \"Load Steps/Times\" has " << steps
+                                                                                        << " steps (export one step)");
 }
 
 // The run in its steps: read, mesh, solve (assembling what the method
