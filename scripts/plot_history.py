@@ -1,0 +1,247 @@
+#!/usr/bin/python3
+"""Load history of a Tribos run in load steps: load-displacement curves and
+stick/slip counts over the steps, as PNG files beside the result.
+
+usage: scripts/plot_history.py DIR [--base NAME] [--output DIR]
+
+DIR is the output directory of a run (`tribos ... --output DIR`): the summary
+BASE.json with its list "steps" (one object per completed step: "time",
+"contact" {"nodes", "active", "stick", "slip"}, "pairs" [{"name",
+"normal_force", "tangential_force"}], ...), the index BASE.xmf and the data
+files it names (BASE.step0001.h5 ... for a run of several steps, BASE.h5 for
+one step; docs/load_history_output.md). BASE: the only summary of DIR with
+an index beside it, or --base. Written (to --output, default DIR):
+
+  BASE_load_displacement.png  per contact pair, the pair's tangential force
+                              against the mean tangential displacement of its
+                              slave nodes, one point per step joined in step
+                              order: the hysteresis loop of a load cycle
+  BASE_stick_slip.png         the numbers of contact, stick and slip nodes
+                              against the step's time
+
+Both quantities are vectors in the contact plane; a curve draws their
+components along one direction, the pair's tangential force of largest
+magnitude over the steps (its mean tangential displacement if the force is
+zero throughout), so that a load reversed changes sign. The tangential
+displacement of a slave node is its displacement (/nodes/displacement, the
+row the contact point set's field `node` gives) less its part along the
+node's contact normal (field `normal`); a result without those fields uses
+the field `slip`. Only the steps the summary lists are drawn: those are
+complete (the index may list one more while a step is being written).
+"""
+import argparse
+import glob
+import json
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+import h5py
+import numpy as np
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, no display
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def fail(message):
+    sys.exit("plot_history.py: " + message)
+
+
+def summary_file(directory, base):
+    """DIR/BASE.json: given by --base, else the only summary with an index beside it."""
+    if not os.path.isdir(directory):
+        fail("%s is not a directory" % directory)
+    if base is not None:
+        path = os.path.join(directory, base + ".json")
+        if not os.path.exists(path):
+            fail("%s holds no summary %s.json (files there: %s)"
+                 % (directory, base, ", ".join(sorted(os.listdir(directory))) or "none"))
+        return path
+    found = [f for f in sorted(glob.glob(os.path.join(directory, "*.json")))
+             if os.path.exists(f[:-len(".json")] + ".xmf")]
+    if not found:
+        fail("%s holds no result (a BASE.json beside a BASE.xmf): not the output directory of a tribos run" % directory)
+    if len(found) > 1:
+        fail("%s holds %d results (%s); name one with --base"
+             % (directory, len(found), ", ".join(os.path.basename(f) for f in found)))
+    return found[0]
+
+
+def read_steps(path):
+    """The summary's list of steps, each checked for what the plots need."""
+    try:
+        with open(path) as f:
+            summary = json.load(f)
+    except (OSError, ValueError) as e:
+        fail("cannot read the summary %s: %s" % (path, e))
+    steps = summary.get("steps") if isinstance(summary, dict) else None
+    if not isinstance(steps, list) or not steps:
+        fail("the summary %s has no list \"steps\": a result written before runs had load steps, or not a "
+             "tribos summary" % path)
+    for k, s in enumerate(steps, 1):
+        for key in ("time", "contact"):
+            if not isinstance(s, dict) or key not in s:
+                fail("step %d of the summary %s has no \"%s\"" % (k, path, key))
+    return steps
+
+
+def data_files(index_path):
+    """The data file of each step of the index, in step order, with its time:
+    a temporal collection (one spatial collection per step), or the grids of
+    a one-step result (time None)."""
+    try:
+        root = ET.parse(index_path).getroot()
+    except (OSError, ET.ParseError) as e:
+        fail("cannot read the index %s: %s" % (index_path, e))
+    directory = os.path.dirname(index_path)
+
+    def file_of(grid):
+        item = grid.find(".//DataItem")
+        if item is None or ":" not in (item.text or ""):
+            fail("the index %s has a grid without a data file" % index_path)
+        return os.path.join(directory, item.text.strip().split(":", 1)[0])
+
+    domain = root.find("Domain")
+    grids = [] if domain is None else domain.findall("Grid")
+    series = [g for g in grids if g.get("CollectionType") == "Temporal"]
+    if series:
+        steps = []
+        for g in series[0].findall("Grid"):
+            time = g.find("Time")
+            steps.append((float(time.get("Value")) if time is not None else None, file_of(g)))
+        return steps
+    if not grids:
+        fail("the index %s names no grid" % index_path)
+    return [(None, file_of(grids[0]))]
+
+
+def read_contact(path):
+    """The contact point set of one data file: pair index, slave node
+    tangential displacement (3 per point) and status per point."""
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        fail("cannot read the data file %s: %s" % (path, e))
+    with f:
+        if "points/contact" not in f:
+            fail("%s holds no contact point set (/points/contact): a run without contact has no load history to "
+                 "draw" % path)
+        c = f["points/contact"]
+        n = c["geometry"].shape[0]
+        pair = c["pair"][...].ravel().astype(int) if "pair" in c else np.zeros(n, dtype=int)
+        status = c["status"][...].ravel().astype(int) if "status" in c else np.zeros(n, dtype=int)
+        if "node" in c and "normal" in c and "nodes/displacement" in f:
+            u = f["nodes/displacement"][...][c["node"][...].ravel().astype(int)]
+            normal = c["normal"][...].reshape(n, 3)
+            tangential = u - np.sum(u * normal, axis=1)[:, None] * normal
+        elif "slip" in c:
+            tangential = c["slip"][...].reshape(n, 3)
+        else:
+            fail("%s: the contact point set has neither node and normal nor slip" % path)
+        force = c["tangential_force"][...].reshape(n, 3) if "tangential_force" in c else np.zeros((n, 3))
+    return {"pair": pair, "tangential": tangential, "status": status, "tangential_force": force}
+
+
+def load_history(directory, base=None):
+    """Everything drawn: per step its time and contact counts; per pair its
+    name and, per step, the tangential force (3) and the mean tangential
+    displacement of its slave nodes (3)."""
+    summary = summary_file(directory, base)
+    base = os.path.basename(summary)[:-len(".json")]
+    steps = read_steps(summary)
+    files = data_files(os.path.join(directory, base + ".xmf"))
+    if len(files) < len(steps):
+        fail("the summary %s lists %d steps but the index %s.xmf only %d" % (summary, len(steps), base, len(files)))
+    contact = [read_contact(path) for _, path in files[:len(steps)]]
+    n_pairs = max([len(s.get("pairs", [])) for s in steps] + [int(c["pair"].max()) + 1 for c in contact if c["pair"].size])
+    pairs = []
+    for p in range(n_pairs):
+        names = [s["pairs"][p].get("name") for s in steps if len(s.get("pairs", [])) > p]
+        force, displacement = [], []
+        for s, c in zip(steps, contact):
+            sel = c["pair"] == p
+            displacement.append(c["tangential"][sel].mean(axis=0) if sel.any() else np.full(3, np.nan))
+            # The pair's total as the summary gives it; else the nodal forces summed.
+            given = s["pairs"][p].get("tangential_force") if len(s.get("pairs", [])) > p else None
+            force.append(np.asarray(given, dtype=float) if given is not None else c["tangential_force"][sel].sum(axis=0))
+        pairs.append({"name": names[0] if names else "pair %d" % p, "force": np.array(force),
+                      "displacement": np.array(displacement)})
+    counts = {key: np.array([s["contact"].get(key, np.nan) for s in steps], dtype=float)
+              for key in ("nodes", "active", "stick", "slip")}
+    return {"base": base, "time": np.array([s["time"] for s in steps], dtype=float), "pairs": pairs,
+            "counts": counts}
+
+
+def curve(pair):
+    """The loop of one pair along its direction: (direction, displacement, force)."""
+    force, displacement = pair["force"], pair["displacement"]
+    magnitude = np.linalg.norm(force, axis=1)
+    source = force if np.nanmax(magnitude, initial=0) > 0 else np.nan_to_num(displacement)
+    k = int(np.argmax(np.linalg.norm(source, axis=1)))
+    norm = np.linalg.norm(source[k])
+    direction = source[k] / norm if norm > 0 else np.array([1.0, 0.0, 0.0])
+    if direction[np.argmax(np.abs(direction))] < 0:  # the same direction for a loop and its mirror image
+        direction = -direction
+    return direction, displacement @ direction, force @ direction
+
+
+def plot_load_displacement(h, out):
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    for pair in h["pairs"]:
+        d, x, y = curve(pair)
+        ax.plot(x, y, "o-", markersize=3,
+                label="%s (along %s)" % (pair["name"], ", ".join("%.2g" % v for v in d)))
+        if len(x) > 1:  # the way round the loop
+            ax.annotate("", xy=(x[1], y[1]), xytext=(x[0], y[0]), arrowprops={"arrowstyle": "->"})
+    ax.set_xlabel("mean tangential displacement of the slave nodes")
+    ax.set_ylabel("tangential force of the pair")
+    ax.axhline(0, color="0.8", linewidth=0.8)
+    ax.axvline(0, color="0.8", linewidth=0.8)
+    ax.set_title("%s: load-displacement, %d steps" % (h["base"], len(h["time"])))
+    ax.legend(fontsize="small")
+    return save(fig, out, h["base"] + "_load_displacement.png")
+
+
+def plot_stick_slip(h, out):
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    t = h["time"]
+    for key, style in (("active", "k--"), ("stick", "b-"), ("slip", "r-")):
+        label = "in contact" if key == "active" else key
+        ax.plot(t, h["counts"][key], style, marker="o", markersize=3, label=label)
+    ax.set_xlabel("time (load step)")
+    ax.set_ylabel("contact nodes")
+    ax.set_ylim(bottom=0)
+    nodes = h["counts"]["nodes"]
+    total = " of %d" % nodes[0] if nodes.size and np.all(nodes == nodes[0]) and np.isfinite(nodes[0]) else ""
+    ax.set_title("%s: stick and slip nodes%s" % (h["base"], total))
+    ax.legend(fontsize="small")
+    return save(fig, out, h["base"] + "_stick_slip.png")
+
+
+def save(fig, out, name):
+    path = os.path.join(out, name)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    print(path)
+    return path
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("directory", metavar="DIR")
+    parser.add_argument("--base", help="the Base Name of the result (default: the only one in DIR)")
+    parser.add_argument("--output", help="directory of the PNG files (default: DIR)")
+    args = parser.parse_args()
+    out = args.output or args.directory
+    if not os.path.isdir(out):
+        fail("--output %s is not a directory" % out)
+    h = load_history(args.directory, args.base)
+    plot_load_displacement(h, out)
+    plot_stick_slip(h, out)
+
+
+if __name__ == "__main__":
+    main()
