@@ -17,7 +17,8 @@ leaves a loop). Checks that
   - only the steps the summary lists are drawn (a step being committed is
     in the index first);
   - a directory without a result, a summary without steps and an index with
-    fewer steps than the summary are refused with one line naming the file.
+    fewer steps than the summary are refused with one line naming the file;
+  - where pvpython is installed, ParaView's reader finds the steps' times.
 Exits 77 (skipped) when matplotlib or h5py is not installed.
 """
 import argparse
@@ -120,6 +121,19 @@ def check_values(directory, steps):
     return h
 
 
+def check_paraview(directory, times):
+    """Where ParaView is installed: its reader finds every step's time in the index."""
+    pvpython = shutil.which("pvpython")
+    if pvpython is None:
+        print("skipped: the index in ParaView (pvpython is not installed)")
+        return
+    code = ("from paraview.simple import OpenDataFile\n"
+            "r = OpenDataFile(%r)\nprint(repr(list(r.TimestepValues)))" % os.path.join(directory, "cycle.xmf"))
+    p = run([pvpython, "--force-offscreen-rendering", "-c", code])
+    found = p.stdout.strip().splitlines()[-1] if p.returncode == 0 and p.stdout.strip() else p.stderr.strip()
+    check(found == repr([float(t) for t in times]), "ParaView plays the %d steps at their times (%s)" % (len(times), found))
+
+
 def expect_refusal(directory, says, what):
     p = plot(directory)
     message = p.stderr.strip()
@@ -148,6 +162,8 @@ def main():
     p = plot(directory, "--output", out)
     check(p.returncode == 0, "plot_history.py DIR --output OUT succeeds (%s)" % p.stderr.strip())
     check_pictures(out, "in --output")
+
+    check_paraview(directory, [s[0] for s in steps])
 
     # Other forces: another loop picture, the same stick/slip picture.
     other = os.path.join(args.work, "other")
