@@ -36,7 +36,7 @@ import matplotlib.image as mpimg  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPT = os.path.join(HERE, "..", "scripts", "plot_convergence.py")
-HEADER = ["outer_iteration", "relative_residual", "G_lambda_rel", "slip_bound_change", "n_A", "time_s"]
+HEADER = ["outer_iteration", "relative_residual", "G_lambda_rel", "slip_bound_change", "n_A", "time_s", "step"]
 failures = []
 
 

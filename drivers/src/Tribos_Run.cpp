@@ -32,6 +32,7 @@
 #include "Tribos_RigidMotions.hpp"
 #include "Tribos_RunReport.hpp"
 #include "Tribos_SolveMethod.hpp"
+#include "Tribos_StepSeries.hpp"
 
 namespace Tribos {
 
@@ -184,40 +185,43 @@ std::unique_ptr<IO::OutputDirectory> prepareOutput(const Teuchos::ParameterList&
   return dir;
 }
 
-// The result files: Base Name .h5 (with the verdict as root attributes),
-// .xmf, .parameters.xml (the effective parameters, defaults filled and the
-// directory the run wrote to: the run again), .history.csv (one row per outer
-// iteration, Tribos_History.hpp) and .json (the summary, written last: a set
-// without it is incomplete).
-void writeResult(const Teuchos::ParameterList& params, const IO::OutputDirectory& dir, const Discretized& d,
-                 const StepSolution& sol, RunReport& report, const RCP<const Comm>& comm) {
+// Step "write": load step `step` of the run as the next step of the result
+// series (Tribos_StepSeries.hpp): one run of one step writes Base Name .h5
+// (with the verdict as root attributes) and .xmf as always, a history
+// BASE.step0001.h5, ... and an .xmf that plays them in time; with them, as
+// one set, .parameters.xml (the effective parameters, defaults filled and
+// the directory the run wrote to: the run again), .history.csv (one row per
+// outer iteration of every step so far, Tribos_History.hpp) and .json (the
+// summary of the steps so far, written last: a set without it is
+// incomplete).
+void writeStep(const Teuchos::ParameterList& params, const IO::OutputDirectory& outputDir, IO::StepSeries& series,
+               int step, double time, const Discretized& d, const StepSolution& sol,
+               const IO::IterationHistory& history, RunReport& report, const RCP<const Comm>& comm) {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::output"));
   Progress::stage("writing results");
   const auto& disc = d.disc;
+  const std::string& dir = outputDir.path();
   const ResultNames names(params.sublist("Output").get<std::string>("Base Name"));
-  report.output = dir.path() + "/" + names.xmf;
-  report.parameters = dir.path() + "/" + names.parameters;
-  report.historyFile = dir.path() + "/" + names.history;
-  IO::ResultSet files(dir, comm);
-  const std::string h5 = files.add(names.h5), xmf = files.add(names.xmf), xml = files.add(names.parameters),
-                    csv = files.add(names.history), json = files.add(names.summary);
-  std::vector<IO::PointSet> points;
-  if (params.sublist("Contact").get<bool>("Enabled")) points.push_back(contactPointSet(disc, sol.result.contact, *comm));
-  IO::ResultAttributes attributes;
-  attributes.numbers = {{"converged", report.converged ? 1.0 : 0.0}, {"solver_converged", report.solverConverged ? 1.0 : 0.0}};
-  attributes.text = {{"problem", report.problem}, {"stop_reason", report.stopReason}};
-  std::vector<double> uOwned;
+  report.output = dir + "/" + names.xmf;
+  report.parameters = dir + "/" + names.parameters;
+  report.historyFile = dir + "/" + names.history;
+  IO::StepResult result;
+  if (params.sublist("Contact").get<bool>("Enabled"))
+    result.pointSets.push_back(contactPointSet(disc, sol.result.contact, *comm));
+  result.attributes.numbers = {{"converged", report.converged ? 1.0 : 0.0},
+                               {"solver_converged", report.solverConverged ? 1.0 : 0.0}};
+  result.attributes.text = {{"problem", report.problem}, {"stop_reason", report.stopReason}};
   for (int n : disc.ownedNodes()) {
     const double* un = sol.result.u.at(disc.meshNode(n));
-    uOwned.insert(uOwned.end(), un, un + 3);
+    result.uOwned.insert(result.uOwned.end(), un, un + 3);
   }
-  IO::ResultWriter(disc, comm).write(h5, names.h5, xmf, uOwned, {}, cellFields(disc, d.materials, sol.result.u), points, attributes);
+  result.cellFields = cellFields(disc, d.materials, sol.result.u);
   Teuchos::ParameterList effective = params;
-  effective.sublist("Output").set("Directory", dir.path());
-  IO::writeTextFile(xml, Input::toXml(effective), comm);
-  IO::writeTextFile(csv, sol.history.toCsv(), comm);
-  IO::writeTextFile(json, report.toSummary().toJson() + "\n", comm);
-  files.commit();
+  effective.sublist("Output").set("Directory", dir);
+  series.writeStep(step, time, disc, result,
+                   {{names.parameters, Input::toXml(effective)},
+                    {names.history, history.toCsv()},
+                    {names.summary, report.toSummary().toJson() + "\n"}});
 }
 
 // The mesh of Mesh/File, read on rank 0 (and held there only) and checked
@@ -359,11 +363,38 @@ Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& opt
   return d;
 }
 
-// Step "solve" (assembly included: each method assembles what it needs): by
-// the registered method the parameters choose (Input::method).
-StepSolution solveStep(const Teuchos::ParameterList& params, const RunOptions& options, const Discretized& d,
-                       const RCP<const Comm>& comm, RunReport& report) {
-  return solveMethods().create(report.algorithm, params, options, comm)->solve(d, report);
+// The names of the run's contact pairs in the order of their numbers
+// (ContactConstraint::pair): Contact/Pairs in order, or the one face.
+std::vector<std::string> pairNames(const Teuchos::ParameterList& params) {
+  const auto& contact = params.sublist("Contact");
+  if (!contact.get<bool>("Enabled")) return {};
+  const auto& pairs = contact.sublist("Pairs");
+  if (pairs.numParams() == 0) return {contact.get<std::string>("Face")};
+  std::vector<std::string> names;
+  for (auto it = pairs.begin(); it != pairs.end(); ++it) names.push_back(pairs.name(it));
+  return names;
+}
+
+// The summary row of a checked load step (report holds its verdict).
+StepReport stepReport(const Teuchos::ParameterList& params, int step, double time, const StepSolution& sol,
+                      const RunReport& report, const Comm& comm) {
+  StepReport s;
+  s.step = step;
+  s.time = time;
+  s.iterations = sol.result.iterations;
+  s.n_A = sol.result.n_A;
+  s.kkt = sol.result.kkt;
+  if (params.sublist("Contact").get<bool>("Enabled")) {
+    const auto& c = sol.result.counts;
+    s.contact = ContactCountReport{c.nodes, c.active, c.stick, c.slip};
+    const auto names = pairNames(params);
+    const auto forces = Contact::pairForces(sol.result.contact, static_cast<int>(names.size()), comm);
+    for (size_t p = 0; p < names.size(); ++p) s.pairs.push_back({names[p], forces[p]});
+  }
+  s.converged = report.converged;
+  s.stopReason = report.stopReason;
+  s.solveSeconds = maxOver(sol.result.solveSeconds, comm);
+  return s;
 }
 
 // Step "check": the result must be representable, and `converged` is a
@@ -371,7 +402,7 @@ StepSolution solveStep(const Teuchos::ParameterList& params, const RunOptions& o
 // of the result (Contact::resultKKT) is within Result Check Factor times the
 // requested tolerance. With --verify, the monolithic reference solve.
 void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, const Discretized& d,
-               StepSolution& sol, const RCP<const Comm>& comm, RunReport& report) {
+               const Fem::LoadCase& loads, StepSolution& sol, const RCP<const Comm>& comm, RunReport& report) {
   const Input::Method method = Input::method(params);
   const Contact::SolveResult& r = sol.result;
   requireRepresentable(r.u, r.kkt,
@@ -396,7 +427,7 @@ void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, 
     return;
   }
   Progress::stage("monolithic reference solve (--verify)");
-  Fem::MonolithicSystem reference(d.disc, d.materials, d.loads, comm);
+  Fem::MonolithicSystem reference(d.disc, d.materials, loads, comm);
   const auto ref = reference.solve(params.sublist("Solver").sublist("Monolithic"));
   // Both hold the nodes of the rank's part.
   Fem::NodalVector difference(r.u.layoutPtr());
@@ -471,18 +502,49 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   const auto outputDir = prepareOutput(params, options, comm);
 
   const Discretized d = meshStep(params, options, std::move(whole), decomposition, *comm, report);
-  const auto t1 = std::chrono::steady_clock::now();
-  StepSolution sol = solveStep(params, options, d, comm, report);
-  checkStep(params, options, d, sol, comm, report);
+  const double meshSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  // Setup: from the start to a solver ready to iterate; solve: its iterations.
-  const double meshSeconds = std::chrono::duration<double>(t1 - t0).count();
-  report.setupSeconds = maxOver(meshSeconds + sol.setupSeconds, *comm);
-  report.solveSeconds = maxOver(sol.result.solveSeconds, *comm);
-  report.maxAbsDisplacement = sol.result.u.normInf();
-  report.memoryEstimateMb = maxOver(memory.total() / (1024.0 * 1024.0), *comm);
-  report.peakRssMb = maxOver(IO::peakRssMb(), *comm);
-  if (outputDir) writeResult(params, *outputDir, d, sol, report, comm);
+  // The load history: solve, check and write at each step time (one step at
+  // t = 1 without Load Steps), until the history ends or a step fails.
+  const std::vector<double> times = Input::loadStepTimes(params);
+  const int numSteps = static_cast<int>(times.size());
+  report.numSteps = numSteps;
+  auto method = solveMethods().create(report.algorithm, params, options, comm);
+  std::unique_ptr<IO::StepSeries> series;
+  if (outputDir)
+    series = std::make_unique<IO::StepSeries>(*outputDir, params.sublist("Output").get<std::string>("Base Name"),
+                                              numSteps, comm);
+  IO::IterationHistory history;
+  double setupSeconds = meshSeconds, solveSeconds = 0;
+  for (int k = 0; k < numSteps; ++k) {
+    Progress::setStep(k + 1, numSteps);
+    // The input's loads as they are at t = 1 without Load Steps; a history
+    // scales them by their curves.
+    const Fem::LoadCase loads = numSteps == 1 && times[0] == 1.0 ? d.loads : Input::loadCaseAt(params, times[k]);
+    StepSolution sol = method->solve(d, loads, report);
+    checkStep(params, options, d, loads, sol, comm, report);
+    for (IO::HistoryRow row : sol.history.rows) {
+      row.step = k + 1;
+      history.rows.push_back(row);
+    }
+    if (!report.converged && numSteps > 1) {
+      std::ostringstream os;
+      os << "load step " << k + 1 << " of " << numSteps << " (t = " << times[k] << "): " << report.stopReason;
+      report.stopReason = os.str();
+    }
+    report.steps.push_back(stepReport(params, k + 1, times[k], sol, report, *comm));
+    // Setup: from the start to a solver ready to iterate; solve: its iterations.
+    setupSeconds += sol.setupSeconds;
+    solveSeconds += sol.result.solveSeconds;
+    report.setupSeconds = maxOver(setupSeconds, *comm);
+    report.solveSeconds = maxOver(solveSeconds, *comm);
+    report.maxAbsDisplacement = sol.result.u.normInf();
+    report.memoryEstimateMb = maxOver(memory.total() / (1024.0 * 1024.0), *comm);
+    report.peakRssMb = maxOver(IO::peakRssMb(), *comm);
+    if (series) writeStep(params, *outputDir, *series, k + 1, times[k], d, sol, history, report, comm);
+    if (!report.converged) break;
+  }
+  Progress::setStep(1, 1);
   return {report.toSummary(), report, report.converged, report.stopReason, outputDir != nullptr};
 }
 

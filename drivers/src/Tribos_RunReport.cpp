@@ -4,10 +4,15 @@ namespace Tribos {
 
 namespace {
 
-IO::Summary kktSummary(const RunReport& r) {
+IO::Summary kktFigures(const Contact::ResultKKT& kkt) {
   IO::Summary k;
-  k.set("equilibrium", r.kkt.equilibrium).set("dirichlet", r.kkt.dirichlet).set("nonpenetration", r.kkt.nonpenetration);
-  k.set("complementarity", r.kkt.complementarity).set("friction_law", r.kkt.frictionLaw);
+  k.set("equilibrium", kkt.equilibrium).set("dirichlet", kkt.dirichlet).set("nonpenetration", kkt.nonpenetration);
+  k.set("complementarity", kkt.complementarity).set("friction_law", kkt.frictionLaw);
+  return k;
+}
+
+IO::Summary kktSummary(const RunReport& r) {
+  IO::Summary k = kktFigures(r.kkt);
   k.set("displacement_scale", r.kkt.displacementScale).set("force_scale", r.kkt.forceScale);
   k.set("tolerance", r.tolerance).set("limit", r.limit);
   return k;
@@ -41,6 +46,30 @@ void setFeti(const FetiReport& f, IO::Summary& s) {
   s.set("time_F_apply_s", f.F_seconds);
   s.set("coarse_size", f.coarseSize);
   s.set("coarse_factor_mb", f.coarseFactorMb);
+}
+
+IO::Summary stepSummary(const StepReport& r) {
+  IO::Summary s;
+  s.set("step", r.step).set("time", r.time).set("iterations", r.iterations).set("n_A", r.n_A);
+  s.set("kkt", kktFigures(r.kkt));
+  if (r.contact) {
+    IO::Summary c;
+    c.set("nodes", r.contact->nodes).set("active", r.contact->active).set("stick", r.contact->stick);
+    c.set("slip", r.contact->slip);
+    s.set("contact", c);
+  }
+  if (!r.pairs.empty()) {
+    std::vector<IO::Summary> pairs;
+    for (const auto& [name, force] : r.pairs) {
+      IO::Summary p;
+      p.set("name", name).set("normal_force", force.normal);
+      p.set("tangential_force", std::vector<double>(force.tangential.begin(), force.tangential.end()));
+      pairs.push_back(p);
+    }
+    s.set("pairs", pairs);
+  }
+  s.set("converged", r.converged).set("stop_reason", r.stopReason).set("time_solve_s", r.solveSeconds);
+  return s;
 }
 
 }  // namespace
@@ -79,6 +108,10 @@ IO::Summary RunReport::toSummary() const {
   s.set("solver_converged", solverConverged);
   s.set("converged", converged);
   s.set("stop_reason", stopReason);
+  s.set("load_steps", numSteps);
+  std::vector<IO::Summary> stepRows;
+  for (const auto& step : steps) stepRows.push_back(stepSummary(step));
+  s.set("steps", stepRows);
   if (!verifyNote.empty()) s.set("verify_note", verifyNote);
   if (verifyRelativeDifference) s.set("verify_rel_diff_u", *verifyRelativeDifference);
   // Cost.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "Tribos_ResultKKT.hpp"
+#include "Tribos_SolveResult.hpp"
 #include "Tribos_Summary.hpp"
 
 namespace Tribos {
@@ -46,6 +47,21 @@ struct SemismoothReport {
   double assemblySeconds = 0, reductionSeconds = 0, newtonSeconds = 0;
 };
 
+// One load step: its pseudo-time, the solve's work, the KKT residuals of its
+// result and the verdict, the contact nodes by status and the resultant of
+// each pair's contact forces (the load-displacement curves of a history).
+struct StepReport {
+  int step = 1;
+  double time = 1;
+  long long iterations = 0, n_A = 0;
+  Contact::ResultKKT kkt;
+  std::optional<ContactCountReport> contact;
+  std::vector<std::pair<std::string, Contact::PairForce>> pairs;  // pair name, resultant
+  bool converged = false;
+  std::string stopReason;
+  double solveSeconds = 0;
+};
+
 struct RunReport {
   // Read: the problem and where it came from.
   std::string problem, input;
@@ -70,6 +86,10 @@ struct RunReport {
   std::string stopReason;
   std::optional<double> verifyRelativeDifference;  // --verify
   std::string verifyNote;
+  // Every load step so far (one for a run without Load Steps); the fields
+  // above are the last step's.
+  std::vector<StepReport> steps;
+  int numSteps = 1;
   // The run's cost.
   double setupSeconds = 0, solveSeconds = 0, maxAbsDisplacement = 0, memoryEstimateMb = 0, peakRssMb = 0;
   // Write: the files of the result set.

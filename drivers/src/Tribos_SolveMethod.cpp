@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <iostream>
+#include <memory>
 
 #include "Tribos_Assembly.hpp"
 #include "Tribos_FCLIB_Export.hpp"
@@ -52,12 +53,13 @@ class MethodBase : public SolveMethod {
 class MonolithicMethod : public MethodBase {
  public:
   using MethodBase::MethodBase;
-  StepSolution solve(const Discretized& d, RunReport& report) const override {
+  StepSolution solve(const Discretized& d, const Fem::LoadCase& loads, RunReport& report) override {
     // (The whole mesh was checked to hold every rigid motion before any work.)
-    const auto dirichlet = Fem::constrainedDofs(d.disc, d.loads.dirichlet);
+    // A linear problem has no history: each load step is solved afresh.
+    const auto dirichlet = Fem::constrainedDofs(d.disc, loads.dirichlet);
     Progress::stage("assembly");
     const auto t0 = std::chrono::steady_clock::now();
-    Fem::MonolithicSystem system(d.disc, d.materials, d.loads, comm_);
+    Fem::MonolithicSystem system(d.disc, d.materials, loads, comm_);
     StepSolution sol;
     sol.setupSeconds = seconds(t0);
     Progress::stage("monolithic solve");
@@ -81,7 +83,7 @@ class MonolithicMethod : public MethodBase {
     // The rank keeps the nodes of its part (the writer's cells).
     std::vector<Fem::SubdomainSystem> systems;
     for (int s = d.disc.firstLocalSubdomain(); s < d.disc.endLocalSubdomain(); ++s)
-      systems.push_back(Fem::assembleSubdomain(d.disc, s, d.materials, d.loads));
+      systems.push_back(Fem::assembleSubdomain(d.disc, s, d.materials, loads));
     r.kkt = Contact::resultKKT(r.u, Fem::assembledProduct(systems, r.u), Fem::assembledLoad(systems, r.u.layoutPtr()),
                                dirichlet, FrictionLaw::Frictionless, {});
     r.verdict = Contact::resultVerdict(r.kkt, r.solverConverged, r.solverReason, r.tolerance, resultCheckFactor());
@@ -94,19 +96,25 @@ class MonolithicMethod : public MethodBase {
 class FetiMethod : public MethodBase {
  public:
   using MethodBase::MethodBase;
-  StepSolution solve(const Discretized& d, RunReport& report) const override {
+  StepSolution solve(const Discretized& d, const Fem::LoadCase& loads, RunReport& report) override {
     const auto& solverParams = params_.sublist("Solver");
     const bool contact = params_.sublist("Contact").get<bool>("Enabled");
     const Contact::PairFriction friction = contact ? Input::pairFriction(params_) : Contact::PairFriction{{}};
-    Progress::stage("FETI setup: assembly, gluing, coarse space");
-    const auto t0 = std::chrono::steady_clock::now();
-    auto problem = rcp(new Feti::FetiProblem(d.disc, d.materials, d.loads, d.constraints, solverParams.sublist("FETI"), comm_));
+    const auto out = options_.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
+                                      : RCP<Teuchos::FancyOStream>();
     StepSolution sol;
-    sol.setupSeconds = seconds(t0);
-    const auto r = Contact::solveFeti(problem, friction, solverParams,
-                                      options_.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
-                                                       : RCP<Teuchos::FancyOStream>());
+    // The first step sets the problem up; a history keeps it for the next.
+    if (problem_.is_null()) {
+      Progress::stage("FETI setup: assembly, gluing, coarse space");
+      const auto t0 = std::chrono::steady_clock::now();
+      problem_ = rcp(new Feti::FetiProblem(d.disc, d.materials, loads, d.constraints, solverParams.sublist("FETI"), comm_));
+      if (Input::loadStepTimes(params_).size() > 1)
+        steps_ = std::make_unique<Contact::FetiLoadSteps>(problem_, friction, solverParams, out);
+      sol.setupSeconds = seconds(t0);
+    }
+    const auto r = steps_ ? steps_->solve(loads) : Contact::solveFeti(problem_, friction, solverParams, out);
     sol.result = r;
+    const auto& problem = problem_;
     report.n_A = r.n_A;
     if (!problem->hasContact()) {
       report.outerIterations = r.iterations;
@@ -114,7 +122,7 @@ class FetiMethod : public MethodBase {
       sol.history.rows.push_back(finalRow(r.iterations, r.relativeResidual, r.n_A, r.solveSeconds));
     } else {
       reportContact(r, friction, report, sol.history);
-      if (!options_.exportFclib.empty()) exportFclib(*problem, d, friction, r, report);
+      if (!options_.exportFclib.empty()) exportFclib(*problem, d, loads, friction, r, report);
     }
     report.primalDofs = static_cast<long long>(problem->primalMap()->getGlobalNumElements());
     report.dualDofs = static_cast<long long>(problem->dualMap()->getGlobalNumElements());
@@ -132,6 +140,9 @@ class FetiMethod : public MethodBase {
   }
 
  private:
+  RCP<Feti::FetiProblem> problem_;
+  std::unique_ptr<Contact::FetiLoadSteps> steps_;  // a run of several load steps
+
   // The outer algorithm's report and one history row per outer step.
   static void reportContact(const Contact::FetiSolveResult& r, const Contact::PairFriction& friction,
                             RunReport& report, IO::IterationHistory& history) {
@@ -163,11 +174,11 @@ class FetiMethod : public MethodBase {
 
   // FCLIB global problem: assembled K, contact rows in the local frame,
   // gaps, F (docs/fclib.md); the whole mesh is on rank 0.
-  void exportFclib(const Feti::FetiProblem& problem, const Discretized& d, const Contact::PairFriction& friction,
-                   const Contact::FetiSolveResult& r, RunReport& report) const {
+  void exportFclib(const Feti::FetiProblem& problem, const Discretized& d, const Fem::LoadCase& loads,
+                   const Contact::PairFriction& friction, const Contact::FetiSolveResult& r, RunReport& report) const {
     Progress::stage("FCLIB export");
     FCLIB::Info info{params_.get<std::string>("Problem Name"), "Tribos FETI contact problem, " + r.outerAlgorithm, ""};
-    FCLIB::exportFeti(options_.exportFclib, problem, *d.whole, d.materials, d.loads, Contact::runLaw(friction),
+    FCLIB::exportFeti(options_.exportFclib, problem, *d.whole, d.materials, loads, Contact::runLaw(friction),
                       friction[0].coefficient, *r.primal, *r.lambda, info);
     report.fclibExport = options_.exportFclib;
   }
@@ -177,11 +188,11 @@ class FetiMethod : public MethodBase {
 class SemismoothMethod : public MethodBase {
  public:
   using MethodBase::MethodBase;
-  StepSolution solve(const Discretized& d, RunReport& report) const override {
+  StepSolution solve(const Discretized& d, const Fem::LoadCase& loads, RunReport& report) override {
     Progress::stage("semismooth* Newton");
     const auto plane = Input::planeContact(params_);  // Tresca or frictionless (the input refuses Coulomb here)
     const auto r = Semismooth::solvePlaneContact(
-        *d.whole, Input::material(params_), d.loads, plane, params_.sublist("Solver").sublist("SemismoothStarNewton"),
+        *d.whole, Input::material(params_), loads, plane, params_.sublist("Solver").sublist("SemismoothStarNewton"),
         resultCheckFactor(), comm_, options_.verbose ? &std::cout : nullptr);
     StepSolution sol;
     sol.result = r;

@@ -52,12 +52,16 @@ struct StepSolution {
   IO::IterationHistory history;  // BASE.history.csv
 };
 
+// One method object serves every load step of a run, keeping what the
+// steps share (FETI: K, its factors, F, the coarse space and the previous
+// step's solution, the origin of the next step's slip).
 class SolveMethod {
  public:
   virtual ~SolveMethod() = default;
-  // Solves d, assembling what the method needs; fills the method's part of
-  // report (sizes, iterations, its own sublist). Collective.
-  virtual StepSolution solve(const Discretized& d, RunReport& report) const = 0;
+  // Solves d at the loads of the next load step, assembling what the method
+  // needs; fills the method's part of report (sizes, iterations, its own
+  // sublist). Collective.
+  virtual StepSolution solve(const Discretized& d, const Fem::LoadCase& loads, RunReport& report) = 0;
 };
 
 // Makers take the validated parameters, the run's options and communicator.

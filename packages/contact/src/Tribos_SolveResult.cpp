@@ -30,5 +30,19 @@ ContactCounts countContacts(const ContactNodeResults& nodes, const Comm& comm) {
   return {global[0], global[1], global[2], global[3]};
 }
 
+std::vector<PairForce> pairForces(const ContactNodeResults& nodes, int numPairs, const Comm& comm) {
+  std::vector<double> local(4 * static_cast<size_t>(numPairs), 0.0), global(local.size(), 0.0);
+  for (size_t k = 0; k < nodes.nodes.size(); ++k) {
+    const int pair = nodes.constraint[k].pair;
+    if (pair < 0 || pair >= numPairs) continue;
+    local[4 * pair] += nodes.normalForce[k];
+    for (int d = 0; d < 3; ++d) local[4 * pair + 1 + d] += nodes.tangentialForce[3 * k + d];
+  }
+  if (numPairs > 0) Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 4 * numPairs, local.data(), global.data());
+  std::vector<PairForce> out(numPairs);
+  for (int p = 0; p < numPairs; ++p) out[p] = {global[4 * p], {global[4 * p + 1], global[4 * p + 2], global[4 * p + 3]}};
+  return out;
+}
+
 }  // namespace Contact
 }  // namespace Tribos

@@ -5,6 +5,7 @@
 // KKT residuals of that result (Contact::resultKKT) and the verdict on it.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,15 @@ struct SolveResult {
 
 // counts over all ranks of the contact nodes in `nodes` (each held by one rank).
 ContactCounts countContacts(const ContactNodeResults& nodes, const Comm& comm);
+
+// The resultant of the contact forces on the slave side of a pair: the sum
+// of the normal forces lambda_N and of the friction forces (a 3-vector).
+struct PairForce {
+  double normal = 0;
+  std::array<double, 3> tangential{0, 0, 0};
+};
+// Per pair 0..numPairs-1 (ContactConstraint::pair), summed over all ranks.
+std::vector<PairForce> pairForces(const ContactNodeResults& nodes, int numPairs, const Comm& comm);
 
 }  // namespace Contact
 }  // namespace Tribos

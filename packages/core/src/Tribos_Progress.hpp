@@ -36,6 +36,7 @@ class Progress {
       s.out = out;
       s.start = Clock::now();
       s.stop = false;
+      s.stepPrefix.clear();
       if (out) ticker_ = std::thread(tick);
     }
     ~Session() {
@@ -55,11 +56,19 @@ class Progress {
     std::thread ticker_;
   };
 
+  // The load step of the stages that follow ("load step 3 of 20: "); none
+  // for a run of one step.
+  static void setStep(int step, int steps) {
+    State& s = state();
+    std::lock_guard<std::mutex> lock(s.mutex);
+    s.stepPrefix = steps > 1 ? "load step " + std::to_string(step) + " of " + std::to_string(steps) + ": " : "";
+  }
+
   // A new stage of the run.
   static void stage(const std::string& what) {
     State& s = state();
     std::lock_guard<std::mutex> lock(s.mutex);
-    s.stage = what;
+    s.stage = s.stepPrefix + what;
     s.printedStage = false;
     flushStage(s);
   }
@@ -100,6 +109,7 @@ class Progress {
     std::ostream* out = nullptr;
     Clock::time_point start = Clock::now();
     std::string stage = "start-up";
+    std::string stepPrefix;
     bool printedStage = false, stop = false;
     double lastIteration = -1e300;
   };

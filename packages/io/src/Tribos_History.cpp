@@ -26,10 +26,10 @@ HistoryRow::HistoryRow()
 
 std::string IterationHistory::toCsv() const {
   std::ostringstream os;
-  os << "outer_iteration,relative_residual,G_lambda_rel,slip_bound_change,n_A,time_s\n";
+  os << "outer_iteration,relative_residual,G_lambda_rel,slip_bound_change,n_A,time_s,step\n";
   for (const auto& r : rows)
     os << r.iteration << ',' << field(r.relativeResidual) << ',' << field(r.gLambda) << ','
-       << field(r.slipBoundChange) << ',' << field(r.n_A) << ',' << field(r.seconds) << '\n';
+       << field(r.slipBoundChange) << ',' << field(r.n_A) << ',' << field(r.seconds) << ',' << r.step << '\n';
   return os.str();
 }
 

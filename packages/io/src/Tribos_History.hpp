@@ -12,6 +12,7 @@
 //   slip_bound_change     ||g(l+1) - g(l)||/||g|| (Coulomb)
 //   n_A                   Hessian multiplications (applications of F) so far
 //   time_s                seconds since the start of the solve
+//   step                  the load step the row belongs to (1 without Load Steps)
 // A value a solver does not have is an empty field (not 0: a plot must not
 // draw it).
 #pragma once
@@ -24,6 +25,7 @@ namespace IO {
 
 struct HistoryRow {
   long long iteration = 0;
+  int step = 1;
   double relativeResidual;  // NaN (an empty field) unless set
   double gLambda;
   double slipBoundChange;

@@ -66,6 +66,13 @@ Summary& Summary::set(const std::string& key, const std::vector<double>& v) {
 }
 Summary& Summary::set(const std::string& key, const Summary& object) { put(key, object.toJson(1)); return *this; }
 
+Summary& Summary::set(const std::string& key, const std::vector<Summary>& objects) {
+  std::string json = "[";
+  for (size_t i = 0; i < objects.size(); ++i) json += (i ? ", " : "") + objects[i].toJson(2);
+  put(key, json + "]");
+  return *this;
+}
+
 bool Summary::has(const std::string& key) const {
   for (const auto& e : entries_)
     if (e.first == key) return true;

@@ -21,6 +21,7 @@ class Summary {
   Summary& set(const std::string& key, const char* v) { return set(key, std::string(v)); }
   Summary& set(const std::string& key, const std::vector<double>& v);
   Summary& set(const std::string& key, const Summary& object);
+  Summary& set(const std::string& key, const std::vector<Summary>& objects);  // an array of objects
   std::string toJson(int indent = 0) const;
   bool has(const std::string& key) const;
 

@@ -110,8 +110,9 @@ TEUCHOS_UNIT_TEST(HistoryCsv, RowsAndEmptyFields) {
   b.iteration = 24, b.relativeResidual = 6.5e-11, b.n_A = 25, b.seconds = std::numeric_limits<double>::infinity();
   h.rows = {a, b};
   TEST_EQUALITY(h.toCsv(),
-                "outer_iteration,relative_residual,G_lambda_rel,slip_bound_change,n_A,time_s\n"
-                "1,0.001,0.00025,1,79,0.5\n"
-                "24,6.5e-11,,,25,\n");
-  TEST_EQUALITY(IO::IterationHistory().toCsv(), "outer_iteration,relative_residual,G_lambda_rel,slip_bound_change,n_A,time_s\n");
+                "outer_iteration,relative_residual,G_lambda_rel,slip_bound_change,n_A,time_s,step\n"
+                "1,0.001,0.00025,1,79,0.5,1\n"
+                "24,6.5e-11,,,25,,1\n");
+  TEST_EQUALITY(IO::IterationHistory().toCsv(),
+                "outer_iteration,relative_residual,G_lambda_rel,slip_bound_change,n_A,time_s,step\n");
 }
