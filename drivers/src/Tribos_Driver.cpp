@@ -35,6 +35,8 @@ const char* kUsage =
     "  --quiet                 no progress lines on stderr\n"
     "  --max-memory SIZE       refuse a run estimated to need more than SIZE (e.g. 4G) on one machine\n"
     "  --export-fclib FILE     write the FETI contact problem and its solution as an FCLIB file\n"
+    "  --restart DIR           continue the load history of this input's result in DIR (a run killed or\n"
+    "                          stopped) after its last complete step, on as many ranks as it ran\n"
     "  --print-parameters      print the parameters as an XML input file, every default filled and\n"
     "                          documented (of INPUT.xml and --set when given), and exit; nothing is solved\n"
     "  --help                  this text\n"
@@ -69,6 +71,7 @@ Args parse(const std::vector<std::string>& argv) {
     else if (s == "--quiet") a.quiet = true;
     else if (s == "--max-memory") a.options.maxMemory = parseMemorySize(next("--max-memory"), "--max-memory");
     else if (s == "--export-fclib") a.options.exportFclib = next("--export-fclib");
+    else if (s == "--restart") a.options.restartDir = next("--restart");
     else if (s == "--print-parameters") a.printParameters = true;
     else if (s == "--help" || s == "-h") a.help = true;
     else if (!s.empty() && s[0] == '-') throw Error("unknown option " + s + "\n" + kUsage);
@@ -78,6 +81,13 @@ Args parse(const std::vector<std::string>& argv) {
     }
   }
   TRIBOS_REQUIRE(a.help || a.printParameters || !a.input.empty(), "no input file given\n" << kUsage);
+  // A restart writes where the result it continues is.
+  if (!a.options.restartDir.empty()) {
+    TRIBOS_REQUIRE(a.options.outputDir.empty() || a.options.outputDir == a.options.restartDir,
+                   "--restart " << a.options.restartDir << " continues the result there; --output "
+                                << a.options.outputDir << " names another directory");
+    a.options.outputDir = a.options.restartDir;
+  }
   a.options.inputName = a.input;
   return a;
 }

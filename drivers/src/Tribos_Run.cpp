@@ -2,10 +2,16 @@
 
 #include <Teuchos_TimeMonitor.hpp>
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "Tribos_AgreeOnError.hpp"
@@ -27,6 +33,7 @@
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_Progress.hpp"
 #include "Tribos_Reduce.hpp"
+#include "Tribos_ResultReader.hpp"
 #include "Tribos_ResultSet.hpp"
 #include "Tribos_ResultWriter.hpp"
 #include "Tribos_RigidMotions.hpp"
@@ -436,6 +443,211 @@ void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, 
   report.verifyRelativeDifference = difference.norm2() / std::max(ref.u.norm2(), 1e-300);
 }
 
+// A restarted run (tribos --restart DIR, docs/load_history.md): what it
+// continues from. The steps 1..completed of the run in DIR are done: their
+// rows of its summary and history are kept as they are, and the next step
+// starts from the displacement of the last of them.
+struct Restart {
+  std::string summaryFile;           // DIR/BASE.json: what lists the complete steps
+  int completed = 0;
+  std::vector<IO::Summary> stepRows;  // the summary's rows of steps 1..completed
+  IO::IterationHistory history;       // the history's rows of those steps
+  std::vector<double> uOwned;         // the last one's displacement, 3 per owned node (after the mesh)
+};
+
+// The whole text of a file, or an error naming it.
+std::string readText(const std::string& path, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = "cannot read " + path + " (" + systemReason(errno) + ")";
+    return "";
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A value of a validated list in words, for a message.
+std::string valueText(const Teuchos::ParameterEntry& entry) {
+  std::ostringstream os;
+  os.precision(15);
+  os << entry.getAny(false);
+  return os.str();
+}
+
+// The first entry (in the order of `here`, then the entries only `there`
+// has) in which two validated lists differ, as a sentence; "" when they
+// agree. `skip`: the full name of an entry not compared.
+std::string firstDifference(const Teuchos::ParameterList& here, const Teuchos::ParameterList& there,
+                            const std::string& prefix, const std::string& skip) {
+  for (auto it = here.begin(); it != here.end(); ++it) {
+    const std::string& name = here.name(it);
+    const std::string full = prefix + name;
+    if (full == skip) continue;
+    const auto& entry = here.entry(it);
+    if (!there.isParameter(name)) return "\"" + full + "\" is " + valueText(entry) + " here and absent there";
+    if (entry.isList() != there.isSublist(name)) return "\"" + full + "\" is a sublist in one and a value in the other";
+    if (entry.isList()) {
+      const std::string d = firstDifference(here.sublist(name), there.sublist(name), full + "/", skip);
+      if (!d.empty()) return d;
+    } else if (!(entry.getAny(false) == there.getEntry(name).getAny(false))) {
+      return "\"" + full + "\" is " + valueText(entry) + " here and " + valueText(there.getEntry(name)) + " there";
+    }
+  }
+  for (auto it = there.begin(); it != there.end(); ++it)
+    if (!here.isParameter(there.name(it)) && prefix + there.name(it) != skip)
+      return "\"" + prefix + there.name(it) + "\" is " + valueText(there.entry(it)) + " there and absent here";
+  return "";
+}
+
+// The result in DIR that --restart continues, checked before the mesh is
+// read: DIR holds a result of this input (its parameters file, Output/
+// Directory aside, holds the input's effective parameters) whose summary
+// lists the steps 1..k of its Load Steps in order, the last one converged,
+// with steps left to do, written on as many ranks as this run has (the
+// rows of a step file follow the ranks' ownership of the nodes), and a
+// history whose rows read. Every rank reads the same texts (rank 0's), so
+// that every refusal is the same CollectiveError on every rank.
+Restart readRestart(const Teuchos::ParameterList& params, const RunOptions& options, const std::vector<double>& times,
+                    const Comm& comm) {
+  const std::string dir = outputDirectory(params, options);
+  const auto& output = params.sublist("Output");
+  const ResultNames names(output.get<std::string>("Base Name"));
+  Restart restart;
+  restart.summaryFile = dir + "/" + names.summary;
+  const std::string parametersFile = dir + "/" + names.parameters, historyFile = dir + "/" + names.history;
+  if (!output.get<bool>("Write Results"))
+    throw CollectiveError("--restart " + dir + ": Output/Write Results is false; a restart continues the result files");
+  // Rank 0 reads, every rank checks the same texts.
+  std::string error, summaryText, historyText;
+  if (comm.getRank() == 0) {
+    struct stat st;
+    if (::stat(restart.summaryFile.c_str(), &st) != 0)
+      error = "--restart " + dir + ": there is no summary " + restart.summaryFile +
+              ": the run there completed no step (run the input again without --restart)";
+    else
+      summaryText = readText(restart.summaryFile, error);
+    if (error.empty()) historyText = readText(historyFile, error);
+  }
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError(error);
+  summaryText = broadcastFromRoot(comm, summaryText);
+  historyText = broadcastFromRoot(comm, historyText);
+
+  // The same input: its parameters file read as an input is read.
+  RCP<Teuchos::ParameterList> earlier;
+  error.clear();
+  try {
+    earlier = Input::read(parametersFile, {});
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError("--restart " + dir + ": " + error);
+  const std::string difference = firstDifference(params, *earlier, "", "Output/Directory");
+  if (!difference.empty())
+    throw CollectiveError("--restart " + dir + ": the result there is not of this input: its parameters (" +
+                          parametersFile + ") differ: " + difference);
+
+  // The steps its summary lists.
+  auto refuse = [&](const std::string& why) { throw CollectiveError("--restart " + dir + ": " + restart.summaryFile + ": " + why); };
+  IO::Summary summary;
+  try {
+    summary = IO::Summary::fromJson(summaryText);
+    restart.stepRows = IO::Summary::objectsOf(summary.json("steps"));
+  } catch (const Error& e) {
+    refuse(std::string("not a summary of a run: ") + e.what());
+  }
+  const int numSteps = static_cast<int>(times.size());
+  if (summary.json("load_steps") != std::to_string(numSteps))
+    refuse("it has load_steps " + summary.json("load_steps") + ", the input " + std::to_string(numSteps));
+  if (summary.json("ranks") != std::to_string(comm.getSize()))
+    refuse("the run ran on " + summary.json("ranks") + " ranks; restart it on as many (its step files' node rows follow them), not " +
+           std::to_string(comm.getSize()));
+  restart.completed = static_cast<int>(restart.stepRows.size());
+  if (restart.completed == 0) refuse("it lists no complete step (run the input again without --restart)");
+  if (restart.completed >= numSteps)
+    refuse("it lists all " + std::to_string(numSteps) + " steps: the run is complete, nothing is left to do");
+  for (int k = 0; k < restart.completed; ++k) {
+    const IO::Summary& row = restart.stepRows[k];
+    const double time = std::strtod(row.json("time").c_str(), nullptr);
+    // The summary writes 10 significant digits.
+    if (row.json("step") != std::to_string(k + 1) || !(std::abs(time - times[k]) <= 1e-9 * std::abs(times[k])))
+      refuse("its row " + std::to_string(k + 1) + " of steps is not step " + std::to_string(k + 1) + " at t = " +
+             row.json("time") + " of Load Steps/Times");
+  }
+  if (restart.stepRows.back().json("converged") != "true")
+    refuse("its last step " + std::to_string(restart.completed) + " did not converge (" +
+           restart.stepRows.back().json("stop_reason") + "): the run stopped there and would stop there again");
+
+  // Their history rows; a run killed while it committed a step may have
+  // renamed the history of the next step before the summary.
+  try {
+    for (const IO::HistoryRow& row : IO::IterationHistory::fromCsv(historyText).rows)
+      if (row.step <= restart.completed) restart.history.rows.push_back(row);
+  } catch (const Error& e) {
+    throw CollectiveError("--restart " + dir + ": " + historyFile + ": " + e.what());
+  }
+  return restart;
+}
+
+// The displacement of the last step the restart continues from, each rank
+// reading the rows of the nodes it owns from its step file (rows in the
+// rank-contiguous numbering, Discretization::nodeIndex), after checking
+// that every step the summary lists has its file and that the last one
+// holds this mesh: as many nodes, each at the place this run has it. A
+// refusal is the same CollectiveError on every rank.
+void readRestartState(Restart& restart, const IO::StepSeries& series, const IO::OutputDirectory& dir,
+                      const Mesh::Discretization& disc, const Comm& comm) {
+  std::string error;
+  if (comm.getRank() == 0)
+    for (int k = 1; k <= restart.completed && error.empty(); ++k) {
+      struct stat st;
+      const std::string file = dir.path() + "/" + series.dataFileName(k);
+      if (::stat(file.c_str(), &st) != 0)
+        error = file + " is missing, though " + restart.summaryFile + " lists its step " + std::to_string(k);
+    }
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError("--restart " + dir.path() + ": " + error);
+
+  const std::string file = dir.path() + "/" + series.dataFileName(restart.completed);
+  const auto& owned = disc.ownedNodes();
+  const long long count = static_cast<long long>(owned.size());
+  const long long first = owned.empty() ? 0 : disc.nodeIndex()[owned.front()];
+  try {
+    const auto geometry = IO::readDatasetRows(file, "/mesh/geometry", 0, 0);
+    if (geometry.rows != disc.numMeshNodes() || geometry.columns != 3) {
+      std::ostringstream os;
+      os << file << " holds " << geometry.rows << " nodes, the mesh of this input " << disc.numMeshNodes();
+      throw Error(os.str());
+    }
+    const auto xyz = IO::readDatasetRows(file, "/mesh/geometry", first, count);
+    double scale = 0;
+    for (int n : owned)
+      for (int c = 0; c < 3; ++c) scale = std::max(scale, std::abs(disc.part.coords[n][c]));
+    for (long long i = 0; i < count; ++i) {
+      const auto& x = disc.part.coords[owned[i]];
+      for (int c = 0; c < 3; ++c)
+        if (!(std::abs(xyz.values[3 * i + c] - x[c]) <= 1e-12 * scale)) {
+          std::ostringstream os;
+          os.precision(15);
+          os << file << ": node row " << first + i << " lies at (" << xyz.values[3 * i] << ", " << xyz.values[3 * i + 1]
+             << ", " << xyz.values[3 * i + 2] << "), in this run's mesh at (" << x[0] << ", " << x[1] << ", " << x[2]
+             << "): not the mesh of this input";
+          throw Error(os.str());
+        }
+    }
+    const auto u = IO::readDatasetRows(file, "/nodes/displacement", first, count);
+    if (u.columns != 3 || u.rows != disc.numMeshNodes()) throw Error(file + ": /nodes/displacement is not one row of 3 per node");
+    restart.uOwned = u.values;
+    if (!allFinite(restart.uOwned)) throw Error(file + ": /nodes/displacement holds values that are not finite");
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError("--restart " + dir.path() + ": " + error);
+}
+
 }  // namespace
 
 void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& options, int numRanks) {
@@ -492,6 +704,9 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   report.input = options.inputName;
   // No output may be an input or another output: checked before the mesh is read.
   IO::requireDistinctFiles(runFiles(params, options), comm);
+  const std::vector<double> times = Input::loadStepTimes(params);
+  std::optional<Restart> restart;
+  if (!options.restartDir.empty()) restart = readRestart(params, options, times, *comm);
 
   Mesh::DecompositionSpec decomposition;
   MeshSize fileSize;
@@ -506,7 +721,6 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
 
   // The load history: solve, check and write at each step time (one step at
   // t = 1 without Load Steps), until the history ends or a step fails.
-  const std::vector<double> times = Input::loadStepTimes(params);
   const int numSteps = static_cast<int>(times.size());
   report.numSteps = numSteps;
   auto method = solveMethods().create(report.algorithm, params, options, comm);
@@ -515,8 +729,19 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     series = std::make_unique<IO::StepSeries>(*outputDir, params.sublist("Output").get<std::string>("Base Name"),
                                               numSteps, comm);
   IO::IterationHistory history;
+  int first = 0;  // the first step this run solves
+  if (restart) {
+    // The steps done stay as they are: their files, summary rows and
+    // history rows; the method continues from the last one's displacement.
+    readRestartState(*restart, *series, *outputDir, d.disc, *comm);
+    first = restart->completed;
+    series->continueAfter(std::vector<double>(times.begin(), times.begin() + first));
+    method->resumeFrom(std::move(restart->uOwned));
+    history = std::move(restart->history);
+    report.earlierSteps = std::move(restart->stepRows);
+  }
   double setupSeconds = meshSeconds, solveSeconds = 0;
-  for (int k = 0; k < numSteps; ++k) {
+  for (int k = first; k < numSteps; ++k) {
     Progress::setStep(k + 1, numSteps);
     // The input's loads as they are at t = 1 without Load Steps; a history
     // scales them by their curves.

@@ -20,6 +20,7 @@ struct RunOptions {
   std::string exportFclib;   // write the contact problem and its solution as an FCLIB global problem
   std::string summaryFile;   // a copy of the summary (checked before any work; written by the caller)
   double maxMemory = 0;      // bytes one machine may give the run; 0: its available memory
+  std::string restartDir;    // continue the load history of the result there (outputDir is the same directory)
 };
 
 // Checks what can be checked identically on every rank before any work

@@ -109,7 +109,7 @@ IO::Summary RunReport::toSummary() const {
   s.set("converged", converged);
   s.set("stop_reason", stopReason);
   s.set("load_steps", numSteps);
-  std::vector<IO::Summary> stepRows;
+  std::vector<IO::Summary> stepRows = earlierSteps;
   for (const auto& step : steps) stepRows.push_back(stepSummary(step));
   s.set("steps", stepRows);
   if (!verifyNote.empty()) s.set("verify_note", verifyNote);

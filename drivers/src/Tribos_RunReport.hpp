@@ -89,6 +89,10 @@ struct RunReport {
   // Every load step so far (one for a run without Load Steps); the fields
   // above are the last step's.
   std::vector<StepReport> steps;
+  // A restarted run (tribos --restart): the rows of the steps the run it
+  // continues completed, as its summary has them; the summary lists them
+  // before this run's steps.
+  std::vector<IO::Summary> earlierSteps;
   int numSteps = 1;
   // The run's cost.
   double setupSeconds = 0, solveSeconds = 0, maxAbsDisplacement = 0, memoryEstimateMb = 0, peakRssMb = 0;

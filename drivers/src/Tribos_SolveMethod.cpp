@@ -2,9 +2,13 @@
 
 #include <chrono>
 #include <iostream>
+#include <algorithm>
+#include <map>
 #include <memory>
+#include <optional>
 
 #include "Tribos_Assembly.hpp"
+#include "Tribos_Error.hpp"
 #include "Tribos_FCLIB_Export.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_FetiSolve.hpp"
@@ -110,6 +114,8 @@ class FetiMethod : public MethodBase {
       problem_ = rcp(new Feti::FetiProblem(d.disc, d.materials, loads, d.constraints, solverParams.sublist("FETI"), comm_));
       if (Input::loadStepTimes(params_).size() > 1)
         steps_ = std::make_unique<Contact::FetiLoadSteps>(problem_, friction, solverParams, out);
+      if (resumeFrom_) steps_->resumeFrom(nodalOnProblem(d.disc, *resumeFrom_));
+      resumeFrom_.reset();
       sol.setupSeconds = seconds(t0);
     }
     const auto r = steps_ ? steps_->solve(loads) : Contact::solveFeti(problem_, friction, solverParams, out);
@@ -139,9 +145,34 @@ class FetiMethod : public MethodBase {
     return sol;
   }
 
+  void resumeFrom(std::vector<double> uOwned) override {
+    TRIBOS_REQUIRE(problem_.is_null(), "FetiMethod::resumeFrom: called after the first step");
+    TRIBOS_REQUIRE(Input::loadStepTimes(params_).size() > 1, "FetiMethod::resumeFrom: the run has one load step");
+    resumeFrom_ = std::move(uOwned);
+  }
+
  private:
   RCP<Feti::FetiProblem> problem_;
   std::unique_ptr<Contact::FetiLoadSteps> steps_;  // a run of several load steps
+  std::optional<std::vector<double>> resumeFrom_;  // until the first step: the displacement a restart continues from
+
+  // The displacement given at the owned nodes of disc, at the nodes the
+  // problem holds results at (those of its subdomains and the partners of
+  // its contact nodes), asked of their owners. Collective.
+  Fem::NodalVector nodalOnProblem(const Mesh::Discretization& disc, const std::vector<double>& uOwned) const {
+    std::map<int, const double*> owned;  // part node -> its 3 values
+    for (size_t i = 0; i < disc.ownedNodes().size(); ++i) owned[disc.ownedNodes()[i]] = &uOwned[3 * i];
+    const auto& layout = problem_->nodalLayout();
+    const auto values = disc.askOwners(layout->nodes(), 3,
+                                       [&](int partNode, double* out) {
+                                         const double* u = owned.at(partNode);
+                                         std::copy(u, u + 3, out);
+                                       },
+                                       *comm_);
+    Fem::NodalVector u(layout);
+    u.values() = values;  // askOwners answers in the order asked: layout->nodes()
+    return u;
+  }
 
   // The outer algorithm's report and one history row per outer step.
   static void reportContact(const Contact::FetiSolveResult& r, const Contact::PairFriction& friction,

@@ -62,6 +62,12 @@ class SolveMethod {
   // needs; fills the method's part of report (sizes, iterations, its own
   // sublist). Collective.
   virtual StepSolution solve(const Discretized& d, const Fem::LoadCase& loads, RunReport& report) = 0;
+  // A restarted history (tribos --restart): the next solve continues from a
+  // step an earlier run completed, whose displacement uOwned holds 3 values
+  // per node of d.disc.ownedNodes() in its order (as its step file has them).
+  // Call it before the first solve. A method without memory between steps
+  // (the monolithic solve of a linear problem) has nothing to take from it.
+  virtual void resumeFrom(std::vector<double> uOwned) { (void)uOwned; }
 };
 
 // Makers take the validated parameters, the run's options and communicator.

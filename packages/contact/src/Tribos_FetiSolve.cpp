@@ -59,6 +59,7 @@ void checkResult(const Feti::FetiProblem& problem, const PairFriction& friction,
 // before the step. Empty: a solve from rest.
 struct Continuation {
   RCP<const Vector> lambda;
+  const Friction::FrictionStatus* status = nullptr;  // the previous solve's (its augmented Lagrangian state)
   const Fem::NodalVector* u = nullptr;
   double normPFP = 0;
   long long F_applications = 0;
@@ -114,11 +115,7 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     // A later load step starts from the multipliers of the one before:
     // x = lambda_prev - lambda(0), lambda(0) the chain's back map of x = 0.
     RCP<const Vector> start;
-    if (!from.lambda.is_null()) {
-      auto x = rcp(new Vector(*from.lambda, Teuchos::Copy));
-      x->update(-1.0, *cp.multipliers(Vector(problem.dualMap())), 1.0);
-      start = x;
-    }
+    if (!from.lambda.is_null()) start = cp.startFrom(*from.lambda);
     // Rounds: a solve that meets its own test with a result that misses the
     // check is asked again from its result, the tolerance tightened by the
     // miss (Friction::tightenedTolerance); the check keeps the first
@@ -127,7 +124,7 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     double requested = 0;
     for (int round = 1; round <= rounds; ++round) {
       Progress::stage("contact solve: " + r.outerAlgorithm + (round > 1 ? ", round " + std::to_string(round) : ""));
-      const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested);
+      const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested, round == 1 ? from.status : nullptr);
       if (round == 1) r.tolerance = sol.requestedTolerance;
       requested = sol.requestedTolerance;
       r.status = round == 1 ? sol.status : Friction::followedBy(r.status, sol.status);
@@ -202,12 +199,16 @@ FetiLoadSteps::FetiLoadSteps(const RCP<Feti::FetiProblem>& problem, const PairFr
 FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
   problem_->setLoads(loads);
   Continuation from;
-  if (steps_ > 0) {
+  if (!primal_.is_null()) {
     // Friction acts on the slip since the previous step: the tangential
     // rows measure B_T (u - u_prev).
     problem_->setTangentialOffset(*primal_);
     from.lambda = lambda_;
+    from.status = &status_;
     from.u = &u_;
+  }
+  if (!operators_.is_null()) {
+    // The operators of the first step solved here serve this one.
     from.normPFP = normPFP_;
     from.F_applications = operators_->F()->applications();
     from.F_seconds = operators_->F()->seconds();
@@ -216,10 +217,29 @@ FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
   if (operators_.is_null()) operators_ = dual;
   auto r = solveDual(dual, friction_, params_, out_, from, &normPFP_);
   lambda_ = r.lambda;
+  status_ = r.status;
   primal_ = r.primal;
   u_ = r.u;
   ++steps_;
   return r;
+}
+
+void FetiLoadSteps::resumeFrom(const Fem::NodalVector& uPrevious) {
+  const Fem::NodalLayout& layout = *problem_->nodalLayout();
+  TRIBOS_REQUIRE(!uPrevious.empty() && uPrevious.layout().nodes() == layout.nodes(),
+                 "FetiLoadSteps::resumeFrom: the displacement is not given at the problem's nodes (nodalLayout())");
+  auto primal = rcp(new Vector(problem_->primalMap()));
+  auto values = primal->getDataNonConst();
+  size_t offset = 0;
+  for (int k = 0; k < problem_->numLocalSubdomains(); ++k) {
+    const auto& sys = problem_->subdomain(k);
+    for (size_t a = 0; a < sys.nodes.size(); ++a)
+      for (int c = 0; c < 3; ++c) values[offset + 3 * a + c] = uPrevious.at(sys.nodes[a])[c];
+    offset += sys.numDofs();
+  }
+  primal_ = primal;
+  u_ = uPrevious;
+  lambda_ = Teuchos::null;
 }
 
 }  // namespace Contact

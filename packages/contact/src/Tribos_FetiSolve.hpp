@@ -82,6 +82,14 @@ class FetiLoadSteps {
   // The next step at loads (FetiProblem::setLoads). The first step is the
   // static solve of solveFeti. Collective.
   FetiSolveResult solve(const Fem::LoadCase& loads);
+  // A history continued from a step solved elsewhere (an earlier run's last
+  // complete step, read back from its result): the next solve acts on the
+  // slip since uPrevious, a nodal displacement on problem->nodalLayout().
+  // Every subdomain copy of a node takes the node's value (the copies of a
+  // solved step agree to the gluing tolerance), and the next step starts
+  // from zero multipliers: its result is the one the uninterrupted history
+  // gives, reached in other iterations. Collective.
+  void resumeFrom(const Fem::NodalVector& uPrevious);
   int completedSteps() const { return steps_; }
 
  private:
@@ -93,6 +101,7 @@ class FetiLoadSteps {
   int steps_ = 0;
   double normPFP_ = 0;
   RCP<const Vector> lambda_, primal_;  // of the previous step
+  Friction::FrictionStatus status_;     // ... and its solver's final state (lambda_ empty after resumeFrom)
   Fem::NodalVector u_;
 };
 

@@ -112,6 +112,9 @@ void StepSeries::writeStep(int step, double time, const Mesh::Discretization& di
     steps.push_back({time, dataName,
                      writer.writeData(h5, dataName, result.uOwned, result.nodeFields, result.cellFields,
                                       result.pointSets, attributes)});
+    // Steps of the run this one continues: the files of one mesh and fields.
+    if (!layoutsKnown_)
+      for (auto& earlier : steps) earlier.layout = steps.back().layout;
     writeTextFile(xmf, xdmfTimeSeries(steps), comm_);
   }
   for (size_t k = 0; k < texts.size(); ++k) writeTextFile(textPaths[k], texts[k].text, comm_);
@@ -126,6 +129,30 @@ void StepSeries::writeStep(int step, double time, const Mesh::Discretization& di
     files.commitExtension();
   }
   written_ = std::move(steps);
+  layoutsKnown_ = true;
+}
+
+void StepSeries::continueAfter(const std::vector<double>& times) {
+  std::ostringstream signature, e;
+  for (double t : times) signature << exactly(t) << ' ';
+  auto say = [&](const std::string& what) { e << (e.tellp() > 0 ? "; " : "") << what; };
+  if (broadcastFromRoot(*comm_, signature.str()) != signature.str())
+    say("rank " + std::to_string(comm_->getRank()) + " passes other steps than rank 0");
+  else if (!written_.empty())
+    say("steps are written already");
+  else if (times.empty() || static_cast<int>(times.size()) >= numSteps_)
+    say("it continues after " + std::to_string(times.size()) + " of " + std::to_string(numSteps_) +
+        " steps; at least one must be done and one left");
+  else
+    for (size_t k = 0; k < times.size(); ++k)
+      if (!std::isfinite(times[k]) || (k > 0 && !(times[k] > times[k - 1])))
+        say("the time " + exactly(times[k]) + " of step " + std::to_string(k + 1) + " is not finite or not increasing");
+  const std::string error = agreeOnError(*comm_, e.str());
+  if (!error.empty())
+    throw CollectiveError("cannot continue the results " + dir_.path() + "/" + base_ + ": " + error);
+  for (size_t k = 0; k < times.size(); ++k)
+    written_.push_back({times[k], dataFileName(static_cast<int>(k) + 1), {}});
+  layoutsKnown_ = false;
 }
 
 }  // namespace IO

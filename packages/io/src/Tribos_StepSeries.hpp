@@ -70,6 +70,18 @@ class StepSeries {
   void writeStep(int step, double time, const Mesh::Discretization& disc, const StepResult& result,
                  const std::vector<TextFile>& texts);
 
+  // Collective, before the first writeStep: the series continues one that
+  // an earlier run of the same steps left in the directory, complete up to
+  // step times.size() (its summary lists those steps; their data files are
+  // there, dataFileName(1), ...), steps at these times. The next writeStep
+  // writes the step after them and commits as a later step does: it adds
+  // its data file and renames the index and texts over the earlier run's,
+  // removing nothing. The index lists the earlier steps with the layout of
+  // the step written next: a series has one mesh and the same fields at
+  // every step. Refusals (steps left to write, times increasing, the same
+  // on every rank): Tribos::CollectiveError.
+  void continueAfter(const std::vector<double>& times);
+
   // The file names of the series (plain names in the directory).
   std::string dataFileName(int step) const;  // BASE.h5 (one step) or BASE.stepNNNN.h5
   std::string indexFileName() const;         // BASE.xmf
@@ -89,6 +101,7 @@ class StepSeries {
   int numSteps_;
   RCP<const Comm> comm_;
   std::vector<SeriesStep> written_;  // the committed steps, the same on every rank
+  bool layoutsKnown_ = true;         // false after continueAfter until the next step gives the layout
 };
 
 }  // namespace IO

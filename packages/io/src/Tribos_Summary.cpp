@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
+#include "Tribos_Error.hpp"
 #include "Tribos_ParameterReader.hpp"
 
 namespace Tribos {
@@ -77,6 +79,137 @@ bool Summary::has(const std::string& key) const {
   for (const auto& e : entries_)
     if (e.first == key) return true;
   return false;
+}
+
+namespace {
+
+// A reader of JSON text (RFC 8259) that keeps each value as its text.
+class JsonScanner {
+ public:
+  explicit JsonScanner(const std::string& text) : s_(text) {}
+  // The members of the object the text is, key (unescaped) and value text.
+  std::vector<std::pair<std::string, std::string>> members() {
+    std::vector<std::pair<std::string, std::string>> out;
+    expect('{');
+    if (!take('}')) {
+      do {
+        skipSpace();
+        const size_t k = pos_;
+        skipString();
+        const std::string key = unquote(s_.substr(k, pos_ - k));
+        expect(':');
+        out.emplace_back(key, valueText());
+      } while (take(','));
+      expect('}');
+    }
+    atEnd();
+    return out;
+  }
+  // The elements of the array the text is, as their texts.
+  std::vector<std::string> elements() {
+    std::vector<std::string> out;
+    expect('[');
+    if (!take(']')) {
+      do out.push_back(valueText());
+      while (take(','));
+      expect(']');
+    }
+    atEnd();
+    return out;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error("not a JSON text: " + what + " at offset " + std::to_string(pos_));
+  }
+  void skipSpace() {
+    while (pos_ < s_.size() && (s_[pos_] == ' ' || s_[pos_] == '\n' || s_[pos_] == '\t' || s_[pos_] == '\r')) ++pos_;
+  }
+  bool take(char c) {
+    skipSpace();
+    if (pos_ < s_.size() && s_[pos_] == c) return ++pos_, true;
+    return false;
+  }
+  void expect(char c) {
+    if (!take(c)) fail(std::string("'") + c + "' expected");
+  }
+  void atEnd() {
+    skipSpace();
+    if (pos_ != s_.size()) fail("text after the end");
+  }
+  void skipString() {
+    if (pos_ >= s_.size() || s_[pos_] != '"') fail("a string expected");
+    for (++pos_; pos_ < s_.size() && s_[pos_] != '"'; ++pos_)
+      if (s_[pos_] == '\\') ++pos_;
+    if (pos_ >= s_.size()) fail("an unterminated string");
+    ++pos_;
+  }
+  // A value of any kind, skipped; its text (without the space around it).
+  std::string valueText() {
+    skipSpace();
+    const size_t start = pos_;
+    skipValue(0);
+    return s_.substr(start, pos_ - start);
+  }
+  void skipValue(int depth) {
+    if (depth > 64) fail("nesting too deep");
+    skipSpace();
+    if (pos_ >= s_.size()) fail("a value expected");
+    const char c = s_[pos_];
+    if (c == '"') return skipString();
+    if (c == '{' || c == '[') {
+      const char close = c == '{' ? '}' : ']';
+      ++pos_;
+      if (take(close)) return;
+      do {
+        if (c == '{') {
+          skipSpace();
+          skipString();
+          expect(':');
+        }
+        skipValue(depth + 1);
+      } while (take(','));
+      return expect(close);
+    }
+    // A number or a literal (true, false, null): up to a delimiter.
+    const size_t start = pos_;
+    while (pos_ < s_.size() && std::string(",]} \n\t\r").find(s_[pos_]) == std::string::npos) ++pos_;
+    const std::string token = s_.substr(start, pos_ - start);
+    if (token == "true" || token == "false" || token == "null") return;
+    char* end = nullptr;
+    std::strtod(token.c_str(), &end);
+    if (token.empty() || *end != '\0') fail("'" + token + "' is not a value");
+  }
+  // The text of a key: escapes of the quotation mark and reverse solidus
+  // (keys of a summary need no other).
+  static std::string unquote(const std::string& quoted) {
+    std::string out;
+    for (size_t i = 1; i + 1 < quoted.size(); ++i) out += quoted[i] == '\\' ? quoted[++i] : quoted[i];
+    return out;
+  }
+
+  const std::string& s_;
+  size_t pos_ = 0;
+};
+
+}  // namespace
+
+Summary Summary::fromJson(const std::string& json) {
+  Summary s;
+  for (auto& [key, value] : JsonScanner(json).members()) s.put(key, std::move(value));
+  return s;
+}
+
+std::string Summary::json(const std::string& key) const {
+  for (const auto& e : entries_)
+    if (e.first == key) return e.second;
+  return "";
+}
+
+std::vector<Summary> Summary::objectsOf(const std::string& json) {
+  std::vector<Summary> out;
+  for (const auto& element : JsonScanner(json).elements()) out.push_back(fromJson(element));
+  return out;
 }
 
 std::string Summary::toJson(int indent) const {

@@ -25,6 +25,17 @@ class Summary {
   std::string toJson(int indent = 0) const;
   bool has(const std::string& key) const;
 
+  // A summary read back (a restarted run continues its steps' rows): the
+  // members of the JSON object `json`, each value kept as its JSON text, so
+  // that a member set again writes the text it was read from. Throws
+  // Tribos::Error naming the offset of what is not JSON.
+  static Summary fromJson(const std::string& json);
+  // The JSON text of a member's value, "" when there is no such member.
+  std::string json(const std::string& key) const;
+  // The elements of the JSON array text `json`, each an object read as
+  // fromJson reads it. Throws Tribos::Error as fromJson.
+  static std::vector<Summary> objectsOf(const std::string& json);
+
  private:
   void put(const std::string& key, std::string json);
   std::vector<std::pair<std::string, std::string>> entries_;  // key, JSON text
