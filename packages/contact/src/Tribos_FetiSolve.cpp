@@ -59,7 +59,6 @@ void checkResult(const Feti::FetiProblem& problem, const PairFriction& friction,
 // before the step. Empty: a solve from rest.
 struct Continuation {
   RCP<const Vector> lambda;
-  const Friction::FrictionStatus* status = nullptr;  // the previous solve's (its augmented Lagrangian state)
   const Fem::NodalVector* u = nullptr;
   double normPFP = 0;
   long long F_applications = 0;
@@ -115,7 +114,11 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     // A later load step starts from the multipliers of the one before:
     // x = lambda_prev - lambda(0), lambda(0) the chain's back map of x = 0.
     RCP<const Vector> start;
-    if (!from.lambda.is_null()) start = cp.startFrom(*from.lambda);
+    if (!from.lambda.is_null()) {
+      auto x = rcp(new Vector(*from.lambda, Teuchos::Copy));
+      x->update(-1.0, *cp.multipliers(Vector(problem.dualMap())), 1.0);
+      start = x;
+    }
     // Rounds: a solve that meets its own test with a result that misses the
     // check is asked again from its result, the tolerance tightened by the
     // miss (Friction::tightenedTolerance); the check keeps the first
@@ -124,7 +127,7 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     double requested = 0;
     for (int round = 1; round <= rounds; ++round) {
       Progress::stage("contact solve: " + r.outerAlgorithm + (round > 1 ? ", round " + std::to_string(round) : ""));
-      const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested, round == 1 ? from.status : nullptr);
+      const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested);
       if (round == 1) r.tolerance = sol.requestedTolerance;
       requested = sol.requestedTolerance;
       r.status = round == 1 ? sol.status : Friction::followedBy(r.status, sol.status);
@@ -204,7 +207,6 @@ FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
     // rows measure B_T (u - u_prev).
     problem_->setTangentialOffset(*primal_);
     from.lambda = lambda_;
-    from.status = &status_;
     from.u = &u_;
   }
   if (!operators_.is_null()) {
@@ -217,7 +219,6 @@ FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
   if (operators_.is_null()) operators_ = dual;
   auto r = solveDual(dual, friction_, params_, out_, from, &normPFP_);
   lambda_ = r.lambda;
-  status_ = r.status;
   primal_ = r.primal;
   u_ = r.u;
   ++steps_;

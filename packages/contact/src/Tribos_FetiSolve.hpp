@@ -100,8 +100,7 @@ class FetiLoadSteps {
   RCP<const Feti::FetiDual> operators_;  // the first step's dual: F and the coarse space
   int steps_ = 0;
   double normPFP_ = 0;
-  RCP<const Vector> lambda_, primal_;  // of the previous step
-  Friction::FrictionStatus status_;     // ... and its solver's final state (lambda_ empty after resumeFrom)
+  RCP<const Vector> lambda_, primal_;  // of the previous step (lambda_ empty after resumeFrom)
   Fem::NodalVector u_;
 };
 
