@@ -15,12 +15,13 @@ shipped, other levels are made by Gmsh into OUT) two runs:
         --set "Contact/Pairs/sphere on block/Friction Coefficient=1000" --set "Load Steps/Times={1, 5}"
 
 the load history of the input, and the same mesh pressed and sheared to the
-largest tangential displacement with friction so high (F_ref = 20) that the
-contact sticks but for a rim of 0.5 % of a: its compliance C_stick = delta / Q
+largest tangential displacement with friction so high (F_ref = 5) that the
+contact sticks but for a rim of 2 % of a: its compliance C_stick = delta / Q
 is the linear (elastic) part of the tangential displacement of this mesh,
-bulk of both bodies included (the rim's micro-slip, Q/(F_ref P) ~ 0.016,
-0.3 % of its delta, is taken out by its analytic value; a still larger F_ref
-stalls Algorithm 2 on Level 2: 5000 iterations at F = 1000).
+bulk of both bodies included (the rim's micro-slip, Q/(F_ref P) ~ 0.065,
+0.3 % of its delta, is taken out by its analytic value; a larger F_ref
+stalls Algorithm 2: 5000 iterations at F = 1000 on Level 2, more than 5
+minutes at F = 20 on Level 3).
 
 Per step of the history, from the result (BASE.json and BASE.stepNNNN.h5):
 
@@ -81,7 +82,7 @@ INPUT = os.path.join(ROOT, "input", "cattaneo_mindlin.xml")
 GEO = os.path.join(ROOT, "input", "cattaneo_mindlin.geo")
 RADIUS = 10.0  # R of input/cattaneo_mindlin.geo
 PAIR = "sphere on block"
-STICK_F = 20.0  # friction coefficient of the (nearly) stuck reference run
+STICK_F = 5.0  # friction coefficient of the (nearly) stuck reference run
 STICK_SETS = ("Contact/Pairs/%s/Friction Coefficient=%g" % (PAIR, STICK_F), "Load Steps/Times={1, 5}")
 
 
@@ -264,7 +265,7 @@ def analyse(directory, stick_directory, input_file=INPUT):
     P = float(np.mean([s["P"] for s in steps[first - 1:]]))
     P_var = float(np.ptp([s["P"] for s in steps[first - 1:]]) / P)
     m = Mindlin(P, E, nu, F)
-    # The reference's own micro-slip (Q/(F_ref P) ~ 0.016: 0.3 % of its
+    # The reference's own micro-slip (Q/(F_ref P) ~ 0.065: 0.3 % of its
     # delta) taken out by its analytic value, so C_stick is the stuck one.
     last = stick["steps"][-1]
     ref = Mindlin(last["P"], E, nu, STICK_F)
@@ -477,7 +478,8 @@ def plot(rows, path):
     ax2.legend(fontsize=8)
     # Contact maps of the finest level: the end of loading, and Q = 0 on the way down.
     down = [k for k in range(first, len(Q)) if turns[k] is not None and turns[turns[k]] is None]
-    peak = int(np.argmax(Q[first:])) + first
+    virgin = [k for k in range(first, len(Q)) if turns[k] is None]
+    peak = max(virgin, key=lambda k: Q[k])
     zero = min(down, key=lambda k: abs(Q[k])) if down else peak
     status = read_statuses(fine["directory"], (peak, zero))
     x = status["x"]
@@ -496,7 +498,7 @@ def plot(rows, path):
         ax.set_xlabel("x [mm]")
         ax.set_ylabel("y [mm]")
         ax.set_title("level %d, step %d: Q/(FP) = %+.2f%s" % (fine["level"], k + 1, Q[k] / FP,
-                                                               " (loading)" if turns[k] is None else " (unloading)"))
+                                                               " (loading)" if turns[k] is None else " (after a reversal)"))
         ax.legend(fontsize=7, loc="upper right")
     fig.tight_layout()
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
