@@ -165,6 +165,15 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
   if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact();
 }
 
+RCP<Vector> FetiContactProblem::startFrom(const Vector& lambda) const {
+  auto x = rcp(new Vector(lambda, Teuchos::Copy));
+  x->update(-1.0, *multipliers(Vector(lambda.getMap())), 1.0);
+  if (cd_.G.is_null()) return x;
+  auto Px = rcp(new Vector(lambda.getMap()));
+  dual_->coarse().project(*x, *Px);
+  return Px;
+}
+
 std::vector<char> FetiContactProblem::rowMask(bool normal, bool tangent) const {
   const auto& p = dual_->problem();
   std::vector<char> mask(p.isEqualityRow());
@@ -257,9 +266,10 @@ RCP<const Teuchos::ParameterList> FetiContactProblem::getValidParameters() {
 FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
                                               const Teuchos::ParameterList& solverParams,
                                               RCP<Teuchos::FancyOStream> out, const Vector* start,
-                                              double tolerance) const {
+                                              double tolerance, const Friction::WarmStart* warm) const {
   auto solver = Friction::FrictionSolverFactory().create(outerAlgorithm, solverParams);
   if (!out.is_null()) solver->setOutputStream(out);
+  if (warm) solver->setWarmStart(*warm);
   if (tolerance > 0) solver->setRequestedTolerance(tolerance);
   FetiContactSolution sol;
   sol.requestedTolerance = solver->requestedTolerance();
@@ -270,6 +280,7 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
   // fall outside the snapshot.
   const long long n_A0 = dual_->F()->applications();
   sol.status = solver->solve(cd_, *sol.x);
+  sol.warmStart = solver->finalState();
   sol.n_A = dual_->F()->applications() - n_A0;
   sol.lambda = multipliers(*sol.x);
   if (dual_->coarse().equalityRowsHoldKernel()) {

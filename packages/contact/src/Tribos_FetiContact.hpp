@@ -83,6 +83,7 @@ struct FetiContactSolution {
   Friction::FrictionStatus status;
   long long n_A = 0;
   double requestedTolerance = 0;  // the outer algorithm's (what the result check measures against)
+  Friction::WarmStart warmStart;  // the outer algorithm's final state, for the next load step
 };
 
 class FetiContactProblem {
@@ -100,9 +101,15 @@ class FetiContactProblem {
   // with the sublists "Algorithm 1", "MSA", "Algorithm 2" of solverParams;
   // or from start (a previous solution's x) with the requested tolerance
   // tolerance instead of the list's (when > 0).
+  // warm: where a solve of a nearby problem (the previous load step) left
+  // the outer algorithm's state (FetiContactSolution::warmStart).
   FetiContactSolution solve(const std::string& outerAlgorithm, const Teuchos::ParameterList& solverParams,
                             RCP<Teuchos::FancyOStream> out = Teuchos::null, const Vector* start = nullptr,
-                            double tolerance = 0) const;
+                            double tolerance = 0, const Friction::WarmStart* warm = nullptr) const;
+  // The start x of the ContactDual for multipliers lambda (a previous load
+  // step's): lambda - lambda(0) projected onto Ker G, so that it meets the
+  // equality constraint G x = 0 of this problem's loads.
+  RCP<Vector> startFrom(const Vector& lambda) const;
   // The solverParams solve() accepts: the outer algorithms' sublists with
   // their defaults and documentation (FrictionSolverFactory::addValidParameters).
   static RCP<const Teuchos::ParameterList> getValidParameters();

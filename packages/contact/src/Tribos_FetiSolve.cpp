@@ -59,6 +59,7 @@ void checkResult(const Feti::FetiProblem& problem, const PairFriction& friction,
 // before the step. Empty: a solve from rest.
 struct Continuation {
   RCP<const Vector> lambda;
+  const Friction::WarmStart* warm = nullptr;  // the previous solve's final outer state
   const Fem::NodalVector* u = nullptr;
   double normPFP = 0;
   long long F_applications = 0;
@@ -83,7 +84,7 @@ void checkDualSize(const Feti::FetiProblem& problem, const PairFriction& frictio
 // result the user gets. normPFP: set to the norm of the contact dual.
 FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFriction& friction,
                           const Teuchos::ParameterList& p, RCP<Teuchos::FancyOStream> out, const Continuation& from,
-                          double* normPFP) {
+                          double* normPFP, Friction::WarmStart* warmOut = nullptr) {
   const Feti::FetiProblem& problem = dual->problem();
   FetiSolveResult r;
   r.lambda = rcp(new Vector(problem.dualMap()));
@@ -114,11 +115,7 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     // A later load step starts from the multipliers of the one before:
     // x = lambda_prev - lambda(0), lambda(0) the chain's back map of x = 0.
     RCP<const Vector> start;
-    if (!from.lambda.is_null()) {
-      auto x = rcp(new Vector(*from.lambda, Teuchos::Copy));
-      x->update(-1.0, *cp.multipliers(Vector(problem.dualMap())), 1.0);
-      start = x;
-    }
+    if (!from.lambda.is_null()) start = cp.startFrom(*from.lambda);
     // Rounds: a solve that meets its own test with a result that misses the
     // check is asked again from its result, the tolerance tightened by the
     // miss (Friction::tightenedTolerance); the check keeps the first
@@ -127,7 +124,8 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     double requested = 0;
     for (int round = 1; round <= rounds; ++round) {
       Progress::stage("contact solve: " + r.outerAlgorithm + (round > 1 ? ", round " + std::to_string(round) : ""));
-      const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested);
+      const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested, round == 1 ? from.warm : nullptr);
+      if (warmOut) *warmOut = sol.warmStart;
       if (round == 1) r.tolerance = sol.requestedTolerance;
       requested = sol.requestedTolerance;
       r.status = round == 1 ? sol.status : Friction::followedBy(r.status, sol.status);
@@ -207,6 +205,7 @@ FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
     // rows measure B_T (u - u_prev).
     problem_->setTangentialOffset(*primal_);
     from.lambda = lambda_;
+    from.warm = &warm_;
     from.u = &u_;
   }
   if (!operators_.is_null()) {
@@ -217,7 +216,7 @@ FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
   }
   auto dual = operators_.is_null() ? rcp(new Feti::FetiDual(problem_)) : rcp(new Feti::FetiDual(problem_, *operators_));
   if (operators_.is_null()) operators_ = dual;
-  auto r = solveDual(dual, friction_, params_, out_, from, &normPFP_);
+  auto r = solveDual(dual, friction_, params_, out_, from, &normPFP_, &warm_);
   lambda_ = r.lambda;
   primal_ = r.primal;
   u_ = r.u;

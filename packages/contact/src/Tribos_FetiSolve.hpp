@@ -101,6 +101,7 @@ class FetiLoadSteps {
   int steps_ = 0;
   double normPFP_ = 0;
   RCP<const Vector> lambda_, primal_;  // of the previous step (lambda_ empty after resumeFrom)
+  Friction::WarmStart warm_;            // ... and its outer algorithm's final state (empty after resumeFrom)
   Fem::NodalVector u_;
 };
 

@@ -411,6 +411,16 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   // (1 for the orthonormal FETI constraint), not counted as Hessian work.
   QP::AugmentedLagrangian al(*dual.A, *G, dual.jointHessian.get());
   const SC normGtG = dual.G.is_null() ? 0 : al.normGtG(20);
+  const auto& mu0 = warm_.equalityMultiplier;
+  if (!mu0.is_null() && mu0->getMap()->isSameAs(*al.multiplier()->getMap())) {
+    al.multiplier()->assign(*mu0);
+    if (warm_.rho > 0) rho = std::min(std::max(warm_.rho, balancing.lowest), balancing.highest);
+  }
+  // The state a next solve may start from (setWarmStart), at every return.
+  auto finish = [&](FrictionStatus& s) -> FrictionStatus& {
+    final_ = {rcp(new Vector(*al.multiplier(), Teuchos::Copy)), rho};
+    return s;
+  };
   Vector grad(dual.map()), gP(dual.map());
   std::vector<SC> g = dual.coulombSlipBound(x);
   SC normGx = al.normGx(x);
@@ -474,13 +484,13 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
       st.converged = true;
       st.reason = slipTol == 0 ? "projected gradient and ||G lambda|| below tolerance"
                                : "projected gradient, ||G lambda|| and slip-bound change below tolerance";
-      return st;
+      return finish(st);
     }
     if (l > 1 && step.grewTooLittle) M /= beta;
     if (!dual.G.is_null()) rho = balancing.update(rho, normGx, st.norm_gP);  // rho acts only through G
   }
   st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of Algorithm 2 reached";
-  return st;
+  return finish(st);
 }
 
 // ---------------------------------------------------------------- factory

@@ -47,6 +47,14 @@ struct FrictionStatus {
   std::vector<SC> slipBound; // the slip bound of the returned solution (local)
 };
 
+// The augmented Lagrangian's state at the end of a solve (Algorithm 2): the
+// multiplier mu of G x = 0 and the penalty rho, where the solve of a nearby
+// problem (the next load step) may start (FrictionSolver::setWarmStart).
+struct WarmStart {
+  RCP<const Vector> equalityMultiplier;
+  SC rho = 0;
+};
+
 // The status of a solve repeated from its result (a next round): the counts
 // of both, the history and steps of both in order, the state of the next.
 FrictionStatus followedBy(const FrictionStatus& earlier, const FrictionStatus& next);
@@ -78,12 +86,19 @@ class FrictionSolver {
   virtual void setRequestedTolerance(double tolerance) = 0;
   virtual void setMaximumIterations(int iterations) = 0;
   void setOutputStream(RCP<Teuchos::FancyOStream> out) { out_ = out; }
+  // Starts the equality constraint's multiplier and penalty where a solve of
+  // a nearby problem ended (its finalState()), instead of mu = 0 and the
+  // default rho: a load step continues from the one before. Algorithms
+  // without them ignore it and leave finalState() empty.
+  void setWarmStart(const WarmStart& previous) { warm_ = previous; }
+  const WarmStart& finalState() const { return final_; }
   // Throws Error when this algorithm refuses a dual of that many rows (a
   // dense method's limit), so that a caller can refuse before the setup.
   virtual void checkDualRows(long long /*rows*/) const {}
 
  protected:
   RCP<Teuchos::FancyOStream> out_;
+  WarmStart warm_, final_;
 };
 
 // An algorithm of one loop whose own list holds "Relative Tolerance" and
