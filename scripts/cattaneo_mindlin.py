@@ -77,6 +77,9 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hertz import cell, default_tribos, nodal_areas, parameter, timed_run  # noqa: E402 (shared with the Hertz benchmark)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 INPUT = os.path.join(ROOT, "input", "cattaneo_mindlin.xml")
 GEO = os.path.join(ROOT, "input", "cattaneo_mindlin.geo")
@@ -91,17 +94,6 @@ def fail(message):
 
 
 # ---------------------------------------------------------------- analytic
-
-
-def parameter(root, path):
-    """The value of Sublist/.../Name in a Tribos parameter file, or None."""
-    node = root
-    for part in path.split("/")[:-1]:
-        node = next((c for c in node if c.tag == "ParameterList" and c.get("name") == part), None)
-        if node is None:
-            return None
-    p = next((c for c in node if c.tag == "Parameter" and c.get("name") == path.split("/")[-1]), None)
-    return None if p is None else p.get("value")
 
 
 def material(input_file=INPUT):
@@ -164,13 +156,6 @@ def branches(delta, start):
 # ------------------------------------------------------------- the result
 
 
-def tet_boundary_facets(cells):
-    faces = np.concatenate([cells[:, [0, 1, 2]], cells[:, [0, 1, 3]], cells[:, [1, 2, 3]], cells[:, [0, 2, 3]]])
-    faces = np.sort(faces, axis=1)
-    uniq, count = np.unique(faces, axis=0, return_counts=True)
-    return uniq[count == 1]
-
-
 def step_file(directory, base, k, n):
     return os.path.join(directory, "%s.h5" % base if n == 1 else "%s.step%04d.h5" % (base, k))
 
@@ -218,23 +203,6 @@ def read_run(directory, base="solution"):
             "iterations": row.get("iterations"),
         })
     return {"summary": summary, "steps": steps, "x": x, "area": area}
-
-
-def nodal_areas(coords, cells, node):
-    """A_i: a third of each adjacent slave facet (boundary facets with all
-    three nodes contact nodes), projected on z = 0 (facets of the symmetry
-    plane project to nothing)."""
-    is_contact = np.zeros(len(coords), bool)
-    is_contact[node] = True
-    facets = tet_boundary_facets(cells)
-    facets = facets[is_contact[facets].all(axis=1)]
-    p = coords[facets]
-    e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
-    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
-    nodal = np.zeros(len(coords))
-    for k in range(3):
-        np.add.at(nodal, facets[:, k], area / 3.0)
-    return nodal[node]
 
 
 def radius_of(mask, area, r):
@@ -358,14 +326,6 @@ def loop_width(Q, delta, exact, turns):
 # ----------------------------------------------------------------- running
 
 
-def default_tribos():
-    for b in ("build", "build-gmsh"):
-        exe = os.path.join(ROOT, b, "drivers", "tribos")
-        if os.path.exists(exe):
-            return exe
-    return os.path.join(ROOT, "build", "drivers", "tribos")
-
-
 def mesh_for(level, out):
     shipped = os.path.join(ROOT, "input", "cattaneo_mindlin_%d.msh" % level)
     if os.path.exists(shipped):
@@ -384,27 +344,12 @@ def run(level, args, stick):
            "--set", "Mesh/File=" + mesh_for(level, args.out), "--output", directory, "--quiet"]
     for s in list(args.set) + (list(STICK_SETS) if stick else []):
         cmd += ["--set", s]
-    print("$ " + " ".join("'%s'" % c if " " in c else c for c in cmd), file=sys.stderr)
-    t0 = time.time()
-    done = subprocess.run(cmd, stdout=subprocess.DEVNULL)
-    wall = time.time() - t0
-    with open(os.path.join(directory, "wall_s.txt"), "w") as f:
-        f.write("%.2f\n" % wall)
-    if done.returncode not in (0, 2):
-        fail("level %d: tribos exited with %d" % (level, done.returncode))
-    return directory, wall
+    return directory, timed_run(cmd, directory, level, fail)
 
 
 COLUMNS = [("level", "%d"), ("h", "%.3f"), ("dofs", "%d"), ("P", "%.0f"), ("Qstar_FP", "%.3f"), ("a", "%.4f"),
            ("err_a", "%+.1f%%"), ("err_c", "%.1f%%"), ("err_c_max", "%.1f%%"), ("err_s", "%.1f%%"),
            ("err_w", "%+.1f%%"), ("xp_max_a", "%.4f"), ("kkt", "%.1e"), ("wall_s", "%.0f")]
-
-
-def cell(row, key, fmt):
-    v = row.get(key)
-    if v is None:
-        return "-"
-    return fmt % (100 * v if fmt.endswith("%%") else v)
 
 
 def table(rows, markdown):

@@ -118,6 +118,24 @@ def tet_boundary_facets(cells):
     return uniq[count == 1]
 
 
+def nodal_areas(coords, cells, node):
+    """A_i of the contact nodes `node`: a third of each adjacent slave facet
+    (boundary facets of the mesh with all three nodes contact nodes),
+    projected on the plane z = 0 (facets of a symmetry plane project to
+    nothing)."""
+    is_contact = np.zeros(len(coords), bool)
+    is_contact[node] = True
+    facets = tet_boundary_facets(cells)
+    facets = facets[is_contact[facets].all(axis=1)]
+    p = coords[facets]
+    e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    nodal = np.zeros(len(coords))
+    for k in range(3):
+        np.add.at(nodal, facets[:, k], area / 3.0)
+    return nodal[node]
+
+
 def fit_hertz(r, p, w, a_guess):
     """The Hertz profile p0 sqrt(1 - r^2/a^2) fitted to the nodal pressures
     p_i by weighted least squares (weights w_i: the nodal areas, so that the
@@ -164,19 +182,7 @@ def analyse(directory, R=RADIUS, base="solution", input_file=INPUT, overrides=()
     active = status > 0
     a_act = float(r[active].max()) if active.any() else 0.0
 
-    # Nodal areas: the slave facets (boundary facets of the mesh with all
-    # three nodes contact nodes) projected on the plane z = 0, a third each.
-    is_contact = np.zeros(len(coords), bool)
-    is_contact[node] = True
-    facets = tet_boundary_facets(cells)
-    facets = facets[is_contact[facets].all(axis=1)]
-    p = coords[facets]
-    e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
-    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
-    nodal_area = np.zeros(len(coords))
-    for k in range(3):
-        np.add.at(nodal_area, facets[:, k], area / 3.0)
-    A = nodal_area[node]
+    A = nodal_areas(coords, cells, node)
     pressure = np.divide(fn, A, out=np.zeros_like(fn), where=A > 0)
     centre = int(np.argmin(r))
     a_fit, p0_h = fit_hertz(r, pressure, A, a_h)
@@ -245,6 +251,12 @@ def run(level, args):
         cmd += ["--set", "Mesh/Subdomains=%d" % args.subdomains[level]]
     for s in args.set:
         cmd += ["--set", s]
+    return directory, timed_run(cmd, directory, level, fail)
+
+
+def timed_run(cmd, directory, level, fail):
+    """Runs tribos (exit 0 or 2: a result), printing the command; the wall
+    time, also written to DIRECTORY/wall_s.txt."""
     print("$ " + " ".join("'%s'" % c if " " in c else c for c in cmd), file=sys.stderr)
     t0 = time.time()
     done = subprocess.run(cmd, stdout=subprocess.DEVNULL)
@@ -253,7 +265,7 @@ def run(level, args):
         f.write("%.2f\n" % wall)
     if done.returncode not in (0, 2):
         fail("level %d: tribos exited with %d" % (level, done.returncode))
-    return directory, wall
+    return wall
 
 
 COLUMNS = [("level", "%d"), ("h", "%.4f"), ("dofs", "%d"), ("F", "%.1f"), ("a_h", "%.4f"), ("a", "%.4f"),
