@@ -118,15 +118,20 @@ def tet_boundary_facets(cells):
     return uniq[count == 1]
 
 
-def nodal_areas(coords, cells, node):
-    """A_i of the contact nodes `node`: a third of each adjacent slave facet
-    (boundary facets of the mesh with all three nodes contact nodes),
-    projected on the plane z = 0 (facets of a symmetry plane project to
-    nothing)."""
-    is_contact = np.zeros(len(coords), bool)
+def slave_facets(cells, node, num_nodes):
+    """The slave facets: boundary facets of the mesh whose three nodes are
+    all contact nodes (node triples)."""
+    is_contact = np.zeros(num_nodes, bool)
     is_contact[node] = True
     facets = tet_boundary_facets(cells)
-    facets = facets[is_contact[facets].all(axis=1)]
+    return facets[is_contact[facets].all(axis=1)]
+
+
+def nodal_areas(coords, cells, node):
+    """A_i of the contact nodes `node`: a third of each adjacent slave facet,
+    projected on the plane z = 0 (facets of a symmetry plane project to
+    nothing)."""
+    facets = slave_facets(cells, node, len(coords))
     p = coords[facets]
     e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
     area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
@@ -189,6 +194,7 @@ def analyse(directory, R=RADIUS, base="solution", input_file=INPUT, overrides=()
 
     # h near the contact: mean edge length of the slave facets inside the
     # Hertz contact radius.
+    p = coords[slave_facets(cells, node, len(coords))]
     centroid_r = np.hypot(p[:, :, 0].mean(axis=1), p[:, :, 1].mean(axis=1))
     inside = centroid_r < a
     edges = np.concatenate([np.linalg.norm(p[inside][:, i] - p[inside][:, j], axis=1) for i, j in ((0, 1), (1, 2), (0, 2))])
