@@ -132,6 +132,10 @@ ParameterList pairItem(const ParameterList& contact) {
         "slave nodes farther than this from their closest point on the master (or from the plane) take no part; "
         "0: no limit",
         range<double>(0.0, 1e300));
+  p.set("Discretization", "Node To Segment",
+        "Node To Segment (each slave node on its closest master facet) or Mortar (dual mortar segments; "
+        "docs/contact.md)",
+        Contact::discretizationValidator());
   return p;
 }
 
@@ -1152,6 +1156,7 @@ std::vector<Contact::ContactPair> contactPairs(const ParameterList& params, cons
     const auto& n = p.get<Array<double>>("Plane Normal");
     const double length = norm(Vec3{n[0], n[1], n[2]});
     for (int d = 0; d < 3; ++d) pair.planePoint[d] = x[d], pair.planeNormal[d] = n[d] / length;
+    pair.discretization = Contact::discretizationValidator()->getIntegralValue(p.get<std::string>("Discretization"));
     const double reach = p.get<double>("Search Distance");
     if (reach > 0) pair.searchDistance = reach;
     out.push_back(pair);

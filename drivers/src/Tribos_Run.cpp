@@ -76,8 +76,13 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
   ps.name = "contact";
   IO::Field normal{"normal_force", 1, r.normalForce}, tangential{"tangential_force", 3, r.tangentialForce},
       slip{"slip", 3, r.slip}, status{"status", 1, {}}, gap{"gap", 1, r.gap}, direction{"normal", 3, {}},
-      pair{"pair", 1, {}}, masterNode{"master_node", 4, {}}, masterWeight{"master_weight", 4, {}},
-      node{"node", 1, {}};
+      pair{"pair", 1, {}}, node{"node", 1, {}};
+  // As many master columns as the widest partner on any rank: a facet's 4
+  // nodes for node-to-segment, all the nodes a mortar row couples.
+  int widthHere = 4, width = 4;
+  for (const auto& c : r.constraint) widthHere = std::max(widthHere, static_cast<int>(c.master.size()));
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, widthHere, Teuchos::outArg(width));
+  IO::Field masterNode{"master_node", width, {}}, masterWeight{"master_weight", width, {}};
   for (int s : r.status) status.values.push_back(s);
   std::vector<int> asked(r.nodes);
   for (const auto& c : r.constraint)
@@ -94,12 +99,12 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
     node.values.push_back(known.at(n)[0]);  // its row in /nodes
     ps.coords.push_back({known.at(n)[1], known.at(n)[2], known.at(n)[3]});
   }
-  // The partner of each slave node: up to 4 master nodes (a facet's) and
-  // their weights, -1 and 0 where there are fewer (none: a rigid plane).
+  // The partner of each slave node: its master nodes and their weights, -1
+  // and 0 where there are fewer (none: a rigid plane).
   for (const auto& c : r.constraint) {
     direction.values.insert(direction.values.end(), c.normal.begin(), c.normal.end());
     pair.values.push_back(c.pair);
-    for (size_t i = 0; i < 4; ++i) {
+    for (size_t i = 0; i < static_cast<size_t>(width); ++i) {
       masterNode.values.push_back(i < c.master.size() ? known.at(c.master[i].first)[0] : -1);
       masterWeight.values.push_back(i < c.master.size() ? c.master[i].second : 0.0);
     }

@@ -9,6 +9,7 @@
 #include "Tribos_AllGather.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Loads.hpp"
+#include "Tribos_Mortar.hpp"
 #include "Tribos_NodalVector.hpp"
 #include "Tribos_Vec3.hpp"
 
@@ -16,6 +17,21 @@ namespace Tribos {
 namespace Contact {
 
 using Feti::ContactConstraint;
+
+const char* discretizationName(ContactDiscretization d) {
+  return d == ContactDiscretization::Mortar ? "Mortar" : "Node To Segment";
+}
+
+RCP<const Teuchos::StringToIntegralParameterEntryValidator<ContactDiscretization>> discretizationValidator() {
+  using Teuchos::tuple;
+  static const auto validator = rcp(new Teuchos::StringToIntegralParameterEntryValidator<ContactDiscretization>(
+      tuple<std::string>("Node To Segment", "Mortar"),
+      tuple<std::string>("each slave node projected on the closest master facet",
+                         "dual mortar: segments of slave and master facets, consistent weights (passes the patch test)"),
+      tuple<ContactDiscretization>(ContactDiscretization::NodeToSegment, ContactDiscretization::Mortar),
+      "Discretization"));
+  return validator;
+}
 
 namespace {
 
@@ -113,9 +129,10 @@ std::string firstIds(const std::vector<int>& ids) {
 }
 
 // The constraint of slave node s of pair `index` along the unit normal n
-// (pointing from the node into its partner) with the gap and master weights.
+// (pointing from the node into its partner) with the gap, master weights
+// and the node's area.
 ContactConstraint constraint(int s, int index, const ContactPair& pair, const Vec3& n, double gap,
-                             std::vector<std::pair<int, double>> master) {
+                             std::vector<std::pair<int, double>> master, double area) {
   ContactConstraint c;
   c.node = s;
   c.pair = index;
@@ -123,59 +140,157 @@ ContactConstraint constraint(int s, int index, const ContactPair& pair, const Ve
   c.master = std::move(master);
   c.normal = n;
   c.gap = gap;
+  c.area = area;
+  Feti::tangents(c.normal, c.t1, c.t2);
   return c;
+}
+
+// The master surface of a pair: its facets with their bounding boxes.
+struct MasterSurface {
+  const std::vector<Mesh::Facet>& facets;
+  std::vector<Box> boxes;
+  std::vector<char> isMasterNode;
+  MasterSurface(const Mesh::Mesh& mesh, const std::string& face)
+      : facets(mesh.face(face)), isMasterNode(mesh.numNodes(), 0) {
+    for (const auto& f : facets) {
+      Box b{mesh.coords[f.nodes[0]], mesh.coords[f.nodes[0]]};
+      for (int n : f.nodes) {
+        isMasterNode[n] = 1;
+        for (int d = 0; d < 3; ++d)
+          b.lo[d] = std::min(b.lo[d], mesh.coords[n][d]), b.hi[d] = std::max(b.hi[d], mesh.coords[n][d]);
+      }
+      boxes.push_back(b);
+    }
+  }
+};
+
+void requireNotOnMaster(const MasterSurface& surface, const ContactPair& pair, int s) {
+  TRIBOS_REQUIRE(!surface.isMasterNode[s], "contact pair '" << pair.name << "': slave node " << s << " of '" << pair.slave
+                                                            << "' is also a node of the master surface '" << pair.master
+                                                            << "' (bodies that share their interface nodes are bonded); "
+                                                               "mesh the two bodies separately for contact");
+}
+
+// The closest point of slave node s on the master surface within the search
+// distance, if its projection lands on a facet.
+bool closestPoint(const Mesh::Mesh& mesh, const MasterSurface& surface, const ContactPair& pair, int s,
+                  Projection& best) {
+  const Vec3& x = mesh.coords[s];
+  best = Projection();
+  best.distance = std::numeric_limits<double>::infinity();
+  for (size_t f = 0; f < surface.facets.size(); ++f) {
+    if (surface.boxes[f].distance(x) > best.distance) continue;
+    const auto& v = surface.facets[f].nodes;
+    Projection p = v.size() == 3 ? projectOnTriangle(x, v, mesh.coords) : projectOnQuad(x, v, mesh.coords);
+    if (!p.onFacet) continue;
+    p.distance = norm(minus(p.point, x));
+    if (p.distance < best.distance) best = std::move(p);
+  }
+  return best.onFacet && best.distance <= pair.searchDistance;
 }
 
 // Node-to-segment constraints of the slave nodes of one pair.
 void slaveOnMaster(const Mesh::Mesh& mesh, const ContactPair& pair, int index, const std::vector<int>& slaveNodes,
                    std::vector<ContactConstraint>& out, std::vector<int>& leftOut) {
-  const auto& facets = mesh.face(pair.master);
-  std::vector<Box> boxes;
-  std::vector<char> isMasterNode(mesh.numNodes(), 0);
-  for (const auto& f : facets) {
-    Box b{mesh.coords[f.nodes[0]], mesh.coords[f.nodes[0]]};
-    for (int n : f.nodes) {
-      isMasterNode[n] = 1;
-      for (int d = 0; d < 3; ++d) b.lo[d] = std::min(b.lo[d], mesh.coords[n][d]), b.hi[d] = std::max(b.hi[d], mesh.coords[n][d]);
-    }
-    boxes.push_back(b);
-  }
+  const MasterSurface surface(mesh, pair.master);
+  const std::vector<double> area = Fem::faceNodalAreas(mesh, pair.slave);
   for (int s : slaveNodes) {
-    TRIBOS_REQUIRE(!isMasterNode[s], "contact pair '" << pair.name << "': slave node " << s << " of '" << pair.slave
-                                                      << "' is also a node of the master surface '" << pair.master
-                                                      << "' (bodies that share their interface nodes are bonded); "
-                                                         "mesh the two bodies separately for contact");
-    const Vec3& x = mesh.coords[s];
+    requireNotOnMaster(surface, pair, s);
     Projection best;
-    best.distance = std::numeric_limits<double>::infinity();
-    for (size_t f = 0; f < facets.size(); ++f) {
-      if (boxes[f].distance(x) > best.distance) continue;
-      Projection p = facets[f].nodes.size() == 3 ? projectOnTriangle(x, facets[f].nodes, mesh.coords)
-                                                  : projectOnQuad(x, facets[f].nodes, mesh.coords);
-      if (!p.onFacet) continue;
-      p.distance = norm(minus(p.point, x));
-      if (p.distance < best.distance) best = std::move(p);
-    }
-    if (!best.onFacet || best.distance > pair.searchDistance) {
+    if (!closestPoint(mesh, surface, pair, s, best)) {
       leftOut.push_back(s);
       continue;
     }
     const Vec3 n = {-best.outwardNormal[0], -best.outwardNormal[1], -best.outwardNormal[2]};
-    out.push_back(constraint(s, index, pair, n, dot(minus(best.point, x), n), significant(best.weights)));
+    out.push_back(
+        constraint(s, index, pair, n, dot(minus(best.point, mesh.coords[s]), n), significant(best.weights), area[s]));
   }
 }
 
+// A slave node keeps its mortar row when its segments cover at least this
+// share of its area: the dual shape functions are negative away from their
+// node, so a partly covered node's int psi_s dA may be small or negative.
+constexpr double kMortarCovered = 0.5;
+
+// The mortar row of one slave node divided by D_s: weights M_sm / D_s (those
+// below round-off dropped, the rest summing to 1), the gap of the row
+// applied to the reference positions, the area D_s.
+ContactConstraint mortarConstraint(const Mesh::Mesh& mesh, const MortarNode& node, int index, const ContactPair& pair) {
+  const double D = node.covered();
+  std::vector<std::pair<int, double>> weights;
+  double sum = 0;
+  for (const auto& [m, value] : node.M)
+    if (std::abs(value) > 1e-12 * D) weights.push_back({m, value / D}), sum += value / D;
+  Vec3 xp{0, 0, 0};
+  for (auto& [m, w] : weights) {
+    w /= sum;
+    for (int d = 0; d < 3; ++d) xp[d] += w * mesh.coords[m][d];
+  }
+  const double gap = dot(minus(xp, mesh.coords[node.node]), node.normal);
+  return constraint(node.node, index, pair, node.normal, gap, std::move(weights), D);
+}
+
+// Mortar constraints of the slave nodes of one pair; nodes covered too
+// little take node-to-segment rows (`fallback`).
+void slaveOnMasterMortar(const Mesh::Mesh& mesh, const ContactPair& pair, int index, const std::vector<int>& slaveNodes,
+                         std::vector<ContactConstraint>& out, std::vector<int>& leftOut, std::vector<int>& fallback) {
+  const MasterSurface surface(mesh, pair.master);
+  for (int s : slaveNodes) requireNotOnMaster(surface, pair, s);
+  const std::vector<MortarNode> coupling = mortarCoupling(mesh, pair.slave, pair.master, pair.searchDistance);
+  for (const MortarNode& node : coupling) {
+    if (node.covered() >= kMortarCovered * node.area) {
+      out.push_back(mortarConstraint(mesh, node, index, pair));
+      continue;
+    }
+    Projection best;
+    if (!closestPoint(mesh, surface, pair, node.node, best)) {
+      leftOut.push_back(node.node);
+      continue;
+    }
+    fallback.push_back(node.node);
+    const Vec3 n = {-best.outwardNormal[0], -best.outwardNormal[1], -best.outwardNormal[2]};
+    out.push_back(constraint(node.node, index, pair, n, dot(minus(best.point, mesh.coords[node.node]), n),
+                             significant(best.weights), node.area));
+  }
+}
+
+// A rigid plane: node rows with the node's area int N_s dA, for both
+// discretizations (the plane's gap is linear in x, so the weighted gap of
+// mortar, int psi_s g dA, is D_s g(x_s), and D_s = int N_s dA).
 void slaveOnPlane(const Mesh::Mesh& mesh, const ContactPair& pair, int index, const std::vector<int>& slaveNodes,
                   std::vector<ContactConstraint>& out, std::vector<int>& leftOut) {
   const Vec3& m = pair.planeNormal;
+  const std::vector<double> area = Fem::faceNodalAreas(mesh, pair.slave);
   for (int s : slaveNodes) {
     const double gap = dot(minus(mesh.coords[s], pair.planePoint), m);
     if (std::abs(gap) > pair.searchDistance) {
       leftOut.push_back(s);
       continue;
     }
-    out.push_back(constraint(s, index, pair, {-m[0], -m[1], -m[2]}, gap, {}));
+    out.push_back(constraint(s, index, pair, {-m[0], -m[1], -m[2]}, gap, {}, area[s]));
   }
+}
+
+void noteLeftOut(const ContactPair& pair, const std::vector<int>& leftOut, size_t slaveNodes,
+                 std::vector<std::string>& notes) {
+  if (leftOut.empty()) return;
+  std::ostringstream os;
+  os << "contact pair '" << pair.name << "': " << leftOut.size() << " of " << slaveNodes << " slave nodes of '"
+     << pair.slave << "' have no partner ("
+     << (pair.master.empty() ? "farther from the plane than" : "no master facet under them within")
+     << " the search distance) and take no part in the contact: nodes " << firstIds(leftOut);
+  notes.push_back(os.str());
+}
+
+void noteFallback(const ContactPair& pair, const std::vector<int>& fallback, size_t slaveNodes,
+                  std::vector<std::string>& notes) {
+  if (fallback.empty()) return;
+  std::ostringstream os;
+  os << "contact pair '" << pair.name << "': " << fallback.size() << " of " << slaveNodes << " slave nodes of '"
+     << pair.slave << "' lie where '" << pair.master
+     << "' covers less than half of their area and take node-to-segment rows instead of mortar ones: nodes "
+     << firstIds(fallback);
+  notes.push_back(os.str());
 }
 
 }  // namespace
@@ -205,23 +320,16 @@ std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const 
                                     << pair.name << "': a node takes part in one pair only");
     }
     const size_t first = out.size();
-    std::vector<int> leftOut;
+    std::vector<int> leftOut, fallback;
     if (pair.master.empty())
       slaveOnPlane(mesh, pair, static_cast<int>(k), slaveNodes, out, leftOut);
+    else if (pair.discretization == ContactDiscretization::Mortar)
+      slaveOnMasterMortar(mesh, pair, static_cast<int>(k), slaveNodes, out, leftOut, fallback);
     else
       slaveOnMaster(mesh, pair, static_cast<int>(k), slaveNodes, out, leftOut);
-    const std::vector<double> area = Fem::faceNodalAreas(mesh, pair.slave);
-    for (size_t i = first; i < out.size(); ++i) {
-      ContactConstraint& c = out[i];
-      Feti::tangents(c.normal, c.t1, c.t2);
-      c.area = area[c.node];
-    }
-    if (!leftOut.empty() && notes) {
-      std::ostringstream os;
-      os << name << ": " << leftOut.size() << " of " << slaveNodes.size() << " slave nodes of '" << pair.slave
-         << "' have no partner (" << (pair.master.empty() ? "farther from the plane than" : "no master facet under them within")
-         << " the search distance) and take no part in the contact: nodes " << firstIds(leftOut);
-      notes->push_back(os.str());
+    if (notes) {
+      noteLeftOut(pair, leftOut, slaveNodes.size(), *notes);
+      noteFallback(pair, fallback, slaveNodes.size(), *notes);
     }
     TRIBOS_REQUIRE(out.size() > first, name << ": none of the " << slaveNodes.size() << " nodes of '" << pair.slave
                                             << "' finds a partner on "

@@ -26,7 +26,19 @@
 // transmits a uniform pressure up to an error that falls with h); slave
 // nodes whose projection falls outside every master facet get no constraint
 // (reported); the slave side should be the finer one.
+//
+// A pair may use mortar instead (ContactDiscretization::Mortar,
+// Tribos_Mortar.hpp): the same one row per slave node, with the weights
+// M_sm / D_s of dual mortar, the averaged nodal normal of the slave surface,
+// the gap n_s . (sum_m (M_sm / D_s) x_m - x_s) (the row applied to the
+// reference positions) and the area D_s. It passes the contact patch test
+// on any two meshes. Slave nodes whose mortar segments cover less than half
+// of their area (edges of the slave surface beyond the master) keep a
+// node-to-segment row. Against a rigid plane both are the same rows: the
+// gap is linear in x, so its weighted gap int psi_s g dA is D_s g(x_s).
 #pragma once
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <array>
 #include <limits>
@@ -40,11 +52,20 @@
 namespace Tribos {
 namespace Contact {
 
+// How a pair's rows are formed: "Node To Segment" (closest-point
+// projection of each slave node) or "Mortar" (dual mortar segments).
+enum class ContactDiscretization { NodeToSegment, Mortar };
+
+const char* discretizationName(ContactDiscretization d);
+// Accepts the two names (Contact/Pairs/NAME/Discretization) and maps them to the enum.
+RCP<const Teuchos::StringToIntegralParameterEntryValidator<ContactDiscretization>> discretizationValidator();
+
 struct ContactPair {
   std::string name;            // for messages (the input's sublist name)
   std::string slave;           // face of the mesh
   std::string master;          // face of the mesh; empty: the rigid plane below
   bool glued = false;          // bonded: the relative displacement vanishes
+  ContactDiscretization discretization = ContactDiscretization::NodeToSegment;
   std::array<double, 3> planePoint{0, 0, 0};
   std::array<double, 3> planeNormal{0, 0, 1};  // unit, out of the obstacle towards the body
   // Slave nodes farther than this from their projection get no constraint.
@@ -56,7 +77,8 @@ struct ContactPair {
 // plane normal that is not a unit vector and faces the mesh lacks are
 // refused (Tribos::Error naming the pair). Slave nodes that no master facet
 // within the search distance takes are left out, one line per pair added to
-// `notes` (counts and the first node ids).
+// `notes` (counts and the first node ids); so are mortar pairs' slave nodes
+// that fall back to node-to-segment.
 std::vector<Feti::ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const std::vector<ContactPair>& pairs,
                                                         std::vector<std::string>* notes = nullptr);
 

@@ -1,0 +1,142 @@
+#include "Tribos_Mortar.hpp"
+
+#include <Teuchos_SerialDenseMatrix.hpp>
+#include <Teuchos_SerialDenseSolver.hpp>
+
+#include <cmath>
+#include <unordered_map>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Contact {
+
+namespace {
+
+constexpr int kMaxNodes = 9;
+
+// A master facet takes part for slave facet e when it faces e, its sphere
+// can reach e's along e's normal n0 (orthogonal projection does not
+// expand), and one of its nodes lies within `reach` of e along n0.
+bool mayOverlap(const SurfaceElement& e, const Vec3& n0, const SurfaceElement& m, double reach) {
+  if (dot(m.normal(m.center()), n0) >= 0) return false;
+  const Vec3 r = minus(m.middle(), e.middle());
+  const double along = dot(r, n0);
+  const Vec3 across = {r[0] - along * n0[0], r[1] - along * n0[1], r[2] - along * n0[2]};
+  const double size = e.radius() + m.radius();
+  return norm(across) <= size * (1 + 1e-12) && std::abs(along) <= reach + size;
+}
+
+// The master facet's nodes projected along n0 onto e, in e's reference
+// coordinates; empty when a node does not project or all lie beyond `reach`.
+std::vector<Point2> projectedPolygon(const SurfaceElement& e, const Vec3& n0, const SurfaceElement& m,
+                                     const Mesh::Mesh& mesh, double reach) {
+  std::vector<Point2> poly;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int node : m.nodes()) {
+    Point2 xi;
+    if (!e.project(mesh.coords[node], n0, xi)) return {};
+    nearest = std::min(nearest, norm(minus(mesh.coords[node], e.position(xi))));
+    poly.push_back(xi);
+  }
+  if (nearest > reach) return {};
+  return poly;
+}
+
+// M_jk += int over the segment of psi_j N_k dA for the slave nodes j of e
+// and the master nodes k of m; the segment in e's reference coordinates.
+void integrateSegment(const SurfaceElement& e, const std::vector<std::vector<double>>& A, const Vec3& n0,
+                      const SurfaceElement& m, const std::vector<Point2>& segment,
+                      std::vector<std::unordered_map<int, double>>& M) {
+  const int ns = e.size(), nm = m.size();
+  double Ns[kMaxNodes], Nm[kMaxNodes], d1[kMaxNodes], d2[kMaxNodes];
+  integratePolygon(segment, [&](const Point2& xi, double w) {
+    Point2 zeta;
+    if (!m.project(e.position(xi), n0, zeta)) return;
+    const double dA = w * e.jacobian(xi);
+    e.shape().evaluate(xi, Ns, d1, d2);
+    m.shape().evaluate(zeta, Nm, d1, d2);
+    for (int j = 0; j < ns; ++j) {
+      double psi = 0;
+      for (int k = 0; k < ns; ++k) psi += A[j][k] * Ns[k];
+      for (int k = 0; k < nm; ++k) M[j][m.nodes()[k]] += psi * Nm[k] * dA;
+    }
+  });
+}
+
+}  // namespace
+
+double MortarNode::covered() const {
+  double sum = 0;
+  for (const auto& [node, value] : M) sum += value;
+  return sum;
+}
+
+std::vector<std::vector<double>> dualBasis(const SurfaceElement& e) {
+  const int n = e.size();
+  Teuchos::SerialDenseMatrix<int, double> mass(n, n);
+  double N[kMaxNodes], d1[kMaxNodes], d2[kMaxNodes];
+  integratePolygon(e.shape().corners(), [&](const Point2& xi, double w) {
+    e.shape().evaluate(xi, N, d1, d2);
+    const double dA = w * e.jacobian(xi);
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) mass(j, k) += N[j] * N[k] * dA;
+  });
+  std::vector<double> D(n, 0.0);
+  for (int j = 0; j < n; ++j)
+    for (int k = 0; k < n; ++k) D[j] += mass(j, k);
+  Teuchos::SerialDenseSolver<int, double> solver;
+  solver.setMatrix(Teuchos::rcpFromRef(mass));
+  TRIBOS_REQUIRE(solver.invert() == 0, "mortar contact: the mass matrix of a slave facet (nodes "
+                                           << e.nodes()[0] << ", " << e.nodes()[1] << ", ...) is singular");
+  // A = D M^-1, M symmetric.
+  std::vector<std::vector<double>> A(n, std::vector<double>(n));
+  for (int j = 0; j < n; ++j)
+    for (int k = 0; k < n; ++k) A[j][k] = D[j] * mass(j, k);
+  return A;
+}
+
+std::vector<MortarNode> mortarCoupling(const Mesh::Mesh& mesh, const std::string& slave, const std::string& master,
+                                       double reach) {
+  std::vector<SurfaceElement> slaves, masters;
+  for (const auto& f : mesh.face(slave)) slaves.emplace_back(f, mesh);
+  for (const auto& f : mesh.face(master)) masters.emplace_back(f, mesh);
+  const std::vector<int> nodes = mesh.faceNodes(slave);
+  std::unordered_map<int, size_t> index;
+  for (size_t i = 0; i < nodes.size(); ++i) index[nodes[i]] = i;
+  std::vector<MortarNode> out(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) out[i].node = nodes[i];
+
+  std::vector<std::unordered_map<int, double>> M;
+  for (const SurfaceElement& e : slaves) {
+    const auto A = dualBasis(e);
+    const Vec3 n0 = e.normal(e.center());
+    // The node's area int N_s dA and its share of the facet's area vector.
+    double N[kMaxNodes], d1[kMaxNodes], d2[kMaxNodes];
+    std::vector<double> area(e.size(), 0.0);
+    integratePolygon(e.shape().corners(), [&](const Point2& xi, double w) {
+      e.shape().evaluate(xi, N, d1, d2);
+      const double dA = w * e.jacobian(xi);
+      for (int j = 0; j < e.size(); ++j) area[j] += N[j] * dA;
+    });
+    for (int j = 0; j < e.size(); ++j) {
+      MortarNode& node = out[index.at(e.nodes()[j])];
+      node.area += area[j];
+      for (int d = 0; d < 3; ++d) node.normal[d] += area[j] * n0[d];
+    }
+    M.assign(e.size(), {});
+    for (const SurfaceElement& m : masters) {
+      if (!mayOverlap(e, n0, m, reach)) continue;
+      const std::vector<Point2> segment = clipPolygon(projectedPolygon(e, n0, m, mesh, reach), e.shape().corners());
+      if (std::abs(signedArea(segment)) <= 1e-12 * std::abs(signedArea(e.shape().corners()))) continue;
+      integrateSegment(e, A, n0, m, segment, M);
+    }
+    for (int j = 0; j < e.size(); ++j)
+      for (const auto& [node, value] : M[j]) out[index.at(e.nodes()[j])].M[node] += value;
+  }
+  for (MortarNode& node : out) node.normal = normalized(node.normal);
+  return out;
+}
+
+}  // namespace Contact
+}  // namespace Tribos

@@ -1,0 +1,88 @@
+// Tribos_MortarElement.hpp: what mortar integration needs of a facet of a
+// contact surface, independent of its order: shape functions on a reference
+// polygon, the map to space, the projection of points along a direction,
+// and a quadrature of polygons in the reference plane.
+//
+// The mortar integrals are taken in the reference coordinates xi of the
+// slave facet: master facets are projected onto it, clipped against its
+// reference polygon (clipPolygon), the pieces cut into triangles and each
+// triangle integrated with a rule of degree 5 (integratePolygon), weighted
+// by the surface Jacobian J(xi). The same rule integrates the facet's own
+// mass matrix, so that the dual basis and the segments see one measure.
+// Linear facets (3-node triangles, 4-node quadrilaterals) are the shapes
+// the meshes have; a quadratic facet is another SurfaceShape.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "Tribos_Mesh.hpp"
+#include "Tribos_Vec3.hpp"
+
+namespace Tribos {
+namespace Contact {
+
+using Point2 = std::array<double, 2>;
+
+// Shape functions of a reference facet.
+class SurfaceShape {
+ public:
+  virtual ~SurfaceShape() = default;
+  virtual int numNodes() const = 0;
+  // N[a], dN1[a] = dN_a/dxi_1, dN2[a] = dN_a/dxi_2 at xi (arrays of numNodes()).
+  virtual void evaluate(const Point2& xi, double* N, double* dN1, double* dN2) const = 0;
+  // The reference polygon, counter-clockwise (convex).
+  virtual const std::vector<Point2>& corners() const = 0;
+};
+
+// The shape of a facet with that many nodes (3: linear triangle, 4: bilinear
+// quadrilateral); throws for others.
+const SurfaceShape& surfaceShape(int numNodes);
+
+// A facet of a contact surface in the reference configuration.
+class SurfaceElement {
+ public:
+  SurfaceElement(const Mesh::Facet& facet, const Mesh::Mesh& mesh);
+  const std::vector<int>& nodes() const { return nodes_; }
+  const SurfaceShape& shape() const { return *shape_; }
+  int size() const { return static_cast<int>(nodes_.size()); }
+  Vec3 position(const Point2& xi) const;
+  // The area element |x_1 x x_2| and unit outward normal at xi.
+  double jacobian(const Point2& xi) const;
+  Vec3 normal(const Point2& xi) const;
+  // The centroid of the reference polygon.
+  Point2 center() const;
+  // The reference coordinates where the line x + t d meets the facet's
+  // surface (extended beyond its polygon; Newton, exact in one step for
+  // flat facets). False when d runs parallel to the facet.
+  bool project(const Vec3& x, const Vec3& d, Point2& xi) const;
+  // A sphere around the facet: its node average and the largest distance to a node.
+  Vec3 middle() const { return middle_; }
+  double radius() const { return radius_; }
+
+ private:
+  void derivatives(const Point2& xi, Vec3& x1, Vec3& x2) const;
+  const SurfaceShape* shape_;
+  std::vector<int> nodes_;
+  std::vector<Vec3> X_;
+  Vec3 middle_{};
+  double radius_ = 0;
+};
+
+// sum_q w_q f(xi_q) over the polygon (its vertices in order, either
+// orientation; convex, or star-shaped about its vertex average): a fan of
+// triangles from the vertex average, each with the 7-point rule of degree
+// 5 (exact for products of two bilinear functions on parallelograms).
+void integratePolygon(const std::vector<Point2>& polygon, const std::function<void(const Point2&, double)>& f);
+
+// The area of a polygon (positive when counter-clockwise).
+double signedArea(const std::vector<Point2>& polygon);
+
+// The part of `subject` inside the convex, counter-clockwise polygon `clip`
+// (Sutherland-Hodgman): empty when they do not overlap.
+std::vector<Point2> clipPolygon(const std::vector<Point2>& subject, const std::vector<Point2>& clip);
+
+}  // namespace Contact
+}  // namespace Tribos

@@ -1,0 +1,237 @@
+// Mortar integration: clipping of known polygons, the dual basis, and the
+// integrals of two non-matching faces of stacked boxes (sum_m M_sm = D_s,
+// total D = slave area, the master's consistent nodal areas, linear fields
+// carried over exactly), and the rows the search builds from them.
+#include <Teuchos_UnitTestHarness.hpp>
+
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "Tribos_ContactSearch.hpp"
+#include "Tribos_Loads.hpp"
+#include "Tribos_Mesh.hpp"
+#include "Tribos_Mortar.hpp"
+
+namespace {
+
+using namespace Tribos;
+using Contact::Point2;
+
+double area(const std::vector<Point2>& p) { return std::abs(Contact::signedArea(p)); }
+
+// Two boxes stacked along z, as separate bodies: "lower" (0,1)^2 x (0,1)
+// with nl^3 cells, "upper" (0,1)^2 x (1,2) with nu^3 cells, the upper one
+// lifted by `lift`; faces lower_top and upper_bottom.
+Mesh::Mesh stackedBoxes(Mesh::CellType type, int nl, int nu, double lift = 0) {
+  Mesh::BoxSpec a, b;
+  a.type = b.type = type;
+  a.cells = {nl, nl, nl};
+  b.cells = {nu, nu, nu};
+  b.z = {1 + lift, 2 + lift};
+  const Mesh::Mesh lower = Mesh::generateBox(a), upper = Mesh::generateBox(b);
+  Mesh::Mesh m;
+  m.type = type;
+  m.coords = lower.coords;
+  m.coords.insert(m.coords.end(), upper.coords.begin(), upper.coords.end());
+  m.connectivity = lower.connectivity;
+  const int offset = lower.numNodes();
+  for (int n : upper.connectivity) m.connectivity.push_back(n + offset);
+  m.faces["lower_top"] = lower.faces.at("zmax");
+  for (Mesh::Facet f : upper.faces.at("zmin")) {
+    for (int& n : f.nodes) n += offset;
+    f.cell += lower.numCells();
+    m.faces["upper_bottom"].push_back(f);
+  }
+  m.cellBody.assign(lower.numCells(), 0);
+  m.cellBody.resize(m.numCells(), 1);
+  m.bodyNames = {"lower", "upper"};
+  return m;
+}
+
+TEUCHOS_UNIT_TEST(Mortar, ClipsKnownPolygons) {
+  const std::vector<Point2> square = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  // A shifted square: the overlap [0, 1]^2.
+  const auto quarter = Contact::clipPolygon({{0, 0}, {2, 0}, {2, 2}, {0, 2}}, square);
+  TEST_FLOATING_EQUALITY(area(quarter), 1.0, 1e-14);
+  // A triangle cut by two edges of the square: [0,1]^2 minus the corner x + y > 1.5.
+  const auto cut = Contact::clipPolygon({{0, 0}, {1.5, 0}, {0, 1.5}}, square);
+  TEST_FLOATING_EQUALITY(area(cut), 1 - 0.125, 1e-14);
+  // Clockwise subjects (a master facet seen from the slave) clip alike.
+  const auto cw = Contact::clipPolygon({{0, 0}, {0, 2}, {2, 2}, {2, 0}}, square);
+  TEST_FLOATING_EQUALITY(area(cw), 1.0, 1e-14);
+  TEST_COMPARE(Contact::signedArea(cw), <, 0);
+  // A rotated square inside the reference triangle's corner; a disjoint one;
+  // one sharing an edge only.
+  const std::vector<Point2> triangle = {{0, 0}, {1, 0}, {0, 1}};
+  TEST_FLOATING_EQUALITY(area(Contact::clipPolygon({{0.2, 0.1}, {0.3, 0.2}, {0.2, 0.3}, {0.1, 0.2}}, triangle)), 0.02,
+                         1e-13);
+  TEST_ASSERT(Contact::clipPolygon({{2, 2}, {3, 2}, {3, 3}}, triangle).empty());
+  TEST_COMPARE(area(Contact::clipPolygon({{1, -1}, {2, -1}, {2, 1}, {1, 1}}, square)), <, 1e-14);
+  // The whole triangle inside the square stays itself.
+  TEST_FLOATING_EQUALITY(area(Contact::clipPolygon(triangle, square)), 0.5, 1e-14);
+}
+
+// The quadrature of polygons: exact for degree 5 on a fan of triangles.
+TEUCHOS_UNIT_TEST(Mortar, IntegratesPolynomials) {
+  const std::vector<Point2> pentagon = {{0, 0}, {2, 0}, {2.5, 1}, {1, 2}, {-0.5, 1}};
+  double a = 0, m = 0;
+  Contact::integratePolygon(pentagon, [&](const Point2& p, double w) {
+    a += w;
+    m += w * std::pow(p[0], 3) * std::pow(p[1], 2);
+  });
+  TEST_FLOATING_EQUALITY(a, std::abs(Contact::signedArea(pentagon)), 1e-14);
+  // int x^3 y^2 over the pentagon by the divergence theorem: sum over edges
+  // of int x^4 y^2 / 4 dy, done with 4-point Gauss-Legendre per edge (exact).
+  const double g[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+  const double gw[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+  double exact = 0;
+  for (size_t i = 0; i < pentagon.size(); ++i) {
+    const Point2 &p = pentagon[i], &q = pentagon[(i + 1) % pentagon.size()];
+    for (int k = 0; k < 4; ++k) {
+      const double t = (1 + g[k]) / 2, x = p[0] + t * (q[0] - p[0]), y = p[1] + t * (q[1] - p[1]);
+      exact += gw[k] / 2 * std::pow(x, 4) * y * y / 4 * (q[1] - p[1]);
+    }
+  }
+  TEST_FLOATING_EQUALITY(m, exact, 1e-13);
+}
+
+// Biorthogonality on a triangle and a distorted, warped quadrilateral:
+// int psi_j N_k dA = delta_jk int N_k dA, and the psi_j sum to one.
+TEUCHOS_UNIT_TEST(Mortar, DualBasisIsBiorthogonal) {
+  Mesh::Mesh mesh;
+  mesh.coords = {{0, 0, 0}, {1.3, 0.1, 0}, {1.1, 0.9, 0.2}, {-0.2, 1.4, 0.05}};
+  for (const std::vector<int>& nodes : {std::vector<int>{0, 1, 2}, std::vector<int>{0, 1, 2, 3}}) {
+    const Contact::SurfaceElement e(Mesh::Facet{nodes, 0}, mesh);
+    const auto A = Contact::dualBasis(e);
+    const int n = e.size();
+    std::vector<std::vector<double>> psiN(n, std::vector<double>(n, 0.0));
+    std::vector<double> areaN(n, 0.0);
+    double N[4], d1[4], d2[4], sumPsiErr = 0;
+    Contact::integratePolygon(e.shape().corners(), [&](const Point2& xi, double w) {
+      e.shape().evaluate(xi, N, d1, d2);
+      const double dA = w * e.jacobian(xi);
+      double sumPsi = 0;
+      for (int j = 0; j < n; ++j) {
+        double psi = 0;
+        for (int k = 0; k < n; ++k) psi += A[j][k] * N[k];
+        sumPsi += psi;
+        areaN[j] += N[j] * dA;
+        for (int k = 0; k < n; ++k) psiN[j][k] += psi * N[k] * dA;
+      }
+      sumPsiErr = std::max(sumPsiErr, std::abs(sumPsi - 1));
+    });
+    TEST_COMPARE(sumPsiErr, <, 1e-13);
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) TEST_COMPARE(std::abs(psiN[j][k] - (j == k ? areaN[k] : 0.0)), <, 1e-13);
+  }
+}
+
+// Non-matching flat faces (slave 4^3 or 7^3 on master 3^3, and the coarse
+// side as slave): every slave node fully covered has sum_m M_sm = D_s =
+// int N_s dA; D sums to the slave area; sum_s M_sm is the master node's
+// int N_m dA (a uniform traction reaches the master as its consistent
+// nodal forces); linear fields are carried over exactly.
+TEUCHOS_UNIT_TEST(Mortar, FlatNonMatchingFaces) {
+  for (auto type : {Mesh::CellType::Hex8, Mesh::CellType::Tet4})
+    for (auto [nl, nu] : {std::pair<int, int>{3, 4}, {3, 7}, {4, 3}}) {
+      const Mesh::Mesh mesh = stackedBoxes(type, nl, nu);
+      const auto coupling = Contact::mortarCoupling(mesh, "upper_bottom", "lower_top");
+      const auto slaveArea = Fem::faceNodalAreas(mesh, "upper_bottom");
+      const auto masterArea = Fem::faceNodalAreas(mesh, "lower_top");
+      double total = 0, worst = 0, worstLinear = 0, worstNormal = 0;
+      std::map<int, double> toMaster;
+      for (const auto& node : coupling) {
+        total += node.covered();
+        worst = std::max({worst, std::abs(node.covered() - node.area), std::abs(node.area - slaveArea[node.node])});
+        worstNormal = std::max(worstNormal, std::abs(node.normal[2] + 1) + std::abs(node.normal[0]));
+        double linear = 0;
+        for (const auto& [m, value] : node.M) {
+          toMaster[m] += value;
+          const auto& x = mesh.coords[m];
+          linear += value * (1 + 2 * x[0] - 3 * x[1]);
+        }
+        const auto& xs = mesh.coords[node.node];
+        worstLinear = std::max(worstLinear, std::abs(linear / node.covered() - (1 + 2 * xs[0] - 3 * xs[1])));
+      }
+      out << "cells " << nl << " under " << nu << ": total D " << total << ", max |D_s - area| " << worst
+          << ", linear " << worstLinear << "\n";
+      TEST_FLOATING_EQUALITY(total, 1.0, 1e-13);
+      TEST_COMPARE(worst, <, 1e-14);
+      TEST_COMPARE(worstLinear, <, 1e-12);
+      TEST_COMPARE(worstNormal, <, 1e-14);
+      double worstMaster = 0;
+      for (int m : mesh.faceNodes("lower_top")) worstMaster = std::max(worstMaster, std::abs(toMaster[m] - masterArea[m]));
+      TEST_COMPARE(worstMaster, <, 1e-14);
+    }
+}
+
+// The search's rows: Mortar gives each slave node weights summing to one,
+// the nodal normal, area D_s, and the gap of the lifted block; a name that
+// is no discretization is refused by the validator.
+TEUCHOS_UNIT_TEST(Mortar, SearchRows) {
+  for (auto type : {Mesh::CellType::Hex8, Mesh::CellType::Tet4}) {
+    const Mesh::Mesh mesh = stackedBoxes(type, 3, 4, 0.125);
+    Contact::ContactPair pair;
+    pair.name = "interface";
+    pair.slave = "upper_bottom";
+    pair.master = "lower_top";
+    pair.discretization = Contact::ContactDiscretization::Mortar;
+    std::vector<std::string> notes;
+    const auto rows = Contact::contactConstraints(mesh, {pair}, &notes);
+    TEST_EQUALITY(rows.size(), mesh.faceNodes("upper_bottom").size());
+    TEST_ASSERT(notes.empty());
+    const auto area = Fem::faceNodalAreas(mesh, "upper_bottom");
+    for (const auto& c : rows) {
+      double sum = 0;
+      for (const auto& [m, w] : c.master) sum += w;
+      TEST_COMPARE(std::abs(sum - 1), <, 1e-13);
+      TEST_COMPARE(std::abs(c.gap - 0.125), <, 1e-13);
+      TEST_COMPARE(std::abs(c.area - area[c.node]), <, 1e-14);
+      TEST_COMPARE(std::abs(c.normal[2] + 1), <, 1e-14);
+      TEST_COMPARE(std::abs(c.t1[2]) + std::abs(c.t2[2]), <, 1e-14);
+    }
+  }
+  const auto v = Contact::discretizationValidator();
+  TEST_ASSERT(v->getIntegralValue("Mortar") == Contact::ContactDiscretization::Mortar);
+  TEST_ASSERT(v->getIntegralValue("Node To Segment") == Contact::ContactDiscretization::NodeToSegment);
+  TEST_THROW(v->getIntegralValue("mortar"), std::exception);
+}
+
+// A slave surface wider than its master (x, y of the lower block scaled to
+// [0, 0.76]): slave nodes beyond the master's edge take no part; a node
+// whose segments cover less than half its area keeps a node-to-segment row
+// where its closest point lies on the master; the search says both.
+TEUCHOS_UNIT_TEST(Mortar, SlaveBeyondMaster) {
+  Mesh::Mesh mesh = stackedBoxes(Mesh::CellType::Hex8, 3, 4);
+  std::vector<char> lower(mesh.numNodes(), 0);
+  for (int c = 0; c < mesh.numCells(); ++c)
+    if (mesh.cellBody[c] == 0)
+      for (int a = 0; a < mesh.nodesPerCell(); ++a) lower[mesh.cell(c)[a]] = 1;
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    if (lower[n]) mesh.coords[n][0] *= 0.76, mesh.coords[n][1] *= 0.76;
+  Contact::ContactPair pair;
+  pair.name = "interface";
+  pair.slave = "upper_bottom";
+  pair.master = "lower_top";
+  pair.discretization = Contact::ContactDiscretization::Mortar;
+  std::vector<std::string> notes;
+  const auto rows = Contact::contactConstraints(mesh, {pair}, &notes);
+  for (const auto& n : notes) out << n << "\n";
+  // Slave nodes x, y in {0, 0.25, 0.5, 0.75} have rows; along one axis the
+  // node at 0.75 keeps 0.5776 of its int psi_s (its outer facet covered up
+  // to 0.04 of its width), so the corner (0.75, 0.75) keeps 0.334 < 0.5:
+  // node-to-segment. Nodes at 1 are beyond the master.
+  TEST_EQUALITY(rows.size(), 16u);
+  int nodeToSegment = 0;
+  for (const auto& c : rows) {
+    TEST_COMPARE(std::max(mesh.coords[c.node][0], mesh.coords[c.node][1]), <, 0.76);
+    const bool corner = mesh.coords[c.node][0] == 0.75 && mesh.coords[c.node][1] == 0.75;
+    nodeToSegment += corner;
+    if (corner) TEST_COMPARE(c.master.size(), <=, 4u);
+  }
+  TEST_EQUALITY(nodeToSegment, 1);
+  TEST_EQUALITY(notes.size(), 2u);
+}
+
+}  // namespace
