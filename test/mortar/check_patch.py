@@ -1,0 +1,81 @@
+#!/usr/bin/python3
+"""The contact patch test read node by node from a result file:
+
+  check_patch.py --out DIR --pressure P [--tol T] -- CHECK_RESULT_ARGS ...
+
+runs test/check_result.py with CHECK_RESULT_ARGS (the run, the exact
+displacement, the KKT figures from the file), then checks that every contact
+node carries the uniform pressure P: its normal force divided by its area
+int N_s dA (from the facets of its body's cells that lie in the node's
+plane z = const, which the flat faces of the patch test are) equals P to
+T relative (default 1e-8). Contact nodes are those of every pair, on the
+rigid plane as between the bodies.
+"""
+import argparse
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+sep = sys.argv.index("--")
+ap = argparse.ArgumentParser()
+ap.add_argument("--out", required=True)
+ap.add_argument("--pressure", type=float, required=True)
+ap.add_argument("--tol", type=float, default=1e-8)
+a = ap.parse_args(sys.argv[1:sep])
+here = os.path.dirname(os.path.abspath(__file__))
+rc = subprocess.run([sys.executable, os.path.join(here, "..", "check_result.py")] + sys.argv[sep + 1:]).returncode
+failed = rc != 0
+
+HEX_FACES = [(0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+TET_FACES = [(0, 1, 2), (0, 1, 3), (1, 2, 3), (0, 2, 3)]
+G = 1 / np.sqrt(3)
+
+
+def nodal_areas(P):
+    """int N_a dA of each node of a flat facet (triangle: area / 3; bilinear
+    quadrilateral: 2 x 2 Gauss, exact for a planar one)."""
+    if len(P) == 3:
+        return np.full(3, 0.5 * np.linalg.norm(np.cross(P[1] - P[0], P[2] - P[0])) / 3)
+    s = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], dtype=float)
+    w = np.zeros(4)
+    for xi, eta in s * G:
+        N = (1 + s[:, 0] * xi) * (1 + s[:, 1] * eta) / 4
+        dxi = (s[:, 0] * (1 + s[:, 1] * eta) / 4) @ P
+        deta = (s[:, 1] * (1 + s[:, 0] * xi) / 4) @ P
+        w += N * np.linalg.norm(np.cross(dxi, deta))
+    return w
+
+
+h = h5py.File(f"{a.out}/solution.h5", "r")
+X = h["mesh/geometry"][:]
+T = h["mesh/topology"][:].astype(int)
+body = h["cells/body"][:].astype(int).ravel() if "cells/body" in h else np.zeros(len(T), dtype=int)
+c = h["points/contact"]
+rows = c["node"][:].astype(int).ravel()
+force = c["normal_force"][:].ravel()
+faces = HEX_FACES if T.shape[1] == 8 else TET_FACES
+# Each flat facet in a plane z = const of a body, once (a boundary facet
+# belongs to one cell; an inner one to two, and inner planes hold no
+# contact node).
+area = {}
+contact = set(rows.tolist())
+for cell, b in zip(T, body):
+    for f in faces:
+        nodes = cell[list(f)]
+        if not contact.intersection(nodes.tolist()) or np.ptp(X[nodes, 2]) > 1e-12:
+            continue
+        for n, w in zip(nodes, nodal_areas(X[nodes])):
+            area[(n, b)] = area.get((n, b), 0.0) + w
+node_body = {}
+for cell, b in zip(T, body):
+    for n in cell:
+        node_body[n] = b
+p = np.array([force[j] / area[(n, node_body[n])] for j, n in enumerate(rows)])
+err = np.abs(p - a.pressure).max() / abs(a.pressure)
+ok = err <= a.tol
+print(("ok: " if ok else "FAILED: ") + f"{len(p)} contact nodes carry the pressure {a.pressure:g}: "
+      f"max |p_s - p| / p = {err:.3g} <= {a.tol}")
+sys.exit(1 if failed or not ok else 0)
