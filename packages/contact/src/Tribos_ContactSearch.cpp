@@ -1,5 +1,7 @@
 #include "Tribos_ContactSearch.hpp"
 
+#include <Teuchos_TimeMonitor.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -297,6 +299,8 @@ void noteFallback(const ContactPair& pair, const std::vector<int>& fallback, siz
 
 std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const std::vector<ContactPair>& pairs,
                                                   std::vector<std::string>* notes) {
+  static const auto timer = Teuchos::TimeMonitor::getNewCounter("Tribos::contact search");
+  Teuchos::TimeMonitor timing(*timer);
   std::vector<ContactConstraint> out;
   std::map<int, int> pairOfNode;  // slave node -> pair
   for (size_t k = 0; k < pairs.size(); ++k) {

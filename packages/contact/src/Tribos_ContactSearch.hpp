@@ -29,7 +29,7 @@
 //
 // A pair may use mortar instead (ContactDiscretization::Mortar,
 // Tribos_Mortar.hpp): the same one row per slave node, with the weights
-// M_sm / D_s of dual mortar, the averaged nodal normal of the slave surface,
+// M_sm / D_s of dual mortar, the master normal averaged over the node,
 // the gap n_s . (sum_m (M_sm / D_s) x_m - x_s) (the row applied to the
 // reference positions) and the area D_s. It passes the contact patch test
 // on any two meshes. Slave nodes whose mortar segments cover less than half

@@ -2,6 +2,7 @@
 
 #include <Teuchos_SerialDenseMatrix.hpp>
 #include <Teuchos_SerialDenseSolver.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 
 #include <cmath>
 #include <unordered_map>
@@ -44,10 +45,11 @@ std::vector<Point2> projectedPolygon(const SurfaceElement& e, const Vec3& n0, co
 }
 
 // M_jk += int over the segment of psi_j N_k dA for the slave nodes j of e
-// and the master nodes k of m; the segment in e's reference coordinates.
+// and the master nodes k of m, and normal_j += int N_j n_m dA (n_m the
+// master's outward normal); the segment in e's reference coordinates.
 void integrateSegment(const SurfaceElement& e, const std::vector<std::vector<double>>& A, const Vec3& n0,
                       const SurfaceElement& m, const std::vector<Point2>& segment,
-                      std::vector<std::unordered_map<int, double>>& M) {
+                      std::vector<std::unordered_map<int, double>>& M, std::vector<Vec3>& normal) {
   const int ns = e.size(), nm = m.size();
   double Ns[kMaxNodes], Nm[kMaxNodes], d1[kMaxNodes], d2[kMaxNodes];
   integratePolygon(segment, [&](const Point2& xi, double w) {
@@ -56,7 +58,9 @@ void integrateSegment(const SurfaceElement& e, const std::vector<std::vector<dou
     const double dA = w * e.jacobian(xi);
     e.shape().evaluate(xi, Ns, d1, d2);
     m.shape().evaluate(zeta, Nm, d1, d2);
+    const Vec3 outward = m.normal(zeta);
     for (int j = 0; j < ns; ++j) {
+      for (int d = 0; d < 3; ++d) normal[j][d] += Ns[j] * outward[d] * dA;
       double psi = 0;
       for (int k = 0; k < ns; ++k) psi += A[j][k] * Ns[k];
       for (int k = 0; k < nm; ++k) M[j][m.nodes()[k]] += psi * Nm[k] * dA;
@@ -98,6 +102,8 @@ std::vector<std::vector<double>> dualBasis(const SurfaceElement& e) {
 
 std::vector<MortarNode> mortarCoupling(const Mesh::Mesh& mesh, const std::string& slave, const std::string& master,
                                        double reach) {
+  static const auto timer = Teuchos::TimeMonitor::getNewCounter("Tribos::contact search: mortar integrals");
+  Teuchos::TimeMonitor timing(*timer);
   std::vector<SurfaceElement> slaves, masters;
   for (const auto& f : mesh.face(slave)) slaves.emplace_back(f, mesh);
   for (const auto& f : mesh.face(master)) masters.emplace_back(f, mesh);
@@ -108,10 +114,11 @@ std::vector<MortarNode> mortarCoupling(const Mesh::Mesh& mesh, const std::string
   for (size_t i = 0; i < nodes.size(); ++i) out[i].node = nodes[i];
 
   std::vector<std::unordered_map<int, double>> M;
+  std::vector<Vec3> normal;
   for (const SurfaceElement& e : slaves) {
     const auto A = dualBasis(e);
     const Vec3 n0 = e.normal(e.center());
-    // The node's area int N_s dA and its share of the facet's area vector.
+    // The node's area int N_s dA.
     double N[kMaxNodes], d1[kMaxNodes], d2[kMaxNodes];
     std::vector<double> area(e.size(), 0.0);
     integratePolygon(e.shape().corners(), [&](const Point2& xi, double w) {
@@ -119,22 +126,23 @@ std::vector<MortarNode> mortarCoupling(const Mesh::Mesh& mesh, const std::string
       const double dA = w * e.jacobian(xi);
       for (int j = 0; j < e.size(); ++j) area[j] += N[j] * dA;
     });
-    for (int j = 0; j < e.size(); ++j) {
-      MortarNode& node = out[index.at(e.nodes()[j])];
-      node.area += area[j];
-      for (int d = 0; d < 3; ++d) node.normal[d] += area[j] * n0[d];
-    }
+    for (int j = 0; j < e.size(); ++j) out[index.at(e.nodes()[j])].area += area[j];
     M.assign(e.size(), {});
+    normal.assign(e.size(), Vec3{0, 0, 0});
     for (const SurfaceElement& m : masters) {
       if (!mayOverlap(e, n0, m, reach)) continue;
       const std::vector<Point2> segment = clipPolygon(projectedPolygon(e, n0, m, mesh, reach), e.shape().corners());
       if (std::abs(signedArea(segment)) <= 1e-12 * std::abs(signedArea(e.shape().corners()))) continue;
-      integrateSegment(e, A, n0, m, segment, M);
+      integrateSegment(e, A, n0, m, segment, M, normal);
     }
-    for (int j = 0; j < e.size(); ++j)
-      for (const auto& [node, value] : M[j]) out[index.at(e.nodes()[j])].M[node] += value;
+    for (int j = 0; j < e.size(); ++j) {
+      MortarNode& node = out[index.at(e.nodes()[j])];
+      for (const auto& [master, value] : M[j]) node.M[master] += value;
+      for (int d = 0; d < 3; ++d) node.normal[d] -= normal[j][d];
+    }
   }
-  for (MortarNode& node : out) node.normal = normalized(node.normal);
+  for (MortarNode& node : out)
+    if (norm(node.normal) > 0) node.normal = normalized(node.normal);
   return out;
 }
 

@@ -25,9 +25,16 @@
 // The integrals are taken on mortar segments: for each slave facet e, the
 // master facets that face it are projected onto e along e's normal at its
 // centre, clipped against e's reference polygon, and the pieces integrated
-// in e's reference coordinates (Tribos_MortarElement.hpp). The normal n_s
-// of a slave node is the area-weighted average of its facets' outward
-// normals. Geometry is the reference configuration.
+// in e's reference coordinates (Tribos_MortarElement.hpp). Geometry is the
+// reference configuration.
+//
+// The normal n_s of a slave node is the master's inward normal averaged
+// over the node's support, n_s ~ -int N_s n^(2) dA: a flat master gives
+// every slave node its exact normal, as node-to-segment does, however the
+// slave surface is curved or cut. The slave's own averaged normal would
+// tilt at the edges of a cut slave surface (a quarter model's symmetry
+// planes see the facets of one side only), where the node's Dirichlet
+// components then fix an oblique mix of normal and tangential motion.
 #pragma once
 
 #include <limits>
@@ -47,7 +54,7 @@ struct MortarNode {
   int node = -1;
   double area = 0;          // int N_s dA over the node's slave facets
   std::map<int, double> M;  // master node m -> M_sm over the covered part
-  Vec3 normal{0, 0, 0};     // averaged outward unit normal of the slave surface
+  Vec3 normal{0, 0, 0};     // unit, from the node into the master: -int N_s n^(2) dA normalized
   // int psi_s dA over the covered part: sum_m M_sm (the master's shape
   // functions sum to one); equal to D_s = area where the master covers all
   // of the node's facets.
