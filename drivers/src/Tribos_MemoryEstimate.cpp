@@ -55,14 +55,17 @@ SubdomainShape subdomainShape(const Mesh::BoxSpec& spec, double totalNodes, cons
 
 // Semismooth Newton holds the dual densely on every rank: the dual, the
 // reduction's blocks and the Newton matrix, about 24 n^2 bytes measured, for
-// n dual rows (0.65 S b on box decompositions), at most its Dense Limit.
+// n dual rows (0.65 S b on box decompositions), at most its Dense Limit;
+// above it (Linear Solver = Auto) or matrix-free it holds vectors only.
 double newtonBytes(const Teuchos::ParameterList& params, int S, double b) {
   const auto& solver = params.sublist("Solver");
   if (solver.get<std::string>("Outer Algorithm") != "Semismooth Newton") return 0.0;
   const auto& list = solver.isSublist("Semismooth Newton") ? solver.sublist("Semismooth Newton") : solver;
   const double limit = list.isParameter("Dense Limit") ? list.get<int>("Dense Limit") : 5000.0;
-  const double n = std::min(limit, 0.65 * S * b);
-  return 24.0 * n * n;
+  const std::string linear = list.isParameter("Linear Solver") ? list.get<std::string>("Linear Solver") : "Auto";
+  const double n = 0.65 * S * b;
+  if (linear == "Projected CG" || (linear == "Auto" && n > limit)) return 0.0;
+  return 24.0 * std::min(limit, n) * std::min(limit, n);
 }
 
 double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec, double nodes, int numRanks, int rank,

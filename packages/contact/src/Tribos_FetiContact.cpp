@@ -1,5 +1,7 @@
 #include "Tribos_FetiContact.hpp"
 
+#include "Tribos_DualPreconditioner.hpp"
+
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Vector.hpp>
@@ -157,6 +159,10 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
     std::vector<double> D;
     dual->problem().formDenseF(D);
     return D;
+  };
+  // FETI's preconditioners of P F P by name, for the Newton systems.
+  cd_.preconditioner = [dual](const std::string& name) -> RCP<const Operator> {
+    return rcp(new Feti::DualPreconditioner(*dual, name));
   };
   if (!cd_.G.is_null())
     transforms_.add(rcp(new Friction::HomogenizationTransform(Teuchos::rcpFromRef(dual->lambdaTilde()))))

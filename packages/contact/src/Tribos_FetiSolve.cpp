@@ -1,9 +1,12 @@
 #include "Tribos_FetiSolve.hpp"
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Vector.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <memory>
 
 #include "Tribos_Error.hpp"
 #include "Tribos_FetiDual.hpp"
@@ -105,6 +108,8 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     r.primal = dual->recoverPrimal(*r.lambda);
     law = {FrictionSpec()};  // no contact forces to check
   } else {
+    static const auto setupTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::contact: dual problem setup");
+    std::unique_ptr<Teuchos::TimeMonitor> setupTime(new Teuchos::TimeMonitor(*setupTimer));
     FetiContactProblem cp(dual, friction, from.normPFP);
     if (normPFP) *normPFP = cp.norm();
     r.outerAlgorithm = outerAlgorithmFor(p.get<std::string>("Outer Algorithm"), friction);
@@ -116,6 +121,7 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     // x = lambda_prev - lambda(0), lambda(0) the chain's back map of x = 0.
     RCP<const Vector> start;
     if (!from.lambda.is_null()) start = cp.startFrom(*from.lambda);
+    setupTime.reset();
     // Rounds: a solve that meets its own test with a result that misses the
     // check is asked again from its result, the tolerance tightened by the
     // miss (Friction::tightenedTolerance); the check keeps the first
@@ -136,7 +142,11 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
       r.lambda->assign(*sol.lambda);
       r.primal = sol.u;
       r.rounds = round;
-      checkResult(problem, friction, p, r, from.u);
+      {
+        static const auto checkTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::contact: result check");
+        Teuchos::TimeMonitor checkTime(*checkTimer);
+        checkResult(problem, friction, p, r, from.u);
+      }
       if (!r.solverConverged || r.verdict.converged || round == rounds || Friction::atTightestTolerance(requested))
         break;
       requested = Friction::tightenedTolerance(requested, r.verdict.limit, r.kkt.worst());
@@ -214,14 +224,42 @@ FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
     from.F_applications = operators_->F()->applications();
     from.F_seconds = operators_->F()->seconds();
   }
+  static const auto dualTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::contact: load step's dual");
+  std::unique_ptr<Teuchos::TimeMonitor> dualTime(new Teuchos::TimeMonitor(*dualTimer));
   auto dual = operators_.is_null() ? rcp(new Feti::FetiDual(problem_)) : rcp(new Feti::FetiDual(problem_, *operators_));
   if (operators_.is_null()) operators_ = dual;
+  if (!from.lambda.is_null()) from.lambda = predictedMultipliers(*dual);
+  dualTime.reset();
   auto r = solveDual(dual, friction_, params_, out_, from, &normPFP_, &warm_);
+  lambdaBefore_ = lambda_;
+  hBefore_ = h_;
+  h_ = rcp(new Vector(dual->h(), Teuchos::Copy));
   lambda_ = r.lambda;
   primal_ = r.primal;
   u_ = r.u;
   ++steps_;
   return r;
+}
+
+// The multipliers extrapolated along the load path: lambda_prev + omega
+// (lambda_prev - lambda_before), omega the share of the previous increment
+// of the dual right-hand side h that this step repeats, (dh_now . dh_prev) /
+// ||dh_prev||^2, kept in [0, 2]. A load applied in equal increments
+// (proportional loading: omega = 1) starts where its solution lies when
+// the contact state does not change; a reversal or a new load (omega <= 0)
+// starts from the previous step's multipliers, as does the second step.
+RCP<const Vector> FetiLoadSteps::predictedMultipliers(const Feti::FetiDual& dual) const {
+  if (lambdaBefore_.is_null() || hBefore_.is_null() || h_.is_null()) return lambda_;
+  Vector now(dual.h(), Teuchos::Copy), before(*h_, Teuchos::Copy);
+  now.update(-1.0, *h_, 1.0);
+  before.update(-1.0, *hBefore_, 1.0);
+  const double scale = before.dot(before);
+  if (!(scale > 0)) return lambda_;
+  const double omega = std::min(2.0, now.dot(before) / scale);
+  if (!(omega > 0)) return lambda_;
+  auto predicted = rcp(new Vector(*lambda_, Teuchos::Copy));
+  predicted->update(-omega, *lambdaBefore_, 1.0 + omega);
+  return predicted;
 }
 
 void FetiLoadSteps::resumeFrom(const Fem::NodalVector& uPrevious) {
@@ -239,7 +277,8 @@ void FetiLoadSteps::resumeFrom(const Fem::NodalVector& uPrevious) {
   }
   primal_ = primal;
   u_ = uPrevious;
-  lambda_ = Teuchos::null;
+  lambda_ = lambdaBefore_ = Teuchos::null;
+  h_ = hBefore_ = Teuchos::null;
 }
 
 }  // namespace Contact

@@ -101,8 +101,12 @@ class FetiLoadSteps {
   int steps_ = 0;
   double normPFP_ = 0;
   RCP<const Vector> lambda_, primal_;  // of the previous step (lambda_ empty after resumeFrom)
+  RCP<const Vector> lambdaBefore_;      // the multipliers of the step before it
+  RCP<const Vector> h_, hBefore_;       // the dual right-hand sides of those two steps
   Friction::WarmStart warm_;            // ... and its outer algorithm's final state (empty after resumeFrom)
   Fem::NodalVector u_;
+  // Where the next step's iterations start (predictedMultipliers in the source).
+  RCP<const Vector> predictedMultipliers(const Feti::FetiDual& dual) const;
 };
 
 }  // namespace Contact

@@ -1,5 +1,6 @@
 #include "Tribos_ProjectedCG.hpp"
 
+#include "Tribos_DualPreconditioner.hpp"
 #include "Tribos_Progress.hpp"
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
@@ -12,32 +13,6 @@
 namespace Tribos {
 namespace Feti {
 
-namespace {
-
-// x = A^+ b for symmetric positive semidefinite A = BB' or B'B by conjugate
-// gradients from x = 0: the minimum-norm solution of A x = b for b in range A.
-// Both Gram matrices are block diagonal with one small block per mesh node,
-// so they have few distinct eigenvalues and CG ends in a few dozen steps.
-void gramSolve(const std::function<void(const Vector&, Vector&)>& A, const Vector& b, Vector& x) {
-  const auto map = b.getMap();
-  Vector r(map), p(map), q(map);
-  x.putScalar(0.0);
-  r.assign(b);
-  p.assign(b);
-  double rr = r.dot(r);
-  const double stop = 1e-24 * rr;  // relative residual 1e-12
-  for (int it = 0; it < 200 && rr > stop; ++it) {
-    A(p, q);
-    const double alpha = rr / p.dot(q);
-    x.update(alpha, p, 1.0);
-    r.update(-alpha, q, 1.0);
-    const double rrNew = r.dot(r);
-    p.update(1.0, r, rrNew / rr);
-    rr = rrNew;
-  }
-}
-
-}  // namespace
 
 RCP<const Teuchos::ParameterList> ProjectedCG::getValidParameters() {
   static RCP<Teuchos::ParameterList> pl;
@@ -69,45 +44,9 @@ PCGStatus ProjectedCG::solve(const FetiDual& dual, Vector& lambda) const {
   const DualOperator& F = *dual.F();
   const auto map = prob.dualMap();
   const long long n_A0 = F.applications();
-  // Lumped preconditioner M^-1 = P (B^+)' K B^+ P, B^+ = B'(BB')^+ = (B'B)^+ B',
-  // i.e. B_D K B_D' with B_D = (BB')^-1 B. The scaling matters: with the
-  // non-redundant chain gluing and the Dirichlet rows, BB' is not a multiple
-  // of the identity (cond(BB') = 32 on 2x2x2 subdomains), and the unscaled
-  // P B K B' P is a worse operator than none (cond 1970 against 82 for PFP,
-  // docs/feti.md). The right factor is computed on the primal side,
-  // (B'B)^+ (B'w): B'w lies in range B' to round-off relative to ||w||,
-  // whereas w = Pg carries round-off relative to ||g|| >> ||w|| along ker B'
-  // once PCG has gained a few digits, which stalls a dual-side solve when
-  // redundant gluing makes BB' singular.
-  const CrsMatrix& B = *prob.B();
-  Vector pw(prob.primalMap()), v(prob.primalMap()), Kv(prob.primalMap()), tmp(map), scaled(map);
-  auto BtB = [&](const Vector& x, Vector& y) {
-    B.apply(x, tmp);
-    B.apply(tmp, y, Teuchos::TRANS);
-  };
-  auto BBt = [&](const Vector& x, Vector& y) {
-    B.apply(x, pw, Teuchos::TRANS);
-    B.apply(pw, y);
-  };
-  auto precondition = [&](const Vector& w, Vector& y) {
-    if (preconditioner_ == "None") {
-      y.assign(w);
-      return;
-    }
-    B.apply(w, pw, Teuchos::TRANS);
-    if (preconditioner_ == "Lumped" || preconditioner_ == "Dirichlet") {
-      gramSolve(BtB, pw, v);
-      if (preconditioner_ == "Lumped") prob.applyK(v, Kv);
-      else prob.applySchur(v, Kv);
-      B.apply(Kv, tmp);
-      gramSolve(BBt, tmp, scaled);
-      coarse.project(scaled, y);
-    } else {  // Lumped Unscaled
-      prob.applyK(pw, Kv);
-      B.apply(Kv, tmp);
-      coarse.project(tmp, y);
-    }
-  };
+  // The preconditioner y = M^-1 w (Tribos_DualPreconditioner.hpp).
+  const DualPreconditioner M(dual, preconditioner_);
+  auto precondition = [&](const Vector& w, Vector& y) { M.apply(w, y); };
   lambda.assign(dual.lambdaTilde());
   Vector g(map), w(map), y(map), p(map), q(map);
   F.apply(lambda, g);

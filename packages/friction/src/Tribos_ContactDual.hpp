@@ -19,6 +19,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "Tribos_QP_AugmentedHessian.hpp"
@@ -62,6 +63,13 @@ struct ContactDual {
   // stale, and hessianNorm estimates again.
   RCP<const Operator> normAOf;
   SC normAEstimate = 0;
+  // Preconditioners of A by name (FETI's "Lumped", "Dirichlet": an
+  // approximate inverse of A on ker G whose range lies in ker G), for the
+  // methods that solve linear systems with A by conjugate gradients (the
+  // Newton method of Tribos_NewtonPCG.hpp). Empty function or null result:
+  // none of that name. ScalingTransform scales it; the other transforms
+  // leave it (on ker G it is already what the projected problem needs).
+  std::function<RCP<const Operator>(const std::string& name)> preconditioner;
 
   RCP<const Map> map() const { return b->getMap(); }
   SC normB() const { return (bReference.is_null() ? b : bReference)->norm2(); }

@@ -158,6 +158,13 @@ void ScalingTransform::forward(ContactDual& dual) {
     };
   }
   if (!dual.jointHessian.is_null()) dual.jointHessian = rcp(new ScaledComplement(dual.jointHessian, scale_));
+  // (s A)^-1 = A^-1 / s.
+  if (dual.preconditioner) {
+    dual.preconditioner = [inner = dual.preconditioner, s = scale_](const std::string& name) -> RCP<const Operator> {
+      const RCP<const Operator> M = inner(name);
+      return M.is_null() ? M : RCP<const Operator>(rcp(new ScaledOperator(M, 1.0 / s)));
+    };
+  }
   auto b = rcp(new Vector(*dual.b, Teuchos::Copy));
   b->scale(scale_);
   dual.b = b;

@@ -192,7 +192,7 @@ class LocalCoulomb {
  public:
   LocalCoulomb(const double* W, double mu, double tolerance, int maxIterations)
       : W_(W), tol_(tolerance), maxIt_(maxIterations) {
-    contact_ = {0, {1, 2}, 2, 0.0, 0.0, {0.0, 0.0}, mu};
+    contact_ = {0, {1, 2}, 2, 0.0, 0.0, {0.0, 0.0}, mu, 0.0};
     double wmax = 0;
     for (int i = 0; i < 9; ++i) wmax = std::max(wmax, std::abs(W[i]));
     // rho as the global Newton method takes it (1 / diagonal), 1 / max|W|

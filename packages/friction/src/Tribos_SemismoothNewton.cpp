@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "Tribos_ContactRowReduction.hpp"
+#include "Tribos_NewtonPCG.hpp"
 #include "Tribos_ArrayScan.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Validators.hpp"
@@ -81,6 +82,7 @@ AlartCurnier::AlartCurnier(const ContactDual& dual, std::vector<double> rho)
     c.lower = dual.normalLower[k];
     c.offset = dual.normalOffset[k];
     c.friction = dual.frictionCoefficient.empty() ? 0.0 : dual.frictionCoefficient[k];
+    c.bound = dual.slipBound.empty() ? 0.0 : dual.slipBound[k];
     contacts_.push_back(c);
   }
   for (int i = 0; i < n_; ++i)
@@ -102,7 +104,7 @@ void AlartCurnier::blocks(const Contact& c, const double* x, const double* v, do
     out.Dx[0][0] = 1.0;
   }
   const double candidate = tauN + c.offset;
-  const double R = c.friction * std::max(0.0, candidate);
+  const double R = c.bound + c.friction * std::max(0.0, candidate);
   double z[2] = {0, 0}, nz = 0;
   for (int j = 0; j + 1 < m; ++j) {
     z[j] = x[c.tangent[j]] - c.centre[j] - rhoT * v[c.tangent[j]];
@@ -246,20 +248,47 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             "weight lambda: a step the line search cuts below 1e-3 multiplies lambda by 10 (up to 100), a full "
             "step divides it by 10 (down to this value)",
             range<double>(0.0, 1.0));
-    pl->set("Dense Limit", 5000, "without an explicit matrix, A is formed densely up to this many rows",
+    pl->set("Dense Limit", 5000,
+            "without an explicit matrix, A is formed densely up to this many rows (Linear Solver = Dense LU); "
+            "Auto takes Projected CG above it",
             range<int>(1, 100000));
+    pl->set("Linear Solver", "Auto",
+            "the Newton systems: Dense LU (A formed densely, reduced to the contact rows, at most Dense Limit rows), "
+            "Projected CG (matrix-free: A applied, never formed; the step by preconditioned CG on its free "
+            "directions, Tribos_NewtonPCG.hpp), or Auto: Dense LU for an explicit matrix (FCLIB) and for a dual of "
+            "at most Dense Limit rows, Projected CG above",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Auto", "Dense LU", "Projected CG"))));
+    pl->set("Preconditioner", "None",
+            "Projected CG: the dual problem's preconditioner by name (FETI: Lumped or Dirichlet), or None. FETI's "
+            "preconditioners approximate the inverse of the whole dual operator, not of its restriction to the "
+            "free directions of a Newton step, and cost more than they save there (docs/semismooth.md)",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("None", "Lumped", "Dirichlet"))));
+    pl->set("Penalty", 1.0,
+            "Projected CG: the augmented Lagrangian's rho of G x = 0, as a multiple of ||A||", range<double>(1e-6, 1e6));
+    pl->set("Maximum Forcing Term", 0.5,
+            "Projected CG: the largest relative residual eta_k of a Newton system (Eisenstat-Walker forcing "
+            "terms below it)",
+            range<double>(1e-12, 0.99));
+    pl->set("Maximum CG Iterations", 1000, "Projected CG: iterations per Newton system", range<int>(1, 1000000));
   }
   return pl;
 }
 
 SemismoothNewton::SemismoothNewton(const ParameterList& params) : SingleLoopSolver(params, validParameters()) {}
 
+bool SemismoothNewton::matrixFree(long long rows) const {
+  const std::string& solver = params_.get<std::string>("Linear Solver");
+  return solver == "Projected CG" ||
+         (solver == "Auto" && explicitA_ == nullptr && rows > params_.get<int>("Dense Limit"));
+}
+
 void SemismoothNewton::checkDualRows(long long rows) const {
+  if (matrixFree(rows)) return;
   const int limit = params_.get<int>("Dense Limit");
   TRIBOS_REQUIRE(explicitA_ || rows <= limit,
                  "Semismooth Newton: the dual has " << rows << " rows, more than its Dense Limit = " << limit
-                     << " (it holds the dual densely on every rank, about 24 n^2 bytes for n rows); raise "
-                        "Semismooth Newton/Dense Limit or use Algorithm2");
+                     << " (Linear Solver = Dense LU holds the dual densely on every rank, about 24 n^2 bytes for n "
+                        "rows); raise Semismooth Newton/Dense Limit, or take Linear Solver = Projected CG or Auto");
 }
 
 void SemismoothNewton::setHessianMatrix(const LocalCsr* A, double scale) {
@@ -305,6 +334,10 @@ FrictionStatus SemismoothNewton::solve(const ContactDual& dual, Vector& xVector)
   dual.check();
   TRIBOS_REQUIRE(dual.frictionCoefficient.size() == dual.normalRows.size(),
                  "Semismooth Newton: Coulomb friction needs a friction coefficient per contact");
+  if (matrixFree(static_cast<long long>(dual.map()->getGlobalNumElements()))) {
+    TRIBOS_REQUIRE(!measure_, "Semismooth Newton: a stopping measure needs Linear Solver = Dense LU");
+    return NewtonPCG(params_).solve(dual, xVector, warm_, final_, out_);
+  }
   FrictionStatus st;
   const auto start = std::chrono::steady_clock::now();
   if (explicitA_) {

@@ -68,12 +68,15 @@ class AlartCurnier {
                 LocalCsr& J) const;
   const std::vector<double>& rho() const { return rho_; }
 
+  // R = bound + friction max(0, tau_N + offset): Coulomb's slip bound, or
+  // Tresca's given one (friction = 0).
   struct Contact {
     int normal;
     int tangent[2];
     int tangents;      // 0, 1 or 2
-    double lower, offset, centre[2], friction;
+    double lower, offset, centre[2], friction, bound;
   };
+  const std::vector<Contact>& contacts() const { return contacts_; }
   // Phi on the rows of one contact and the blocks D_x, D_v of its case
   // (m x m, m = 1 + tangents; index 0 normal, 1.. tangential), from x and
   // v indexed by the contact's rows. Every Alart-Curnier computation of
@@ -97,6 +100,9 @@ class SemismoothNewton : public SingleLoopSolver {
   FrictionStatus solve(const ContactDual& dual, Vector& x) override;
   static RCP<const Teuchos::ParameterList> validParameters();
   void checkDualRows(long long rows) const override;      // at most Dense Limit without an explicit matrix
+  // Whether the Newton systems of a dual of that many rows are solved
+  // matrix-free (Linear Solver).
+  bool matrixFree(long long rows) const;
 
   // A of the dual as an explicit sparse matrix: dual.A = scale * A.
   void setHessianMatrix(const LocalCsr* A, double scale);

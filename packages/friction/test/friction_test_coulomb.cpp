@@ -135,6 +135,7 @@ TEUCHOS_UNIT_TEST(SemismoothNewton, RefusesAboveDenseLimit) {
   const auto m = manufacture(stickSlipSeparated, coulomb());
   auto params = solverParameters(solveTolerance);
   params.sublist("Semismooth Newton").set("Dense Limit", m.problem.size() - 1);
+  params.sublist("Semismooth Newton").set("Linear Solver", "Dense LU");  // Auto would go matrix-free
   try {
     solveWith("Semismooth Newton", m.problem, params);
     TEST_ASSERT(false);

@@ -1,0 +1,425 @@
+#include "Tribos_NewtonPCG.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_TimeMonitor.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <memory>
+
+#include "Tribos_Error.hpp"
+#include "Tribos_Progress.hpp"
+#include "Tribos_QP_AugmentedLagrangian.hpp"
+#include "Tribos_SemismoothNewton.hpp"
+
+namespace Tribos {
+namespace Friction {
+
+namespace {
+
+using Contact = AlartCurnier::Contact;
+
+// The Newton system of one contact at x: the projector Pi onto its free
+// directions, the curvature K on them, the fixed part d0 of the step and the
+// right-hand side of the free equations (index 0 normal, 1.. tangential).
+struct ContactStep {
+  double Pi[3][3], K[3][3], d0[3], rhs[3];
+};
+
+// The eigenvectors of a symmetric 2 x 2 matrix [[a, b], [b, d]] (columns of
+// W) and its eigenvalues.
+void symmetricEigen2(double a, double b, double d, double W[2][2], double lambda[2]) {
+  const double mean = 0.5 * (a + d), radius = std::hypot(0.5 * (a - d), b);
+  lambda[0] = mean + radius;
+  lambda[1] = mean - radius;
+  double w0 = 1, w1 = 0;
+  if (std::abs(b) > 1e-300) {
+    w0 = lambda[0] - d;
+    w1 = b;
+    const double n = std::hypot(w0, w1);
+    w0 /= n, w1 /= n;
+  } else if (d > a) {
+    w0 = 0, w1 = 1;
+  }
+  W[0][0] = w0, W[1][0] = w1;   // first eigenvector
+  W[0][1] = -w1, W[1][1] = w0;  // the perpendicular one
+}
+
+// From the Alart-Curnier blocks of a contact, its Newton system: along an
+// eigenvector w of D_v (D_x shares them once the normal coupling is dropped)
+// with eigenvalue s > 0 the equation w'(H d) + (w'D_x w / s) w'd = -w'Phi / s
+// is free; with s = 0 the direction is fixed, w'd = -w'Phi / w'D_x w.
+void contactStep(const Contact& c, const AlartCurnier::Blocks& B, ContactStep& out) {
+  const int m = 1 + c.tangents;
+  for (int p = 0; p < 3; ++p) {
+    out.d0[p] = out.rhs[p] = 0;
+    for (int q = 0; q < 3; ++q) out.Pi[p][q] = out.K[p][q] = 0;
+  }
+  auto direction = [&](const double* w, int offset, int size, double s, double dx) {
+    double wPhi = 0;
+    for (int i = 0; i < size; ++i) wPhi += w[i] * B.phi[offset + i];
+    if (s > 1e-14 * (s + dx)) {
+      for (int i = 0; i < size; ++i) {
+        out.rhs[offset + i] += -wPhi / s * w[i];
+        for (int j = 0; j < size; ++j) {
+          out.Pi[offset + i][offset + j] += w[i] * w[j];
+          out.K[offset + i][offset + j] += dx / s * w[i] * w[j];
+        }
+      }
+    } else {
+      for (int i = 0; i < size; ++i) out.d0[offset + i] += -wPhi / dx * w[i];
+    }
+  };
+  const double one = 1.0;
+  direction(&one, 0, 1, B.Dv[0][0], B.Dx[0][0]);
+  if (m == 2) direction(&one, 1, 1, B.Dv[1][1], B.Dx[1][1]);
+  if (m == 3) {
+    const double a = B.Dv[1][1], b = 0.5 * (B.Dv[1][2] + B.Dv[2][1]), d = B.Dv[2][2];
+    double W[2][2], lambda[2];
+    symmetricEigen2(a, b, d, W, lambda);
+    for (int e = 0; e < 2; ++e) {
+      const double w[2] = {W[0][e], W[1][e]};
+      double dx = 0;
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) dx += w[i] * B.Dx[1 + i][1 + j] * w[j];
+      direction(w, 1, 2, std::max(lambda[e], 0.0), dx);
+    }
+  }
+}
+
+// The rows of a contact as an index list (normal first).
+int rowsOf(const Contact& c, int rows[3]) {
+  rows[0] = c.normal;
+  for (int j = 0; j < c.tangents; ++j) rows[1 + j] = c.tangent[j];
+  return 1 + c.tangents;
+}
+
+// A constraint without rows (the dual has no G).
+class NoRows : public QP::EqualityConstraint {
+ public:
+  explicit NoRows(const RCP<const Comm>& comm) : map_(rcp(new Map(0, 0, comm))) {}
+  RCP<const Map> rangeMap() const override { return map_; }
+  void apply(const Vector&, Vector&) const override {}
+  void applyTranspose(const Vector&, Vector& y) const override { y.putScalar(0.0); }
+
+ private:
+  RCP<const Map> map_;
+};
+
+class NewtonSolve {
+ public:
+  NewtonSolve(const ContactDual& dual, const Teuchos::ParameterList& params, const WarmStart& warm,
+              const RCP<Teuchos::FancyOStream>& out)
+      : dual_(dual), params_(params), out_(out), map_(dual.map()),
+        G_(dual.G), equality_(G_.is_null() ? RCP<const QP::EqualityConstraint>(rcp(new NoRows(map_->getComm()))) : G_),
+        al_(*dual.A, *equality_, dual.jointHessian.get()), v_(map_), Hd_(map_), d_(map_), y_(map_), xt_(map_),
+        vt_(map_), tmp_(map_), GtGw_(map_), Gx_(equality_->rangeMap()) {
+    normA_ = dual.hessianNorm(20, n_A_);
+    rho_ = params.get<double>("Penalty") * normA_;
+    if (!warm.equalityMultiplier.is_null() && warm.equalityMultiplier->getMap()->isSameAs(*al_.multiplier()->getMap())) {
+      al_.multiplier()->assign(*warm.equalityMultiplier);
+      if (warm.rho > 0) rho_ = warm.rho;
+    }
+    r_ = params.get<double>("rho Factor") / normA_;
+    const std::vector<double> rho(map_->getNodeNumElements(), r_);
+    ac_ = rcp(new AlartCurnier(dual, rho));
+    steps_.resize(ac_->contacts().size());
+    const std::string pc = params.get<std::string>("Preconditioner");
+    if (pc != "None" && dual.preconditioner) M_ = dual.preconditioner(pc);
+    isContactRow_.assign(map_->getNodeNumElements(), 0);
+    for (const Contact& c : ac_->contacts()) {
+      int rows[3];
+      for (int i = 0, m = rowsOf(c, rows); i < m; ++i) isContactRow_[rows[i]] = 1;
+    }
+  }
+
+  FrictionStatus run(Vector& x, WarmStart& final);
+
+ private:
+  const ContactDual& dual_;
+  const Teuchos::ParameterList& params_;
+  RCP<Teuchos::FancyOStream> out_;
+  RCP<const Map> map_;
+  RCP<const QP::EqualityConstraint> G_;
+  RCP<const QP::EqualityConstraint> equality_;  // G, or a constraint without rows
+  QP::AugmentedLagrangian al_;
+  RCP<AlartCurnier> ac_;
+  RCP<const Operator> M_;
+  std::vector<ContactStep> steps_;
+  std::vector<char> isContactRow_;
+  Vector v_, Hd_, d_, y_, xt_, vt_, tmp_, GtGw_;
+  mutable Vector Gx_;
+  SC normA_ = 1, rho_ = 1, r_ = 1;
+  long n_A_ = 0;
+
+  void applyH(const Vector& p, Vector& Hp) {
+    al_.hessian(rho_).apply(p, Hp);
+    ++n_A_;
+  }
+  // v = H x - (b - G'mu).
+  void velocity(const Vector& x, Vector& v) {
+    applyH(x, v);
+    v.update(-1.0, al_.linearTerm(*dual_.b), 1.0);
+  }
+  // ||Phi(x, v)|| (the Alart-Curnier function; r v on free rows).
+  double phiNorm(const Vector& x, const Vector& v) const;
+  double normGx(const Vector& x) const { return G_.is_null() ? 0.0 : al_.normGx(x); }
+  // The Newton system at (x, v): steps_, d0 into d_ (local), returns ||Phi||.
+  void linearize(const Vector& x, const Vector& v);
+  // y <- Pi y (free directions only).
+  void project(Vector& y) const;
+  // y <- y + K p.
+  void addCurvature(const Vector& p, Vector& y) const;
+  // z = Pi (M + (I - P) / rho) Pi w.
+  void precondition(const Vector& w, Vector& z);
+  // PCG on Pi (H + K) Pi y = rhs from y = 0 to ||res|| <= eta ||rhs||; y_ and
+  // its H y into Hy. Returns the iterations.
+  int conjugateGradients(const Vector& rhs, double eta, int maxIter, Vector& Hy);
+};
+
+double NewtonSolve::phiNorm(const Vector& x, const Vector& v) const {
+  const auto xv = x.getData(), vv = v.getData();
+  double local = 0;
+  AlartCurnier::Blocks B;
+  for (const Contact& c : ac_->contacts()) {
+    AlartCurnier::blocks(c, xv.getRawPtr(), vv.getRawPtr(), r_, r_, B);
+    for (int i = 0; i <= c.tangents; ++i) local += B.phi[i] * B.phi[i];
+  }
+  for (size_t i = 0; i < isContactRow_.size(); ++i)
+    if (!isContactRow_[i]) local += r_ * r_ * vv[i] * vv[i];
+  double global = 0;
+  Teuchos::reduceAll(*map_->getComm(), Teuchos::REDUCE_SUM, local, Teuchos::outArg(global));
+  return std::sqrt(global);
+}
+
+void NewtonSolve::linearize(const Vector& x, const Vector& v) {
+  const auto xv = x.getData(), vv = v.getData();
+  auto d0 = d_.getDataNonConst();
+  for (size_t i = 0; i < d0.size(); ++i) d0[i] = 0;
+  AlartCurnier::Blocks B;
+  const auto& contacts = ac_->contacts();
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    AlartCurnier::blocks(contacts[k], xv.getRawPtr(), vv.getRawPtr(), r_, r_, B);
+    contactStep(contacts[k], B, steps_[k]);
+    int rows[3];
+    for (int i = 0, m = rowsOf(contacts[k], rows); i < m; ++i) d0[rows[i]] = steps_[k].d0[i];
+  }
+}
+
+void NewtonSolve::project(Vector& y) const {
+  auto yv = y.getDataNonConst();
+  const auto& contacts = ac_->contacts();
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    int rows[3];
+    const int m = rowsOf(contacts[k], rows);
+    double in[3], outv[3];
+    for (int i = 0; i < m; ++i) in[i] = yv[rows[i]];
+    for (int i = 0; i < m; ++i) {
+      outv[i] = 0;
+      for (int j = 0; j < m; ++j) outv[i] += steps_[k].Pi[i][j] * in[j];
+    }
+    for (int i = 0; i < m; ++i) yv[rows[i]] = outv[i];
+  }
+}
+
+void NewtonSolve::addCurvature(const Vector& p, Vector& y) const {
+  const auto pv = p.getData();
+  auto yv = y.getDataNonConst();
+  const auto& contacts = ac_->contacts();
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    int rows[3];
+    const int m = rowsOf(contacts[k], rows);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j) yv[rows[i]] += steps_[k].K[i][j] * pv[rows[j]];
+  }
+}
+
+void NewtonSolve::precondition(const Vector& w, Vector& z) {
+  tmp_.assign(w);
+  project(tmp_);
+  if (M_.is_null()) {
+    z.assign(tmp_);
+    return;
+  }
+  // H^-1 = A^+ + (I - P) / rho with P = I - G'G: M P w + G'G w / rho.
+  if (G_.is_null()) {
+    M_->apply(tmp_, z);
+  } else {
+    G_->apply(tmp_, Gx_);
+    G_->applyTranspose(Gx_, GtGw_);
+    tmp_.update(-1.0, GtGw_, 1.0);
+    M_->apply(tmp_, z);
+    z.update(1.0 / rho_, GtGw_, 1.0);
+  }
+  project(z);
+}
+
+int NewtonSolve::conjugateGradients(const Vector& rhs, double eta, int maxIter, Vector& Hy) {
+  Vector res(rhs, Teuchos::Copy), z(map_), p(map_), Hp(map_), q(map_);
+  y_.putScalar(0.0);
+  Hy.putScalar(0.0);
+  const double stop = eta * rhs.norm2();
+  precondition(res, z);
+  p.assign(z);
+  double rz = res.dot(z);
+  int it = 0;
+  while (it < maxIter && res.norm2() > stop) {
+    applyH(p, Hp);
+    q.assign(Hp);
+    addCurvature(p, q);
+    project(q);
+    const double pq = p.dot(q);
+    if (!(pq > 0)) break;  // Pi (H + K) Pi is positive definite on range Pi: only round-off gets here
+    const double alpha = rz / pq;
+    y_.update(alpha, p, 1.0);
+    Hy.update(alpha, Hp, 1.0);
+    res.update(-alpha, q, 1.0);
+    ++it;
+    precondition(res, z);
+    const double rzNew = res.dot(z);
+    p.update(1.0, z, rzNew / rz);
+    rz = rzNew;
+  }
+  return it;
+}
+
+FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
+  const auto start = std::chrono::steady_clock::now();
+  FrictionStatus st;
+  const double normRB = std::max(r_ * dual_.normB(), 1e-300);
+  const double tol = params_.get<double>("Relative Tolerance");
+  const int maxIter = params_.get<int>("Maximum Iterations");
+  const int maxPCG = params_.get<int>("Maximum CG Iterations");
+  const double etaMax = params_.get<double>("Maximum Forcing Term");
+  const double sigma = params_.get<double>("sigma"), beta = params_.get<double>("Backtracking Factor");
+  const int maxBack = params_.get<int>("Maximum Backtracking Steps");
+  const bool armijo = params_.get<std::string>("Line Search") == "Armijo";
+
+  velocity(x, v_);
+  double previous = -1, eta = etaMax;
+  int lineSearchFailures = 0;
+  for (int it = 0;; ++it) {
+    const double nPhi = phiNorm(x, v_), nGx = normGx(x);
+    const double measure = std::hypot(nPhi, nGx) / normRB;
+    st.history.push_back(measure);
+    st.norm_gP = nPhi / r_;
+    st.norm_Gx = nGx;
+    st.n_A = n_A_;
+    OuterStep step;
+    step.iteration = it;
+    step.projectedGradient = nPhi / normRB;
+    step.normGx = nGx / normRB;
+    step.slipBoundChange = std::numeric_limits<double>::quiet_NaN();
+    step.n_A = n_A_;
+    step.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    st.steps.push_back(step);
+    if (!out_.is_null())
+      *out_ << "Newton PCG " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << measure
+            << "  ||Phi|| " << nPhi << "  ||G x|| " << nGx << "  eta " << eta << "  n_A " << n_A_ << "\n";
+    Progress::iteration([&] {
+      return "Semismooth Newton " + std::to_string(it) + ": measure " + Progress::sci(measure) + ", tolerance " +
+             Progress::sci(tol);
+    });
+    if (!std::isfinite(measure)) {
+      st.reason = "Semismooth Newton: the stopping measure is not finite at step " + std::to_string(it);
+      break;
+    }
+    if (measure <= tol) {
+      st.converged = true;
+      st.reason = "Semismooth Newton: stopping measure below tolerance";
+      break;
+    }
+    if (it == maxIter) {
+      st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of Semismooth Newton reached";
+      break;
+    }
+    // Forcing term (Eisenstat-Walker, choice 2, gamma = 0.9), safeguarded, and
+    // no tighter than the final tolerance needs.
+    if (previous > 0) {
+      const double ew = 0.9 * (nPhi / previous) * (nPhi / previous), guard = 0.9 * eta * eta;
+      eta = std::min(etaMax, guard > 0.1 ? std::max(ew, guard) : ew);
+    }
+    eta = std::max(eta, 0.5 * tol * normRB / std::max(nPhi, 1e-300));
+    eta = std::min(eta, etaMax);
+    previous = nPhi;
+    // The step: d = d0 + y.
+    linearize(x, v_);
+    Vector Hd0(map_), rhs(map_);
+    const bool anyFixed = d_.normInf() > 0;
+    if (anyFixed) applyH(d_, Hd0);
+    {
+      auto rv = rhs.getDataNonConst();
+      const auto vv = v_.getData(), hv = Hd0.getData();
+      for (size_t i = 0; i < rv.size(); ++i) rv[i] = -vv[i] - hv[i];
+      const auto& contacts = ac_->contacts();
+      for (size_t k = 0; k < contacts.size(); ++k) {
+        int rows[3];
+        for (int i = 0, m = rowsOf(contacts[k], rows); i < m; ++i) rv[rows[i]] = steps_[k].rhs[i] - hv[rows[i]];
+      }
+    }
+    project(rhs);
+    static const auto cgTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: CG");
+    std::unique_ptr<Teuchos::TimeMonitor> cgTime(new Teuchos::TimeMonitor(*cgTimer));
+    const int cg = conjugateGradients(rhs, eta, maxPCG, Hd_);
+    cgTime.reset();
+    static const auto lsTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: line search");
+    Teuchos::TimeMonitor lsTime(*lsTimer);
+    st.inner_iterations += cg;
+    Hd_.update(1.0, Hd0, 1.0);
+    d_.update(1.0, y_, 1.0);
+    // Armijo backtracking on psi = 1/2 ||Phi||^2 (v is affine in x: no H).
+    const double psi = 0.5 * nPhi * nPhi;
+    double t = 1.0;
+    bool accepted = false;
+    for (int k = 0; k <= (armijo ? maxBack : 0); ++k) {
+      xt_.update(1.0, x, t, d_, 0.0);
+      vt_.update(1.0, v_, t, Hd_, 0.0);
+      const double n = phiNorm(xt_, vt_);
+      if (!armijo || 0.5 * n * n <= (1.0 - 2.0 * sigma * t) * psi) {
+        accepted = true;
+        break;
+      }
+      if (k < maxBack) t *= beta;
+    }
+    if (!accepted) ++lineSearchFailures;
+    if (!out_.is_null())
+      *out_ << "  step: " << cg << " CG iterations (eta " << eta << "), step length " << t << (accepted ? "" : " (no Armijo step)")
+            << "\n";
+    x.assign(xt_);
+    v_.assign(vt_);
+    // The multiplier of G x = 0: mu <- mu + rho G x moves b - G'mu by
+    // -rho G'G x, so v by +rho G'G x.
+    if (!G_.is_null()) {
+      G_->apply(x, Gx_);
+      al_.multiplier()->update(rho_, Gx_, 1.0);
+      G_->applyTranspose(Gx_, tmp_);
+      v_.update(rho_, tmp_, 1.0);
+    }
+    st.outer_iterations = it + 1;
+  }
+  // The feasible set: a converged Phi leaves x in it up to the tolerance.
+  const std::vector<SC> g = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
+  dual_.constraintSet(g).project(x);
+  st.slipBound = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
+  st.n_A = n_A_;
+  st.n_A_qpp = n_A_;
+  if (lineSearchFailures > 0) st.reason += " (" + std::to_string(lineSearchFailures) + " line-search failures)";
+  final = {rcp(new Vector(*al_.multiplier(), Teuchos::Copy)), rho_};
+  return st;
+}
+
+}  // namespace
+
+FrictionStatus NewtonPCG::solve(const ContactDual& dual, Vector& x, const WarmStart& warm, WarmStart& final,
+                                const RCP<Teuchos::FancyOStream>& out) const {
+  dual.check();
+  NewtonSolve solve(dual, params_, warm, out);
+  return solve.run(x, final);
+}
+
+}  // namespace Friction
+}  // namespace Tribos

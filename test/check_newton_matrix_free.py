@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""The matrix-free semismooth Newton method on the FETI dual, checked from the
+driver's files:
+
+  check_newton_matrix_free.py --work DIR --input BRICK.xml -- MPIEXEC NPFLAG EXTRA... TRIBOS
+
+On the seed Coulomb brick (level 4, F = 0.3, a dual small enough for the
+dense variant too), on 1, 2 and 3 ranks:
+
+  - Semismooth Newton with Linear Solver = Projected CG (the Newton systems
+    by CG through applications of F, never formed) converges, every KKT
+    residual of the written result within the result check, and its
+    displacement and contact forces agree with those of the dense variant
+    (Linear Solver = Dense LU) and of Algorithm 2, both solved tightly;
+  - with each of FETI's preconditioners (None, Lumped, Dirichlet) it reaches
+    the same solution;
+  - the load history of test/check_load_history.py (pressed, sheared out,
+    back, out the other way) solved by it agrees step by step with
+    Algorithm 2's.
+The agreement limit 1e-6 is relative to the largest nodal value; the
+solvers are asked for 1e-10 (Newton) and 1e-9 (Algorithm 2).
+"""
+import argparse
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_load_history import HISTORY, check, displacements, failures, pair_forces, relative, run  # noqa: E402
+
+NEWTON = ["Solver/Outer Algorithm=Semismooth Newton", "Solver/Semismooth Newton/Relative Tolerance=1e-10"]
+MATRIX_FREE = NEWTON + ["Solver/Semismooth Newton/Linear Solver=Projected CG"]
+DENSE = NEWTON + ["Solver/Semismooth Newton/Linear Solver=Dense LU"]
+ALGORITHM2 = ["Solver/Outer Algorithm=Algorithm2", "Solver/Algorithm 2/Relative Tolerance=1e-9"]
+LEVEL = ["Mesh/Level=4"]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--input", required=True)
+    ap.add_argument("launcher", nargs="+")
+    args = ap.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+
+    ref_out, ref, _ = run(args, "algorithm2", 2, LEVEL + ALGORITHM2)
+    dense_out, dense, _ = run(args, "dense", 2, LEVEL + DENSE)
+    if not (ref and dense):
+        return
+    ref_u = displacements(ref_out)[0]
+    check(relative(displacements(dense_out)[0], ref_u) < 1e-6, "the dense Newton agrees with Algorithm 2")
+    for np_ in (1, 2, 3):
+        out, s, _ = run(args, "matrix_free_np%d" % np_, np_, LEVEL + MATRIX_FREE)
+        if not s:
+            continue
+        check(s["converged"], "%d ranks: converged (%s), KKT %s" % (np_, s["stop_reason"], s["kkt"]))
+        u = displacements(out)[0]
+        check(relative(u, ref_u) < 1e-6 and relative(u, displacements(dense_out)[0]) < 1e-6,
+              "%d ranks: the matrix-free Newton agrees with Algorithm 2 (%.2e) and the dense Newton (%.2e)"
+              % (np_, relative(u, ref_u), relative(u, displacements(dense_out)[0])))
+        check(s["contact"] == dense["contact"], "%d ranks: the contact counts of the dense Newton: %s against %s"
+              % (np_, s["contact"], dense["contact"]))
+    for pc in ("Lumped", "Dirichlet"):
+        out, s, _ = run(args, "matrix_free_" + pc, 2, LEVEL + MATRIX_FREE + ["Solver/Semismooth Newton/Preconditioner=" + pc])
+        if s:
+            check(s["converged"] and relative(displacements(out)[0], ref_u) < 1e-6,
+                  "Preconditioner %s: converged to the same solution (%.2e)" % (pc, relative(displacements(out)[0], ref_u)))
+
+    # The load history, step by step against Algorithm 2's.
+    href_out, href, _ = run(args, "history_algorithm2", 2, LEVEL + HISTORY + ALGORITHM2)
+    hout, hs, _ = run(args, "history_matrix_free", 2, LEVEL + HISTORY + MATRIX_FREE)
+    if href and hs:
+        check(all(r["converged"] for r in hs["steps"]) and len(hs["steps"]) == 4, "history: every step converged")
+        du = max(relative(a, b) for a, b in zip(displacements(hout), displacements(href_out)))
+        df = max(float(np.max(np.abs(a - b)) / np.max(np.abs(b))) for a, b in zip(pair_forces(hs), pair_forces(href)))
+        check(du < 1e-6 and df < 1e-6, "history: agrees with Algorithm 2 in every step: displacement %.2e, forces %.2e"
+              % (du, df))
+
+
+if __name__ == "__main__":
+    main()
+    print("%d failure(s)" % len(failures))
+    sys.exit(1 if failures else 0)
