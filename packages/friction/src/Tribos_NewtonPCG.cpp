@@ -298,6 +298,7 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
   const double sigma = params_.get<double>("sigma"), beta = params_.get<double>("Backtracking Factor");
   const int maxBack = params_.get<int>("Maximum Backtracking Steps");
   const bool armijo = params_.get<std::string>("Line Search") == "Armijo";
+  const double multiplierRatio = params_.get<double>("Multiplier Update Ratio");
 
   velocity(x, v_);
   double previous = -1, eta = etaMax;
@@ -305,38 +306,13 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
   for (int it = 0;; ++it) {
     const double nPhi = phiNorm(x, v_), nGx = normGx(x);
     const double measure = std::hypot(nPhi, nGx) / normRB;
-    st.history.push_back(measure);
     st.norm_gP = nPhi / r_;
     st.norm_Gx = nGx;
     st.n_A = n_A_;
-    OuterStep step;
-    step.iteration = it;
-    step.projectedGradient = nPhi / normRB;
-    step.normGx = nGx / normRB;
-    step.slipBoundChange = std::numeric_limits<double>::quiet_NaN();
-    step.n_A = n_A_;
-    step.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    st.steps.push_back(step);
     if (!out_.is_null())
       *out_ << "Newton PCG " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << measure
             << "  ||Phi|| " << nPhi << "  ||G x|| " << nGx << "  eta " << eta << "  n_A " << n_A_ << "\n";
-    Progress::iteration([&] {
-      return "Semismooth Newton " + std::to_string(it) + ": measure " + Progress::sci(measure) + ", tolerance " +
-             Progress::sci(tol);
-    });
-    if (!std::isfinite(measure)) {
-      st.reason = "Semismooth Newton: the stopping measure is not finite at step " + std::to_string(it);
-      break;
-    }
-    if (measure <= tol) {
-      st.converged = true;
-      st.reason = "Semismooth Newton: stopping measure below tolerance";
-      break;
-    }
-    if (it == maxIter) {
-      st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of Semismooth Newton reached";
-      break;
-    }
+    if (newtonStepEnds(st, it, measure, nGx / normRB, tol, maxIter, start)) break;
     // Forcing term (Eisenstat-Walker, choice 2, gamma = 0.9), safeguarded, and
     // no tighter than the final tolerance needs.
     if (previous > 0) {
@@ -392,12 +368,17 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
     x.assign(xt_);
     v_.assign(vt_);
     // The multiplier of G x = 0: mu <- mu + rho G x moves b - G'mu by
-    // -rho G'G x, so v by +rho G'G x.
+    // -rho G'G x, so v by +rho G'G x. After every Newton step (Multiplier
+    // Update Ratio = 0), or once the steps have solved the problem of the
+    // current mu as far as G x is off (SMALBE's inner precision M ||G x||).
     if (!G_.is_null()) {
       G_->apply(x, Gx_);
-      al_.multiplier()->update(rho_, Gx_, 1.0);
-      G_->applyTranspose(Gx_, tmp_);
-      v_.update(rho_, tmp_, 1.0);
+      const double nGxNew = Gx_.norm2();
+      if (multiplierRatio == 0 || phiNorm(x, v_) <= multiplierRatio * nGxNew) {
+        al_.multiplier()->update(rho_, Gx_, 1.0);
+        G_->applyTranspose(Gx_, tmp_);
+        v_.update(rho_, tmp_, 1.0);
+      }
     }
     st.outer_iterations = it + 1;
   }

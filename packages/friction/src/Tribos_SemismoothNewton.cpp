@@ -221,6 +221,39 @@ void AlartCurnier::jacobian(const std::vector<double>& x, const std::vector<doub
 
 // ---------------------------------------------------------------- SemismoothNewton
 
+// ---------------------------------------------------------------- SemismoothNewton
+
+bool newtonStepEnds(FrictionStatus& st, int it, double measure, double normGx, double tol, int maxIter,
+                    std::chrono::steady_clock::time_point start) {
+  st.history.push_back(measure);
+  OuterStep step;
+  step.iteration = it;
+  step.projectedGradient = measure;
+  step.normGx = normGx;
+  step.slipBoundChange = std::numeric_limits<double>::quiet_NaN();
+  step.n_A = st.n_A;
+  step.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  st.steps.push_back(step);
+  Progress::iteration([&] {
+    return "Semismooth Newton " + std::to_string(it) + ": measure " + Progress::sci(measure) + ", tolerance " +
+           Progress::sci(tol);
+  });
+  if (!std::isfinite(measure)) {
+    st.reason = "Semismooth Newton: the stopping measure is not finite at step " + std::to_string(it);
+    return true;
+  }
+  if (measure <= tol) {
+    st.converged = true;
+    st.reason = "Semismooth Newton: stopping measure below tolerance";
+    return true;
+  }
+  if (it == maxIter) {
+    st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of Semismooth Newton reached";
+    return true;
+  }
+  return false;
+}
+
 RCP<const ParameterList> SemismoothNewton::validParameters() {
   static RCP<ParameterList> pl;
   if (pl.is_null()) {
@@ -265,6 +298,11 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("None", "Lumped", "Dirichlet"))));
     pl->set("Penalty", 1.0,
             "Projected CG: the augmented Lagrangian's rho of G x = 0, as a multiple of ||A||", range<double>(1e-6, 1e6));
+    pl->set("Multiplier Update Ratio", 0.0,
+            "Projected CG: the multiplier mu of G x = 0 is updated after a Newton step when ||Phi|| <= this "
+            "times ||G x|| (SMALBE's M); 0: after every Newton step (measured fastest on the brick, "
+            "docs/semismooth.md)",
+            range<double>(0.0, 1e6));
     pl->set("Maximum Forcing Term", 0.5,
             "Projected CG: the largest relative residual eta_k of a Newton system (Eisenstat-Walker forcing "
             "terms below it)",
@@ -436,37 +474,12 @@ void SemismoothNewton::iterate(const NewtonSystem& sys, std::vector<double>& z, 
   for (int it = 0;; ++it) {
     const double normPhi = residualNorm(phi, h);
     const double m = measure(z, v);
-    st.history.push_back(m);
     st.norm_gP = normPhi;
     st.norm_Gx = norm2(h);
-    OuterStep step;
-    step.iteration = it;
-    step.projectedGradient = m;
-    step.normGx = st.norm_Gx / normRhoB;
-    step.slipBoundChange = std::numeric_limits<double>::quiet_NaN();
-    step.n_A = st.n_A;
-    step.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    st.steps.push_back(step);
     if (!out_.is_null())
       *out_ << "Semismooth Newton " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << m
             << "  ||Phi|| " << normPhi << "\n";
-    Progress::iteration([&] {
-      return "Semismooth Newton " + std::to_string(it) + ": measure " + Progress::sci(m) + ", tolerance " +
-             Progress::sci(tol);
-    });
-    if (!std::isfinite(m)) {
-      st.reason = "Semismooth Newton: the stopping measure is not finite at step " + std::to_string(it);
-      break;
-    }
-    if (m <= tol) {
-      st.converged = true;
-      st.reason = "Semismooth Newton: stopping measure below tolerance";
-      break;
-    }
-    if (it == maxIter) {
-      st.reason = "Maximum Iterations (" + std::to_string(maxIter) + ") of Semismooth Newton reached";
-      break;
-    }
+    if (newtonStepEnds(st, it, m, st.norm_Gx / normRhoB, tol, maxIter, start)) break;
     // The Newton direction, regularized when the factorization fails.
     double mu = lambda * std::min(1.0, normPhi / phi0);
     bool factored = false;

@@ -94,6 +94,14 @@ class AlartCurnier {
   int n_;
 };
 
+// Records Newton step `it` in st (history, steps: the stopping measure,
+// ||G x|| relative to the measure's scale, n_A so far, the time since
+// start) and on the progress line, and says whether the iteration ends
+// there: a measure that is not finite, at most tol (converged), or `it`
+// the last step allowed (st.reason says which).
+bool newtonStepEnds(FrictionStatus& st, int it, double measure, double normGx, double tol, int maxIter,
+                    std::chrono::steady_clock::time_point start);
+
 class SemismoothNewton : public SingleLoopSolver {
  public:
   explicit SemismoothNewton(const Teuchos::ParameterList& params);
