@@ -20,7 +20,7 @@ constexpr int kMaxNodes = 9;
 // can reach e's along e's normal n0 (orthogonal projection does not
 // expand), and one of its nodes lies within `reach` of e along n0.
 bool mayOverlap(const SurfaceElement& e, const Vec3& n0, const SurfaceElement& m, double reach) {
-  if (dot(m.normal(m.center()), n0) >= 0) return false;
+  if (dot(m.centreNormal(), n0) >= 0) return false;
   const Vec3 r = minus(m.middle(), e.middle());
   const double along = dot(r, n0);
   const Vec3 across = {r[0] - along * n0[0], r[1] - along * n0[1], r[2] - along * n0[2]};
@@ -117,7 +117,7 @@ std::vector<MortarNode> mortarCoupling(const Mesh::Mesh& mesh, const std::string
   std::vector<Vec3> normal;
   for (const SurfaceElement& e : slaves) {
     const auto A = dualBasis(e);
-    const Vec3 n0 = e.normal(e.center());
+    const Vec3& n0 = e.centreNormal();
     // The node's area int N_s dA.
     double N[kMaxNodes], d1[kMaxNodes], d2[kMaxNodes];
     std::vector<double> area(e.size(), 0.0);

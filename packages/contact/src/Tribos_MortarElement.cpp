@@ -77,6 +77,7 @@ SurfaceElement::SurfaceElement(const Mesh::Facet& facet, const Mesh::Mesh& mesh)
   for (const Vec3& x : X_)
     for (int d = 0; d < 3; ++d) middle_[d] += x[d] / X_.size();
   for (const Vec3& x : X_) radius_ = std::max(radius_, norm(minus(x, middle_)));
+  centreNormal_ = normal(center());
 }
 
 Vec3 SurfaceElement::position(const Point2& xi) const {

@@ -59,15 +59,17 @@ class SurfaceElement {
   // flat facets). False when d runs parallel to the facet.
   bool project(const Vec3& x, const Vec3& d, Point2& xi) const;
   // A sphere around the facet: its node average and the largest distance to a node.
-  Vec3 middle() const { return middle_; }
+  const Vec3& middle() const { return middle_; }
   double radius() const { return radius_; }
+  // normal(center()), kept: the search asks it of every candidate.
+  const Vec3& centreNormal() const { return centreNormal_; }
 
  private:
   void derivatives(const Point2& xi, Vec3& x1, Vec3& x2) const;
   const SurfaceShape* shape_;
   std::vector<int> nodes_;
   std::vector<Vec3> X_;
-  Vec3 middle_{};
+  Vec3 middle_{}, centreNormal_{};
   double radius_ = 0;
 };
 

@@ -1,0 +1,56 @@
+#!/usr/bin/python3
+"""The pressure of a Hertz result node by node against Hertz's profile:
+
+  hertz_pressure.py DIR ... [--max-l2 E] [--max-centre E]
+
+For each result directory of input/hertz_sphere.xml (scripts/hertz.py's
+analyse gives the force F, Hertz's a and p0 for it, and the nodal pressures
+p_i = f_i / A_i, A_i the node's share of the slave facets projected on the
+contact plane), prints
+
+  l2      the relative L2 error of p(r) over the contact,
+          sqrt(sum A_i (p_i - p_H(r_i))^2 / sum A_i p_H(r_i)^2) over the
+          slave nodes with r_i < a, p_H = p0 sqrt(1 - r^2/a^2);
+  centre  p_centre / p0 - 1, the node at the contact point;
+  spread  the largest |p_i / p_H(r_i) - 1| over the nodes with r_i < a/2
+          (where p_H varies by less than 14 %: the scatter of the nodes).
+
+--max-l2 and --max-centre fail (exit 1) when the last directory's figures
+exceed them.
+"""
+import argparse
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+import hertz  # noqa: E402
+
+ap = argparse.ArgumentParser()
+ap.add_argument("dirs", nargs="+")
+ap.add_argument("--max-l2", type=float)
+ap.add_argument("--max-centre", type=float)
+args = ap.parse_args()
+
+print("%-40s %8s %10s %10s %10s" % ("result", "h", "l2", "centre", "spread"))
+for d in args.dirs:
+    row = hertz.analyse(d)
+    with h5py.File(os.path.join(d, "solution.h5"), "r") as f:
+        coords = f["mesh/geometry"][...]
+        cells = f["mesh/topology"][...].astype(int)
+        node = f["points/contact/node"][...].ravel().astype(int)
+    A = hertz.nodal_areas(coords, cells, node)
+    r, p = np.array(row["r"]), np.array(row["pressure"])
+    a, p0 = row["a"], row["p0"]
+    inside = r < a
+    pH = p0 * np.sqrt(np.clip(1 - (r / a) ** 2, 0, None))
+    l2 = math.sqrt(np.sum(A[inside] * (p[inside] - pH[inside]) ** 2) / np.sum(A[inside] * pH[inside] ** 2))
+    centre = row["p_centre"] / p0 - 1
+    near = r < a / 2
+    spread = np.abs(p[near] / pH[near] - 1).max()
+    print("%-40s %8.4f %9.2f%% %+9.2f%% %9.2f%%" % (d, row["h"], 100 * l2, 100 * centre, 100 * spread))
+failed = (args.max_l2 is not None and l2 > args.max_l2) or (args.max_centre is not None and abs(centre) > args.max_centre)
+sys.exit(1 if failed else 0)
