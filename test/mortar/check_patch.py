@@ -6,10 +6,10 @@
 runs test/check_result.py with CHECK_RESULT_ARGS (the run, the exact
 displacement, the KKT figures from the file), then checks that every contact
 node carries the uniform pressure P: its normal force divided by its area
-int N_s dA (from the facets of its body's cells that lie in the node's
-plane z = const, which the flat faces of the patch test are) equals P to
-T relative (default 1e-8). Contact nodes are those of every pair, on the
-rigid plane as between the bodies.
+int N_s dA (over the contact facets around it: the boundary faces of its
+body's cells whose nodes are all contact nodes) equals P to T relative
+(default 1e-8). Contact nodes are those of every pair, on the rigid plane
+as between the bodies.
 """
 import argparse
 import os
@@ -35,7 +35,7 @@ G = 1 / np.sqrt(3)
 
 
 def nodal_areas(P):
-    """int N_a dA of each node of a flat facet (triangle: area / 3; bilinear
+    """int N_a dA of each node of a facet (triangle: area / 3; bilinear
     quadrilateral: 2 x 2 Gauss, exact for a planar one)."""
     if len(P) == 3:
         return np.full(3, 0.5 * np.linalg.norm(np.cross(P[1] - P[0], P[2] - P[0])) / 3)
@@ -57,18 +57,22 @@ c = h["points/contact"]
 rows = c["node"][:].astype(int).ravel()
 force = c["normal_force"][:].ravel()
 faces = HEX_FACES if T.shape[1] == 8 else TET_FACES
-# Each flat facet in a plane z = const of a body, once (a boundary facet
-# belongs to one cell; an inner one to two, and inner planes hold no
-# contact node).
-area = {}
+# The contact facets: faces of a body's cells that no other cell of the body
+# shares (boundary faces) and whose nodes are all contact nodes.
 contact = set(rows.tolist())
+seen = {}
 for cell, b in zip(T, body):
     for f in faces:
         nodes = cell[list(f)]
-        if not contact.intersection(nodes.tolist()) or np.ptp(X[nodes, 2]) > 1e-12:
-            continue
-        for n, w in zip(nodes, nodal_areas(X[nodes])):
-            area[(n, b)] = area.get((n, b), 0.0) + w
+        if contact.issuperset(nodes.tolist()):
+            key = (b, tuple(sorted(nodes.tolist())))
+            seen[key] = None if key in seen else nodes
+area = {}
+for (b, _), nodes in seen.items():
+    if nodes is None:
+        continue
+    for n, w in zip(nodes, nodal_areas(X[nodes])):
+        area[(n, b)] = area.get((n, b), 0.0) + w
 node_body = {}
 for cell, b in zip(T, body):
     for n in cell:
