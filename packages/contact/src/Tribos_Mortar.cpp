@@ -76,7 +76,7 @@ double MortarNode::covered() const {
   return sum;
 }
 
-std::vector<std::vector<double>> dualBasis(const SurfaceElement& e) {
+DualBasis dualBasis(const SurfaceElement& e) {
   const int n = e.size();
   Teuchos::SerialDenseMatrix<int, double> mass(n, n);
   double N[kMaxNodes], d1[kMaxNodes], d2[kMaxNodes];
@@ -97,7 +97,7 @@ std::vector<std::vector<double>> dualBasis(const SurfaceElement& e) {
   std::vector<std::vector<double>> A(n, std::vector<double>(n));
   for (int j = 0; j < n; ++j)
     for (int k = 0; k < n; ++k) A[j][k] = D[j] * mass(j, k);
-  return A;
+  return {A, D};
 }
 
 std::vector<MortarNode> mortarCoupling(const Mesh::Mesh& mesh, const std::string& slave, const std::string& master,
@@ -116,24 +116,16 @@ std::vector<MortarNode> mortarCoupling(const Mesh::Mesh& mesh, const std::string
   std::vector<std::unordered_map<int, double>> M;
   std::vector<Vec3> normal;
   for (const SurfaceElement& e : slaves) {
-    const auto A = dualBasis(e);
+    const DualBasis basis = dualBasis(e);
     const Vec3& n0 = e.centreNormal();
-    // The node's area int N_s dA.
-    double N[kMaxNodes], d1[kMaxNodes], d2[kMaxNodes];
-    std::vector<double> area(e.size(), 0.0);
-    integratePolygon(e.shape().corners(), [&](const Point2& xi, double w) {
-      e.shape().evaluate(xi, N, d1, d2);
-      const double dA = w * e.jacobian(xi);
-      for (int j = 0; j < e.size(); ++j) area[j] += N[j] * dA;
-    });
-    for (int j = 0; j < e.size(); ++j) out[index.at(e.nodes()[j])].area += area[j];
+    for (int j = 0; j < e.size(); ++j) out[index.at(e.nodes()[j])].area += basis.D[j];
     M.assign(e.size(), {});
     normal.assign(e.size(), Vec3{0, 0, 0});
     for (const SurfaceElement& m : masters) {
       if (!mayOverlap(e, n0, m, reach)) continue;
       const std::vector<Point2> segment = clipPolygon(projectedPolygon(e, n0, m, mesh, reach), e.shape().corners());
       if (std::abs(signedArea(segment)) <= 1e-12 * std::abs(signedArea(e.shape().corners()))) continue;
-      integrateSegment(e, A, n0, m, segment, M, normal);
+      integrateSegment(e, basis.A, n0, m, segment, M, normal);
     }
     for (int j = 0; j < e.size(); ++j) {
       MortarNode& node = out[index.at(e.nodes()[j])];

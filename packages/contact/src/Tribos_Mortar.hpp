@@ -61,8 +61,13 @@ struct MortarNode {
   double covered() const;
 };
 
-// The dual basis of a slave facet: psi_j = sum_k A[j][k] N_k.
-std::vector<std::vector<double>> dualBasis(const SurfaceElement& e);
+// The dual basis of a slave facet: psi_j = sum_k A[j][k] N_k, and
+// D[j] = int_e N_j dA (= int_e psi_j N_j dA), the row sums of its mass matrix.
+struct DualBasis {
+  std::vector<std::vector<double>> A;
+  std::vector<double> D;
+};
+DualBasis dualBasis(const SurfaceElement& e);
 
 // The mortar integrals of every node of the slave surface (face names of
 // `mesh`), in the order of mesh.faceNodes(slave). Master facets take part

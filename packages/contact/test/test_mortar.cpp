@@ -103,7 +103,8 @@ TEUCHOS_UNIT_TEST(Mortar, DualBasisIsBiorthogonal) {
   mesh.coords = {{0, 0, 0}, {1.3, 0.1, 0}, {1.1, 0.9, 0.2}, {-0.2, 1.4, 0.05}};
   for (const std::vector<int>& nodes : {std::vector<int>{0, 1, 2}, std::vector<int>{0, 1, 2, 3}}) {
     const Contact::SurfaceElement e(Mesh::Facet{nodes, 0}, mesh);
-    const auto A = Contact::dualBasis(e);
+    const auto basis = Contact::dualBasis(e);
+    const auto& A = basis.A;
     const int n = e.size();
     std::vector<std::vector<double>> psiN(n, std::vector<double>(n, 0.0));
     std::vector<double> areaN(n, 0.0);
@@ -122,8 +123,10 @@ TEUCHOS_UNIT_TEST(Mortar, DualBasisIsBiorthogonal) {
       sumPsiErr = std::max(sumPsiErr, std::abs(sumPsi - 1));
     });
     TEST_COMPARE(sumPsiErr, <, 1e-13);
-    for (int j = 0; j < n; ++j)
+    for (int j = 0; j < n; ++j) {
+      TEST_COMPARE(std::abs(basis.D[j] - areaN[j]), <, 1e-14);
       for (int k = 0; k < n; ++k) TEST_COMPARE(std::abs(psiN[j][k] - (j == k ? areaN[k] : 0.0)), <, 1e-13);
+    }
   }
 }
 
