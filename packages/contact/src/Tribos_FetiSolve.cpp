@@ -82,6 +82,44 @@ void checkDualSize(const Feti::FetiProblem& problem, const PairFriction& frictio
   }
 }
 
+// The outer algorithm r.outerAlgorithm on cp in rounds: a solve that meets
+// its own test with a result that misses the check is asked again from its
+// result, the tolerance tightened by the miss (Friction::tightenedTolerance);
+// the check keeps the first tolerance, so converged still means factor x
+// what was asked for. followsAnother: r already holds another algorithm's
+// solve, whose counts this one's add to.
+void solveInRounds(const FetiContactProblem& cp, const PairFriction& friction, const Teuchos::ParameterList& p,
+                   RCP<Teuchos::FancyOStream> out, RCP<const Vector> start, const Continuation& from, FetiSolveResult& r,
+                   Friction::WarmStart* warmOut, bool followsAnother) {
+  const Feti::FetiProblem& problem = cp.fetiDual().problem();
+  const int rounds = p.get<int>("Result Check Rounds");
+  double requested = 0;
+  for (int round = 1; round <= rounds; ++round) {
+    Progress::stage("contact solve: " + r.outerAlgorithm + (round > 1 ? ", round " + std::to_string(round) : ""));
+    const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested, round == 1 ? from.warm : nullptr);
+    if (warmOut) *warmOut = sol.warmStart;
+    if (round == 1) r.tolerance = sol.requestedTolerance;
+    requested = sol.requestedTolerance;
+    r.status = round == 1 && !followsAnother ? sol.status : Friction::followedBy(r.status, sol.status);
+    r.iterations = r.status.outer_iterations;
+    r.n_A += sol.n_A;
+    r.solverConverged = sol.status.converged;
+    r.solverReason = sol.status.reason;
+    r.lambda->assign(*sol.lambda);
+    r.primal = sol.u;
+    r.rounds = round;
+    {
+      static const auto checkTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::contact: result check");
+      Teuchos::TimeMonitor checkTime(*checkTimer);
+      checkResult(problem, friction, p, r, from.u);
+    }
+    if (!r.solverConverged || r.verdict.converged || round == rounds || Friction::atTightestTolerance(requested))
+      break;
+    requested = Friction::tightenedTolerance(requested, r.verdict.limit, r.kkt.worst());
+    start = sol.x;
+  }
+}
+
 // The solve of one dual problem: projected CG without contact, else the
 // outer algorithm in rounds until the result meets its check; then the
 // result the user gets. normPFP: set to the norm of the contact dual.
@@ -112,7 +150,8 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     std::unique_ptr<Teuchos::TimeMonitor> setupTime(new Teuchos::TimeMonitor(*setupTimer));
     FetiContactProblem cp(dual, friction, from.normPFP);
     if (normPFP) *normPFP = cp.norm();
-    r.outerAlgorithm = outerAlgorithmFor(p.get<std::string>("Outer Algorithm"), friction);
+    const std::string requestedAlgorithm = p.get<std::string>("Outer Algorithm");
+    r.outerAlgorithm = outerAlgorithmFor(requestedAlgorithm, friction, dual->coarse().equalityRowsHoldKernel());
     const std::string runLawName = frictionLawName(runLaw(friction));
     TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, runLawName),
                    "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << runLawName << " friction ("
@@ -122,35 +161,17 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     RCP<const Vector> start;
     if (!from.lambda.is_null()) start = cp.startFrom(*from.lambda);
     setupTime.reset();
-    // Rounds: a solve that meets its own test with a result that misses the
-    // check is asked again from its result, the tolerance tightened by the
-    // miss (Friction::tightenedTolerance); the check keeps the first
-    // tolerance, so converged still means factor x what was asked for.
-    const int rounds = p.get<int>("Result Check Rounds");
-    double requested = 0;
-    for (int round = 1; round <= rounds; ++round) {
-      Progress::stage("contact solve: " + r.outerAlgorithm + (round > 1 ? ", round " + std::to_string(round) : ""));
-      const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested, round == 1 ? from.warm : nullptr);
-      if (warmOut) *warmOut = sol.warmStart;
-      if (round == 1) r.tolerance = sol.requestedTolerance;
-      requested = sol.requestedTolerance;
-      r.status = round == 1 ? sol.status : Friction::followedBy(r.status, sol.status);
-      r.iterations = r.status.outer_iterations;
-      r.n_A += sol.n_A;
-      r.solverConverged = sol.status.converged;
-      r.solverReason = sol.status.reason;
-      r.lambda->assign(*sol.lambda);
-      r.primal = sol.u;
-      r.rounds = round;
-      {
-        static const auto checkTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::contact: result check");
-        Teuchos::TimeMonitor checkTime(*checkTimer);
-        checkResult(problem, friction, p, r, from.u);
-      }
-      if (!r.solverConverged || r.verdict.converged || round == rounds || Friction::atTightestTolerance(requested))
-        break;
-      requested = Friction::tightenedTolerance(requested, r.verdict.limit, r.kkt.worst());
-      start = sol.x;
+    // Auto's Newton is the matrix-free one at any size; a solve that stops
+    // without converging, or whose result misses its check, is followed by
+    // Algorithm 2 from the same start, the counts of both in the result.
+    const bool autoNewton = requestedAlgorithm == kAutoOuterAlgorithm && r.outerAlgorithm == "Semismooth Newton";
+    Teuchos::ParameterList params(p);
+    if (autoNewton) params.sublist("Semismooth Newton").set("Linear Solver", "Projected CG");
+    solveInRounds(cp, friction, params, out, start, from, r, warmOut, false);
+    if (autoNewton && !(r.solverConverged && r.verdict.converged)) {
+      if (!out.is_null()) *out << "Semismooth Newton: " << r.solverReason << "; Algorithm2 follows\n";
+      r.outerAlgorithm = "Algorithm2";
+      solveInRounds(cp, friction, p, out, start, from, r, warmOut, true);
     }
   }
   r.solveSeconds = secondsSince(t0);
@@ -164,9 +185,10 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
 
 }  // namespace
 
-std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction) {
+std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction, bool heldByDirichlet) {
   if (requested != kAutoOuterAlgorithm) return Friction::frictionSolvers().canonical(requested);
-  return runLaw(friction) == FrictionLaw::Coulomb ? "Algorithm2" : "Algorithm1";
+  if (runLaw(friction) != FrictionLaw::Coulomb) return "Algorithm1";
+  return heldByDirichlet ? "Semismooth Newton" : "Algorithm2";
 }
 
 RCP<const Teuchos::ParameterList> fetiSolveParameters() {
@@ -176,8 +198,9 @@ RCP<const Teuchos::ParameterList> fetiSolveParameters() {
     auto names = Friction::frictionSolvers().names();
     names.insert(names.begin(), kAutoOuterAlgorithm);
     pl->set("Outer Algorithm", kAutoOuterAlgorithm,
-            "contact problems: Auto (Algorithm2 for Coulomb friction, Algorithm1 for Tresca friction and "
-            "frictionless contact); " + Friction::frictionSolvers().documentation(),
+            "contact problems: Auto (Coulomb friction: Semismooth Newton, matrix-free, where Dirichlet conditions hold "
+            "every body, followed by Algorithm2 if it stops short; Algorithm2 on a body held by its contact alone; "
+            "Algorithm1 for Tresca friction and frictionless contact); " + Friction::frictionSolvers().documentation(),
             rcp(new Teuchos::StringValidator(Teuchos::Array<std::string>(names.begin(), names.end()))));
     pl->set("Result Check Factor", 100.0,
             "converged means every KKT residual of the written result (docs/friction.md) is at most this factor "

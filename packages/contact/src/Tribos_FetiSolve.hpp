@@ -45,10 +45,15 @@ struct FetiSolveResult : SolveResult {
 };
 
 // The outer algorithm of a contact run: `requested`, or for "Auto" (the
-// default) the one that suits the run's law (runLaw): Algorithm2 for Coulomb
-// friction, Tresca for Tresca friction and frictionless contact, so that a
-// user who names a law need not name an algorithm too.
-std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction);
+// default) the one that suits the run's law (runLaw), so that a user who
+// names a law need not name an algorithm too: for Coulomb friction
+// Semismooth Newton where the Dirichlet conditions hold every body
+// (heldByDirichlet: the equality rows of the dual hold every rigid motion),
+// Algorithm2 on a body that its contact alone holds (where the matrix-free
+// Newton stalls, docs/semismooth.md); Algorithm1 for Tresca friction and
+// frictionless contact. A Newton solve chosen by Auto that stops without
+// converging is followed by Algorithm2 (solveFeti).
+std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction, bool heldByDirichlet = false);
 constexpr const char* kAutoOuterAlgorithm = "Auto";
 
 // The parameters solveFeti reads, with defaults and documentation:

@@ -61,6 +61,7 @@ const Contact::FrictionSpec kCoulomb{FrictionLaw::Coulomb, 0.3, 0.0};
 Teuchos::ParameterList tight() {
   Teuchos::ParameterList p;
   p.sublist("Algorithm 2").set("Relative Tolerance", 1e-9);
+  p.sublist("Semismooth Newton").set("Relative Tolerance", 1e-10);  // Auto's for Coulomb where Dirichlet holds
   return p;
 }
 

@@ -299,6 +299,7 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
   const int maxBack = params_.get<int>("Maximum Backtracking Steps");
   const bool armijo = params_.get<std::string>("Line Search") == "Armijo";
   const double multiplierRatio = params_.get<double>("Multiplier Update Ratio");
+  const int stallSteps = params_.get<int>("Stall Steps");
 
   velocity(x, v_);
   double previous = -1, eta = etaMax;
@@ -313,6 +314,14 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
       *out_ << "Newton PCG " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << measure
             << "  ||Phi|| " << nPhi << "  ||G x|| " << nGx << "  eta " << eta << "  n_A " << n_A_ << "\n";
     if (newtonStepEnds(st, it, measure, nGx / normRB, tol, maxIter, start)) break;
+    // A linear rate of 0.5-0.7 per step gains far more than a factor 2
+    // over Stall Steps steps; less is a stall (a body held by its contact
+    // alone, docs/semismooth.md), which a caller may hand to another method.
+    if (it >= stallSteps && measure > 0.5 * st.history[it - stallSteps]) {
+      st.reason = "Semismooth Newton: stalled (the measure fell by less than 2 over " + std::to_string(stallSteps) +
+                  " steps)";
+      break;
+    }
     // Forcing term (Eisenstat-Walker, choice 2, gamma = 0.9), safeguarded, and
     // no tighter than the final tolerance needs.
     if (previous > 0) {

@@ -307,6 +307,9 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             "Projected CG: the largest relative residual eta_k of a Newton system (Eisenstat-Walker forcing "
             "terms below it)",
             range<double>(1e-12, 0.99));
+    pl->set("Stall Steps", 30,
+            "Projected CG: stop as stalled when the stopping measure has not halved over this many Newton steps",
+            range<int>(1, 1000000));
     pl->set("Maximum CG Iterations", 1000, "Projected CG: iterations per Newton system", range<int>(1, 1000000));
   }
   return pl;
