@@ -67,6 +67,7 @@ struct Continuation {
   double normPFP = 0;
   long long F_applications = 0;
   double F_seconds = 0;
+  bool loadHistory = false;  // a step of a history (FetiLoadSteps), the first included
 };
 
 // A dense algorithm's size limit, before the coarse space and the solve
@@ -151,7 +152,8 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     FetiContactProblem cp(dual, friction, from.normPFP);
     if (normPFP) *normPFP = cp.norm();
     const std::string requestedAlgorithm = p.get<std::string>("Outer Algorithm");
-    r.outerAlgorithm = outerAlgorithmFor(requestedAlgorithm, friction, dual->coarse().equalityRowsHoldKernel());
+    r.outerAlgorithm =
+        outerAlgorithmFor(requestedAlgorithm, friction, dual->coarse().equalityRowsHoldKernel(), from.loadHistory);
     const std::string runLawName = frictionLawName(runLaw(friction));
     TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, runLawName),
                    "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << runLawName << " friction ("
@@ -185,10 +187,11 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
 
 }  // namespace
 
-std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction, bool heldByDirichlet) {
+std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction, bool heldByDirichlet,
+                              bool loadHistory) {
   if (requested != kAutoOuterAlgorithm) return Friction::frictionSolvers().canonical(requested);
   if (runLaw(friction) != FrictionLaw::Coulomb) return "Algorithm1";
-  return heldByDirichlet ? "Semismooth Newton" : "Algorithm2";
+  return heldByDirichlet && loadHistory ? "Semismooth Newton" : "Algorithm2";
 }
 
 RCP<const Teuchos::ParameterList> fetiSolveParameters() {
@@ -198,8 +201,8 @@ RCP<const Teuchos::ParameterList> fetiSolveParameters() {
     auto names = Friction::frictionSolvers().names();
     names.insert(names.begin(), kAutoOuterAlgorithm);
     pl->set("Outer Algorithm", kAutoOuterAlgorithm,
-            "contact problems: Auto (Coulomb friction: Semismooth Newton, matrix-free, where Dirichlet conditions hold "
-            "every body, followed by Algorithm2 if it stops short; Algorithm2 on a body held by its contact alone; "
+            "contact problems: Auto (Coulomb friction: in a load history where Dirichlet conditions hold every body "
+            "Semismooth Newton, matrix-free, followed by Algorithm2 if it stops short, otherwise Algorithm2; "
             "Algorithm1 for Tresca friction and frictionless contact); " + Friction::frictionSolvers().documentation(),
             rcp(new Teuchos::StringValidator(Teuchos::Array<std::string>(names.begin(), names.end()))));
     pl->set("Result Check Factor", 100.0,
@@ -233,6 +236,7 @@ FetiLoadSteps::FetiLoadSteps(const RCP<Feti::FetiProblem>& problem, const PairFr
 FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
   problem_->setLoads(loads);
   Continuation from;
+  from.loadHistory = true;
   if (!primal_.is_null()) {
     // Friction acts on the slip since the previous step: the tangential
     // rows measure B_T (u - u_prev).
