@@ -300,13 +300,26 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
   const bool armijo = params_.get<std::string>("Line Search") == "Armijo";
   const double multiplierRatio = params_.get<double>("Multiplier Update Ratio");
   const int stallSteps = params_.get<int>("Stall Steps");
+  const int exactEvery = params_.get<int>("Exact Velocity Steps");
 
   velocity(x, v_);
+  int sinceExact = 0;  // steps since v was last computed from x, not carried by v + t H d
   double previous = -1, eta = etaMax;
   int lineSearchFailures = 0;
   for (int it = 0;; ++it) {
-    const double nPhi = phiNorm(x, v_), nGx = normGx(x);
-    const double measure = std::hypot(nPhi, nGx) / normRB;
+    double nPhi = phiNorm(x, v_);
+    const double nGx = normGx(x);
+    double measure = std::hypot(nPhi, nGx) / normRB;
+    // v carried as v + t H d (and + rho G'G x) drifts from H x - (b - G'mu)
+    // by round-off and by the inexact CG's H d: recompute it every Exact
+    // Velocity Steps steps and before the stopping test is believed, so that
+    // converged speaks of the iterate, not of the recurrence.
+    if (sinceExact > 0 && (sinceExact >= exactEvery || measure <= tol)) {
+      velocity(x, v_);
+      sinceExact = 0;
+      nPhi = phiNorm(x, v_);
+      measure = std::hypot(nPhi, nGx) / normRB;
+    }
     st.norm_gP = nPhi / r_;
     st.norm_Gx = nGx;
     st.n_A = n_A_;
@@ -389,6 +402,7 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
         v_.update(rho_, tmp_, 1.0);
       }
     }
+    ++sinceExact;
     st.outer_iterations = it + 1;
   }
   // The feasible set: a converged Phi leaves x in it up to the tolerance.

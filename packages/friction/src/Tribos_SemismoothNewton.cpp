@@ -307,6 +307,10 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             "Projected CG: the largest relative residual eta_k of a Newton system (Eisenstat-Walker forcing "
             "terms below it)",
             range<double>(1e-12, 0.99));
+    pl->set("Exact Velocity Steps", 10,
+            "Projected CG: v = H x - (b - G'mu) is computed from x (one application of A) after this many Newton "
+            "steps that carried it as v + t H d, and before the stopping test is believed",
+            range<int>(1, 1000000));
     pl->set("Stall Steps", 30,
             "Projected CG: stop as stalled when the stopping measure has not halved over this many Newton steps",
             range<int>(1, 1000000));
