@@ -129,6 +129,10 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
     const AugmentedHessian& H = al.hessian(rho);
     inner_->setHessianNorm(normA + rho * normGtG);
     inner_->setTolerance(innerTol);
+    // M sets the inner precision only while M ||Gx|| is above the final
+    // tolerance; below it every inner solve is asked for the final tolerance
+    // whatever M is, so a lower M cannot make it more precise.
+    const bool precisionFromM = innerTol > tol;
     const QPStatus ist = inner_->solve(H, b_in, Omega, x);
     st.iterations += ist.iterations;
     st.cg_steps += ist.cg_steps;
@@ -160,8 +164,10 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
     // semi-monotonicity: L must grow by rho/2 ||Gx||^2, else tighten. The
     // test presumes the inner problem was solved to its tolerance; an inner
     // solver that stopped early (e.g. a fixed number of block Gauss-Seidel
-    // sweeps) says nothing about M.
-    if (k > 0 && ist.converged && step.grewTooLittle) {
+    // sweeps) says nothing about M, and neither does one whose precision
+    // the final tolerance set: near the solution rho/2 ||Gx||^2 falls to the
+    // round-off of L, and lowering M there only ran it down to its floor.
+    if (k > 0 && ist.converged && precisionFromM && step.grewTooLittle) {
       if (s_.updateRho) rho *= s_.beta;
       else M /= s_.beta;
     }
