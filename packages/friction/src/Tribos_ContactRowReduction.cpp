@@ -1,6 +1,7 @@
 #include "Tribos_ContactRowReduction.hpp"
 
 #include <Teuchos_BLAS.hpp>
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultSerialComm.hpp>
 #include <Tpetra_Import.hpp>
 #include <Tpetra_MultiVector.hpp>
@@ -138,8 +139,16 @@ ContactRowReduction::ContactRowReduction(const ContactDual& dual) : map_(dual.ma
     rc.frictionCoefficient.push_back(all[kFriction][i]);
     rc.slipBound.push_back(all[kSlip][i]);
   }
-  if (dual.frictionCoefficient.empty()) rc.frictionCoefficient.clear();
-  if (dual.slipBound.empty()) rc.slipBound.clear();
+  // Empty means "no such data" on every rank; a rank without contacts has
+  // empty vectors whatever the law, so the decision is collective (else that
+  // rank would solve the replicated problem under another law).
+  auto onNoRank = [&comm](bool empty) {
+    int local = empty ? 0 : 1, any = 0;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, local, Teuchos::outArg(any));
+    return any == 0;
+  };
+  if (onNoRank(dual.frictionCoefficient.empty())) rc.frictionCoefficient.clear();
+  if (onNoRank(dual.slipBound.empty())) rc.slipBound.clear();
 
   // A~ = A + G'G, dense, and G.
   std::vector<double> At;
