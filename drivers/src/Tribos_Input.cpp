@@ -240,8 +240,9 @@ RCP<const ParameterList> validParameters() {
   for (const auto& name : outerAlgorithms()) outer.push_back(name);
   for (const auto& alias : Friction::frictionSolvers().aliases()) outer.push_back(alias);
   solver.set("Outer Algorithm", Contact::kAutoOuterAlgorithm,
-             "contact problems: Auto (Algorithm2 for Coulomb friction, Algorithm1 for Tresca friction and "
-             "frictionless contact); " + Friction::frictionSolvers().documentation() + "; " + kSemismooth +
+             "contact problems: Auto (Coulomb friction: in a load history where Dirichlet conditions hold every "
+             "body Semismooth Newton, matrix-free, followed by Algorithm2 if it stops short, otherwise Algorithm2; "
+             "Algorithm1 for Tresca friction and frictionless contact); " + Friction::frictionSolvers().documentation() + "; " + kSemismooth +
                  " (Tresca or frictionless by the semismooth* Newton method)",
              choice(outer));
   // The result check's parameters, as the FETI solve defines them.

@@ -67,6 +67,7 @@ struct Continuation {
   double normPFP = 0;
   long long F_applications = 0;
   double F_seconds = 0;
+  bool loadHistory = false;  // a step of a history (FetiLoadSteps), the first included
 };
 
 // A dense algorithm's size limit, before the coarse space and the solve
@@ -86,10 +87,11 @@ void checkDualSize(const Feti::FetiProblem& problem, const PairFriction& frictio
 // its own test with a result that misses the check is asked again from its
 // result, the tolerance tightened by the miss (Friction::tightenedTolerance);
 // the check keeps the first tolerance, so converged still means factor x
-// what was asked for.
+// what was asked for. followsAnother: r already holds another algorithm's
+// solve, whose counts this one's add to.
 void solveInRounds(const FetiContactProblem& cp, const PairFriction& friction, const Teuchos::ParameterList& p,
                    RCP<Teuchos::FancyOStream> out, RCP<const Vector> start, const Continuation& from, FetiSolveResult& r,
-                   Friction::WarmStart* warmOut) {
+                   Friction::WarmStart* warmOut, bool followsAnother) {
   const Feti::FetiProblem& problem = cp.fetiDual().problem();
   const int rounds = p.get<int>("Result Check Rounds");
   double requested = 0;
@@ -99,7 +101,7 @@ void solveInRounds(const FetiContactProblem& cp, const PairFriction& friction, c
     if (warmOut) *warmOut = sol.warmStart;
     if (round == 1) r.tolerance = sol.requestedTolerance;
     requested = sol.requestedTolerance;
-    r.status = round == 1 ? sol.status : Friction::followedBy(r.status, sol.status);
+    r.status = round == 1 && !followsAnother ? sol.status : Friction::followedBy(r.status, sol.status);
     r.iterations = r.status.outer_iterations;
     r.n_A += sol.n_A;
     r.solverConverged = sol.status.converged;
@@ -149,7 +151,9 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     std::unique_ptr<Teuchos::TimeMonitor> setupTime(new Teuchos::TimeMonitor(*setupTimer));
     FetiContactProblem cp(dual, friction, from.normPFP);
     if (normPFP) *normPFP = cp.norm();
-    r.outerAlgorithm = outerAlgorithmFor(p.get<std::string>("Outer Algorithm"), friction);
+    const std::string requestedAlgorithm = p.get<std::string>("Outer Algorithm");
+    r.outerAlgorithm =
+        outerAlgorithmFor(requestedAlgorithm, friction, dual->coarse().equalityRowsHoldKernel(), from.loadHistory);
     const std::string runLawName = frictionLawName(runLaw(friction));
     TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, runLawName),
                    "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << runLawName << " friction ("
@@ -159,7 +163,18 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     RCP<const Vector> start;
     if (!from.lambda.is_null()) start = cp.startFrom(*from.lambda);
     setupTime.reset();
-    solveInRounds(cp, friction, p, out, start, from, r, warmOut);
+    // Auto's Newton is the matrix-free one at any size; a solve that stops
+    // without converging, or whose result misses its check, is followed by
+    // Algorithm 2 from the same start, the counts of both in the result.
+    const bool autoNewton = requestedAlgorithm == kAutoOuterAlgorithm && r.outerAlgorithm == "Semismooth Newton";
+    Teuchos::ParameterList params(p);
+    if (autoNewton) params.sublist("Semismooth Newton").set("Linear Solver", "Projected CG");
+    solveInRounds(cp, friction, params, out, start, from, r, warmOut, false);
+    if (autoNewton && !(r.solverConverged && r.verdict.converged)) {
+      if (!out.is_null()) *out << "Semismooth Newton: " << r.solverReason << "; Algorithm2 follows\n";
+      r.outerAlgorithm = "Algorithm2";
+      solveInRounds(cp, friction, p, out, start, from, r, warmOut, true);
+    }
   }
   r.solveSeconds = secondsSince(t0);
   r.F_applications = dual->F()->applications() - from.F_applications;
@@ -172,9 +187,11 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
 
 }  // namespace
 
-std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction) {
+std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction, bool heldByDirichlet,
+                              bool loadHistory) {
   if (requested != kAutoOuterAlgorithm) return Friction::frictionSolvers().canonical(requested);
-  return runLaw(friction) == FrictionLaw::Coulomb ? "Algorithm2" : "Algorithm1";
+  if (runLaw(friction) != FrictionLaw::Coulomb) return "Algorithm1";
+  return heldByDirichlet && loadHistory ? "Semismooth Newton" : "Algorithm2";
 }
 
 RCP<const Teuchos::ParameterList> fetiSolveParameters() {
@@ -184,8 +201,9 @@ RCP<const Teuchos::ParameterList> fetiSolveParameters() {
     auto names = Friction::frictionSolvers().names();
     names.insert(names.begin(), kAutoOuterAlgorithm);
     pl->set("Outer Algorithm", kAutoOuterAlgorithm,
-            "contact problems: Auto (Algorithm2 for Coulomb friction, Algorithm1 for Tresca friction and "
-            "frictionless contact); " + Friction::frictionSolvers().documentation(),
+            "contact problems: Auto (Coulomb friction: in a load history where Dirichlet conditions hold every body "
+            "Semismooth Newton, matrix-free, followed by Algorithm2 if it stops short, otherwise Algorithm2; "
+            "Algorithm1 for Tresca friction and frictionless contact); " + Friction::frictionSolvers().documentation(),
             rcp(new Teuchos::StringValidator(Teuchos::Array<std::string>(names.begin(), names.end()))));
     pl->set("Result Check Factor", 100.0,
             "converged means every KKT residual of the written result (docs/friction.md) is at most this factor "
@@ -218,6 +236,7 @@ FetiLoadSteps::FetiLoadSteps(const RCP<Feti::FetiProblem>& problem, const PairFr
 FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
   problem_->setLoads(loads);
   Continuation from;
+  from.loadHistory = true;
   if (!primal_.is_null()) {
     // Friction acts on the slip since the previous step: the tangential
     // rows measure B_T (u - u_prev).

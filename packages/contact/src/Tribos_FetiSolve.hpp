@@ -45,12 +45,19 @@ struct FetiSolveResult : SolveResult {
 };
 
 // The outer algorithm of a contact run: `requested`, or for "Auto" (the
-// default) the one that suits the run's law (runLaw): Algorithm2 for Coulomb
-// friction, Tresca for Tresca friction and frictionless contact, so that a
-// user who names a law need not name an algorithm too. (The matrix-free
-// Semismooth Newton is faster in load histories but is not the default:
-// docs/semismooth.md says why.)
-std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction);
+// default) the one that suits the run's law (runLaw), so that a user who
+// names a law need not name an algorithm too: for Coulomb friction in a
+// load history (loadHistory) where the Dirichlet conditions hold every body
+// (heldByDirichlet: the equality rows of the dual hold every rigid motion)
+// the matrix-free Semismooth Newton, which a step that starts near its
+// solution costs a fraction of Algorithm 2's; Algorithm2 for a single
+// static solve (from rest neither is the faster at every size) and on a
+// body that its contact alone holds (where the matrix-free Newton stalls,
+// docs/semismooth.md); Algorithm1 for Tresca friction and frictionless
+// contact. A Newton solve chosen by Auto that stops without converging, or
+// whose result misses its check, is followed by Algorithm2 (solveFeti).
+std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction, bool heldByDirichlet = false,
+                              bool loadHistory = false);
 constexpr const char* kAutoOuterAlgorithm = "Auto";
 
 // The parameters solveFeti reads, with defaults and documentation:

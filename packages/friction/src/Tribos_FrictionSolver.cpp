@@ -350,18 +350,6 @@ Algorithm2::Algorithm2(const ParameterList& params) : SingleLoopSolver(params, v
 }
 
 namespace {
-// G as "no constraint": Gx = 0 in a one-entry replicated space.
-class NoEquality : public QP::EqualityConstraint {
- public:
-  explicit NoEquality(const RCP<const Comm>& comm)
-      : map_(rcp(new Map(1, 0, comm, Tpetra::LocallyReplicated))) {}
-  RCP<const Map> rangeMap() const override { return map_; }
-  void apply(const Vector&, Vector& Gx) const override { Gx.putScalar(0.0); }
-  void applyTranspose(const Vector&, Vector& Gty) const override { Gty.putScalar(0.0); }
-
- private:
-  RCP<const Map> map_;
-};
 // Residual balancing of the penalty (the rule used for ADMM penalties): rho
 // too small leaves G lambda behind the projected gradient, since the
 // multiplier update gains only a factor of about 1 + rho sigma per outer
@@ -385,7 +373,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   FrictionStatus st;
   const auto& comm = *dual.map()->getComm();
   const RCP<const QP::EqualityConstraint> G =
-      dual.G.is_null() ? RCP<const QP::EqualityConstraint>(rcp(new NoEquality(dual.map()->getComm()))) : dual.G;
+      dual.G.is_null() ? RCP<const QP::EqualityConstraint>(rcp(new QP::NoEqualityConstraint(dual.map()->getComm()))) : dual.G;
   auto mprgp = makeQPSolver("MPRGP", params_, "MPRGP");
   auto mpgp = makeQPSolver("MPGP", params_, "MPGP");
   if (!out_.is_null()) mprgp->setOutputStream(out_), mpgp->setOutputStream(out_);

@@ -98,24 +98,13 @@ int rowsOf(const Contact& c, int rows[3]) {
   return 1 + c.tangents;
 }
 
-// A constraint without rows (the dual has no G).
-class NoRows : public QP::EqualityConstraint {
- public:
-  explicit NoRows(const RCP<const Comm>& comm) : map_(rcp(new Map(0, 0, comm))) {}
-  RCP<const Map> rangeMap() const override { return map_; }
-  void apply(const Vector&, Vector&) const override {}
-  void applyTranspose(const Vector&, Vector& y) const override { y.putScalar(0.0); }
-
- private:
-  RCP<const Map> map_;
-};
 
 class NewtonSolve {
  public:
   NewtonSolve(const ContactDual& dual, const Teuchos::ParameterList& params, const WarmStart& warm,
               const RCP<Teuchos::FancyOStream>& out)
       : dual_(dual), params_(params), out_(out), map_(dual.map()),
-        G_(dual.G), equality_(G_.is_null() ? RCP<const QP::EqualityConstraint>(rcp(new NoRows(map_->getComm()))) : G_),
+        G_(dual.G), equality_(G_.is_null() ? RCP<const QP::EqualityConstraint>(rcp(new QP::NoEqualityConstraint(map_->getComm()))) : G_),
         al_(*dual.A, *equality_, dual.jointHessian.get()), v_(map_), Hd_(map_), d_(map_), y_(map_), xt_(map_),
         vt_(map_), tmp_(map_), GtGw_(map_), Gx_(equality_->rangeMap()) {
     normA_ = dual.hessianNorm(20, n_A_);

@@ -303,7 +303,7 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             "times ||G x|| (SMALBE's M); 0: after every Newton step (measured fastest on the brick, "
             "docs/semismooth.md)",
             range<double>(0.0, 1e6));
-    pl->set("Maximum Forcing Term", 0.5,
+    pl->set("Maximum Forcing Term", 0.2,
             "Projected CG: the largest relative residual eta_k of a Newton system (Eisenstat-Walker forcing "
             "terms below it)",
             range<double>(1e-12, 0.99));

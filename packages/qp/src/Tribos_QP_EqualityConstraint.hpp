@@ -27,5 +27,19 @@ class CrsEqualityConstraint : public EqualityConstraint {
   RCP<const CrsMatrix> G_;
 };
 
+// No constraint: G has no rows (a dual problem without G x = 0, e.g. FETI-1
+// with every subdomain held by Dirichlet conditions, or FCLIB), so that the
+// augmented Lagrangian of SMALBE-type loops runs unchanged with mu empty.
+class NoEqualityConstraint : public EqualityConstraint {
+ public:
+  explicit NoEqualityConstraint(const RCP<const Comm>& comm) : map_(Teuchos::rcp(new Map(0, 0, comm))) {}
+  RCP<const Map> rangeMap() const override { return map_; }
+  void apply(const Vector&, Vector&) const override {}
+  void applyTranspose(const Vector&, Vector& Gty) const override { Gty.putScalar(0.0); }
+
+ private:
+  RCP<const Map> map_;
+};
+
 }  // namespace QP
 }  // namespace Tribos
