@@ -372,6 +372,9 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVe
   double maxLN = 0;
   for (LO i : lc.normalRows) maxLN = std::max(maxLN, l[i]);
   maxLN = maxOver(maxLN, comm);
+  double maxG = 0;
+  for (double gk : g) maxG = std::max(maxG, gk);
+  maxG = maxOver(maxG, comm);
   ContactNodeResults out;
   for (size_t k = 0; k < lc.normalRows.size(); ++k) {
     const double lN = l[lc.normalRows[k]];
@@ -379,9 +382,13 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVe
     const double l1 = t1 >= 0 ? l[t1] : 0.0, l2 = t2 >= 0 ? l[t2] : 0.0;
     const double gk = g.empty() ? 0.0 : g[k];
     // Active: a normal force above round-off of the largest one. Slip: the
-    // tangential force on the friction bound.
+    // tangential force on the friction bound, to 1e-6 of the largest bound.
+    // The margin is absolute: relative to the node's own bound it would
+    // classify the nodes at the rim of the contact (small bounds, where the
+    // solver's error is a large part of the bound) by its round-off, and
+    // results of equal accuracy (1, 2 or 3 ranks) would count differently.
     int status = 0;
-    if (lN > 1e-8 * maxLN) status = (gk <= 0 || std::hypot(l1, l2) >= (1 - 1e-6) * gk) ? 2 : 1;
+    if (lN > 1e-8 * maxLN) status = (gk <= 0 || std::hypot(l1, l2) >= gk - 1e-6 * maxG) ? 2 : 1;
     const Feti::ContactConstraint& cc = lc.constraint[k];
     const auto w = Feti::relativeDisplacement(cc, uNodal);
     if (previous) {

@@ -290,6 +290,9 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
   const double multiplierRatio = params_.get<double>("Multiplier Update Ratio");
   const int stallSteps = params_.get<int>("Stall Steps");
   const int exactEvery = params_.get<int>("Exact Velocity Steps");
+  const double balancing = params_.get<double>("Penalty Balancing");
+  const double rhoMax = params_.get<double>("Maximum Penalty") * normA_;
+  const double rhoMin = params_.get<double>("Penalty") * normA_ * (1 - 1e-12);
 
   velocity(x, v_);
   int sinceExact = 0;  // steps since v was last computed from x, not carried by v + t H d
@@ -385,10 +388,23 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
     if (!G_.is_null()) {
       G_->apply(x, Gx_);
       const double nGxNew = Gx_.norm2();
-      if (multiplierRatio == 0 || phiNorm(x, v_) <= multiplierRatio * nGxNew) {
+      const double nPhiNew = phiNorm(x, v_);
+      G_->applyTranspose(Gx_, tmp_);
+      if (multiplierRatio == 0 || nPhiNew <= multiplierRatio * nGxNew) {
         al_.multiplier()->update(rho_, Gx_, 1.0);
-        G_->applyTranspose(Gx_, tmp_);
         v_.update(rho_, tmp_, 1.0);
+      }
+      // The multiplier gains a factor of about 1 + rho sigma per update:
+      // while ||G x|| lags ||Phi|| by more than Penalty Balancing, double
+      // rho (up to Maximum Penalty); while ||Phi|| lags, halve it (down to
+      // Penalty: a larger rho makes the CG solves dearer). A change moves v
+      // by (rho' - rho) G'G x.
+      double rhoNew = rho_;
+      if (balancing > 0 && nGxNew > balancing * nPhiNew && 2 * rho_ <= rhoMax) rhoNew = 2 * rho_;
+      if (balancing > 0 && nPhiNew > balancing * nGxNew && 0.5 * rho_ >= rhoMin) rhoNew = 0.5 * rho_;
+      if (rhoNew != rho_) {
+        v_.update(rhoNew - rho_, tmp_, 1.0);
+        rho_ = rhoNew;
       }
     }
     ++sinceExact;

@@ -298,6 +298,12 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("None", "Lumped", "Dirichlet"))));
     pl->set("Penalty", 1.0,
             "Projected CG: the augmented Lagrangian's rho of G x = 0, as a multiple of ||A||", range<double>(1e-6, 1e6));
+    pl->set("Penalty Balancing", 5.0,
+            "Projected CG: rho is doubled after a Newton step whose ||G x|| exceeds this times ||Phi|| (the "
+            "multiplier of G x = 0 lags the contact conditions), up to Maximum Penalty; 0 keeps rho fixed",
+            range<double>(0.0, 1e6));
+    pl->set("Maximum Penalty", 64.0, "Projected CG: the largest rho of Penalty Balancing, as a multiple of ||A||",
+            range<double>(1e-6, 1e12));
     pl->set("Multiplier Update Ratio", 0.0,
             "Projected CG: the multiplier mu of G x = 0 is updated after a Newton step when ||Phi|| <= this "
             "times ||G x|| (SMALBE's M); 0: after every Newton step (measured fastest on the brick, "
