@@ -349,23 +349,6 @@ Algorithm2::Algorithm2(const ParameterList& params) : SingleLoopSolver(params, v
                 " must be 0 (rho fixed) or at least 1 (otherwise both residuals could ask for opposite changes)");
 }
 
-namespace {
-// Residual balancing of the penalty (the rule used for ADMM penalties): rho
-// too small leaves G lambda behind the projected gradient, since the
-// multiplier update gains only a factor of about 1 + rho sigma per outer
-// iteration (sigma: curvature of the dual function); rho too large couples
-// the normal and tangential blocks through rho G'G, so that the Gauss-Seidel
-// sweeps leave g^P behind. Move rho by a factor towards the lagging residual.
-struct RhoBalancing {
-  SC ratio, factor, lowest, highest;
-  SC update(SC rho, SC normGx, SC normGP) const {
-    if (ratio == 0) return rho;
-    if (normGx > ratio * normGP && rho * factor <= highest) return rho * factor;
-    if (normGP > ratio * normGx && rho / factor >= lowest) return rho / factor;
-    return rho;
-  }
-};
-}  // namespace
 
 FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   dual.check();
@@ -381,7 +364,7 @@ FrictionStatus Algorithm2::solve(const ContactDual& dual, Vector& x) {
   const SC normB = dual.normB();
   SC rho = params_.get<double>("rho") > 0 ? params_.get<double>("rho") : normA;
   // Limits with a little slack, so that rho0 * factor^k hits them exactly.
-  const RhoBalancing balancing{params_.get<double>("Residual Balancing"), params_.get<double>("rho Factor"),
+  const QP::RhoBalancing balancing{params_.get<double>("Residual Balancing"), params_.get<double>("rho Factor"),
                                params_.get<double>("Minimum rho") * rho * (1 - 1e-12),
                                params_.get<double>("Maximum rho") * rho * (1 + 1e-12)};
   // M = 0.3 ||A||: chosen on the seed brick (docs/friction.md).

@@ -98,7 +98,6 @@ int rowsOf(const Contact& c, int rows[3]) {
   return 1 + c.tangents;
 }
 
-
 class NewtonSolve {
  public:
   NewtonSolve(const ContactDual& dual, const Teuchos::ParameterList& params, const WarmStart& warm,
@@ -290,9 +289,10 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
   const double multiplierRatio = params_.get<double>("Multiplier Update Ratio");
   const int stallSteps = params_.get<int>("Stall Steps");
   const int exactEvery = params_.get<int>("Exact Velocity Steps");
-  const double balancing = params_.get<double>("Penalty Balancing");
-  const double rhoMax = params_.get<double>("Maximum Penalty") * normA_;
-  const double rhoMin = params_.get<double>("Penalty") * normA_ * (1 - 1e-12);
+  // Limits with a little slack, so that rho0 * 2^k hits them exactly.
+  const QP::RhoBalancing balancing{params_.get<double>("Penalty Balancing"), 2.0,
+                                   params_.get<double>("Penalty") * normA_ * (1 - 1e-12),
+                                   params_.get<double>("Maximum Penalty") * normA_ * (1 + 1e-12)};
 
   velocity(x, v_);
   int sinceExact = 0;  // steps since v was last computed from x, not carried by v + t H d
@@ -399,9 +399,7 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
       // rho (up to Maximum Penalty); while ||Phi|| lags, halve it (down to
       // Penalty: a larger rho makes the CG solves dearer). A change moves v
       // by (rho' - rho) G'G x.
-      double rhoNew = rho_;
-      if (balancing > 0 && nGxNew > balancing * nPhiNew && 2 * rho_ <= rhoMax) rhoNew = 2 * rho_;
-      if (balancing > 0 && nPhiNew > balancing * nGxNew && 0.5 * rho_ >= rhoMin) rhoNew = 0.5 * rho_;
+      const double rhoNew = balancing.update(rho_, nGxNew, nPhiNew);
       if (rhoNew != rho_) {
         v_.update(rhoNew - rho_, tmp_, 1.0);
         rho_ = rhoNew;

@@ -41,6 +41,23 @@ class NormalOperator : public Operator {
   mutable Vector Gx_, GtGx_;
 };
 
+// Residual balancing of the penalty (the rule used for ADMM penalties): rho
+// too small leaves G lambda behind the projected gradient, since the
+// multiplier update gains only a factor of about 1 + rho sigma per outer
+// iteration (sigma: curvature of the dual function); rho too large couples
+// the normal and tangential blocks through rho G'G, so that the Gauss-Seidel
+// sweeps leave g^P behind. Move rho by a factor towards the lagging residual
+// (normGP: the other residual, e.g. Newton's ||Phi||), within [lowest, highest].
+struct RhoBalancing {
+  SC ratio, factor, lowest, highest;
+  SC update(SC rho, SC normGx, SC normGP) const {
+    if (ratio == 0) return rho;
+    if (normGx > ratio * normGP && rho * factor <= highest) return rho * factor;
+    if (normGP > ratio * normGx && rho / factor >= lowest) return rho / factor;
+    return rho;
+  }
+};
+
 class AugmentedLagrangian {
  public:
   // What an outer step leaves: ||Gx||, L(x, mu, rho) before the multiplier
