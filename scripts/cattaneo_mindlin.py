@@ -189,6 +189,7 @@ def read_run(directory, base="solution"):
             u = f["nodes/displacement"][...]
             status = f["points/contact/status"][...].ravel().astype(int)
             fn = f["points/contact/normal_force"][...].ravel()
+            ft = f["points/contact/tangential_force"][...]
         steps.append({
             "time": row["time"],
             "P": 2.0 * pair["normal_force"],
@@ -196,12 +197,13 @@ def read_run(directory, base="solution"):
             "delta": float(u[top, 0].mean()),
             "status": status,
             "fn": fn,
+            "ft": ft.reshape(len(fn), -1),
             "converged": bool(row.get("converged")),
             "kkt": max((v for key, v in row.get("kkt", {}).items()
                         if key != "limit" and isinstance(v, (int, float))), default=float("nan")),
             "iterations": row.get("iterations"),
         })
-    return {"summary": summary, "steps": steps, "x": x, "area": area}
+    return {"summary": summary, "steps": steps, "x": x, "area": area, "node": node}
 
 
 def radius_of(mask, area, r):

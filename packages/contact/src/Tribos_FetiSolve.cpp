@@ -163,12 +163,19 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     RCP<const Vector> start;
     if (!from.lambda.is_null()) start = cp.startFrom(*from.lambda);
     setupTime.reset();
-    // Auto's Newton is the matrix-free one at any size; a solve that stops
-    // without converging, or whose result misses its check, is followed by
-    // Algorithm 2 from the same start, the counts of both in the result.
+    // Auto's Newton is the matrix-free one at any size, asked for the
+    // accuracy asked of Algorithm 2 (the user's one tolerance; the result
+    // check promises the same KKT residuals whichever method ran); a solve
+    // that stops without converging, or whose result misses its check, is
+    // followed by Algorithm 2 from the same start, the counts of both in the
+    // result.
     const bool autoNewton = requestedAlgorithm == kAutoOuterAlgorithm && r.outerAlgorithm == "Semismooth Newton";
     Teuchos::ParameterList params(p);
-    if (autoNewton) params.sublist("Semismooth Newton").set("Linear Solver", "Projected CG");
+    if (autoNewton) {
+      Teuchos::ParameterList& newton = params.sublist("Semismooth Newton");
+      newton.set("Linear Solver", "Projected CG");
+      newton.set("Relative Tolerance", p.sublist("Algorithm 2").get<double>("Relative Tolerance"));
+    }
     solveInRounds(cp, friction, params, out, start, from, r, warmOut, false);
     if (autoNewton && !(r.solverConverged && r.verdict.converged)) {
       if (!out.is_null()) *out << "Semismooth Newton: " << r.solverReason << "; Algorithm2 follows\n";
@@ -202,7 +209,8 @@ RCP<const Teuchos::ParameterList> fetiSolveParameters() {
     names.insert(names.begin(), kAutoOuterAlgorithm);
     pl->set("Outer Algorithm", kAutoOuterAlgorithm,
             "contact problems: Auto (Coulomb friction: in a load history where Dirichlet conditions hold every body "
-            "Semismooth Newton, matrix-free, followed by Algorithm2 if it stops short, otherwise Algorithm2; "
+            "Semismooth Newton, matrix-free, at Algorithm 2's Relative Tolerance, followed by Algorithm2 if it stops short, "
+            "otherwise Algorithm2; "
             "Algorithm1 for Tresca friction and frictionless contact); " + Friction::frictionSolvers().documentation(),
             rcp(new Teuchos::StringValidator(Teuchos::Array<std::string>(names.begin(), names.end()))));
     pl->set("Result Check Factor", 100.0,
