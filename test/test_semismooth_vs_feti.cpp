@@ -60,7 +60,8 @@ int main(int argc, char** argv) {
   const auto& u = sol.u;
   const auto uNodes = problem->nodalDisplacement(*u);
   Contact::ContactCounts counts;
-  const auto r = Contact::contactResults(*problem, uNodes, *lambda, st.slipBound, {fs}, counts);
+  auto r = Contact::contactResults(*problem, uNodes, *lambda, st.slipBound, {fs});
+  Contact::resultKKT(*problem, uNodes, r, {fs}, counts);
 
   // Compare node by node on the contact nodes of this rank; sums over ranks.
   std::map<int, int> ssIndex;

@@ -29,5 +29,15 @@ void ContactKKT::add(double lambdaN, double gap, const double* phiT, const doubl
   frictionLaw2_ = std::max(frictionLaw2_, r2);  // one square root, at the end
 }
 
+bool ContactKKT::slips(const double* phiT, const double* slip, int dim, double g) const {
+  if (g <= 0) return true;
+  double z2 = 0;
+  for (int d = 0; d < dim; ++d) {
+    const double z = phiT[d] - PoverU_ * slip[d];
+    z2 += z * z;
+  }
+  return z2 > g * g;
+}
+
 }  // namespace Contact
 }  // namespace Tribos

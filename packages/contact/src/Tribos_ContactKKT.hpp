@@ -27,6 +27,14 @@ class ContactKKT {
   ContactKKT(double forceScale, double displacementScale);
   // One contact; phiT and slip have dim components (dim <= 3).
   void add(double lambdaN, double gap, const double* phiT, const double* slip, int dim, double g);
+  // Whether the friction law puts the contact on its slip branch:
+  // phi_T - (P/U) s outside the disk of radius g, where P_g is not the
+  // identity (g <= 0: frictionless, always slipping). A contact on the
+  // stick/slip boundary (||phi_T|| = g, s = 0) sticks. Deciding by this
+  // rather than by ||phi_T|| against g alone uses the slip as well: a rim
+  // node with a small bound whose force falls short of it by the solver's
+  // error but which moves reads as slipping, as the law it is checked by.
+  bool slips(const double* phiT, const double* slip, int dim, double g) const;
   // Maxima over the contacts added (local: reduce over ranks where needed).
   double nonpenetration() const { return nonpenetration_; }
   double complementarity() const { return complementarity_; }

@@ -364,31 +364,16 @@ std::vector<Contact::ContactNodeForce> bondedForces(const Feti::FetiProblem& p, 
 }
 
 ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVector& uNodal, const Vector& lambda,
-                                  const std::vector<double>& g, const PairFriction& friction, ContactCounts& counts,
+                                  const std::vector<double>& g, const PairFriction& friction,
                                   const Fem::NodalVector* previous) {
-  const Comm& comm = *p.comm();
   const auto& lc = p.contact();
   auto l = lambda.getData();
-  double maxLN = 0;
-  for (LO i : lc.normalRows) maxLN = std::max(maxLN, l[i]);
-  maxLN = maxOver(maxLN, comm);
-  double maxG = 0;
-  for (double gk : g) maxG = std::max(maxG, gk);
-  maxG = maxOver(maxG, comm);
   ContactNodeResults out;
   for (size_t k = 0; k < lc.normalRows.size(); ++k) {
     const double lN = l[lc.normalRows[k]];
     const LO t1 = lc.tangentRows[2 * k], t2 = lc.tangentRows[2 * k + 1];
     const double l1 = t1 >= 0 ? l[t1] : 0.0, l2 = t2 >= 0 ? l[t2] : 0.0;
     const double gk = g.empty() ? 0.0 : g[k];
-    // Active: a normal force above round-off of the largest one. Slip: the
-    // tangential force on the friction bound, to 1e-6 of the largest bound.
-    // The margin is absolute: relative to the node's own bound it would
-    // classify the nodes at the rim of the contact (small bounds, where the
-    // solver's error is a large part of the bound) by its round-off, and
-    // results of equal accuracy (1, 2 or 3 ranks) would count differently.
-    int status = 0;
-    if (lN > 1e-8 * maxLN) status = (gk <= 0 || std::hypot(l1, l2) >= gk - 1e-6 * maxG) ? 2 : 1;
     const Feti::ContactConstraint& cc = lc.constraint[k];
     const auto w = Feti::relativeDisplacement(cc, uNodal);
     if (previous) {
@@ -409,16 +394,19 @@ ContactNodeResults contactResults(const Feti::FetiProblem& p, const Fem::NodalVe
       out.tangentialForce.push_back(-(l1 * cc.t1[d] + l2 * cc.t2[d]));
       out.slip.push_back(w[d] - wn * cc.normal[d]);
     }
-    out.status.push_back(status);
   }
-  counts = countContacts(out, comm);
   return out;
 }
 
-Contact::ResultKKT resultKKT(const Feti::FetiProblem& p, const Fem::NodalVector& uNodal, const ContactNodeResults& contact,
-                         const PairFriction& friction) {
-  return Contact::resultKKT(uNodal, p.assembledProduct(uNodal), p.assembledLoad(), p.dirichlet(), runLaw(friction),
-                            contact.forces());
+Contact::ResultKKT resultKKT(const Feti::FetiProblem& p, const Fem::NodalVector& uNodal, ContactNodeResults& contact,
+                             const PairFriction& friction, ContactCounts& counts) {
+  std::vector<int> states;
+  const auto kkt = Contact::resultKKT(uNodal, p.assembledProduct(uNodal), p.assembledLoad(), p.dirichlet(),
+                                      runLaw(friction), contact.forces(), &states);
+  // forces() lists the contact nodes first, then the bonded ones.
+  contact.status.assign(states.begin(), states.begin() + static_cast<std::ptrdiff_t>(contact.nodes.size()));
+  counts = countContacts(contact, *p.comm());
+  return kkt;
 }
 
 namespace {

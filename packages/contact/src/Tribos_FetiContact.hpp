@@ -139,17 +139,20 @@ class FetiContactProblem {
 // the solution (local, one per contact node), empty for frictionless.
 // previous: the nodal displacement of the previous load step (none: a
 // single step), whose relative displacements the friction law starts from.
+// The states (status) are set by resultKKT, from the law it checks.
 ContactNodeResults contactResults(const Feti::FetiProblem& problem, const Fem::NodalVector& uNodal,
                                   const Vector& lambda, const std::vector<double>& g, const PairFriction& friction,
-                                  ContactCounts& counts, const Fem::NodalVector* previous = nullptr);
+                                  const Fem::NodalVector* previous = nullptr);
 
 // The forces between glued bodies at the local bonded nodes, from lambda.
 std::vector<Contact::ContactNodeForce> bondedForces(const Feti::FetiProblem& problem, const Vector& lambda);
 
 // The KKT residuals (Contact::resultKKT) of the written result: the nodal
-// displacement and the contact forces (none for a problem without contact).
+// displacement and the contact forces (none for a problem without contact);
+// sets contact.status (no contact, stick, slip under the law checked) and
+// counts over all ranks.
 Contact::ResultKKT resultKKT(const Feti::FetiProblem& problem, const Fem::NodalVector& uNodal,
-                         const ContactNodeResults& contact, const PairFriction& friction);
+                             ContactNodeResults& contact, const PairFriction& friction, ContactCounts& counts);
 
 }  // namespace Contact
 }  // namespace Tribos

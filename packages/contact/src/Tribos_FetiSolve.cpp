@@ -49,9 +49,9 @@ void checkResult(const Feti::FetiProblem& problem, const PairFriction& friction,
   Progress::stage("result check");
   r.u = problem.nodalDisplacement(*r.primal);
   if (problem.hasContact())
-    r.contact = contactResults(problem, r.u, *r.lambda, r.status.slipBound, friction, r.counts, previous);
+    r.contact = contactResults(problem, r.u, *r.lambda, r.status.slipBound, friction, previous);
   r.contact.bonded = bondedForces(problem, *r.lambda);
-  r.kkt = resultKKT(problem, r.u, r.contact, friction);
+  r.kkt = resultKKT(problem, r.u, r.contact, friction, r.counts);
   r.verdict = Contact::resultVerdict(r.kkt, r.solverConverged, r.solverReason, r.tolerance,
                                      p.get<double>("Result Check Factor"));
 }

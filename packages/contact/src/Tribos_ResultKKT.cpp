@@ -39,7 +39,7 @@ Fem::NodalVector contactForces(const RCP<const Fem::NodalLayout>& layout, const 
 
 ResultKKT resultKKT(const Fem::NodalVector& u, const Fem::NodalVector& Ku, const Fem::NodalVector& f,
                     const std::map<long long, double>& dirichlet, FrictionLaw law,
-                    const std::vector<ContactNodeForce>& contact) {
+                    const std::vector<ContactNodeForce>& contact, std::vector<int>* states) {
   TRIBOS_REQUIRE(!u.empty() && Ku.layoutPtr().get() == u.layoutPtr().get() && f.layoutPtr().get() == u.layoutPtr().get(),
                  "resultKKT: u, Ku and f must be nodal vectors of one layout");
   const Fem::NodalLayout& layout = u.layout();
@@ -72,8 +72,12 @@ ResultKKT resultKKT(const Fem::NodalVector& u, const Fem::NodalVector& Ku, const
 
   // Contact node by node (rank-local nodes, then the maximum over ranks).
   ContactKKT kkt(P, U);
-  double bondedGap = 0;
-  for (const auto& c : contact) {
+  double bondedGap = 0, largestNormal = 0;
+  for (const auto& c : contact) largestNormal = std::max(largestNormal, c.normalForce);
+  const double activeForce = 1e-8 * maxOver(largestNormal, comm);
+  if (states) states->assign(contact.size(), 1);
+  for (size_t k = 0; k < contact.size(); ++k) {
+    const ContactNodeForce& c = contact[k];
     // w: the relative displacement of the slave node and its partner.
     Vec3 w;
     for (int d = 0; d < 3; ++d) w[d] = u.at(c.node)[d];
@@ -101,6 +105,7 @@ ResultKKT resultKKT(const Fem::NodalVector& u, const Fem::NodalVector& Ku, const
       phiT[d] = fixed ? 0.0 : c.tangentialForce[d];
     }
     kkt.add(c.normalForce, c.gap - wn /* d - w.n */, phiT, s, 3, g);
+    if (states) (*states)[k] = c.normalForce <= activeForce ? 0 : kkt.slips(phiT, s, 3, g) ? 2 : 1;
   }
   res.nonpenetration = maxOver(std::max(kkt.nonpenetration(), bondedGap / U), comm);
   res.complementarity = maxOver(kkt.complementarity(), comm);

@@ -76,10 +76,13 @@ struct ResultKKT {
 // slave and master nodes of their contact nodes; each figure is summed or
 // maximized over the owned nodes of all ranks. dirichlet: global dof
 // (3 node + c) -> prescribed value (read at the owned nodes and the contact
-// nodes). Collective over the layout's communicator.
+// nodes). Collective over the layout's communicator. states (optional):
+// set to the state of each contact of `contact` (bonded ones included, as
+// 1) under the law the check applies: 0 no contact (a normal force at most
+// 1e-8 of the largest over the ranks), 1 stick, 2 slip (ContactKKT::slips).
 ResultKKT resultKKT(const Fem::NodalVector& u, const Fem::NodalVector& Ku, const Fem::NodalVector& f,
                     const std::map<long long, double>& dirichlet, FrictionLaw law,
-                    const std::vector<ContactNodeForce>& contact);
+                    const std::vector<ContactNodeForce>& contact, std::vector<int>* states = nullptr);
 
 // The contact force phi of the rank-local contact nodes and their reactions
 // on the master nodes, summed over the ranks, at the nodes of layout (which

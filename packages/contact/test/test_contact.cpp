@@ -94,8 +94,8 @@ Result solve(const Setup& s, const RCP<const Comm>& comm) {
   const auto& lambda = sol.lambda;
   const auto& u = sol.u;
   const auto uNodal = problem->nodalDisplacement(*u);
-  const auto nodes = Contact::contactResults(*problem, uNodal, *lambda, r.status.slipBound, {fs}, r.counts);
-  r.kkt = Contact::resultKKT(*problem, uNodal, nodes, {fs});
+  auto nodes = Contact::contactResults(*problem, uNodal, *lambda, r.status.slipBound, {fs});
+  r.kkt = Contact::resultKKT(*problem, uNodal, nodes, {fs}, r.counts);
   r.u = uNodal.gathered();  // every node on every rank, to compare runs
   r.normalForce.assign(disc.numMeshNodes(), 0.0);
   for (size_t k = 0; k < nodes.nodes.size(); ++k) r.normalForce[nodes.nodes[k]] = nodes.normalForce[k];
