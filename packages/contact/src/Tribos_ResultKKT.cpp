@@ -92,15 +92,15 @@ ResultKKT resultKKT(const Fem::NodalVector& u, const Fem::NodalVector& Ku, const
     if (law == FrictionLaw::Tresca) g = c.slipBound;
     if (law == FrictionLaw::Coulomb) g = c.frictionCoefficient * std::max(c.normalForce, 0.0);
     // Slip and friction force in the tangent plane, without the components
-    // that Dirichlet conditions fix at the slave node and every master node.
-    // The slip is the increment since the previous load step.
+    // that Dirichlet conditions fix at the slave node (which carry no
+    // friction row: Feti::meshConstraintRows). The slip is the increment since
+    // the previous load step.
     Vec3 dw;
     for (int d = 0; d < 3; ++d) dw[d] = w[d] - c.previousRelative[d];
     const double dwn = dot(c.normal, dw);
     double s[3], phiT[3];
     for (int d = 0; d < 3; ++d) {
-      bool fixed = dirichlet.count(3LL * c.node + d) > 0;
-      for (const auto& m : c.master) fixed = fixed && dirichlet.count(3LL * m.first + d) > 0;
+      const bool fixed = dirichlet.count(3LL * c.node + d) > 0;
       s[d] = fixed ? 0.0 : dw[d] - dwn * c.normal[d];
       phiT[d] = fixed ? 0.0 : c.tangentialForce[d];
     }
