@@ -121,7 +121,10 @@ int runAndReport(const Args& args, const Teuchos::ParameterList& params, const R
   try {
     const auto result = run(params, args.options, comm);
     // Teuchos timers of the phases (factorization, F applications, QP solvers, output).
-    if (args.options.verbose) Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
+    // Union: phases that run on some ranks only (the contact search on the
+    // ranks that hold the contact surfaces) are listed too.
+    if (args.options.verbose)
+      Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout, false, true, true, Teuchos::Union);
     const std::string json = result.summary.toJson() + "\n";
     if (root) std::cout << json << std::flush;
     if (!args.options.summaryFile.empty()) {

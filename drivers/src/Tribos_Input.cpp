@@ -132,9 +132,9 @@ ParameterList pairItem(const ParameterList& contact) {
         "slave nodes farther than this from their closest point on the master (or from the plane) take no part; "
         "0: no limit",
         range<double>(0.0, 1e300));
-  p.set("Discretization", "Node To Segment",
-        "Node To Segment (each slave node on its closest master facet) or Mortar (dual mortar segments; "
-        "docs/contact.md)",
+  p.set("Discretization", "Mortar",
+        "Mortar (dual mortar segments: consistent nodal forces, passes the contact patch test; docs/contact.md) or "
+        "Node To Segment (each slave node on its closest master facet)",
         Contact::discretizationValidator());
   return p;
 }

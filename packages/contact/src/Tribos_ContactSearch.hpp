@@ -65,7 +65,7 @@ struct ContactPair {
   std::string slave;           // face of the mesh
   std::string master;          // face of the mesh; empty: the rigid plane below
   bool glued = false;          // bonded: the relative displacement vanishes
-  ContactDiscretization discretization = ContactDiscretization::NodeToSegment;
+  ContactDiscretization discretization = ContactDiscretization::Mortar;
   std::array<double, 3> planePoint{0, 0, 0};
   std::array<double, 3> planeNormal{0, 0, 1};  // unit, out of the obstacle towards the body
   // Slave nodes farther than this from their projection get no constraint.
