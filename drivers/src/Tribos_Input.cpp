@@ -230,7 +230,7 @@ RCP<const ParameterList> validParameters() {
                   "one sublist per contact pair: Slave Surface, Master Surface (empty: a rigid plane through Plane "
                   "Point with the unit normal Plane Normal pointing out of the obstacle), Type (Contact or Glued), "
                   "friction (Friction Law, Friction Coefficient, Slip Bound Traction; default: Contact's), Search "
-                  "Distance; the contact of each slave node is node-to-segment on the master surface (docs/contact.md)");
+                  "Distance, Discretization (Mortar, the default, or Node To Segment; docs/contact.md)");
   ParameterList& solver = pl->sublist("Solver", false, "solution algorithm");
   solver.set("Type", "Auto",
              "Monolithic (assembled global solve), FETI, or Auto: Monolithic without contact, FETI with it "

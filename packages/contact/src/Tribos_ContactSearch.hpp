@@ -27,7 +27,7 @@
 // nodes whose projection falls outside every master facet get no constraint
 // (reported); the slave side should be the finer one.
 //
-// A pair may use mortar instead (ContactDiscretization::Mortar,
+// A pair uses mortar by default (ContactDiscretization::Mortar,
 // Tribos_Mortar.hpp): the same one row per slave node, with the weights
 // M_sm / D_s of dual mortar, the master normal averaged over the node,
 // the gap n_s . (sum_m (M_sm / D_s) x_m - x_s) (the row applied to the
