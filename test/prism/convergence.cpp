@@ -1,4 +1,6 @@
-// convergence.cpp: the semismooth* Newton method on the prism benchmark.
+// convergence.cpp: the semismooth* Newton method on the prism benchmark,
+// with exact Newton steps ("Sparse Direct", the method of the paper; Auto
+// takes inexact CG+MueLu steps from level 4, tested in ss_test_cg_muelu).
 // Mesh independence: 5..10 Newton steps for L = 2..6 (L = 7, 8 are in the
 // benchmark: too slow for the test budget). Superlinear convergence on L = 4
 // and 5: the quotients r_{k+1}/r_k of the residuals after the approximation
@@ -13,6 +15,7 @@ using namespace Tribos;
 
 void checkLevel(int L, Teuchos::FancyOStream& out, bool& success) {
   Semismooth::MeshContactProblem pr = sstest::prism(L);
+  pr.solverParams.set("Newton Solver", "Sparse Direct");
   const Semismooth::SemismoothResult r = Semismooth::solveFromMesh(
       pr.mesh, pr.material, pr.loads, pr.contactFace, pr.gap, pr.slipBoundTraction, pr.solverParams, &out);
   const double tol = pr.solverParams.get<double>("Tolerance", 1e-8);

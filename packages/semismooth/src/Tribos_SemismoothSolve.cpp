@@ -74,12 +74,16 @@ SemismoothSolveResult solvePlaneContact(const Mesh::Mesh& mesh, const Fem::Mater
     contactFaceNodes(mesh, dirichlet, contact.face, contact.gap, contact.slipBoundTraction);
   });
   // "CG+MueLu" spreads its CG solves over all ranks; the factorizing Newton
-  // solvers run on rank 0 alone.
+  // solvers run on rank 0 alone. Auto is decided here, on the whole mesh, so
+  // that every rank takes the same path.
+  Teuchos::ParameterList chosen(params);
+  chosen.validateParametersAndSetDefaults(*SemismoothStarNewton::getValidParameters());
+  chosen.set("Newton Solver", chosenNewtonSolver(chosen, 3LL * mesh.numNodes(), true));
   const bool distributed =
-      newtonSolvers().create(params.get<std::string>("Newton Solver"))->space == NewtonSolverKind::FullSpace;
+      newtonSolvers().create(chosen.get<std::string>("Newton Solver"))->space == NewtonSolverKind::FullSpace;
   SemismoothResult r;
   if (comm->getRank() == 0 || distributed)
-    r = solveFromMesh(mesh, material, loads, contact.face, contact.gap, contact.slipBoundTraction, params,
+    r = solveFromMesh(mesh, material, loads, contact.face, contact.gap, contact.slipBoundTraction, chosen,
                       comm->getRank() == 0 ? log : nullptr, distributed ? comm : RCP<const Comm>());
   Broadcast all;
   SemismoothSolveResult out;

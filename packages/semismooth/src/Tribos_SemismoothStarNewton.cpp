@@ -45,6 +45,13 @@ const NewtonSolverRegistry& newtonSolvers() {
   return registry;
 }
 
+std::string chosenNewtonSolver(const Teuchos::ParameterList& params, long long primalDofs, bool haveCoordinates) {
+  const std::string name = params.get<std::string>("Newton Solver");
+  if (name != kAutoNewtonSolver) return newtonSolvers().canonical(name);
+  const bool direct = primalDofs <= kAutoSparseDirectMaxDofs || params.get<bool>("Dense Schur") || !haveCoordinates;
+  return direct ? "Sparse Direct" : "CG+MueLu";
+}
+
 RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
   using Teuchos::tuple;
   auto pl = rcp(new Teuchos::ParameterList("SemismoothStarNewton"));
@@ -64,7 +71,14 @@ RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
   pl->set("Step Size Factor", 10.0,
           "multiplies a; larger a lets the multiplier y rather than x decide stick/slip and contact, which avoids "
           "cycling of the stick/slip sets (1 cycles on the prism at level 2; 10 gives 6-7 iterations)", rcp(new Teuchos::EnhancedNumberValidator<double>(1e-12, 1e12)));
-  pl->set("Newton Solver", "Sparse Direct", newtonSolvers().documentation(), newtonSolvers().validator());
+  Teuchos::Array<std::string> newtonNames(1, kAutoNewtonSolver);
+  for (const std::string& n : newtonSolvers().names()) newtonNames.push_back(n);
+  for (const std::string& n : newtonSolvers().aliases()) newtonNames.push_back(n);
+  pl->set("Newton Solver", kAutoNewtonSolver,
+          "Auto (Sparse Direct up to " + std::to_string(kAutoSparseDirectMaxDofs) +
+              " primal dofs, with Dense Schur or without node coordinates; CG+MueLu beyond); " +
+              newtonSolvers().documentation(),
+          rcp(new Teuchos::StringValidator(newtonNames)));
   pl->set("CG Tolerance", 1e-12, "Reduced CG: relative residual", rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1.0)));
   pl->set("CG Maximum Iterations", 2000, "Reduced CG and CG+MueLu: iteration limit of one CG solve",
           rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
@@ -95,7 +109,8 @@ RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
 void SemismoothStarNewton::checkParameters(const Teuchos::ParameterList& params) {
   Teuchos::ParameterList p(params);
   p.validateParametersAndSetDefaults(*getValidParameters());
-  const std::string solver = newtonSolvers().canonical(p.get<std::string>("Newton Solver"));
+  // Auto takes Sparse Direct with Dense Schur, whatever the size.
+  const std::string solver = chosenNewtonSolver(p, 0, false);
   TRIBOS_REQUIRE(!p.get<bool>("Dense Schur") || newtonSolvers().accepts(solver, "Dense Schur"),
                  "\"Dense Schur\" = true needs S, which \"Newton Solver\" = " << solver << " does not form ("
                  << joinNames(newtonSolvers().accepting("Dense Schur")) << " do)");
@@ -105,6 +120,8 @@ SemismoothStarNewton::SemismoothStarNewton(const ContactProblem& problem, const 
     : params_(params), contact_(problem.contact), numNodes_(problem.numNodes()) {
   params_.validateParametersAndSetDefaults(*getValidParameters());
   checkParameters(params_);
+  // From here on the list names the solver that runs (FullSpaceNewton reads it).
+  params_.set("Newton Solver", chosenNewtonSolver(params_, 3LL * problem.numNodes(), !problem.coords.empty()));
   newtonSolver_ = *newtonSolvers().create(params_.get<std::string>("Newton Solver"));
   if (newtonSolver_.space == NewtonSolverKind::FullSpace) {
     fullSpace_ = std::make_unique<FullSpaceNewton>(problem, params_);

@@ -84,6 +84,19 @@ struct NewtonSolverKind {
 using NewtonSolverRegistry = Registry<NewtonSolverKind>;
 const NewtonSolverRegistry& newtonSolvers();
 
+// "Newton Solver" = "Auto" (the default) takes a factorization while it is
+// cheap and conjugate gradients beyond: "Sparse Direct" up to
+// kAutoSparseDirectMaxDofs primal dofs, when "Dense Schur" asks for S, or
+// without node coordinates (MueLu's aggregates need them); "CG+MueLu"
+// otherwise. Measured on the prism of input/prism_tresca.xml, one process:
+// level 3 (1911 dofs) 0.17 s against 0.46 s, level 4 (4131) 0.49-0.63 s
+// against 0.42-0.46 s, level 6 (28611) 14.9 s against 5.0 s (docs/semismooth.md).
+constexpr const char* kAutoNewtonSolver = "Auto";
+constexpr long long kAutoSparseDirectMaxDofs = 3000;
+// The registered name "Newton Solver" of params (validated) stands for on a
+// problem of that many primal dofs, with or without node coordinates.
+std::string chosenNewtonSolver(const Teuchos::ParameterList& params, long long primalDofs, bool haveCoordinates);
+
 class SemismoothStarNewton {
  public:
   // Reduces the problem (factors K_rr; forms S densely if "Dense Schur"), or
