@@ -88,9 +88,10 @@ class Registry {
     return out;
   }
 
-  // Accepts the registered names and their aliases.
-  RCP<Teuchos::StringValidator> validator() const {
-    Teuchos::Array<std::string> valid;
+  // Accepts the registered names and their aliases, after `choices` that the
+  // owner of the parameter resolves itself (e.g. "Auto").
+  RCP<Teuchos::StringValidator> validator(const std::vector<std::string>& choices = {}) const {
+    Teuchos::Array<std::string> valid(choices.begin(), choices.end());
     for (const auto& e : entries_) valid.push_back(e.name);
     for (const auto& a : aliases_) valid.push_back(a.first);
     return rcp(new Teuchos::StringValidator(valid));

@@ -71,14 +71,11 @@ RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
   pl->set("Step Size Factor", 10.0,
           "multiplies a; larger a lets the multiplier y rather than x decide stick/slip and contact, which avoids "
           "cycling of the stick/slip sets (1 cycles on the prism at level 2; 10 gives 6-7 iterations)", rcp(new Teuchos::EnhancedNumberValidator<double>(1e-12, 1e12)));
-  Teuchos::Array<std::string> newtonNames(1, kAutoNewtonSolver);
-  for (const std::string& n : newtonSolvers().names()) newtonNames.push_back(n);
-  for (const std::string& n : newtonSolvers().aliases()) newtonNames.push_back(n);
   pl->set("Newton Solver", kAutoNewtonSolver,
           "Auto (Sparse Direct up to " + std::to_string(kAutoSparseDirectMaxDofs) +
               " primal dofs, with Dense Schur or without node coordinates; CG+MueLu beyond); " +
               newtonSolvers().documentation(),
-          rcp(new Teuchos::StringValidator(newtonNames)));
+          newtonSolvers().validator({kAutoNewtonSolver}));
   pl->set("CG Tolerance", 1e-12, "Reduced CG: relative residual", rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1.0)));
   pl->set("CG Maximum Iterations", 2000, "Reduced CG and CG+MueLu: iteration limit of one CG solve",
           rcp(new Teuchos::EnhancedNumberValidator<int>(1, 1000000)));
