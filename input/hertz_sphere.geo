@@ -2,16 +2,19 @@
 // face) touching an elastic block at the origin, cut by the symmetry planes
 // x = 0 and y = 0. Two physical volumes ("sphere", "block") meshed
 // separately (no Coherence / BooleanFragments: no shared nodes), P1
-// tetrahedra, refined near the contact point by a size field; the sphere
-// (slave side) is meshed finer than the block (master side).
+// tetrahedra, refined near the contact point by a size field; the block
+// (master side, the softer body) is meshed finer than the sphere (slave
+// side): mortar's dual multipliers on a slave finer than a compliant master
+// see the master's nodes, and scatter with them (docs/hertz.md, "Which
+// side is finer").
 //
 // Units: mm (forces in N, moduli in MPa). Level L sets the element size at
-// the contact point, hc = 0.1 / 2^(L - 1) mm on the sphere (1.5 hc on the
+// the contact point, hc = 0.1 / 2^(L - 1) mm on the sphere (2/3 hc on the
 // block); the contact radius of input/hertz_sphere.xml is a ~ 1 mm.
-// input/hertz_sphere.msh is Level 1 (2772 nodes):
+// input/hertz_sphere.msh is Level 1 (6578 nodes):
 //   gmsh -3 -format msh4 input/hertz_sphere.geo -o input/hertz_sphere.msh
-// other levels (0: 979 nodes, 2: 12779, 3: 79869), as scripts/hertz.py does:
-//   gmsh -3 -format msh4 -setnumber Level 3 input/hertz_sphere.geo -o hertz_sphere_3.msh
+// other levels (0: 1709 nodes, 2: 37326), as scripts/hertz.py does:
+//   gmsh -3 -format msh4 -setnumber Level 2 input/hertz_sphere.geo -o hertz_sphere_2.msh
 //
 // Physical surfaces: sphere_contact (the spherical face, slave), sphere_top
 // (z = R, displaced), sphere_sym_x, sphere_sym_y; block_top (z = 0, master),
@@ -29,7 +32,7 @@ rc = 1.3;    // radius of the uniformly refined zone (about 1.3 a)
 grow = 0.4;  // size gradient beyond it
 hs = 3;      // largest element, sphere
 hb = 6;      // largest element, block
-ratio = 1.5; // block (master) size / sphere (slave) size near the contact
+ratio = 2 / 3; // block (master) size / sphere (slave) size near the contact
 
 // The sphere, rotated so that its poles (degenerate points of the OCC
 // parametrisation) lie on the x axis, far from the contact point.

@@ -7,7 +7,7 @@ usage: scripts/hertz.py [-l LEVEL ...] [--np N] [--tribos EXE] [--out DIR]
                         [--plot FILE.png | --no-plot] [--no-run]
                         [--set "Sublist/Key=value" ...]
 
-For each level (default 0 1 2 3), input/hertz_sphere.geo is meshed by Gmsh
+For each level (default 0 1 2), input/hertz_sphere.geo is meshed by Gmsh
 with -setnumber Level L (element size 0.1 / 2^(L-1) mm at the contact point;
 Level 1 is the shipped input/hertz_sphere.msh) and solved by
 
@@ -242,7 +242,7 @@ def mesh_for(level, out):
     if level == 1:
         return COARSE  # the same as meshing the .geo with Level 1
     msh = os.path.join(out, "hertz_sphere_%d.msh" % level)
-    if not os.path.exists(msh):
+    if not os.path.exists(msh) or os.path.getmtime(msh) < os.path.getmtime(GEO):
         gmsh = shutil.which("gmsh") or fail("gmsh not found (apt-get install gmsh)")
         subprocess.run([gmsh, "-3", "-format", "msh4", "-setnumber", "Level", str(level), GEO, "-o", msh],
                        check=True, stdout=subprocess.DEVNULL)
@@ -392,7 +392,7 @@ def mesh_plot(row, path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("-l", "--levels", type=int, nargs="+", default=[0, 1, 2, 3])
+    ap.add_argument("-l", "--levels", type=int, nargs="+", default=[0, 1, 2])
     ap.add_argument("--subdomains", nargs="*", default=["3:8"],
                     help="LEVEL:S, METIS subdomains of a level (default 3:8; the input file has 2)")
     ap.add_argument("--np", type=int, default=2)

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The pressure of a Hertz result node by node against Hertz's profile:
 
-  hertz_pressure.py DIR ... [--max-l2 E] [--max-centre E]
+  hertz_pressure.py DIR ... [--max-l2 E] [--max-centre E] [--falling]
 
 For each result directory of input/hertz_sphere.xml (scripts/hertz.py's
 analyse gives the force F, Hertz's a and p0 for it, and the nodal pressures
@@ -21,8 +21,9 @@ contact plane), prints
   spread  the largest |p_i / p_H(r_i) - 1| over the nodes with r_i < a/2
           (where p_H varies by less than 14 %: the scatter of the nodes).
 
---max-l2 and --max-centre fail (exit 1) when the last directory's figures
-exceed them.
+--max-l2 (both L2 errors) and --max-centre fail (exit 1) when the last
+directory's figures exceed them; --falling fails unless both L2 errors fall
+from each directory to the next (a refinement sequence, coarse first).
 """
 import argparse
 import math
@@ -39,6 +40,7 @@ ap = argparse.ArgumentParser()
 ap.add_argument("dirs", nargs="+")
 ap.add_argument("--max-l2", type=float)
 ap.add_argument("--max-centre", type=float)
+ap.add_argument("--falling", action="store_true")
 args = ap.parse_args()
 
 
@@ -65,6 +67,7 @@ def surface_l2(coords, cells, node, p, a, p0, n=8):
 
 
 print("%-40s %8s %10s %10s %10s %10s" % ("result", "h", "l2", "l2_surf", "centre", "spread"))
+errors = []
 for d in args.dirs:
     row = hertz.analyse(d)
     with h5py.File(os.path.join(d, "solution.h5"), "r") as f:
@@ -83,5 +86,14 @@ for d in args.dirs:
     l2_surf = surface_l2(coords, cells, node, p, a, p0)
     print("%-40s %8.4f %9.2f%% %9.2f%% %+9.2f%% %9.2f%%"
           % (d, row["h"], 100 * l2, 100 * l2_surf, 100 * centre, 100 * spread))
-failed = (args.max_l2 is not None and l2 > args.max_l2) or (args.max_centre is not None and abs(centre) > args.max_centre)
-sys.exit(1 if failed else 0)
+    errors.append((l2, l2_surf))
+failures = []
+if args.max_l2 is not None and max(l2, l2_surf) > args.max_l2:
+    failures.append("an L2 error of the last result exceeds %g" % args.max_l2)
+if args.max_centre is not None and abs(centre) > args.max_centre:
+    failures.append("the centre node of the last result is off by more than %g" % args.max_centre)
+if args.falling and any(b[k] >= a[k] for a, b in zip(errors, errors[1:]) for k in (0, 1)):
+    failures.append("the L2 errors do not fall from each result to the next")
+for f in failures:
+    print("hertz_pressure.py: FAILED: " + f)
+sys.exit(1 if failures else 0)
