@@ -3,10 +3,12 @@
 // symmetry plane y = 0, which contains the tangential load (along x). Two
 // physical volumes ("sphere", "block") meshed separately (no Coherence /
 // BooleanFragments: no shared nodes), P1 tetrahedra, refined near the
-// contact point by a size field; the sphere (slave side) is the finer.
+// contact point by a size field; the block (master side) is the finer: a
+// slave finer than its master resolves the master's nodes (docs/hertz.md,
+// "Which side is finer").
 //
 // Units: mm (forces in N, moduli in MPa). Level L sets the element size at
-// the contact point, hc = 0.2 / 2^((L - 1) / 2) mm on the sphere (1.5 hc on
+// the contact point, hc = 0.2 / 2^((L - 1) / 2) mm on the sphere (2/3 hc on
 // the block): 0.2, 0.141, 0.1 mm for Levels 1, 2, 3; the contact radius of
 // input/cattaneo_mindlin.xml is a ~ 1 mm. The shipped meshes:
 //   gmsh -3 -format msh4 -setnumber Level L input/cattaneo_mindlin.geo -o input/cattaneo_mindlin_L.msh
@@ -28,7 +30,7 @@ rc = 1.2;    // radius of the uniformly refined zone (about 1.2 a)
 grow = 0.4;  // size gradient beyond it
 hs = 3;      // largest element, sphere
 hb = 6;      // largest element, block
-ratio = 1.5; // block (master) size / sphere (slave) size near the contact
+ratio = 2 / 3; // block (master) size / sphere (slave) size near the contact
 
 // The sphere, rotated so that its poles (degenerate points of the OCC
 // parametrisation) lie on the x axis at the rim of the top face, far from

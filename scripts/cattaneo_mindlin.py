@@ -58,6 +58,10 @@ Errors (over the steps of the tangential history):
   err_c_max  the same for c_max
   err_s      max |s - s_exact| / s_exact(Q*)   (the loop, its linear part removed)
   err_w      the loop's width at Q = 0, delta_down(0) - delta_up(0), relative
+  spurious   after the normal load alone (the step before the tangential
+             history), sum |f_T,i| / (F sum f_N,i): the friction the contact
+             carries where the exact tangential traction of elastically
+             similar bodies is zero
              (independent of C_stick: the linear part cancels in the width)
 
 Writes the table (stdout, and --table as Markdown), OUT/cattaneo_mindlin.json
@@ -269,6 +273,8 @@ def analyse(directory, stick_directory, input_file=INPUT):
     a_area = radius_of(steps[first - 1]["status"] > 0, run["area"], r)[0]
 
     width_fe, width_exact = loop_width(Q, delta, exact_delta, turns)
+    pressed = steps[first - 1]
+    spurious = float(np.linalg.norm(pressed["ft"], axis=1).sum() / (F * pressed["fn"].sum()))
     row = {
         "directory": directory,
         "h": mesh_size(run, m.a),
@@ -289,6 +295,7 @@ def analyse(directory, stick_directory, input_file=INPUT):
         "width": width_fe, "width_exact": width_exact,
         "err_w": None if width_fe is None else width_fe / width_exact - 1.0,
         "xp_max_a": float(np.max(np.abs(x_p)) / m.a),
+        "spurious": spurious,
         "xp_tipping_a": float(Q[hist].max() * RADIUS / P / m.a),
         "time_s": run["summary"].get("time_setup_s", 0.0) + run["summary"].get("time_solve_s", 0.0),
         "first": first,
@@ -350,7 +357,8 @@ def run(level, args, stick):
 
 COLUMNS = [("level", "%d"), ("h", "%.3f"), ("dofs", "%d"), ("P", "%.0f"), ("Qstar_FP", "%.3f"), ("a", "%.4f"),
            ("err_a", "%+.1f%%"), ("err_c", "%.1f%%"), ("err_c_max", "%.1f%%"), ("err_s", "%.1f%%"),
-           ("err_w", "%+.1f%%"), ("xp_max_a", "%.4f"), ("kkt", "%.1e"), ("wall_s", "%.0f")]
+           ("err_w", "%+.1f%%"), ("xp_max_a", "%.4f"), ("spurious", "%.3f"), ("kkt", "%.1e"),
+           ("wall_s", "%.0f")]
 
 
 def table(rows, markdown):

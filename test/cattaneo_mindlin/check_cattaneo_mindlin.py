@@ -5,7 +5,8 @@ linear part of the tangential displacement), then check the result against
 the analytic solution (scripts/cattaneo_mindlin.py computes the figures;
 docs/cattaneo_mindlin.md).
 
-usage: check_cattaneo_mindlin.py --out DIR [--tol-c T] [--tol-s T] [--tol-w T] [--tol-xp T] [--kkt K]
+usage: check_cattaneo_mindlin.py --out DIR [--tol-c T] [--tol-s T] [--tol-w T] [--tol-xp T]
+                                 [--tol-spurious T] [--kkt K]
                                  -- COMMAND...
            COMMAND (tribos INPUT ... without --output) runs twice: with --output DIR/history,
            and with --output DIR/stick and the stuck reference's --set arguments
@@ -20,6 +21,8 @@ against the right answer fails):
   err_s   max |s - s_exact| / s_exact(Q*)                       <= tol-s
   |err_w| the loop's width at Q = 0, relative                   <= tol-w
   x_P     max |pressure centre| / a                             <= tol-xp
+  spurious  the friction after the normal load alone,
+          sum |f_T| / (F sum f_N) (exact: 0)                    <= tol-spurious
 The figures go to DIR/cattaneo_mindlin_check.json.
 """
 import argparse
@@ -147,6 +150,7 @@ def main():
     ap.add_argument("--tol-s", type=float, default=0.20)
     ap.add_argument("--tol-w", type=float, default=0.20)
     ap.add_argument("--tol-xp", type=float, default=0.05)
+    ap.add_argument("--tol-spurious", type=float, default=1.0)
     ap.add_argument("--kkt", type=float, default=1e-5)
     ap.add_argument("--compare", nargs="+")
     ap.add_argument("--rel", type=float, default=1e-5)
@@ -169,7 +173,8 @@ def main():
     for name, value, tol in (("err_c (stick radius / a)", row["err_c"], args.tol_c),
                              ("err_s (slip displacement)", row["err_s"], args.tol_s),
                              ("err_w (loop width at Q = 0)", row["err_w"], args.tol_w),
-                             ("x_P / a (pressure centre)", row["xp_max_a"], args.tol_xp)):
+                             ("x_P / a (pressure centre)", row["xp_max_a"], args.tol_xp),
+                             ("spurious friction / (F P)", row["spurious"], args.tol_spurious)):
         ok = value is not None and abs(value) <= tol
         print("%-28s %s  (tolerance %.3g) %s" % (name, "-" if value is None else "%+.4f" % value, tol,
                                                  "ok" if ok else "FAILED"))
