@@ -52,7 +52,11 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh
   if (rank != 0) return;
   TRIBOS_REQUIRE(wholeMesh.numNodes() == numNodes, "FCLIB export: the whole mesh on rank 0 has " << wholeMesh.numNodes()
                                                    << " nodes, the problem's " << numNodes);
-  Mesh::Discretization serial(wholeMesh, disc.spec, Mesh::DecompositionSpec(), 1, 0);
+  // One subdomain per body on one rank (the Structured partitioner splits one
+  // box only); one rank numbers the nodes as the mesh does, either way.
+  Mesh::DecompositionSpec oneRank;
+  if (wholeMesh.numBodies() > 1) oneRank.partitioner = "METIS", oneRank.subdomains = wholeMesh.numBodies();
+  Mesh::Discretization serial(wholeMesh, disc.spec, oneRank, 1, 0);
   for (int n = 0; n < numNodes; ++n)
     TRIBOS_REQUIRE(serial.nodeIndex()[n] == n, "FCLIB export: unexpected node numbering of a one-rank discretization");
   Fem::MonolithicSystem mono(serial, mat, loads, self);
