@@ -676,7 +676,9 @@ SolveReport Solver::solve(const GlobalProblem& problem) const {
     const double formW = seconds(t1);
     rep = solveExplicit(W.view(), q, problem.mu, options_, *nsgs);
     rep.timeSetup += formW;
-    if (n <= options_.denseSpectrumLimit) spectrum(op, n, rep);
+    // From the W just formed: through op, each of its n columns would cost
+    // another solve with M.
+    if (n <= options_.denseSpectrumLimit) spectrum(DelassusOperator(W, map), n, rep);
   } else {
     DelassusOperator op(problem.H, M, map);
     limitsAsGiven_ = false;  // its rounds may tighten them
