@@ -122,6 +122,7 @@ std::vector<double> DelassusOperator::dense() const {
   const int n = static_cast<int>(map_->getGlobalNumElements());
   std::vector<double> D(static_cast<size_t>(n) * n), e(n, 0.0), col;
   if (H_) {
+    if (!denseW_.empty()) return denseW_;
     // All columns with one multi-right-hand-side solve: H e_j is column j of H.
     const int ndof = H_->rows;
     std::vector<double> HE(static_cast<size_t>(ndof) * n, 0.0), MHE(HE.size());
@@ -133,6 +134,7 @@ std::vector<double> DelassusOperator::dense() const {
       H_->multiplyTranspose(v, col);
       std::copy(col.begin(), col.end(), D.begin() + static_cast<size_t>(j) * n);
     }
+    denseW_ = D;
     return D;
   }
   for (int j = 0; j < n; ++j) {
@@ -676,9 +678,7 @@ SolveReport Solver::solve(const GlobalProblem& problem) const {
     const double formW = seconds(t1);
     rep = solveExplicit(W.view(), q, problem.mu, options_, *nsgs);
     rep.timeSetup += formW;
-    // From the W just formed: through op, each of its n columns would cost
-    // another solve with M.
-    if (n <= options_.denseSpectrumLimit) spectrum(DelassusOperator(W, map), n, rep);
+    if (n <= options_.denseSpectrumLimit) spectrum(op, n, rep);  // the W op formed above
   } else {
     DelassusOperator op(problem.H, M, map);
     limitsAsGiven_ = false;  // its rounds may tighten them

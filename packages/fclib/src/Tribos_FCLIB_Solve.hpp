@@ -82,7 +82,9 @@ class DelassusOperator : public Operator {
              SC beta = 0) const override;
   // y = W x (unscaled) on plain arrays.
   void applyW(const std::vector<double>& x, std::vector<double>& y) const;
-  // W as a dense column-major n x n array (n applications).
+  // W as a dense column-major n x n array (n applications; for a global
+  // problem one solve with M of n right-hand sides, made once and kept, so
+  // that the spectrum and Newton's explicit W share it).
   std::vector<double> dense() const;
   // W as a CSR matrix: the stored W of a local problem, or H' M^-1 H formed
   // by dense() (its nonzero entries) for a global one.
@@ -94,6 +96,7 @@ class DelassusOperator : public Operator {
   std::shared_ptr<const MassSolver> M_;
   RCP<const Map> map_;
   mutable std::vector<double> x_, y_, z_;
+  mutable std::vector<double> denseW_;  // H' M^-1 H, once formed (global problems)
 };
 
 // "Semismooth Newton" (Friction::SemismoothNewton) is given W explicitly,
