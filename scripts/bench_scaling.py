@@ -63,7 +63,7 @@ def bandwidth(bench, ranks, precision):
         m = re.match(r"(\w+)\s.*?([\d.]+) GB/s", line)
         if m:
             rows[m.group(1)] = float(m.group(2))
-    kernel = "sspmv" if precision == "Single" else "dspmv"
+    kernel = "mixed" if precision == "Single" else "dspmv"
     return rows["triad"] / ranks, rows[kernel] / ranks, out
 
 

@@ -273,6 +273,58 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
                                               const Teuchos::ParameterList& solverParams,
                                               RCP<Teuchos::FancyOStream> out, const Vector* start,
                                               double tolerance, const Friction::WarmStart* warm) const {
+  if (!dual_->F()->rounded()) return solveDual(cd_, outerAlgorithm, solverParams, out, start, tolerance, warm);
+  // F from single-precision blocks: the solvers meet their test on F~,
+  // whose gradient differs from the exact one by the defect (F~ - F)
+  // lambda. The dual with h + defect has the transformed b + s P defect (b
+  // is s P (h - F lambda~); x is the same unknown in both), and its
+  // gradient is the exact one where the defect was taken: at the start
+  // when there is one (a load step, a further result-check round), then at
+  // each solution, for as long as the defect there differs from the one in
+  // b by more than half the tolerance (measured against ||b||).
+  Friction::ContactDual cd = cd_;
+  RCP<Vector> applied = rcp(new Vector(cd_.b->getMap()));  // s P defect, in cd.b
+  const auto correctAt = [&](const Vector& lambda) {
+    auto shift = roundingShift(lambda);
+    auto b = rcp(new Vector(*cd_.b, Teuchos::Copy));
+    b->update(1.0, *shift, 1.0);
+    cd.b = b;
+    applied = shift;
+  };
+  if (start) correctAt(*multipliers(*start));
+  auto sol = solveDual(cd, outerAlgorithm, solverParams, out, start, tolerance, warm);
+  for (int correction = 0; correction <= kRoundingCorrections && sol.status.converged; ++correction) {
+    Vector change(*roundingShift(*sol.lambda), Teuchos::Copy);
+    change.update(-1.0, *applied, 1.0);
+    const double size = change.norm2(), allowed = 0.5 * sol.requestedTolerance * cd_.normB();
+    const bool again = size > allowed && correction < kRoundingCorrections;
+    if (!out.is_null())
+      *out << "Single-precision F: the rounding moves the gradient at the solution by " << size
+           << (size > allowed ? " > " : " <= ") << allowed << " (half the tolerance)"
+           << (again ? ": solved again with b corrected" : "") << "\n";
+    if (!again) break;
+    correctAt(*sol.lambda);
+    auto next = solveDual(cd, outerAlgorithm, solverParams, out, sol.x.get(), sol.requestedTolerance, &sol.warmStart);
+    next.n_A += sol.n_A;
+    next.status = Friction::followedBy(sol.status, next.status);
+    sol = next;
+  }
+  return sol;
+}
+
+RCP<Vector> FetiContactProblem::roundingShift(const Vector& lambda) const {
+  auto defect = dual_->roundingDefect(lambda);
+  auto shift = rcp(new Vector(defect->getMap()));
+  if (cd_.G.is_null()) shift->assign(*defect);
+  else dual_->coarse().project(*defect, *shift);
+  shift->scale(scale());
+  return shift;
+}
+
+FetiContactSolution FetiContactProblem::solveDual(const Friction::ContactDual& cd, const std::string& outerAlgorithm,
+                                                  const Teuchos::ParameterList& solverParams,
+                                                  RCP<Teuchos::FancyOStream> out, const Vector* start,
+                                                  double tolerance, const Friction::WarmStart* warm) const {
   auto solver = Friction::FrictionSolverFactory().create(outerAlgorithm, solverParams);
   if (!out.is_null()) solver->setOutputStream(out);
   if (warm) solver->setWarmStart(*warm);
@@ -285,7 +337,7 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
   // homogenization, the power iterations of the scaling) and recoverPrimal's
   // fall outside the snapshot.
   const long long n_A0 = dual_->F()->applications();
-  sol.status = solver->solve(cd_, *sol.x);
+  sol.status = solver->solve(cd, *sol.x);
   sol.warmStart = solver->finalState();
   sol.n_A = dual_->F()->applications() - n_A0;
   sol.lambda = multipliers(*sol.x);

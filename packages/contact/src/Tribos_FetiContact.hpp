@@ -103,6 +103,12 @@ class FetiContactProblem {
   // tolerance instead of the list's (when > 0).
   // warm: where a solve of a nearby problem (the previous load step) left
   // the outer algorithm's state (FetiContactSolution::warmStart).
+  // With F from single-precision blocks (DualOperator::rounded) the
+  // right-hand side is corrected by the exact F at the start, and a
+  // converged solve whose rounding defect could still matter at the
+  // tolerance is repeated with it corrected at its solution, up to
+  // kRoundingCorrections times (defect correction, docs/feti.md): the
+  // solution is the exact problem's, at the tolerance asked for.
   FetiContactSolution solve(const std::string& outerAlgorithm, const Teuchos::ParameterList& solverParams,
                             RCP<Teuchos::FancyOStream> out = Teuchos::null, const Vector* start = nullptr,
                             double tolerance = 0, const Friction::WarmStart* warm = nullptr) const;
@@ -125,6 +131,14 @@ class FetiContactProblem {
   std::vector<char> activeRows(const Vector& lambda, const std::vector<double>& g) const;
   // Refuses a body that its contact cannot hold (throws naming the motion).
   void checkHeldByContact() const;
+  // One solve of the transformed problem cd (cd_, or cd_ with b corrected).
+  FetiContactSolution solveDual(const Friction::ContactDual& cd, const std::string& outerAlgorithm,
+                                const Teuchos::ParameterList& solverParams, RCP<Teuchos::FancyOStream> out,
+                                const Vector* start, double tolerance, const Friction::WarmStart* warm) const;
+  // s P (F~ - F) lambda: the rounding defect at lambda as the transformed
+  // problem's b sees it.
+  RCP<Vector> roundingShift(const Vector& lambda) const;
+  static constexpr int kRoundingCorrections = 3;
 
   // PFP, P(h - F lambda~) -> s PFP, s P(h - F lambda~) (||A|| = 1); the last
   // of transforms_.

@@ -3,6 +3,7 @@
 // lower triangle.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 extern "C" {
@@ -33,6 +34,19 @@ inline void spmv(int n, float alpha, const float* Ap, const float* x, float beta
   const int one = 1;
   sspmv_(&uplo, &n, &alpha, Ap, x, &one, &beta, y, &one);
 }
+
+// y = A x for A stored in single precision (packed lower, as above) and x,
+// y in double, every product and sum in double: A is rounded once, when it
+// is stored, and then applied as the exact symmetric matrix it is. The
+// iterative solvers see one consistent operator (its products agree with
+// each other to double round-off), which sspmv's sums in float would not
+// give; the bytes read from A are sspmv's. Column j of the packed triangle
+// contributes a_jj x_j + sum_i a_ij x_i to y_j (a dot product) and a_ij x_j
+// to y_i (an axpy), both from one pass over the column; the dot product
+// runs in four partial sums so that its additions do not wait on each other.
+// (Tribos_DenseBlas.cpp: compiled for AVX2 + FMA as well as the baseline,
+// the processor choosing at run time.)
+void spmvMixed(int n, const float* Ap, const double* x, double* y);
 
 // The packed lower triangle of the column-major n x n matrix A, in the
 // precision T of the result (double, or float for half the bytes).

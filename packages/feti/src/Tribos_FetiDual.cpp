@@ -20,6 +20,16 @@ FetiDual::FetiDual(RCP<const FetiProblem> problem, const FetiDual& same)
   loadTerms();
 }
 
+RCP<Vector> FetiDual::roundingDefect(const Vector& lambda) const {
+  auto defect = rcp(new Vector(problem_->dualMap()));
+  if (!F_->rounded()) return defect;
+  F_->apply(lambda, *defect);
+  Vector Flambda(problem_->dualMap());
+  F_->applyExact(lambda, Flambda);
+  defect->update(-1.0, Flambda, 1.0);
+  return defect;
+}
+
 void FetiDual::loadTerms() {
   const FetiProblem& p = *problem_;
   // h = B K+ f - c
@@ -35,11 +45,12 @@ void FetiDual::loadTerms() {
 
 RCP<Vector> FetiDual::recoverPrimal(const Vector& lambda, const std::vector<char>* activeRows) const {
   const FetiProblem& p = *problem_;
-  // alpha from r = F lambda - h on the rows where B u = c holds (one extra F
-  // application; solvers count n_A as a difference of snapshots taken
-  // around their own work, so it does not enter theirs).
+  // alpha from r = F lambda - h on the rows where B u = c holds, with the
+  // exact F (the sparse factors, as K+ below): u is then the exact primal
+  // of lambda, whatever precision the solver's F had. One extra application,
+  // outside the solvers' n_A.
   Vector r(p.dualMap());
-  F_->apply(lambda, r);
+  F_->applyExact(lambda, r);
   r.update(-1.0, *h_, 1.0);
   const auto alpha = coarse_->amplitudes(r, activeRows);
   Vector rhs(p.primalMap());

@@ -17,6 +17,13 @@ class FetiDual {
   // setTangentialOffset): F and the coarse space of `same` (which depend on
   // K and B only), h, e and lambda~ anew.
   FetiDual(RCP<const FetiProblem> problem, const FetiDual& same);
+  // The defect of the rounded F at lambda, (F~ - F) lambda, F~ what F()
+  // applies (F()->rounded(): single-precision dense blocks) and F the exact
+  // operator (DualOperator::applyExact); zero when F is not rounded. Adding
+  // it to h gives the dual whose gradient at lambda is the exact one, F~
+  // lambda - (h + defect) = F lambda - h: defect correction (docs/feti.md).
+  // One application of each. Collective.
+  RCP<Vector> roundingDefect(const Vector& lambda) const;
 
   const FetiProblem& problem() const { return *problem_; }
   RCP<DualOperator> F() const { return F_; }

@@ -25,6 +25,16 @@ namespace Feti {
 DualOperator::DualOperator(RCP<const FetiProblem> problem) : problem_(problem) {
   p_ = rcp(new Vector(problem->primalMap()));
   z_ = rcp(new Vector(problem->primalMap()));
+  rounded_ = maxOver(problem->singlePrecisionBlocks() ? 1.0 : 0.0, *problem->comm()) > 0;
+}
+
+void DualOperator::applyExact(const Vector& x, Vector& y) const {
+  static const auto counter = Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::F apply exact");
+  Teuchos::TimeMonitor timer(*counter);
+  Vector p(problem_->primalMap()), z(problem_->primalMap());
+  problem_->B()->apply(x, p, Teuchos::TRANS);
+  problem_->applyKplus(p, z);
+  problem_->B()->apply(z, y);
 }
 
 void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp, SC alpha, SC beta) const {

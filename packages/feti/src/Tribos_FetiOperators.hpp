@@ -29,6 +29,15 @@ class DualOperator : public Operator {
   // Y = alpha F X + beta Y; every column is one Hessian multiplication (n_A).
   void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode = Teuchos::NO_TRANS, SC alpha = 1.0,
              SC beta = 0.0) const override;
+  // Whether apply() reads dense blocks rounded to single precision on some
+  // rank: it then applies F~ = B (K+)~ B', one fixed symmetric operator whose
+  // entries lie within about 6e-8 (relative) of F's (docs/feti.md), and
+  // applyExact gives F itself. The same on every rank.
+  bool rounded() const { return rounded_; }
+  // y = F x = B K+ B' x through the sparse factors, in double: a forward and
+  // a backward solve per subdomain, whatever apply() reads. Not counted in
+  // applications(). Collective.
+  void applyExact(const Vector& x, Vector& y) const;
   // Applications since construction; a user's work is the difference of
   // two snapshots.
   long long applications() const { return n_A_; }
@@ -40,6 +49,7 @@ class DualOperator : public Operator {
   mutable RCP<Vector> p_, z_;
   mutable long long n_A_ = 0;
   mutable double seconds_ = 0;
+  bool rounded_ = false;
 };
 
 using DenseCholesky = Tribos::DenseCholesky;  // Tribos_DenseCholesky.hpp

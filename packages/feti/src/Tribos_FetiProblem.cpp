@@ -356,12 +356,13 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
             "every subdomain whose block has at most 4000 rows; Implicit without contact, where projected CG "
             "applies F tens of times)",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Auto", "Explicit", "Implicit"))));
-    pl->set("Dense Block Precision", "Double",
-            "precision in which the explicit operator stores its dense blocks (K+)_bb: Double, or Single (formed "
-            "in double and rounded; half the memory and half the bytes read per application of F, which is "
-            "bound by memory bandwidth; each application then has a relative error of about 1e-7 times the "
-            "square root of the block size, so it suits tolerances down to about 1e-5; the written result is "
-            "still recovered and checked in double)",
+    pl->set("Dense Block Precision", "Single",
+            "precision in which the explicit operator stores its dense blocks (K+)_bb: Single (formed in double "
+            "and rounded, then applied in double arithmetic: half the memory and half the bytes read per "
+            "application of F, which is bound by memory bandwidth; F is then one symmetric operator within "
+            "about 6e-8 of the exact one entry by entry, and a contact result that misses its check for that "
+            "reason is solved again with the right-hand side corrected by the exact F, so any accuracy is "
+            "reached: docs/feti.md) or Double (twice the memory and traffic; no correction needed)",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Double", "Single"))));
     // The dual solver of a problem without contact reads its own sublist, so
     // that the whole FETI list of an input is handed to the problem as it is.

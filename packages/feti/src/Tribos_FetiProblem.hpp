@@ -173,6 +173,10 @@ class FetiProblem {
   const std::string& localSolverName() const { return localSolverName_; }
   // True when some local subdomain applies F from its dense block (K+)_bb.
   bool explicitDualOperator() const { return Kplus_->hasDenseBlocks(); }
+  // True when some of this rank's dense blocks are stored in single
+  // precision (Dense Block Precision = Single): applyDualKplus then applies
+  // a rounded K+, applyKplus still the exact one.
+  bool singlePrecisionBlocks() const { return Kplus_->hasSingleBlocks(); }
   // F = B K+ B' as a dense n x n column-major matrix on every rank (n dual
   // rows), summed from the dense blocks (K+)_bb: far cheaper than n
   // applications of F. False (D empty) when some subdomain has no dense

@@ -185,16 +185,20 @@ bool SubdomainPseudoInverse::hasDenseBlocks() const {
   return any;
 }
 
-// z_b = (K+)_bb p_b with the packed block in the precision T it is stored in.
-template <class T>
-void SubdomainPseudoInverse::applyDenseBlock(const std::vector<T>& block, const std::vector<int>& b, const double* p,
-                                             double* z, std::vector<T>& work) {
+// z_b = (K+)_bb p_b with the packed block; a block stored in single
+// precision is applied in double (Blas::spmvMixed), so that F is one fixed
+// symmetric operator, exact but for the rounding of its stored entries.
+void SubdomainPseudoInverse::applyDenseBlock(size_t k, const double* p, double* z) const {
+  const auto& b = boundary_[k];
   const int nb = static_cast<int>(b.size());
-  work.resize(2 * static_cast<size_t>(nb));
-  T* pb = work.data();
-  T* zb = pb + nb;
-  for (int i = 0; i < nb; ++i) pb[i] = static_cast<T>(p[b[i]]);
-  Blas::spmv(nb, T(1), block.data(), pb, T(0), zb);
+  work_.resize(2 * static_cast<size_t>(nb));
+  double* pb = work_.data();
+  double* zb = pb + nb;
+  for (int i = 0; i < nb; ++i) pb[i] = p[b[i]];
+  if (singleBlocks_)
+    Blas::spmvMixed(nb, KplusBBf_[k].data(), pb, zb);
+  else
+    Blas::spmv(nb, 1.0, KplusBB_[k].data(), pb, 0.0, zb);
   for (int i = 0; i < nb; ++i) z[b[i]] = zb[i];
 }
 
@@ -203,13 +207,10 @@ void SubdomainPseudoInverse::applyOnBoundary(const Vector& p, Vector& z) const {
   auto zv = z.getDataNonConst();
   size_t offset = 0;
   for (size_t k = 0; k < systems_.size(); ++k) {
-    if (!hasDenseBlock(k)) {
+    if (hasDenseBlock(k))
+      applyDenseBlock(k, pv.getRawPtr() + offset, zv.getRawPtr() + offset);
+    else
       applySubdomain(k, pv.getRawPtr() + offset, zv.getRawPtr() + offset);
-    } else if (singleBlocks_) {
-      applyDenseBlock(KplusBBf_[k], boundary_[k], pv.getRawPtr() + offset, zv.getRawPtr() + offset, workBf_);
-    } else {
-      applyDenseBlock(KplusBB_[k], boundary_[k], pv.getRawPtr() + offset, zv.getRawPtr() + offset, workB_);
-    }
     offset += systems_[k].numDofs();
   }
 }

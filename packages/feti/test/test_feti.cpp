@@ -92,6 +92,7 @@ FetiResult solveFeti(const Case& c, const RCP<const Comm>& comm, Teuchos::FancyO
   p.set("Gluing", c.gluing);
   p.set("Formulation", c.formulation);
   p.set("Dual Operator", c.dualOperator);
+  p.set("Dense Block Precision", "Double");  // explicit = implicit to 1e-10 (single: DualOperator tests)
   auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
                                            p, comm));
   if (problem->explicitDualOperator()) {
@@ -350,9 +351,69 @@ TEUCHOS_UNIT_TEST(DualOperator, DenseFormEqualsApplications) {
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, worst, Teuchos::outArg(all));
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, scale, Teuchos::outArg(allScale));
     out << precision << ": n = " << n << ", max |D - F e_j| / max |F| = " << all / allScale << "\n";
-    // The same block values: summed in another order (double), or multiplied
-    // in double instead of float arithmetic (single).
-    TEST_COMPARE(all, <=, (std::string(precision) == "Double" ? 1e-12 : 1e-6) * allScale);
+    // The same block values summed in another order: single blocks are
+    // applied in double arithmetic, so F is the matrix of its rounded
+    // entries to double round-off, not to float's.
+    TEST_COMPARE(all, <=, 1e-12 * allScale);
+  }
+}
+
+// Single-precision blocks: F~ (what apply reads) is one symmetric operator,
+// y'F~x = x'F~y to double round-off; it differs from the exact F
+// (applyExact) by float's rounding; and FetiDual::roundingDefect is F~ x -
+// F x with F from a second problem of double blocks, on every number of
+// ranks (zero for double blocks).
+TEUCHOS_UNIT_TEST(FetiDual, RoundingDefect) {
+  auto comm = Tpetra::getDefaultComm();
+  const Case c{Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal"};
+  auto disc = makeDisc(c, *comm);
+  for (const char* precision : {"Double", "Single"}) {
+    Teuchos::ParameterList p;
+    p.set("Dual Operator", "Explicit");
+    p.set("Dense Block Precision", precision);
+    auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(),
+                                             std::vector<Feti::ContactConstraint>(), p, comm));
+    const Feti::FetiDual dual(problem);
+    const bool single = std::string(precision) == "Single";
+    TEST_EQUALITY(dual.F()->rounded(), single);
+    Vector x(problem->dualMap()), y(problem->dualMap());
+    {
+      auto xv = x.getDataNonConst();
+      auto yv = y.getDataNonConst();
+      for (size_t i = 0; i < xv.size(); ++i) {
+        const double g = static_cast<double>(problem->dualMap()->getGlobalElement(static_cast<LO>(i)));
+        xv[i] = 1e-3 * std::cos(0.61 * g);
+        yv[i] = 1e-3 * std::sin(0.37 * g + 0.2);
+      }
+    }
+    Vector Fx(problem->dualMap()), Fy(problem->dualMap()), Ex(problem->dualMap());
+    dual.F()->apply(x, Fx);
+    dual.F()->apply(y, Fy);
+    dual.F()->applyExact(x, Ex);
+    const double asym = std::abs(y.dot(Fx) - x.dot(Fy)) / std::abs(x.dot(Fx));
+    Ex.update(-1.0, Fx, 1.0);
+    const double rounding = Ex.norm2() / Fx.norm2();
+    out << precision << ": |y'F~x - x'F~y| / x'F~x = " << asym << ", ||(F - F~) x|| / ||F~ x|| = " << rounding << "\n";
+    TEST_COMPARE(asym, <, 1e-13);
+    TEST_COMPARE(rounding, <, single ? 1e-5 : 1e-12);
+    if (single) TEST_COMPARE(rounding, >, 1e-10);
+    // The defect against F~ x minus F x of the double-block problem.
+    Teuchos::ParameterList pd(p);
+    pd.set("Dense Block Precision", "Double");
+    auto exact = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(),
+                                           std::vector<Feti::ContactConstraint>(), pd, comm));
+    Feti::DualOperator F(exact);
+    Vector expected(problem->dualMap());
+    F.apply(x, expected);
+    expected.update(1.0, Fx, -1.0);
+    const auto defect = dual.roundingDefect(x);
+    const double defectSize = defect->norm2() / Fx.norm2();
+    defect->update(-1.0, expected, 1.0);
+    const double defectError = defect->norm2() / Fx.norm2();
+    out << "  ||defect|| / ||F~ x|| = " << defectSize << ", against F~ x - F x: " << defectError << "\n";
+    TEST_COMPARE(defectError, <, 1e-12);
+    TEST_COMPARE(defectSize, <, single ? 1e-5 : 1e-300);
+    if (single) TEST_COMPARE(defectSize, >, 1e-10);
   }
 }
 
