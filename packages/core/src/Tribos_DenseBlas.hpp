@@ -48,6 +48,13 @@ inline void spmv(int n, float alpha, const float* Ap, const float* x, float beta
 // the processor choosing at run time.)
 void spmvMixed(int n, const float* Ap, const double* x, double* y);
 
+// y_k = a_k . x for the three rows a_0, a_1, a_2 of length n, in one pass
+// over x (the three velocity components of a contact from dense rows of W,
+// Friction::NonsmoothGaussSeidel). Compiled like spmvMixed; rows stored in
+// float are widened as they are read, every product and sum in double.
+void dot3(int n, const double* a0, const double* a1, const double* a2, const double* x, double y[3]);
+void dot3(int n, const float* a0, const float* a1, const float* a2, const double* x, double y[3]);
+
 // The packed lower triangle of the column-major n x n matrix A, in the
 // precision T of the result (double, or float for half the bytes).
 template <class T>

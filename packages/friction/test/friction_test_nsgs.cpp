@@ -76,6 +76,10 @@ struct Chain {
   std::vector<double> q, mu, rStar;
 };
 
+// The problem of W = A (n x n, dense, row-major) whose solution is r*:
+// contacts c = 0, 3, 6, ... open, 1, 4, ... stuck, 2, 5, ... sliding.
+Chain manufactured(const std::vector<double>& A, int nc);
+
 Chain manufacturedChain() {
   const int nc = 12, n = 3 * nc;
   std::vector<double> A(n * n, 0.0);
@@ -85,6 +89,25 @@ Chain manufacturedChain() {
     if (c + 1 < nc)
       for (int a = 0; a < 3; ++a) A[(3 * c + a) * n + 3 * (c + 1) + a] = A[(3 * (c + 1) + a) * n + 3 * c + a] = -0.3;
   }
+  return manufactured(A, nc);
+}
+
+// Every contact coupled to every other (W full, as W = H'M^-1 H of a body
+// with many contacts): W = 2 I + C, C_ij = 0.4 / (3 + |i - j|) sqrt(1 + (i + j)
+// mod 7) / n, symmetric and diagonally dominant, entries that float does
+// not hold exactly.
+Chain manufacturedFull(int nc) {
+  const int n = 3 * nc;
+  std::vector<double> A(static_cast<size_t>(n) * n, 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      A[static_cast<size_t>(i) * n + j] =
+          (i == j ? 2.0 : 0.0) + 0.4 / (3.0 + std::abs(i - j)) * std::sqrt(1.0 + (i + j) % 7) / n * 10.0;
+  return manufactured(A, nc);
+}
+
+Chain manufactured(const std::vector<double>& A, int nc) {
+  const int n = 3 * nc;
   const LocalCsr W = denseCsr(A, n);
   std::vector<double> rStar(n, 0.0), uStar(n, 0.0), mu(nc);
   for (int c = 0; c < nc; ++c) {
@@ -172,6 +195,27 @@ TEUCHOS_UNIT_TEST(NSGS, ManufacturedChain) {
   TEST_COMPARE(dr, <=, 1e-10);
   TEST_COMPARE(du, <=, 1e-14);
   // More sweeps than the blocked copy's threshold (8): both storages ran.
+  TEST_COMPARE(s.status.outer_iterations, >, 8);
+}
+
+// W full (every contact coupled): after 8 sweeps NSGS reads W from float
+// rows (half the bytes per sweep) and corrects q by the exact W until the
+// exact W meets the tolerance. The manufactured r* is recovered to 1e-10 and
+// u = W r + q with the exact W, where the float rows alone (W within 6e-8
+// of W's entries) would leave r about 1e-8 off.
+TEUCHOS_UNIT_TEST(NSGS, ManufacturedFullW) {
+  const Chain full = manufacturedFull(40);
+  const int n = static_cast<int>(full.q.size());
+  const Solved s = solveNsgs(full.W, full.q, full.mu, 1e-13);
+  out << s.status.reason << ", sweeps " << s.status.outer_iterations << "\n";
+  TEST_ASSERT(s.status.converged);
+  double dr = 0, du = 0;
+  const auto u = velocities(full.W, s.r, full.q);
+  for (int i = 0; i < n; ++i)
+    dr = std::max(dr, std::abs(s.r[i] - full.rStar[i])), du = std::max(du, std::abs(s.u[i] - u[i]));
+  out << "max |r - r*| " << dr << ", max |u_returned - (W r + q)| " << du << "\n";
+  TEST_COMPARE(dr, <=, 1e-10);
+  TEST_COMPARE(du, <=, 1e-13);
   TEST_COMPARE(s.status.outer_iterations, >, 8);
 }
 
