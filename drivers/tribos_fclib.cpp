@@ -2,7 +2,7 @@
 // algorithm, compare with the stored solution when there is one, and report.
 //   tribos_fclib FILE.hdf5 [--xml solver.xml] [--algorithm NAME] [--tolerance TOL]
 //                [--max-iterations N] [--summary FILE.json]
-//                [--mass-solver KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose] [--quiet]
+//                [--mass-solver Auto|KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose] [--quiet]
 // Exit status: 0 converged; 1 bad input or error (usage, unreadable or invalid
 // problem, unusable output path: nothing solved, nothing written); 2 not
 // converged (the result check failed, e.g. ||F_nat||/||q|| above --tolerance;
@@ -43,7 +43,7 @@ using namespace Tribos;
 std::string usage() {
   const std::string names = joinNames(FCLIB::coulombAlgorithms());
   return "usage: tribos_fclib FILE.hdf5 [--xml solver.xml] [--algorithm NAME] [--tolerance TOL] [--max-iterations N]\n"
-         "                   [--summary FILE.json] [--mass-solver KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose]\n"
+         "                   [--summary FILE.json] [--mass-solver Auto|KLU2|CHOLMOD|Tacho] [--write-solution OUT.hdf5] [--verbose]\n"
          "                   [--quiet]\n"
          "--quiet              no progress lines on stderr (shown for runs longer than 2 s: stage, iterations)\n"
          "--algorithm NAME     a friction algorithm that solves Coulomb problems: " + names + "\n"
@@ -68,7 +68,7 @@ std::string usage() {
 enum ExitStatus { kConverged = 0, kError = 1, kNotConverged = 2 };
 
 struct Args {
-  std::string input, xml, summary, algorithm, massSolver = "KLU2", writeSolution;
+  std::string input, xml, summary, algorithm, massSolver = FCLIB::kAutoMassSolver, writeSolution;
   double tolerance = 0;     // 0: not given
   int maxIterations = 0;    // 0: not given
   bool verbose = false, quiet = false;
@@ -123,8 +123,9 @@ Args parse(int argc, char** argv) {
   }
   TRIBOS_REQUIRE(!a.input.empty(), "no input file given\n" << usage());
   // Checked here: a local problem never factors M, so a typo would pass unseen.
-  TRIBOS_REQUIRE(a.massSolver == "KLU2" || a.massSolver == "CHOLMOD" || a.massSolver == "Tacho",
-                 "--mass-solver: unknown \"" << a.massSolver << "\"; valid: KLU2, CHOLMOD, Tacho");
+  TRIBOS_REQUIRE(a.massSolver == FCLIB::kAutoMassSolver || a.massSolver == "KLU2" || a.massSolver == "CHOLMOD" ||
+                     a.massSolver == "Tacho",
+                 "--mass-solver: unknown \"" << a.massSolver << "\"; valid: Auto, KLU2, CHOLMOD, Tacho");
   if (!a.algorithm.empty()) {
     const auto valid = FCLIB::coulombAlgorithms();
     TRIBOS_REQUIRE(std::find(valid.begin(), valid.end(), a.algorithm) != valid.end(),
@@ -265,7 +266,7 @@ void reportSolve(const Args& args, const FCLIB::SolveReport& rep, FCLIB::Problem
   summary.set("inner_iterations", rep.status.inner_iterations);
   summary.set("n_A", rep.n_A).set("n_A_qpp", static_cast<long long>(rep.status.n_A_qpp));
   summary.set("n_A_qpq", static_cast<long long>(rep.status.n_A_qpq));
-  if (kind == FCLIB::ProblemKind::Global) summary.set("mass_solves", rep.massSolves).set("mass_solver", args.massSolver);
+  if (kind == FCLIB::ProblemKind::Global) summary.set("mass_solves", rep.massSolves).set("mass_solver", rep.massSolver);
   summary.set("time_setup_s", rep.timeSetup).set("time_solve_s", rep.timeSolve);
   summary.set("err", errSummary(rep.err));
   IO::Summary kkt;

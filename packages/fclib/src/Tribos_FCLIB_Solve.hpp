@@ -46,10 +46,14 @@ namespace Tribos {
 namespace FCLIB {
 
 // A factorization of M giving the SolveM of Tribos_FCLIB_Accuracy.hpp.
+constexpr const char* kAutoMassSolver = "Auto";
+
 class MassSolver {
  public:
   // name: a LocalSolver ("KLU2", "CHOLMOD", "Tacho"; CHOLMOD and Tacho need M
-  // symmetric positive definite). A failed factorization throws
+  // symmetric positive definite), or "Auto": CHOLMOD when M is symmetric,
+  // KLU2 when it is not or when CHOLMOD finds it not positive definite
+  // (name() tells which factored it). A failed factorization throws
   // Tribos::Error "<source>: M (...) is singular (or not positive definite)
   // ...", source naming the problem (its file).
   MassSolver(const LocalCsr& M, const std::string& name, const std::string& source = "FCLIB solve");
@@ -63,8 +67,10 @@ class MassSolver {
   int size() const { return solver_ ? solver_->size() : 0; }
   long long solves() const { return solves_; }
   double factorSeconds() const { return factorSeconds_; }
+  const std::string& name() const { return name_; }
 
  private:
+  std::string name_;
   RCP<LocalSolver> solver_;
   mutable long long solves_ = 0;
   double factorSeconds_ = 0;
@@ -125,7 +131,7 @@ struct SolveOptions {
   // The "Solver" list of the friction factory (sublists "Algorithm 1", "MSA",
   // "Algorithm 2"); entries not given take the values of defaultSolverParameters().
   Teuchos::ParameterList solverParams;
-  std::string massSolver = "KLU2";
+  std::string massSolver = kAutoMassSolver;
   // W is formed densely for its spectrum when 3nc does not exceed this.
   int denseSpectrumLimit = 3000;
   bool verbose = false;
@@ -161,6 +167,7 @@ struct SolveReport {
   NaturalMapError err;
   long long n_A = 0;             // applications of W in the solve (incl. the norm estimate)
   long long massSolves = 0;      // solves with M (global problem)
+  std::string massSolver;        // the solver that factored M (MassSolver::name)
   double normW = 0, scale = 1;   // ||W|| (power method) and s = 1/||W||
   // Extreme eigenvalues of the symmetric part of W (when formed); the
   // smallest relative to the largest tells whether W is singular.

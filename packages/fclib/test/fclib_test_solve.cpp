@@ -6,8 +6,11 @@
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "Tribos_FCLIB_Solve.hpp"
 #include "fclib_test_util.hpp"
@@ -70,3 +73,41 @@ TEUCHOS_UNIT_TEST(Solve, GlobalFrictionContact00046Algorithm2) { solveCase({"LMG
 TEUCHOS_UNIT_TEST(Solve, GlobalFrictionContact00046MSAAlgorithm1) { solveCase({"LMGC_GlobalFrictionContactProblem00046.hdf5", "MSA+Algorithm1", 27}, out, success); }
 TEUCHOS_UNIT_TEST(Solve, BoxStacksAlgorithm2) { solveCase({"Box_Stacks-i0122-82-5.hdf5", "Algorithm2", 175}, out, success); }
 TEUCHOS_UNIT_TEST(Solve, BoxStacksMSAAlgorithm1) { solveCase({"Box_Stacks-i0122-82-5.hdf5", "MSA+Algorithm1", 175}, out, success); }
+
+// The mass solver Auto: CHOLMOD for a symmetric positive definite M, KLU2
+// for an M symmetric only to 1e-7 (as LMGC's mass matrices) and for a
+// symmetric indefinite one (CHOLMOD's factorization fails, KLU2 follows);
+// each solves M x = b to round-off.
+TEUCHOS_UNIT_TEST(MassSolver, AutoChoosesByMatrix) {
+  // Tridiagonal n x n: diagonal d, off-diagonals -1 (below) and -1 + e (above).
+  auto tridiagonal = [](int n, double d, double e) {
+    std::vector<int> rowptr{0}, col;
+    std::vector<double> val;
+    for (int i = 0; i < n; ++i) {
+      if (i > 0) col.push_back(i - 1), val.push_back(-1.0);
+      col.push_back(i), val.push_back(d);
+      if (i + 1 < n) col.push_back(i + 1), val.push_back(-1.0 + e);
+      rowptr.push_back(static_cast<int>(col.size()));
+    }
+    return FCLIB::fromCSR(n, n, rowptr, col, val, "M");
+  };
+  struct Case {
+    double d, e;
+    const char* expected;
+  };
+  // d = 0.5: eigenvalues 0.5 - 2 cos(k pi / 21), of both signs, none zero.
+  for (const Case c : {Case{4.0, 0.0, "CHOLMOD"}, Case{4.0, 1e-7, "KLU2"}, Case{0.5, 0.0, "KLU2"}}) {
+    const int n = 20;
+    const LocalCsr M = tridiagonal(n, c.d, c.e);
+    const FCLIB::MassSolver solver(M, FCLIB::kAutoMassSolver);
+    std::vector<double> b(n), x, Mx;
+    for (int i = 0; i < n; ++i) b[i] = std::sin(1.0 + i);
+    solver.solve(b, x);
+    M.multiply(x, Mx);
+    double residual = 0;
+    for (int i = 0; i < n; ++i) residual = std::max(residual, std::abs(Mx[i] - b[i]));
+    out << "d = " << c.d << ", asymmetry " << c.e << ": " << solver.name() << ", max |M x - b| = " << residual << "\n";
+    TEST_EQUALITY(solver.name(), std::string(c.expected));
+    TEST_COMPARE(residual, <, 1e-12);
+  }
+}
