@@ -273,7 +273,11 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
                                               const Teuchos::ParameterList& solverParams,
                                               RCP<Teuchos::FancyOStream> out, const Vector* start,
                                               double tolerance, const Friction::WarmStart* warm) const {
-  if (!dual_->F()->rounded()) return solveDual(cd_, outerAlgorithm, solverParams, out, start, tolerance, warm);
+  if (!dual_->F()->rounded()) {
+    auto sol = solveDual(cd_, outerAlgorithm, solverParams, out, start, tolerance, warm);
+    recoverPrimal(sol);
+    return sol;
+  }
   // F from single-precision blocks: the solvers meet their test on F~,
   // whose gradient differs from the exact one by the defect (F~ - F)
   // lambda. The dual with h + defect has the transformed b + s P defect (b
@@ -309,6 +313,7 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
     next.status = Friction::followedBy(sol.status, next.status);
     sol = next;
   }
+  recoverPrimal(sol);
   return sol;
 }
 
@@ -341,9 +346,13 @@ FetiContactSolution FetiContactProblem::solveDual(const Friction::ContactDual& c
   sol.warmStart = solver->finalState();
   sol.n_A = dual_->F()->applications() - n_A0;
   sol.lambda = multipliers(*sol.x);
+  return sol;
+}
+
+void FetiContactProblem::recoverPrimal(FetiContactSolution& sol) const {
   if (dual_->coarse().equalityRowsHoldKernel()) {
     sol.u = dual_->recoverPrimal(*sol.lambda);
-    return sol;
+    return;
   }
   // The rigid motion is fixed by the rows where B u = c holds at the
   // solution: equality rows, contacts with a normal force, and the
@@ -370,7 +379,6 @@ FetiContactSolution FetiContactProblem::solveDual(const Friction::ContactDual& c
       sol.status.reason += "; at its last iterate " + unheld;
     sol.status.converged = false;
   }
-  return sol;
 }
 
 std::vector<char> FetiContactProblem::activeRows(const Vector& lambda, const std::vector<double>& g) const {

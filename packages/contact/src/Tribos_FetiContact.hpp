@@ -131,7 +131,8 @@ class FetiContactProblem {
   std::vector<char> activeRows(const Vector& lambda, const std::vector<double>& g) const;
   // Refuses a body that its contact cannot hold (throws naming the motion).
   void checkHeldByContact() const;
-  // One solve of the transformed problem cd (cd_, or cd_ with b corrected).
+  // One solve of the transformed problem cd (cd_, or cd_ with b corrected):
+  // x, lambda and the solver's status; no primal yet.
   FetiContactSolution solveDual(const Friction::ContactDual& cd, const std::string& outerAlgorithm,
                                 const Teuchos::ParameterList& solverParams, RCP<Teuchos::FancyOStream> out,
                                 const Vector* start, double tolerance, const Friction::WarmStart* warm) const;
@@ -139,6 +140,10 @@ class FetiContactProblem {
   // problem's b sees it.
   RCP<Vector> roundingShift(const Vector& lambda) const;
   static constexpr int kRoundingCorrections = 3;
+  // sol.u from sol.lambda (FetiDual::recoverPrimal), the rigid motion fixed
+  // by the rows where B u = c holds; a body the solution leaves unheld makes
+  // the solve a failed one, its reason naming the free motions.
+  void recoverPrimal(FetiContactSolution& sol) const;
 
   // PFP, P(h - F lambda~) -> s PFP, s P(h - F lambda~) (||A|| = 1); the last
   // of transforms_.

@@ -43,7 +43,7 @@ inline void spmv(int n, float alpha, const float* Ap, const float* x, float beta
 // give; the bytes read from A are sspmv's. Column j of the packed triangle
 // contributes a_jj x_j + sum_i a_ij x_i to y_j (a dot product) and a_ij x_j
 // to y_i (an axpy), both from one pass over the column; the dot product
-// runs in four partial sums so that its additions do not wait on each other.
+// runs in eight partial sums so that its additions do not wait on each other.
 // (Tribos_DenseBlas.cpp: compiled for AVX2 + FMA as well as the baseline,
 // the processor choosing at run time.)
 void spmvMixed(int n, const float* Ap, const double* x, double* y);

@@ -56,11 +56,7 @@ std::string libraryReason(const std::string& what) {
 namespace {
 
 // Whether M equals its transpose to 1e-12 of its largest entry.
-bool isSymmetric(const LocalCsr& M) {
-  double largest = 0;
-  for (double v : M.val) largest = std::max(largest, std::abs(v));
-  return asymmetry(M) <= 1e-12 * largest;
-}
+bool isSymmetric(const LocalCsr& M) { return asymmetry(M) <= 1e-12 * maxAbs(M); }
 
 }  // namespace
 

@@ -46,11 +46,15 @@ void FetiDual::loadTerms() {
 RCP<Vector> FetiDual::recoverPrimal(const Vector& lambda, const std::vector<char>* activeRows) const {
   const FetiProblem& p = *problem_;
   // alpha from r = F lambda - h on the rows where B u = c holds, with the
-  // exact F (the sparse factors, as K+ below): u is then the exact primal
-  // of lambda, whatever precision the solver's F had. One extra application,
-  // outside the solvers' n_A.
+  // exact F (as K+ below): u is then the exact primal of lambda whatever
+  // precision the solver's F had. F from single-precision blocks is
+  // replaced by the sparse factors; double blocks are F to round-off. One
+  // extra application, outside the solvers' n_A.
   Vector r(p.dualMap());
-  F_->applyExact(lambda, r);
+  if (F_->rounded())
+    F_->applyExact(lambda, r);
+  else
+    F_->apply(lambda, r);
   r.update(-1.0, *h_, 1.0);
   const auto alpha = coarse_->amplitudes(r, activeRows);
   Vector rhs(p.primalMap());

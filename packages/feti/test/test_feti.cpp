@@ -296,17 +296,26 @@ TEUCHOS_UNIT_TEST(CoarseSpace, SparseGramianFETI1) {
                    success);
 }
 
+// A problem of disc without contact whose dual operator is explicit, its
+// dense blocks in the precision given ("Double" or "Single").
+namespace {
+RCP<Feti::FetiProblem> explicitProblem(const Mesh::Discretization& disc, const std::string& precision,
+                                       const RCP<const Comm>& comm) {
+  Teuchos::ParameterList p;
+  p.set("Dual Operator", "Explicit");
+  p.set("Dense Block Precision", precision);
+  return rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
+                                   p, comm));
+}
+}  // namespace
+
 // Single-precision dense blocks: B (K+)_bb B' x agrees with the sparse solves
 // to float accuracy, and is not the double product (the blocks are rounded).
 TEUCHOS_UNIT_TEST(DualOperator, SinglePrecisionBlocks) {
   auto comm = Tpetra::getDefaultComm();
   const Case c{Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal"};
   auto disc = makeDisc(c, *comm);
-  Teuchos::ParameterList p;
-  p.set("Dual Operator", "Explicit");
-  p.set("Dense Block Precision", "Single");
-  auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
-                                           p, comm));
+  auto problem = explicitProblem(disc, "Single", comm);
   TEST_ASSERT(problem->explicitDualOperator());
   const double diff = explicitVsImplicit(*problem, *comm);
   out << "single-precision explicit vs implicit F x: relative difference " << diff << "\n";
@@ -322,11 +331,7 @@ TEUCHOS_UNIT_TEST(DualOperator, DenseFormEqualsApplications) {
   const Case c{Mesh::CellType::Tet4, {6, 3, 3}, 6, "Orthonormal"};
   auto disc = makeDisc(c, *comm);
   for (const char* precision : {"Double", "Single"}) {
-    Teuchos::ParameterList p;
-    p.set("Dual Operator", "Explicit");
-    p.set("Dense Block Precision", precision);
-    auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
-                                             p, comm));
+    auto problem = explicitProblem(disc, precision, comm);
     std::vector<double> D;
     TEST_ASSERT(problem->formDenseF(D));
     const auto map = problem->dualMap();
@@ -368,11 +373,7 @@ TEUCHOS_UNIT_TEST(FetiDual, RoundingDefect) {
   const Case c{Mesh::CellType::Tet4, {8, 4, 4}, 6, "Orthonormal"};
   auto disc = makeDisc(c, *comm);
   for (const char* precision : {"Double", "Single"}) {
-    Teuchos::ParameterList p;
-    p.set("Dual Operator", "Explicit");
-    p.set("Dense Block Precision", precision);
-    auto problem = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(),
-                                             std::vector<Feti::ContactConstraint>(), p, comm));
+    auto problem = explicitProblem(disc, precision, comm);
     const Feti::FetiDual dual(problem);
     const bool single = std::string(precision) == "Single";
     TEST_EQUALITY(dual.F()->rounded(), single);
@@ -398,11 +399,7 @@ TEUCHOS_UNIT_TEST(FetiDual, RoundingDefect) {
     TEST_COMPARE(rounding, <, single ? 1e-5 : 1e-12);
     if (single) TEST_COMPARE(rounding, >, 1e-10);
     // The defect against F~ x minus F x of the double-block problem.
-    Teuchos::ParameterList pd(p);
-    pd.set("Dense Block Precision", "Double");
-    auto exact = rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(),
-                                           std::vector<Feti::ContactConstraint>(), pd, comm));
-    Feti::DualOperator F(exact);
+    Feti::DualOperator F(explicitProblem(disc, "Double", comm));
     Vector expected(problem->dualMap());
     F.apply(x, expected);
     expected.update(1.0, Fx, -1.0);

@@ -189,22 +189,23 @@ struct DenseRows {
     return nnz >= 0.5 * n * n && n * n * 4.0 <= 1024.0 * 1024 * 1024;
   }
 
-  // y = sum_{d != c} W_cd r_d + q_c (the velocity of contact c without its own force).
-  void offDiagonal(int c, const double* r, const double* q, double y[3]) const {
+  // y = (W~ r)_c + q_c, the velocity of contact c.
+  void velocity(int c, const double* r, const double* q, double y[3]) const {
     const float* row = &val[static_cast<size_t>(3 * c) * n];
     Blas::dot3(n, row, row + n, row + 2 * n, r, y);
     for (int a = 0; a < 3; ++a) y[a] += q[3 * c + a];
+  }
+
+  // y = sum_{d != c} W_cd r_d + q_c (the velocity of contact c without its own force).
+  void offDiagonal(int c, const double* r, const double* q, double y[3]) const {
+    velocity(c, r, q, y);
     addProduct(&diag[9 * static_cast<size_t>(c)], r + 3 * c, y, -1.0);
   }
 
-  // u = W r + q.
+  // u = W~ r + q.
   void velocities(const std::vector<double>& r, const double* q, std::vector<double>& u) const {
     u.resize(static_cast<size_t>(n));
-    for (int c = 0; 3 * c < n; ++c) {
-      const float* row = &val[static_cast<size_t>(3 * c) * n];
-      Blas::dot3(n, row, row + n, row + 2 * n, r.data(), &u[3 * c]);
-      for (int a = 0; a < 3; ++a) u[3 * c + a] += q[3 * c + a];
-    }
+    for (int c = 0; 3 * c < n; ++c) velocity(c, r.data(), q, &u[3 * c]);
   }
 };
 
