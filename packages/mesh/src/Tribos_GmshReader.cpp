@@ -1,7 +1,5 @@
 #include "Tribos_GmshReader.hpp"
 
-#include <gmsh.h>
-
 #include <algorithm>
 #include <fstream>
 #include <map>
@@ -10,12 +8,15 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_GeoScript.hpp"
+#include "detail/Tribos_GmshApi.hpp"
 #include "detail/Tribos_MeshFacets.hpp"
 
 namespace Tribos {
 namespace Mesh {
 
 namespace {
+
+namespace Gmsh = detail::Gmsh;
 
 // Gmsh element types by the short names Tribos' messages use; others are
 // named by Gmsh itself.
@@ -27,31 +28,20 @@ std::string elementTypeName(int type) {
       {19, "Pyramid13"}, {29, "Tet20"}};
   const auto it = names.find(type);
   if (it != names.end()) return it->second;
-  std::string name;
-  int dim = 0, order = 0, numNodes = 0, primary = 0;
-  std::vector<double> local;
   try {
-    gmsh::model::mesh::getElementProperties(type, name, dim, order, numNodes, local, primary);
-  } catch (...) {
-    name = "unknown";
+    return Gmsh::elementName(type);
+  } catch (const Gmsh::GmshFailure&) {
+    return "unknown";
   }
-  return name;
 }
 
-// Gmsh reports errors by throwing: std::string in the 4.8 API, an exception
-// object in later ones.
+// The message of a Gmsh call that failed, empty when it did not.
 template <class F>
 std::string gmshError(F&& call) {
   try {
     call();
-  } catch (const std::exception& e) {
-    return e.what();
-  } catch (const std::string& e) {
-    return e.empty() ? "unknown error" : e;
-  } catch (const char* e) {
-    return e ? e : "unknown error";
-  } catch (...) {
-    return "unknown error";
+  } catch (const Gmsh::GmshFailure& e) {
+    return e.message;
   }
   return "";
 }
@@ -59,23 +49,26 @@ std::string gmshError(F&& call) {
 // Gmsh is a process-wide library state: it is initialized for one read and
 // finalized afterwards, unless someone else (the application) initialized it,
 // so readers in sequence and an application that uses Gmsh itself both work.
-// A Gmsh without gmsh::isInitialized (4.8, Debian 12's) cannot say: then the
+// A Gmsh without gmshIsInitialized (4.8, Debian 12's) cannot say: then the
 // reader assumes it is not (an application that keeps Gmsh open across a
 // read must initialize it again afterwards).
 class GmshSession {
  public:
   GmshSession() {
-#ifdef TRIBOS_GMSH_HAS_IS_INITIALIZED
-    owner_ = !gmsh::isInitialized();
-#endif
-    if (owner_) gmsh::initialize(0, nullptr, false);  // no argv parsing, no config files
+    owner_ = Gmsh::isInitialized() != 1;
+    if (owner_) Gmsh::initialize();
     // No output of its own (a run prints on rank 0 only): errors reach the
-    // reader as exceptions and are reported with the file name.
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);
+    // reader as failed calls and are reported with the file name.
+    Gmsh::setNumberOption("General.Terminal", 0);
+    Gmsh::setNumberOption("General.Verbosity", 1);
   }
   ~GmshSession() {
-    if (owner_) gmsh::finalize();
+    if (!owner_) return;
+    try {
+      Gmsh::finalize();
+    } catch (const Gmsh::GmshFailure&) {
+      // nothing to undo: the read's result (or error) stands
+    }
   }
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
@@ -85,8 +78,7 @@ class GmshSession {
 };
 
 std::string physicalName(int dim, int tag) {
-  std::string name;
-  gmsh::model::getPhysicalName(dim, tag, name);
+  const std::string name = Gmsh::physicalName(dim, tag);
   return name.empty() ? std::to_string(tag) : name;
 }
 
@@ -104,8 +96,8 @@ struct Body {
 void readNodes(const std::string& file, std::vector<std::size_t>& tags, std::vector<double>& xyz,
                std::unordered_map<std::size_t, int>& index) {
   std::vector<std::size_t> allTags;
-  std::vector<double> allXyz, parametric;
-  gmsh::model::mesh::getNodes(allTags, allXyz, parametric, -1, -1, false, false);
+  std::vector<double> allXyz;
+  Gmsh::nodes(allTags, allXyz);
   index.reserve(allTags.size());
   for (size_t i = 0; i < allTags.size(); ++i) {
     const double* p = &allXyz[3 * i];
@@ -124,8 +116,7 @@ void readNodes(const std::string& file, std::vector<std::size_t>& tags, std::vec
 
 std::vector<Body> readBodies(const std::string& file) {
   std::vector<Body> bodies;
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, 3);
+  Gmsh::DimTags groups = Gmsh::physicalGroups(3);
   std::sort(groups.begin(), groups.end());
   std::map<int, std::string> owner;  // volume entity -> the physical volume holding it
   for (const auto& g : groups) {
@@ -135,7 +126,7 @@ std::vector<Body> readBodies(const std::string& file) {
     for (const Body& b : bodies)
       TRIBOS_REQUIRE(b.name != body.name, file << ": two physical volumes are named '" << body.name
                                                << "'; each physical volume is a body and needs a name of its own");
-    gmsh::model::getEntitiesForPhysicalGroup(3, g.second, body.entities);
+    body.entities = Gmsh::entitiesForPhysicalGroup(3, g.second);
     // An element of two physical volumes would be a cell of two bodies.
     for (int e : body.entities) {
       const auto [it, fresh] = owner.emplace(e, body.what);
@@ -145,8 +136,7 @@ std::vector<Body> readBodies(const std::string& file) {
     bodies.push_back(std::move(body));
   }
   if (bodies.empty()) {
-    gmsh::vectorpair entities;
-    gmsh::model::getEntities(entities, 3);
+    const Gmsh::DimTags entities = Gmsh::entities(3);
     Body all;
     all.name = "body";
     for (const auto& e : entities) all.entities.push_back(e.second);
@@ -174,7 +164,7 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
   }
 
   GmshSession session;
-  const std::string error = gmshError([&] { gmsh::open(path); });
+  const std::string error = gmshError([&] { Gmsh::open(path); });
   TRIBOS_REQUIRE(error.empty(), file << " is not a mesh Gmsh can read: " << error);
 
   std::vector<std::size_t> nodeTags;
@@ -193,8 +183,7 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
     const size_t before = cellTags.size();
     for (int entity : bodies[b].entities) {
       const std::string what = physical ? bodies[b].what : "volume " + std::to_string(entity);
-      std::vector<int> types;
-      gmsh::model::mesh::getElementTypes(types, 3, entity);
+      const std::vector<int> types = Gmsh::elementTypes(3, entity);
       for (int type : types) {
         TRIBOS_REQUIRE(type == 4 || type == 5, file << ": element type " << type << " (" << elementTypeName(type) << ") in "
                                                     << what << " is not supported; Tribos reads Tet4 and Hex8");
@@ -203,7 +192,7 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
                             << elementTypeName(type) << " (" << what << "); a body has one cell type, Tet4 or Hex8");
         if (cellGmshType == 0) cellGmshType = type, firstVolume = what;
         std::vector<std::size_t> tags, nodes;
-        gmsh::model::mesh::getElementsByType(type, tags, nodes, entity);
+        Gmsh::elementsByType(type, entity, tags, nodes);
         cellTags.insert(cellTags.end(), tags.begin(), tags.end());
         cellNodes.insert(cellNodes.end(), nodes.begin(), nodes.end());
       }
@@ -245,23 +234,18 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
   // Named faces: the physical surfaces, each facet the face of its boundary cell.
   const detail::FaceIndex index(mesh);
   const int facetType = mesh.type == CellType::Tet4 ? 2 : 3;
-  gmsh::vectorpair surfaces;
-  gmsh::model::getPhysicalGroups(surfaces, 2);
+  const Gmsh::DimTags surfaces = Gmsh::physicalGroups(2);
   for (const auto& g : surfaces) {
     const std::string name = physicalName(2, g.second);
     std::vector<Facet>& face = mesh.faces[name];
-    std::vector<int> entities;
-    gmsh::model::getEntitiesForPhysicalGroup(2, g.second, entities);
-    for (int e : entities) {
-      std::vector<int> types;
-      gmsh::model::mesh::getElementTypes(types, 2, e);
-      for (int type : types) {
+    for (int e : Gmsh::entitiesForPhysicalGroup(2, g.second)) {
+      for (int type : Gmsh::elementTypes(2, e)) {
         TRIBOS_REQUIRE(type == facetType, file << ": element type " << type << " (" << elementTypeName(type)
                                                << ") in physical surface '" << name << "' is not supported with "
                                                << cellTypeName(mesh.type) << " cells; their faces are "
                                                << elementTypeName(facetType));
         std::vector<std::size_t> tags, nodes;
-        gmsh::model::mesh::getElementsByType(type, tags, nodes, e);
+        Gmsh::elementsByType(type, e, tags, nodes);
         const size_t npf = type == 2 ? 3 : 4;
         for (size_t k = 0; k < tags.size(); ++k) {
           std::vector<int> facetNodes;
@@ -284,8 +268,8 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
 
 Mesh readGmsh(const std::string& path, std::vector<std::string>* warnings, const MeshFileOptions& options) {
   const std::string file = "mesh file \"" + path + "\"";
-  // A Gmsh call that fails outside gmshError() (on a model Gmsh has read)
-  // throws a string (4.8) or an exception: said as a Tribos::Error naming the file.
+  // A Gmsh call that fails outside gmshError() (on a model Gmsh has read):
+  // said as a Tribos::Error naming the file.
   try {
     if (!isGeoScript(path)) return readGmshFile(path, file, warnings, options);
     // A .geo is a program: run only when allowed, in a child process with
@@ -298,12 +282,10 @@ Mesh readGmsh(const std::string& path, std::vector<std::string>* warnings, const
     throw;
   } catch (const std::bad_alloc&) {
     throw;
+  } catch (const detail::Gmsh::GmshFailure& e) {
+    throw Error(file + ": Gmsh: " + e.message);
   } catch (const std::exception& e) {
-    throw Error(file + ": Gmsh: " + e.what());
-  } catch (const std::string& e) {
-    throw Error(file + ": Gmsh: " + e);
-  } catch (const char* e) {
-    throw Error(file + ": Gmsh: " + std::string(e ? e : "unknown error"));
+    throw Error(file + ": " + e.what());
   }
 }
 
