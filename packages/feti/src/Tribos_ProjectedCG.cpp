@@ -46,36 +46,59 @@ PCGStatus ProjectedCG::solve(const FetiDual& dual, Vector& lambda) const {
   const long long n_A0 = F.applications();
   // The preconditioner y = M^-1 w (Tribos_DualPreconditioner.hpp).
   const DualPreconditioner M(dual, preconditioner_);
-  auto precondition = [&](const Vector& w, Vector& y) { M.apply(w, y); };
   lambda.assign(dual.lambdaTilde());
   Vector g(map), w(map), y(map), p(map), q(map);
   F.apply(lambda, g);
   g.update(-1.0, dual.h(), 1.0);  // g = F lambda - h
-  coarse.project(g, w);
   Vector Ph(map);
   coarse.project(dual.h(), Ph);
   const double norm0 = std::max(Ph.norm2(), 1e-300);
   PCGStatus st;
-  precondition(w, y);
-  p.assign(y);
-  double wy = w.dot(y);
-  st.relativeResidual = w.norm2() / norm0;
-  while (st.relativeResidual > tol_ && st.iterations < maxIter_) {
-    F.apply(p, q);
-    const double alpha = wy / p.dot(q);
-    lambda.update(-alpha, p, 1.0);
-    g.update(-alpha, q, 1.0);
+  // CG from lambda with the gradient g, until ||P g|| meets the tolerance;
+  // g is updated by the recurrence g <- g - alpha F p.
+  auto iterate = [&] {
     coarse.project(g, w);
-    precondition(w, y);
-    const double wyNew = w.dot(y);
-    p.update(1.0, y, wyNew / wy);
-    wy = wyNew;
-    ++st.iterations;
+    M.apply(w, y);
+    p.assign(y);
+    double wy = w.dot(y);
     st.relativeResidual = w.norm2() / norm0;
-    Progress::iteration([&] {
-      return "projected CG " + std::to_string(st.iterations) + ": relative residual " + Progress::sci(st.relativeResidual);
-    });
-    if (!out_.is_null()) *out_ << "PCG " << st.iterations << "  ||Pg||/||Ph|| = " << st.relativeResidual << "\n";
+    while (st.relativeResidual > tol_ && st.iterations < maxIter_) {
+      F.apply(p, q);
+      const double alpha = wy / p.dot(q);
+      lambda.update(-alpha, p, 1.0);
+      g.update(-alpha, q, 1.0);
+      coarse.project(g, w);
+      M.apply(w, y);
+      const double wyNew = w.dot(y);
+      p.update(1.0, y, wyNew / wy);
+      wy = wyNew;
+      ++st.iterations;
+      st.relativeResidual = w.norm2() / norm0;
+      Progress::iteration([&] {
+        return "projected CG " + std::to_string(st.iterations) + ": relative residual " +
+               Progress::sci(st.relativeResidual);
+      });
+      if (!out_.is_null()) *out_ << "PCG " << st.iterations << "  ||Pg||/||Ph|| = " << st.relativeResidual << "\n";
+    }
+  };
+  iterate();
+  // With single-precision blocks the recurrence converges for F~, not F:
+  // the gradient at lambda is recomputed with the exact F (the sparse
+  // factors) and CG restarted from it while that misses the tolerance
+  // (iterative refinement). A round only has to correct the rounding of the
+  // previous round's change, about 1e-7 of it, so one round usually does.
+  constexpr int kMaxRefinements = 3;
+  while (F.rounded() && st.relativeResidual <= tol_) {
+    F.applyExact(lambda, g);
+    g.update(-1.0, dual.h(), 1.0);
+    coarse.project(g, w);
+    st.relativeResidual = w.norm2() / norm0;
+    if (!out_.is_null())
+      *out_ << "PCG: with the exact F ||Pg||/||Ph|| = " << st.relativeResidual
+            << (st.relativeResidual > tol_ && st.refinements < kMaxRefinements ? "; CG restarted from it" : "") << "\n";
+    if (st.relativeResidual <= tol_ || st.refinements == kMaxRefinements) break;
+    ++st.refinements;
+    iterate();
   }
   st.converged = st.relativeResidual <= tol_;
   st.n_A = F.applications() - n_A0;

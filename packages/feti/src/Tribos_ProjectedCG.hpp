@@ -16,7 +16,10 @@ struct PCGStatus {
   bool converged = false;
   int iterations = 0;
   long long n_A = 0;
-  double relativeResidual = 0;  // ||P(h - F lambda)|| / ||P h||
+  double relativeResidual = 0;  // ||P(h - F lambda)|| / ||P h||, with the exact F
+  // Restarts from the gradient of the exact F when F is rounded
+  // (single-precision dense blocks), at most 3.
+  int refinements = 0;
 };
 
 class ProjectedCG {
@@ -24,7 +27,9 @@ class ProjectedCG {
   explicit ProjectedCG(const Teuchos::ParameterList& params);
   static RCP<const Teuchos::ParameterList> getValidParameters();
   void setOutputStream(RCP<Teuchos::FancyOStream> out) { out_ = out; }
-  // lambda on output: the multipliers satisfying G lambda = e.
+  // lambda on output: the multipliers satisfying G lambda = e. With F
+  // rounded (DualOperator::rounded) the tolerance is met for the exact F by
+  // iterative refinement; F's exact applications are not counted in n_A.
   PCGStatus solve(const FetiDual& dual, Vector& lambda) const;
 
  private:
