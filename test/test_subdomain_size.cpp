@@ -8,6 +8,7 @@
 #include <Teuchos_GlobalMPISession.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Teuchos_UnitTestRepository.hpp>
+#include <unistd.h>
 
 #include <array>
 #include <cstdlib>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "Tribos_Input.hpp"
+#include "Tribos_InputXml.hpp"
 
 using namespace Tribos;
 
@@ -137,4 +139,33 @@ TEUCHOS_UNIT_TEST(SubdomainSize, MeshFileCountFromItsNodes) {
 int main(int argc, char* argv[]) {
   Teuchos::GlobalMPISession mpi(&argc, &argv);
   return Teuchos::UnitTestRepository::runUnitTestsFromMain(argc, argv);
+}
+
+// Auto is the default; an input that gives its decomposition (Subdomain
+// Grid, or Subdomains for METIS) and no size keeps it, and the list says so.
+TEUCHOS_UNIT_TEST(SubdomainSize, DefaultIsAutoUnlessTheInputGivesItsDecomposition) {
+  auto sizeOf = [](const std::string& input, const std::vector<std::string>& sets = {}) {
+    return Input::read(sourceFile("input/" + input), sets)->sublist("Mesh").get<std::string>("Subdomain Size");
+  };
+  TEST_EQUALITY(sizeOf("prism_tresca.xml"), "Auto");  // names no decomposition
+  TEST_EQUALITY(sizeOf("brick_coulomb_F03.xml"), "Grid");  // Subdomain Grid {3, 1, 1}
+  TEST_EQUALITY(sizeOf("gmsh_block_pressure.xml"), "Grid");  // Subdomains 2
+  TEST_EQUALITY(sizeOf("prism_tresca.xml", {"Mesh/Subdomain Grid={2,1,1}"}), "Grid");
+  TEST_EQUALITY(sizeOf("prism_tresca.xml", {"Mesh/Subdomains=3"}), "Grid");
+  TEST_EQUALITY(sizeOf("brick_coulomb_F03.xml", {"Mesh/Subdomain Size=Auto"}), "Auto");
+  TEST_EQUALITY(sizeOf("brick_coulomb_F03.xml", {"Mesh/Subdomain Size=6"}), "6");
+  // The resolved lists written out and read again (the parameters written
+  // beside a result, every entry explicit) give the same decompositions.
+  for (const char* input : {"prism_tresca.xml", "brick_coulomb_F03.xml"}) {
+    const auto list = Input::read(sourceFile(std::string("input/") + input), {});
+    const std::string echo = (std::filesystem::temp_directory_path() /
+                              ("tribos_subdomain_size_echo_" + std::to_string(::getpid()) + ".xml")).string();
+    std::ofstream(echo) << Input::toXml(*list);
+    const auto again = Input::read(echo, {});
+    std::filesystem::remove(echo);
+    TEST_EQUALITY(again->sublist("Mesh").get<std::string>("Subdomain Size"),
+                  list->sublist("Mesh").get<std::string>("Subdomain Size"));
+    TEST_EQUALITY(count(Input::decompositionSpec(*again, 1, nullptr)), count(Input::decompositionSpec(*list, 1, nullptr)));
+  }
+  TEST_ASSERT(count(Input::decompositionSpec(*Input::read(sourceFile("input/prism_tresca.xml"), {}), 1, nullptr)) > 1);
 }

@@ -180,8 +180,9 @@ RCP<const ParameterList> validParameters() {
   mesh.set("Partitioner", "Structured", "Structured (a grid of boxes) or METIS",
            choice(tuple<std::string>("Structured", "METIS")));
   mesh.set("Subdomain Grid", Array<int>(Teuchos::tuple<int>(1, 1, 1)), "boxes along x, y, z (Structured)");
-  mesh.set("Subdomain Size", "Grid",
-           "Grid (or 0): the Subdomain Grid (Subdomains for METIS) as given; H, a positive integer: subdomains of "
+  mesh.set("Subdomain Size", "Auto",
+           "Auto (the default, unless the input gives Subdomain Grid or Subdomains and no Subdomain Size: then "
+           "Grid); Grid (or 0): the Subdomain Grid (Subdomains for METIS) as given; H, a positive integer: subdomains of "
            "about H cells per edge (the box: along each axis the divisor of the cell count nearest to cells / H, "
            "Structured or METIS; a mesh file: METIS parts of about (H+1)^3 nodes, at least one per rank and per "
            "body); Auto: H = 4 while that gives at most 1000 subdomains, else 6, lowered until every rank has a "
@@ -640,11 +641,22 @@ void validateStepSolvers(const ParameterList& params) {
                                  "step; use Formulation = TFETI (Dirichlet conditions as rows of B), or one step");
 }
 
+// Subdomain Size is Auto by default, the size measured fastest; an input
+// that gives its decomposition (Subdomain Grid, or Subdomains for METIS) and
+// no size keeps that decomposition. The list is resolved in place, so the
+// parameters written beside the result say which was used.
+void resolveSubdomainSize(ParameterList& mesh) {
+  if (!mesh.getEntry("Subdomain Size").isDefault()) return;
+  if (!mesh.getEntry("Subdomain Grid").isDefault() || !mesh.getEntry("Subdomains").isDefault())
+    mesh.set("Subdomain Size", "Grid");
+}
+
 }  // namespace
 
 void validate(ParameterList& params, const std::string& source) {
   try {
     validateLevel(params, *validParameters(), "");
+    resolveSubdomainSize(params.sublist("Mesh"));
     const auto& mesh = params.sublist("Mesh");
     for (const char* key : {"X Range", "Y Range", "Z Range"}) {
       const auto& r = mesh.get<Array<double>>(key);
