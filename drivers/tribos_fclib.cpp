@@ -241,7 +241,10 @@ void solveGlobal(const Args& args, const FCLIB::SolveOptions& options, const RCP
   compareStored(
       stored, rep,
       [&](const std::vector<double>& r) {
-        FCLIB::MassSolver M(p.M, options.massSolver, options.source);
+        // The solve's factorization of M when it kept one (not when a check
+        // refused the problem before factoring).
+        if (rep.mass) return FCLIB::naturalMapError(p, r, rep.mass->function());
+        const FCLIB::MassSolver M(p.M, options.massSolver, options.source);
         return FCLIB::naturalMapError(p, r, M.function());
       },
       out);

@@ -717,6 +717,7 @@ SolveReport Solver::solve(const GlobalProblem& problem) const {
   kktResiduals(rep.r, rep.u, problem.mu, q, rep);
   rep.massSolves = M->solves();
   rep.massSolver = M->name();
+  rep.mass = M;
   finish(tolerance_, limit_, options_, rep);
   return rep;
 }
