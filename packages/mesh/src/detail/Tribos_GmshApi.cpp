@@ -125,6 +125,18 @@ std::string takeString(char* text) {
   return s;
 }
 
+// The int array of a call (data, size, error flag), copied and released.
+template <class Call>
+std::vector<int> intArray(Call&& call) {
+  int* data = nullptr;
+  size_t n = 0;
+  int ierr = 0;
+  call(&data, &n, &ierr);
+  auto v = take(data, n);
+  check(ierr);
+  return v;
+}
+
 DimTags pairs(const std::vector<int>& flat) {
   DimTags out;
   for (size_t i = 0; i + 1 < flat.size(); i += 2) out.emplace_back(flat[i], flat[i + 1]);
@@ -175,33 +187,15 @@ std::string physicalName(int dim, int tag) {
 }
 
 DimTags physicalGroups(int dim) {
-  int* data = nullptr;
-  size_t n = 0;
-  int ierr = 0;
-  lib().physicalGroups(&data, &n, dim, &ierr);
-  const auto flat = take(data, n);
-  check(ierr);
-  return pairs(flat);
+  return pairs(intArray([&](int** data, size_t* n, int* ierr) { lib().physicalGroups(data, n, dim, ierr); }));
 }
 
 std::vector<int> entitiesForPhysicalGroup(int dim, int tag) {
-  int* data = nullptr;
-  size_t n = 0;
-  int ierr = 0;
-  lib().entitiesForPhysicalGroup(dim, tag, &data, &n, &ierr);
-  auto tags = take(data, n);
-  check(ierr);
-  return tags;
+  return intArray([&](int** data, size_t* n, int* ierr) { lib().entitiesForPhysicalGroup(dim, tag, data, n, ierr); });
 }
 
 DimTags entities(int dim) {
-  int* data = nullptr;
-  size_t n = 0;
-  int ierr = 0;
-  lib().entities(&data, &n, dim, &ierr);
-  const auto flat = take(data, n);
-  check(ierr);
-  return pairs(flat);
+  return pairs(intArray([&](int** data, size_t* n, int* ierr) { lib().entities(data, n, dim, ierr); }));
 }
 
 void nodes(std::vector<std::size_t>& tags, std::vector<double>& xyz) {
@@ -218,13 +212,7 @@ void nodes(std::vector<std::size_t>& tags, std::vector<double>& xyz) {
 }
 
 std::vector<int> elementTypes(int dim, int tag) {
-  int* data = nullptr;
-  size_t n = 0;
-  int ierr = 0;
-  lib().elementTypes(&data, &n, dim, tag, &ierr);
-  auto types = take(data, n);
-  check(ierr);
-  return types;
+  return intArray([&](int** data, size_t* n, int* ierr) { lib().elementTypes(data, n, dim, tag, ierr); });
 }
 
 void elementsByType(int type, int tag, std::vector<std::size_t>& tags, std::vector<std::size_t>& nodeTags) {
