@@ -113,6 +113,20 @@ def concurrent(mpi, tribos, work):
     print("ok: the second run was refused in %.1f s: %s" % (waited, second.stderr.strip()))
 
 
+def wait_until_gone(group, timeout=60):
+    """Waits until no process of the group is left: mpirun is reaped by
+    wait(), but a rank killed with it may still be exiting, and holds the
+    output lock until it has (the next run would be refused, rightly)."""
+    end = time.time() + timeout
+    while time.time() < end:
+        try:
+            os.killpg(group, 0)
+        except ProcessLookupError:
+            return
+        time.sleep(0.02)
+    fail("processes of a killed run still exist %d s after the kill" % timeout)
+
+
 def kill(mpi, tribos, work):
     out = os.path.join(work, "out")
     done = subprocess.run(command(mpi, tribos, "1", out, "Mesh/Level=4", name="complete"),
@@ -134,6 +148,7 @@ def kill(mpi, tribos, work):
             os.killpg(p.pid, signal.SIGKILL)
             kills += 1
         p.wait()
+        wait_until_gone(p.pid)
         check_sets(out)
     last = subprocess.run(command(mpi, tribos, "1", out, "Mesh/Level=4", name="after"),
                           capture_output=True, text=True, timeout=600)

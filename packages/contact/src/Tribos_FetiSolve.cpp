@@ -95,9 +95,15 @@ void solveInRounds(const FetiContactProblem& cp, const PairFriction& friction, c
   const Feti::FetiProblem& problem = cp.fetiDual().problem();
   const int rounds = p.get<int>("Result Check Rounds");
   double requested = 0;
+  // A further round resumes the outer state its round ended with (the
+  // multiplier of G x = 0 and the penalty), not only x: from x alone the
+  // augmented Lagrangian starts over and a round asked for one more digit
+  // cost more than a cold solve asked for it.
+  Friction::WarmStart roundState;
   for (int round = 1; round <= rounds; ++round) {
     Progress::stage("contact solve: " + r.outerAlgorithm + (round > 1 ? ", round " + std::to_string(round) : ""));
-    const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested, round == 1 ? from.warm : nullptr);
+    const auto sol = cp.solve(r.outerAlgorithm, p, out, start.get(), requested, round == 1 ? from.warm : &roundState);
+    roundState = sol.warmStart;
     if (warmOut) *warmOut = sol.warmStart;
     if (round == 1) r.tolerance = sol.requestedTolerance;
     requested = sol.requestedTolerance;

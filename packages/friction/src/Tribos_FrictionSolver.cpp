@@ -162,9 +162,19 @@ FrictionStatus Algorithm1::solve(const ContactDual& dual, const std::vector<SC>&
     smalbe.setHessianNorm(normA_);
     smalbe.setTolerance(tol);
     if (!out_.is_null()) smalbe.setOutputStream(out_);
-    if (warmStart_ && !mu_.is_null()) smalbe.setMultiplier(*mu_);
+    // The multiplier of G x = 0 where the last solve ended: this object's
+    // own (MSA's steps), else a previous solve's final state (a further
+    // result-check round, a load step). From mu = 0 SMALBE would first
+    // rebuild it, and a round asked for one more digit cost more than a
+    // cold solve asked for it.
+    const auto& mu0 = warm_.equalityMultiplier;
+    if (warmStart_ && !mu_.is_null())
+      smalbe.setMultiplier(*mu_);
+    else if (!mu0.is_null() && mu0->getMap()->isSameAs(*dual.G->rangeMap()))
+      smalbe.setMultiplier(*mu0);
     qs = smalbe.solve(*dual.A, *dual.b, Omega, x);
     mu_ = rcp(new Vector(smalbe.multiplier(), Teuchos::Copy));
+    final_ = {rcp(new Vector(*mu_, Teuchos::Copy)), 0.0};
   }
   st.converged = qs.converged;
   st.reason = qs.reason;

@@ -61,6 +61,34 @@ TEUCHOS_UNIT_TEST(Algorithm1, SmalbeEqualityConstraint) {
   checkSolution(m.problem, run.x, m.x, m.mu, m.problem.slipBound, checkTolerance, out, success);
 }
 
+// A solve resumed from another's result and final state (a further
+// result-check round, a load step): the multiplier of G x = 0 comes with
+// it, so asking for more digits costs fewer applications than resuming
+// from the result alone, where SMALBE rebuilds the multiplier from zero.
+TEUCHOS_UNIT_TEST(Algorithm1, ResumesTheEqualityMultiplier) {
+  ManufacturedOptions opt;
+  opt.equalityRows = 2;
+  opt.seed = 5;
+  const auto m = manufacture(stickSlipSeparated, opt);
+  const auto d = buildDual(m.problem, Tpetra::getDefaultComm());
+  auto solver = [&](double tol) { return Tribos::Friction::FrictionSolverFactory().create("Tresca", solverParameters(tol)); };
+  auto first = solver(1e-4);
+  Vector x1(d.map);
+  TEST_ASSERT(first->solve(d.dual, x1).converged);
+  const Tribos::Friction::WarmStart state = first->finalState();
+  TEST_ASSERT(!state.equalityMultiplier.is_null());
+  // The next round, from x1 with the state and from x1 alone.
+  Vector withState(x1, Teuchos::Copy), alone(x1, Teuchos::Copy);
+  auto resumed = solver(solveTolerance);
+  resumed->setWarmStart(state);
+  const auto sResumed = resumed->solve(d.dual, withState);
+  const auto sAlone = solver(solveTolerance)->solve(d.dual, alone);
+  TEST_ASSERT(sResumed.converged && sAlone.converged);
+  out << "n_A resumed with the multiplier " << sResumed.n_A << ", from x alone " << sAlone.n_A << "\n";
+  TEST_COMPARE(sResumed.n_A, <, sAlone.n_A);
+  checkSolution(m.problem, gather(withState), m.x, m.mu, m.problem.slipBound, checkTolerance, out, success);
+}
+
 // ---------------------------------------------------------------- block Gauss-Seidel
 
 double energy(const Problem& p, const Vec& x) {
