@@ -113,15 +113,38 @@ def concurrent(mpi, tribos, work):
     print("ok: the second run was refused in %.1f s: %s" % (waited, second.stderr.strip()))
 
 
-def wait_until_gone(group, timeout=60):
-    """Waits until no process of the group is left: mpirun is reaped by
-    wait(), but a rank killed with it may still be exiting, and holds the
-    output lock until it has (the next run would be refused, rightly)."""
+def wait_until_gone(group, out, timeout=60):
+    """Waits until the killed run has no process left: mpirun (its process
+    group) and the rank that holds the output lock, which Open MPI starts in
+    a group of its own and which may still be exiting after mpirun is
+    reaped (until it has, the next run is refused, rightly)."""
     end = time.time() + timeout
-    while time.time() < end:
+
+    def alive(pid):
+        try:
+            with open("/proc/%d/stat" % pid) as f:
+                return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+        except (FileNotFoundError, ProcessLookupError, IndexError):
+            return False
+
+    def group_alive():
         try:
             os.killpg(group, 0)
+            return True
         except ProcessLookupError:
+            return False
+
+    def holder():
+        try:
+            with open(os.path.join(out, ".tribos.lock")) as f:
+                words = f.read().split()
+            return int(words[0]) if words else 0
+        except (FileNotFoundError, ValueError):
+            return 0
+
+    while time.time() < end:
+        pid = holder()
+        if not group_alive() and not (pid and pid != os.getpid() and alive(pid)):
             return
         time.sleep(0.02)
     fail("processes of a killed run still exist %d s after the kill" % timeout)
@@ -148,7 +171,7 @@ def kill(mpi, tribos, work):
             os.killpg(p.pid, signal.SIGKILL)
             kills += 1
         p.wait()
-        wait_until_gone(p.pid)
+        wait_until_gone(p.pid, out)
         check_sets(out)
     last = subprocess.run(command(mpi, tribos, "1", out, "Mesh/Level=4", name="after"),
                           capture_output=True, text=True, timeout=600)
