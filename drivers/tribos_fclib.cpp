@@ -240,13 +240,7 @@ void solveGlobal(const Args& args, const FCLIB::SolveOptions& options, const RCP
   rep = FCLIB::solve(p, options, self);
   compareStored(
       stored, rep,
-      [&](const std::vector<double>& r) {
-        // The solve's factorization of M when it kept one (not when a check
-        // refused the problem before factoring).
-        if (rep.mass) return FCLIB::naturalMapError(p, r, rep.mass->function());
-        const FCLIB::MassSolver M(p.M, options.massSolver, options.source);
-        return FCLIB::naturalMapError(p, r, M.function());
-      },
+      [&](const std::vector<double>& r) { return FCLIB::naturalMapError(p, r, rep.mass->function()); },
       out);
   writeResult(args, p, info, FCLIB::Solution{rep.v, rep.u, rep.r, {}}, FCLIB::writeGlobal, out);
 }
@@ -269,7 +263,7 @@ void reportSolve(const Args& args, const FCLIB::SolveReport& rep, FCLIB::Problem
   summary.set("inner_iterations", rep.status.inner_iterations);
   summary.set("n_A", rep.n_A).set("n_A_qpp", static_cast<long long>(rep.status.n_A_qpp));
   summary.set("n_A_qpq", static_cast<long long>(rep.status.n_A_qpq));
-  if (kind == FCLIB::ProblemKind::Global) summary.set("mass_solves", rep.massSolves).set("mass_solver", rep.massSolver);
+  if (kind == FCLIB::ProblemKind::Global) summary.set("mass_solves", rep.massSolves).set("mass_solver", rep.mass->name());
   summary.set("time_setup_s", rep.timeSetup).set("time_solve_s", rep.timeSolve);
   summary.set("err", errSummary(rep.err));
   IO::Summary kkt;

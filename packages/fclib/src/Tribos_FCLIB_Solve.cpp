@@ -716,7 +716,6 @@ SolveReport Solver::solve(const GlobalProblem& problem) const {
   rep.err = naturalMapError(rep.r, rep.u, problem.mu, q);
   kktResiduals(rep.r, rep.u, problem.mu, q, rep);
   rep.massSolves = M->solves();
-  rep.massSolver = M->name();
   rep.mass = M;
   finish(tolerance_, limit_, options_, rep);
   return rep;

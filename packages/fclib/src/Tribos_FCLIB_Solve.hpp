@@ -167,9 +167,9 @@ struct SolveReport {
   NaturalMapError err;
   long long n_A = 0;             // applications of W in the solve (incl. the norm estimate)
   long long massSolves = 0;      // solves with M (global problem)
-  std::string massSolver;        // the solver that factored M (MassSolver::name)
-  // That factorization (global problem), kept for further solves with M
-  // (the error of a stored solution) instead of factoring M again.
+  // The factorization of M (global problem; name() says which solver made
+  // it), kept for further solves with M (the error of a stored solution)
+  // instead of factoring M again.
   std::shared_ptr<const MassSolver> mass;
   double normW = 0, scale = 1;   // ||W|| (power method) and s = 1/||W||
   // Extreme eigenvalues of the symmetric part of W (when formed); the

@@ -47,9 +47,11 @@ struct FrictionStatus {
   std::vector<SC> slipBound; // the slip bound of the returned solution (local)
 };
 
-// The augmented Lagrangian's state at the end of a solve (Algorithm 2): the
-// multiplier mu of G x = 0 and the penalty rho, where the solve of a nearby
-// problem (the next load step) may start (FrictionSolver::setWarmStart).
+// The augmented Lagrangian's state at the end of a solve: the multiplier mu
+// of G x = 0 and the penalty rho (Algorithm 2, the matrix-free Newton
+// method; Algorithm 1 gives mu only, its SMALBE keeping no rho), where the
+// solve of a nearby problem (the next load step, a further result-check
+// round) may start (FrictionSolver::setWarmStart).
 struct WarmStart {
   RCP<const Vector> equalityMultiplier;
   SC rho = 0;
