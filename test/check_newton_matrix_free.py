@@ -12,8 +12,10 @@ dense variant too), on 1, 2 and 3 ranks:
     residual of the written result within the result check, and its
     displacement and contact forces agree with those of the dense variant
     (Linear Solver = Dense LU) and of Algorithm 2, both solved tightly;
-  - with each of FETI's preconditioners (None, Lumped, Dirichlet) it reaches
-    the same solution;
+  - with each preconditioner (Slip Curvature, the default; None; FETI's
+    Lumped and Dirichlet) and each way of holding G x = 0 (Face Projection,
+    Auto's choice for FETI; Augmented Lagrangian) it reaches the same
+    solution;
   - the load history of test/check_load_history.py (pressed, sheared out,
     back, out the other way) solved by it agrees step by step with
     Algorithm 2's.
@@ -61,11 +63,17 @@ def main():
               % (np_, relative(u, ref_u), relative(u, displacements(dense_out)[0])))
         check(s["contact"] == dense["contact"], "%d ranks: the contact counts of the dense Newton: %s against %s"
               % (np_, s["contact"], dense["contact"]))
-    for pc in ("Lumped", "Dirichlet"):
-        out, s, _ = run(args, "matrix_free_" + pc, 2, LEVEL + MATRIX_FREE + ["Solver/Semismooth Newton/Preconditioner=" + pc])
-        if s:
-            check(s["converged"] and relative(displacements(out)[0], ref_u) < 1e-6,
-                  "Preconditioner %s: converged to the same solution (%.2e)" % (pc, relative(displacements(out)[0], ref_u)))
+    for equality in ("Face Projection", "Augmented Lagrangian"):
+        for pc in ("Slip Curvature", "None", "Lumped", "Dirichlet"):
+            if equality == "Face Projection" and pc == "Slip Curvature":
+                continue  # the default: run above
+            name = "matrix_free_%s_%s" % (equality.split()[0], pc.replace(" ", ""))
+            out, s, _ = run(args, name, 2, LEVEL + MATRIX_FREE + ["Solver/Semismooth Newton/Preconditioner=" + pc,
+                                                                  "Solver/Semismooth Newton/Equality Constraint=" + equality])
+            if s:
+                check(s["converged"] and relative(displacements(out)[0], ref_u) < 1e-6,
+                      "%s, Preconditioner %s: converged to the same solution (%.2e)"
+                      % (equality, pc, relative(displacements(out)[0], ref_u)))
 
     # The load history, step by step against Algorithm 2's.
     href_out, href, _ = run(args, "history_algorithm2", 2, LEVEL + HISTORY + ALGORITHM2)

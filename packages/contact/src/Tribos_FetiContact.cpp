@@ -36,8 +36,27 @@ class OrthonormalCoarseConstraint : public QP::EqualityConstraint {
     y_.assign(v.begin(), v.end());
     coarse_->applyOrthonormalTranspose(y_, Gty);
   }
+  RCP<QP::FaceConstraint> face() const override { return rcp(new CoarseFace(coarse_)); }
 
  private:
+  // T(u) = G'(G Pi G')^-1 G u with FETI's G (the same T as for G^).
+  class CoarseFace : public QP::FaceConstraint {
+   public:
+    explicit CoarseFace(RCP<const Feti::CoarseSpace> coarse) : coarse_(coarse) {}
+    bool setFixedDirections(const LocalCsr& fixed) override {
+      factor_ = coarse_->factorFaceGramian(fixed);
+      return !factor_.is_null();
+    }
+    void apply(const Vector& u, Vector& Tu) const override {
+      TRIBOS_REQUIRE(!factor_.is_null(), "coarse face: no fixed directions set, or G Pi G' singular");
+      coarse_->applyFace(*factor_, u, Tu);
+    }
+
+   private:
+    RCP<const Feti::CoarseSpace> coarse_;
+    RCP<LocalSolver> factor_;
+  };
+
   RCP<const Feti::CoarseSpace> coarse_;
   RCP<const Map> map_;
   mutable std::vector<double> y_;

@@ -67,7 +67,6 @@ struct Continuation {
   double normPFP = 0;
   long long F_applications = 0;
   double F_seconds = 0;
-  bool loadHistory = false;  // a step of a history (FetiLoadSteps), the first included
 };
 
 // A dense algorithm's size limit, before the coarse space and the solve
@@ -159,7 +158,7 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     if (normPFP) *normPFP = cp.norm();
     const std::string requestedAlgorithm = p.get<std::string>("Outer Algorithm");
     r.outerAlgorithm =
-        outerAlgorithmFor(requestedAlgorithm, friction, dual->coarse().equalityRowsHoldKernel(), from.loadHistory);
+        outerAlgorithmFor(requestedAlgorithm, friction, dual->coarse().equalityRowsHoldKernel());
     const std::string runLawName = frictionLawName(runLaw(friction));
     TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, runLawName),
                    "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << runLawName << " friction ("
@@ -200,11 +199,10 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
 
 }  // namespace
 
-std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction, bool heldByDirichlet,
-                              bool loadHistory) {
+std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction, bool heldByDirichlet) {
   if (requested != kAutoOuterAlgorithm) return Friction::frictionSolvers().canonical(requested);
   if (runLaw(friction) != FrictionLaw::Coulomb) return "Algorithm1";
-  return heldByDirichlet && loadHistory ? "Semismooth Newton" : "Algorithm2";
+  return heldByDirichlet ? "Semismooth Newton" : "Algorithm2";
 }
 
 RCP<const Teuchos::ParameterList> fetiSolveParameters() {
@@ -250,7 +248,6 @@ FetiLoadSteps::FetiLoadSteps(const RCP<Feti::FetiProblem>& problem, const PairFr
 FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
   problem_->setLoads(loads);
   Continuation from;
-  from.loadHistory = true;
   if (!primal_.is_null()) {
     // Friction acts on the slip since the previous step: the tangential
     // rows measure B_T (u - u_prev).

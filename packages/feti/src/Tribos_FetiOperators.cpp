@@ -228,10 +228,10 @@ class EmptyFactor : public LocalSolver {
 
 }  // namespace
 
-RCP<LocalSolver> CoarseSpace::factorGramian(const std::vector<char>* rows) const {
-  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::coarse factor"));
-  if (n_ == 0) return rcp(new EmptyFactor);
-  const LocalCsr A = gramian(rows);
+namespace {
+
+// A sparse Cholesky factor of a Gram matrix, or null when it is singular.
+RCP<LocalSolver> factorGram(const LocalCsr& A) {
   // A row of zeros (a rigid motion that no row touches) is singular before
   // any pivot is taken; CHOLMOD would stop on it, or succeed on round-off.
   for (int i = 0; i < A.rows; ++i)
@@ -245,6 +245,67 @@ RCP<LocalSolver> CoarseSpace::factorGramian(const std::vector<char>* rows) const
   // A pivot far below the largest is a singular Gram matrix in floating
   // point (the factorization succeeds on round-off).
   return factor->pivotRatio() > 1e-12 ? factor : Teuchos::null;
+}
+
+}  // namespace
+
+RCP<LocalSolver> CoarseSpace::factorGramian(const std::vector<char>* rows) const {
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::coarse factor"));
+  if (n_ == 0) return rcp(new EmptyFactor);
+  return factorGram(gramian(rows));
+}
+
+RCP<LocalSolver> CoarseSpace::factorFaceGramian(const LocalCsr& fixed) const {
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::coarse factor of a face"));
+  if (n_ == 0) return rcp(new EmptyFactor);
+  if (sumOver(static_cast<double>(fixed.rows), *problem_->comm()) == 0) return GGt_;
+  // (G q)(G q)' per fixed direction q, in blocks keyed by the first coarse
+  // columns of the two subdomains: G q sums the segments of q's rows
+  // subdomain by subdomain.
+  GramBlocks local;
+  std::map<int, std::array<double, 6>> Gq;  // first coarse column -> r_s values
+  for (int q = 0; q < fixed.rows; ++q) {
+    Gq.clear();
+    for (int k = fixed.rowptr[q]; k < fixed.rowptr[q + 1]; ++k) {
+      const int i = fixed.col[k];
+      const double* v = segVal_.data() + valPtr_[i];
+      for (int p = segPtr_[i]; p < segPtr_[i + 1]; ++p) {
+        const int start = segStart_[p], r = blockLength_[start];
+        auto [it, inserted] = Gq.try_emplace(start);
+        if (inserted) it->second.fill(0.0);
+        for (int j = 0; j < r; ++j) it->second[j] += fixed.val[k] * v[j];
+        v += r;
+      }
+    }
+    for (const auto& [s, gs] : Gq)
+      for (const auto& [t, gt] : Gq) {
+        auto [it, inserted] = local.try_emplace(static_cast<long long>(s) * n_ + t);
+        if (inserted) it->second.fill(0.0);
+        for (int a = 0; a < blockLength_[s]; ++a)
+          for (int b = 0; b < blockLength_[t]; ++b) it->second[6 * a + b] += gs[a] * gt[b];
+      }
+  }
+  const GramBlocks all = gatherBlocks(local, *problem_->comm());
+  if (gram_.rows != n_) gram_ = gramian(nullptr);
+  // GG' has every block (s, t) that a row couples, so the pattern stays.
+  LocalCsr A = gram_;
+  for (const auto& [key, block] : all) {
+    const int s = static_cast<int>(key / n_), t = static_cast<int>(key % n_);
+    for (int a = 0; a < blockLength_[s]; ++a) {
+      const int row = s + a;
+      const auto first = A.col.begin() + A.rowptr[row], last = A.col.begin() + A.rowptr[row + 1];
+      const auto at = std::lower_bound(first, last, t);
+      TRIBOS_REQUIRE(at != last && *at == t, "coarse face: block (" << s << ", " << t << ") outside GG'");
+      for (int b = 0; b < blockLength_[t]; ++b) A.val[(at - A.col.begin()) + b] -= block[6 * a + b];
+    }
+  }
+  return factorGram(A);
+}
+
+void CoarseSpace::applyFace(const LocalSolver& factor, const Vector& u, Vector& Tu) const {
+  applyG(u, work_);
+  factor.solve(work_.data(), work_.data(), 1);
+  applyGt(work_, Tu);
 }
 
 void CoarseSpace::applyG(const Vector& x, std::vector<double>& y, const std::vector<char>* rows) const {

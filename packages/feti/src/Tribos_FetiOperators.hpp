@@ -86,6 +86,13 @@ class CoarseSpace {
   // Sparse Cholesky factor of G_S G_S', or null when it is singular (some
   // rigid motion touches no row S). Collective.
   RCP<LocalSolver> factorGramian(const std::vector<char>* rows) const;
+  // G Pi G' = GG' - sum_q (G q)(G q)' for the fixed directions q of a face
+  // (the rows of `fixed`, unit vectors over this rank's dual rows; Pi the
+  // projector onto their complement), factored; null when it is singular
+  // (the free directions do not hold every rigid motion). Collective.
+  RCP<LocalSolver> factorFaceGramian(const LocalCsr& fixed) const;
+  // Tu = G'(G Pi G')^-1 G u with a factor from factorFaceGramian. Collective.
+  void applyFace(const LocalSolver& factor, const Vector& u, Vector& Tu) const;
   // An orthonormal basis of the null space of G_S G_S' (coarse vectors):
   // the rigid motions that no row S touches. Only for error paths and
   // checks (an eigen-decomposition of the dense 6S x 6S Gram matrix: meant
@@ -118,6 +125,7 @@ class CoarseSpace {
   std::vector<double> segVal_;
   std::vector<int> blockLength_;  // r_s at coarse column ko[s]
   RCP<LocalSolver> GGt_, GEGEt_;  // factors of GG' and G_E G_E' (null: singular)
+  mutable LocalCsr gram_;         // GG', kept once a face asks for it
   mutable std::vector<double> work_;
 };
 

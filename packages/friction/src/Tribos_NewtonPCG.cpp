@@ -28,6 +28,10 @@ using Contact = AlartCurnier::Contact;
 // right-hand side of the free equations (index 0 normal, 1.. tangential).
 struct ContactStep {
   double Pi[3][3], K[3][3], d0[3], rhs[3];
+  double fixed[3][3];  // the fixed directions (unit, rows as Pi's), numFixed of them
+  int numFixed;
+  double curved[2][3], kappa[2];  // K = sum kappa_e w_e w_e' over numCurved unit directions
+  int numCurved;
 };
 
 // The eigenvectors of a symmetric 2 x 2 matrix [[a, b], [b, d]] (columns of
@@ -57,8 +61,9 @@ void contactStep(const Contact& c, const AlartCurnier::Blocks& B, ContactStep& o
   const int m = 1 + c.tangents;
   for (int p = 0; p < 3; ++p) {
     out.d0[p] = out.rhs[p] = 0;
-    for (int q = 0; q < 3; ++q) out.Pi[p][q] = out.K[p][q] = 0;
+    for (int q = 0; q < 3; ++q) out.Pi[p][q] = out.K[p][q] = out.fixed[p][q] = 0;
   }
+  out.numFixed = out.numCurved = 0;
   auto direction = [&](const double* w, int offset, int size, double s, double dx) {
     double wPhi = 0;
     for (int i = 0; i < size; ++i) wPhi += w[i] * B.phi[offset + i];
@@ -70,8 +75,17 @@ void contactStep(const Contact& c, const AlartCurnier::Blocks& B, ContactStep& o
           out.K[offset + i][offset + j] += dx / s * w[i] * w[j];
         }
       }
+      if (dx > 0) {
+        for (int i = 0; i < 3; ++i) out.curved[out.numCurved][i] = 0;
+        for (int i = 0; i < size; ++i) out.curved[out.numCurved][offset + i] = w[i];
+        out.kappa[out.numCurved++] = dx / s;
+      }
     } else {
-      for (int i = 0; i < size; ++i) out.d0[offset + i] += -wPhi / dx * w[i];
+      for (int i = 0; i < size; ++i) {
+        out.d0[offset + i] += -wPhi / dx * w[i];
+        out.fixed[out.numFixed][offset + i] = w[i];
+      }
+      ++out.numFixed;
     }
   };
   const double one = 1.0;
@@ -117,15 +131,28 @@ class NewtonSolve {
     ac_ = rcp(new AlartCurnier(dual, rho));
     steps_.resize(ac_->contacts().size());
     const std::string pc = params.get<std::string>("Preconditioner");
-    if (pc != "None" && dual.preconditioner) M_ = dual.preconditioner(pc);
+    scaleCurvature_ = pc == "Slip Curvature";
+    if (pc != "None" && !scaleCurvature_ && dual.preconditioner) M_ = dual.preconditioner(pc);
     isContactRow_.assign(map_->getNodeNumElements(), 0);
     for (const Contact& c : ac_->contacts()) {
       int rows[3];
       for (int i = 0, m = rowsOf(c, rows); i < m; ++i) isContactRow_[rows[i]] = 1;
     }
+    const std::string equality = params.get<std::string>("Equality Constraint");
+    if (equality != "Augmented Lagrangian" && !G_.is_null()) face_ = G_->face();
+    TRIBOS_REQUIRE(equality != "Face Projection" || G_.is_null() || !face_.is_null(),
+                   "Semismooth Newton: Equality Constraint = Face Projection needs an equality constraint that "
+                   "forms G Pi G' (FETI's coarse space); this one does not");
+    if (!G_.is_null() && !warm.equalityMultiplier.is_null() &&
+        warm.equalityMultiplier->getMap()->isSameAs(*G_->rangeMap()))
+      warmMultiplier_ = warm.equalityMultiplier;
   }
 
-  FrictionStatus run(Vector& x, WarmStart& final);
+  // The augmented Lagrangian method, or the face projection when G can
+  // form G Pi G' (or there is no G).
+  FrictionStatus run(Vector& x, WarmStart& final) {
+    return face_.is_null() && !G_.is_null() ? runAugmented(x, final) : runFace(x, final);
+  }
 
  private:
   const ContactDual& dual_;
@@ -143,6 +170,49 @@ class NewtonSolve {
   mutable Vector Gx_;
   SC normA_ = 1, rho_ = 1, r_ = 1;
   long n_A_ = 0;
+  bool scaleCurvature_ = false;         // Preconditioner = Slip Curvature
+  RCP<QP::FaceConstraint> face_;        // G on the faces (runFace), null: no G, or runAugmented
+  RCP<const Vector> warmMultiplier_;    // mu of a nearby problem, null: none
+
+  FrictionStatus runAugmented(Vector& x, WarmStart& final);
+  FrictionStatus runFace(Vector& x, WarmStart& final);
+  // The Eisenstat-Walker forcing term of the next step from ||Phi|| now and
+  // before (previous <= 0: the first step keeps eta).
+  static double forcingTerm(double eta, double nPhi, double previous, double etaMax, double floor);
+  // The right-hand side of the free equations, Pi (rhs of the contacts, -v
+  // elsewhere) - Pi Ad0, with Ad0 the operator applied to the fixed part d0.
+  void freeRightHandSide(const Vector& Ad0, Vector& rhs) const;
+  // Armijo backtracking on psi = 1/2 ||Phi||^2 along (d, dv) from (x, v_):
+  // the accepted point in xt_, vt_; returns the step length (accepted:
+  // whether Armijo's condition held).
+  double lineSearch(const Vector& x, double nPhi, const Vector& d, const Vector& dv, bool& accepted);
+
+  void applyA(const Vector& p, Vector& Ap) {
+    dual_.A->apply(p, Ap);
+    ++n_A_;
+  }
+  // The fixed directions of the current Newton system, one row each.
+  LocalCsr fixedDirections() const;
+  // Tu = G'(G Pi G')^-1 G u (zero without G).
+  void applyT(const Vector& u, Vector& Tu) const {
+    if (face_.is_null()) Tu.putScalar(0.0);
+    else face_->apply(u, Tu);
+  }
+  // u <- u - Pi T(u): onto ker(G Pi) within range Pi (u in range Pi).
+  void faceProject(Vector& u);
+  // z <- a (a I + K)^-1 z on the contact rows, a = ||A||: the slip curvature
+  // kappa = |v_T| / R of a slipping contact grows without bound where the
+  // slip bound R is small against the slip, and the Newton systems become as
+  // ill-conditioned as kappa / ||A||; K is known exactly, and A is at most
+  // ||A|| on any row (docs/semismooth.md, "Preconditioning").
+  void scaleCurvature(Vector& z) const;
+  // z = P_F Pi M Pi P_F w, M the preconditioner or the curvature scaling
+  // (w with neither).
+  void facePrecondition(const Vector& w, Vector& z);
+  // PCG on P_F Pi (A + K) Pi z = P_F r from z = 0 to ||res|| <= stop: z in
+  // y_, A z in Az. Returns the iterations.
+  int faceConjugateGradients(const Vector& r, double stop, int maxIter, Vector& Az);
+  Vector Tu_{map_}, w_{map_};  // T's work vector; w = G'mu (runFace)
 
   void applyH(const Vector& p, Vector& Hp) {
     al_.hessian(rho_).apply(p, Hp);
@@ -231,6 +301,10 @@ void NewtonSolve::precondition(const Vector& w, Vector& z) {
   project(tmp_);
   if (M_.is_null()) {
     z.assign(tmp_);
+    if (scaleCurvature_) {
+      scaleCurvature(z);
+      project(z);
+    }
     return;
   }
   // H^-1 = A^+ + (I - P) / rho with P = I - G'G: M P w + G'G w / rho.
@@ -275,7 +349,137 @@ int NewtonSolve::conjugateGradients(const Vector& rhs, double eta, int maxIter, 
   return it;
 }
 
-FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
+double NewtonSolve::forcingTerm(double eta, double nPhi, double previous, double etaMax, double floor) {
+  // Eisenstat-Walker, choice 2, gamma = 0.9, safeguarded; no tighter than
+  // the final tolerance needs (floor: half the ||Phi|| it asks for).
+  if (previous > 0) {
+    const double ew = 0.9 * (nPhi / previous) * (nPhi / previous), guard = 0.9 * eta * eta;
+    eta = std::min(etaMax, guard > 0.1 ? std::max(ew, guard) : ew);
+  }
+  eta = std::max(eta, floor / std::max(nPhi, 1e-300));
+  return std::min(eta, etaMax);
+}
+
+void NewtonSolve::freeRightHandSide(const Vector& Ad0, Vector& rhs) const {
+  {
+    auto rv = rhs.getDataNonConst();
+    const auto vv = v_.getData(), av = Ad0.getData();
+    for (size_t i = 0; i < rv.size(); ++i) rv[i] = -vv[i] - av[i];
+    const auto& contacts = ac_->contacts();
+    for (size_t k = 0; k < contacts.size(); ++k) {
+      int rows[3];
+      for (int i = 0, m = rowsOf(contacts[k], rows); i < m; ++i) rv[rows[i]] = steps_[k].rhs[i] - av[rows[i]];
+    }
+  }
+  project(rhs);
+}
+
+double NewtonSolve::lineSearch(const Vector& x, double nPhi, const Vector& d, const Vector& dv, bool& accepted) {
+  // v is affine in x along the step: a trial point costs no application of A.
+  const double sigma = params_.get<double>("sigma"), beta = params_.get<double>("Backtracking Factor");
+  const int maxBack = params_.get<int>("Maximum Backtracking Steps");
+  const bool armijo = params_.get<std::string>("Line Search") == "Armijo";
+  const double psi = 0.5 * nPhi * nPhi;
+  double t = 1.0;
+  accepted = false;
+  for (int k = 0; k <= (armijo ? maxBack : 0); ++k) {
+    xt_.update(1.0, x, t, d, 0.0);
+    vt_.update(1.0, v_, t, dv, 0.0);
+    const double n = phiNorm(xt_, vt_);
+    if (!armijo || 0.5 * n * n <= (1.0 - 2.0 * sigma * t) * psi) {
+      accepted = true;
+      break;
+    }
+    if (k < maxBack) t *= beta;
+  }
+  return t;
+}
+
+LocalCsr NewtonSolve::fixedDirections() const {
+  LocalCsr D;
+  D.cols = static_cast<int>(map_->getNodeNumElements());
+  const auto& contacts = ac_->contacts();
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    int rows[3];
+    const int m = rowsOf(contacts[k], rows);
+    for (int f = 0; f < steps_[k].numFixed; ++f) {
+      for (int i = 0; i < m; ++i)
+        if (steps_[k].fixed[f][i] != 0) D.col.push_back(rows[i]), D.val.push_back(steps_[k].fixed[f][i]);
+      D.rowptr.push_back(static_cast<int>(D.col.size()));
+      ++D.rows;
+    }
+  }
+  return D;
+}
+
+void NewtonSolve::faceProject(Vector& u) {
+  if (face_.is_null()) return;
+  face_->apply(u, Tu_);
+  project(Tu_);
+  u.update(-1.0, Tu_, 1.0);
+}
+
+void NewtonSolve::scaleCurvature(Vector& z) const {
+  auto zv = z.getDataNonConst();
+  const auto& contacts = ac_->contacts();
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    const ContactStep& c = steps_[k];
+    if (c.numCurved == 0) continue;
+    int rows[3];
+    const int m = rowsOf(contacts[k], rows);
+    for (int e = 0; e < c.numCurved; ++e) {
+      // a (a I + kappa w w')^-1 = I - kappa / (a + kappa) w w' (w a unit vector).
+      double wz = 0;
+      for (int i = 0; i < m; ++i) wz += c.curved[e][i] * zv[rows[i]];
+      const double f = c.kappa[e] / (normA_ + c.kappa[e]) * wz;
+      for (int i = 0; i < m; ++i) zv[rows[i]] -= f * c.curved[e][i];
+    }
+  }
+}
+
+void NewtonSolve::facePrecondition(const Vector& w, Vector& z) {
+  if (M_.is_null()) {
+    z.assign(w);
+    if (!scaleCurvature_) return;
+    scaleCurvature(z);
+  } else {
+    M_->apply(w, z);
+  }
+  project(z);
+  faceProject(z);
+}
+
+int NewtonSolve::faceConjugateGradients(const Vector& r, double stop, int maxIter, Vector& Az) {
+  Vector res(r, Teuchos::Copy), z(map_), p(map_), Ap(map_), q(map_);
+  faceProject(res);
+  y_.putScalar(0.0);
+  Az.putScalar(0.0);
+  facePrecondition(res, z);
+  p.assign(z);
+  double rz = res.dot(z);
+  int it = 0;
+  while (it < maxIter && res.norm2() > stop) {
+    applyA(p, Ap);
+    q.assign(Ap);
+    addCurvature(p, q);
+    project(q);
+    faceProject(q);
+    const double pq = p.dot(q);
+    if (!(pq > 0)) break;  // positive definite on ker(G Pi) within range Pi: only round-off gets here
+    const double alpha = rz / pq;
+    y_.update(alpha, p, 1.0);
+    Az.update(alpha, Ap, 1.0);
+    res.update(-alpha, q, 1.0);
+    ++it;
+    facePrecondition(res, z);
+    const double rzNew = res.dot(z);
+    p.update(1.0, z, rzNew / rz);
+    rz = rzNew;
+  }
+  return it;
+}
+
+FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
   const auto start = std::chrono::steady_clock::now();
   FrictionStatus st;
   const double normRB = std::max(r_ * dual_.normB(), 1e-300);
@@ -283,9 +487,123 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
   const int maxIter = params_.get<int>("Maximum Iterations");
   const int maxPCG = params_.get<int>("Maximum CG Iterations");
   const double etaMax = params_.get<double>("Maximum Forcing Term");
-  const double sigma = params_.get<double>("sigma"), beta = params_.get<double>("Backtracking Factor");
-  const int maxBack = params_.get<int>("Maximum Backtracking Steps");
-  const bool armijo = params_.get<std::string>("Line Search") == "Armijo";
+  const int stallSteps = params_.get<int>("Stall Steps");
+  const int exactEvery = params_.get<int>("Exact Velocity Steps");
+  // v = A x - b + w with w = G'mu: mu is an unknown of the Newton steps,
+  // and every step keeps G x = 0 (its direction lies in ker G).
+  w_.putScalar(0.0);
+  if (!warmMultiplier_.is_null()) G_->applyTranspose(*warmMultiplier_, w_);
+  auto velocityAt = [&](const Vector& at, Vector& v) {
+    applyA(at, v);
+    v.update(-1.0, *dual_.b, 1.0, w_, 1.0);
+  };
+  velocityAt(x, v_);
+  Vector Ad0(map_), rhs(map_), yp(map_), Ayp(map_), Az(map_), s(map_), wd(map_), Ad(map_), dv(map_);
+  int sinceExact = 0;
+  double previous = -1, eta = etaMax;
+  int lineSearchFailures = 0;
+  for (int it = 0;; ++it) {
+    double nPhi = phiNorm(x, v_);
+    const double nGx = normGx(x);
+    double measure = std::hypot(nPhi, nGx) / normRB;
+    // v carried as v + t (A d + G'dmu) drifts from A x - b + w by
+    // round-off and by the inexact CG: recompute it as in runAugmented.
+    if (sinceExact > 0 && (sinceExact >= exactEvery || measure <= tol)) {
+      velocityAt(x, v_);
+      sinceExact = 0;
+      nPhi = phiNorm(x, v_);
+      measure = std::hypot(nPhi, nGx) / normRB;
+    }
+    st.norm_gP = nPhi / r_;
+    st.norm_Gx = nGx;
+    st.n_A = n_A_;
+    if (!out_.is_null())
+      *out_ << "Newton PCG " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << measure
+            << "  ||Phi|| " << nPhi << "  ||G x|| " << nGx << "  eta " << eta << "  n_A " << n_A_ << "\n";
+    if (newtonStepEnds(st, it, measure, nGx / normRB, tol, maxIter, start)) break;
+    if (it >= stallSteps && measure > 0.5 * st.history[it - stallSteps]) {
+      st.reason = "Semismooth Newton: stalled (the measure fell by less than 2 over " + std::to_string(stallSteps) +
+                  " steps)";
+      break;
+    }
+    eta = forcingTerm(eta, nPhi, previous, etaMax, 0.5 * tol * normRB);
+    previous = nPhi;
+    // The Newton system on the face: d = d0 + y, y in range Pi with
+    //   Pi (A + K) Pi y + Pi G'dmu = r,  G Pi y = -G (x + d0),
+    // y = y_p + z with the particular y_p = -Pi T(x + d0) and z in
+    // ker(G Pi) by projected CG; then G'dmu = T(r - Pi (A + K) Pi y).
+    linearize(x, v_);
+    if (!face_.is_null() && !face_->setFixedDirections(fixedDirections())) {
+      st.reason = "Semismooth Newton: the free directions of a Newton step do not hold every rigid motion "
+                  "(G Pi G' is singular)";
+      break;
+    }
+    Ad0.putScalar(0.0);
+    if (d_.normInf() > 0) applyA(d_, Ad0);
+    freeRightHandSide(Ad0, rhs);
+    xt_.update(1.0, x, 1.0, d_, 0.0);
+    applyT(xt_, yp);
+    yp.scale(-1.0);
+    project(yp);
+    Ayp.putScalar(0.0);
+    if (yp.normInf() > 0) applyA(yp, Ayp);
+    s.assign(Ayp);
+    addCurvature(yp, s);
+    project(s);
+    s.update(1.0, rhs, -1.0);  // r - Pi (A + K) Pi y_p
+    static const auto cgTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: CG");
+    std::unique_ptr<Teuchos::TimeMonitor> cgTime(new Teuchos::TimeMonitor(*cgTimer));
+    const int cg = faceConjugateGradients(s, eta * rhs.norm2(), maxPCG, Az);
+    cgTime.reset();
+    st.inner_iterations += cg;
+    y_.update(1.0, yp, 1.0);  // y = y_p + z
+    Az.update(1.0, Ayp, 1.0);  // A y
+    s.assign(Az);
+    addCurvature(y_, s);
+    project(s);
+    s.update(1.0, rhs, -1.0);  // r - Pi (A + K) Pi y
+    applyT(s, wd);             // G'dmu
+    d_.update(1.0, y_, 1.0);
+    Ad.update(1.0, Ad0, 1.0, Az, 0.0);
+    dv.update(1.0, Ad, 1.0, wd, 0.0);
+    static const auto lsTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: line search");
+    Teuchos::TimeMonitor lsTime(*lsTimer);
+    bool accepted = false;
+    const double t = lineSearch(x, nPhi, d_, dv, accepted);
+    if (!accepted) ++lineSearchFailures;
+    if (!out_.is_null())
+      *out_ << "  step: " << cg << " CG iterations (eta " << eta << "), step length " << t << (accepted ? "" : " (no Armijo step)")
+            << "\n";
+    x.assign(xt_);
+    v_.assign(vt_);
+    w_.update(t, wd, 1.0);
+    ++sinceExact;
+    st.outer_iterations = it + 1;
+  }
+  const std::vector<SC> g = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
+  dual_.constraintSet(g).project(x);
+  st.slipBound = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
+  st.n_A = n_A_;
+  st.n_A_qpp = n_A_;
+  if (lineSearchFailures > 0) st.reason += " (" + std::to_string(lineSearchFailures) + " line-search failures)";
+  // mu = G w for G with orthonormal rows (w lies in range G').
+  RCP<Vector> mu;
+  if (!G_.is_null()) {
+    mu = rcp(new Vector(G_->rangeMap()));
+    G_->apply(w_, *mu);
+  }
+  final = {mu, rho_};
+  return st;
+}
+
+FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
+  const auto start = std::chrono::steady_clock::now();
+  FrictionStatus st;
+  const double normRB = std::max(r_ * dual_.normB(), 1e-300);
+  const double tol = params_.get<double>("Relative Tolerance");
+  const int maxIter = params_.get<int>("Maximum Iterations");
+  const int maxPCG = params_.get<int>("Maximum CG Iterations");
+  const double etaMax = params_.get<double>("Maximum Forcing Term");
   const double multiplierRatio = params_.get<double>("Multiplier Update Ratio");
   const int stallSteps = params_.get<int>("Stall Steps");
   const int exactEvery = params_.get<int>("Exact Velocity Steps");
@@ -327,31 +645,14 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
                   " steps)";
       break;
     }
-    // Forcing term (Eisenstat-Walker, choice 2, gamma = 0.9), safeguarded, and
-    // no tighter than the final tolerance needs.
-    if (previous > 0) {
-      const double ew = 0.9 * (nPhi / previous) * (nPhi / previous), guard = 0.9 * eta * eta;
-      eta = std::min(etaMax, guard > 0.1 ? std::max(ew, guard) : ew);
-    }
-    eta = std::max(eta, 0.5 * tol * normRB / std::max(nPhi, 1e-300));
-    eta = std::min(eta, etaMax);
+    eta = forcingTerm(eta, nPhi, previous, etaMax, 0.5 * tol * normRB);
     previous = nPhi;
     // The step: d = d0 + y.
     linearize(x, v_);
     Vector Hd0(map_), rhs(map_);
     const bool anyFixed = d_.normInf() > 0;
     if (anyFixed) applyH(d_, Hd0);
-    {
-      auto rv = rhs.getDataNonConst();
-      const auto vv = v_.getData(), hv = Hd0.getData();
-      for (size_t i = 0; i < rv.size(); ++i) rv[i] = -vv[i] - hv[i];
-      const auto& contacts = ac_->contacts();
-      for (size_t k = 0; k < contacts.size(); ++k) {
-        int rows[3];
-        for (int i = 0, m = rowsOf(contacts[k], rows); i < m; ++i) rv[rows[i]] = steps_[k].rhs[i] - hv[rows[i]];
-      }
-    }
-    project(rhs);
+    freeRightHandSide(Hd0, rhs);
     static const auto cgTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: CG");
     std::unique_ptr<Teuchos::TimeMonitor> cgTime(new Teuchos::TimeMonitor(*cgTimer));
     const int cg = conjugateGradients(rhs, eta, maxPCG, Hd_);
@@ -361,20 +662,8 @@ FrictionStatus NewtonSolve::run(Vector& x, WarmStart& final) {
     st.inner_iterations += cg;
     Hd_.update(1.0, Hd0, 1.0);
     d_.update(1.0, y_, 1.0);
-    // Armijo backtracking on psi = 1/2 ||Phi||^2 (v is affine in x: no H).
-    const double psi = 0.5 * nPhi * nPhi;
-    double t = 1.0;
     bool accepted = false;
-    for (int k = 0; k <= (armijo ? maxBack : 0); ++k) {
-      xt_.update(1.0, x, t, d_, 0.0);
-      vt_.update(1.0, v_, t, Hd_, 0.0);
-      const double n = phiNorm(xt_, vt_);
-      if (!armijo || 0.5 * n * n <= (1.0 - 2.0 * sigma * t) * psi) {
-        accepted = true;
-        break;
-      }
-      if (k < maxBack) t *= beta;
-    }
+    const double t = lineSearch(x, nPhi, d_, Hd_, accepted);
     if (!accepted) ++lineSearchFailures;
     if (!out_.is_null())
       *out_ << "  step: " << cg << " CG iterations (eta " << eta << "), step length " << t << (accepted ? "" : " (no Armijo step)")

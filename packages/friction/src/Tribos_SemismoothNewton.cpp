@@ -291,11 +291,23 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             "directions, Tribos_NewtonPCG.hpp), or Auto: Dense LU for an explicit matrix (FCLIB) and for a dual of "
             "at most Dense Limit rows, Projected CG above",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Auto", "Dense LU", "Projected CG"))));
-    pl->set("Preconditioner", "None",
-            "Projected CG: the dual problem's preconditioner by name (FETI: Lumped or Dirichlet), or None. FETI's "
-            "preconditioners approximate the inverse of the whole dual operator, not of its restriction to the "
-            "free directions of a Newton step, and cost more than they save there (docs/semismooth.md)",
-            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("None", "Lumped", "Dirichlet"))));
+    pl->set("Preconditioner", "Slip Curvature",
+            "Projected CG: Slip Curvature (||A|| (||A|| I + K)^-1 on the contact rows, K the curvature of the "
+            "slipping contacts' disks, which grows without bound where the slip bound is small against the slip "
+            "and makes the Newton systems ill-conditioned), None, or the dual problem's preconditioner by name "
+            "(FETI: Lumped or Dirichlet; they approximate the inverse of the whole dual operator, not of its "
+            "restriction to the free directions of a Newton step, and cost more than they save there, "
+            "docs/semismooth.md)",
+            rcp(new Teuchos::StringValidator(
+                Teuchos::tuple<std::string>("Slip Curvature", "None", "Lumped", "Dirichlet"))));
+    pl->set("Equality Constraint", "Auto",
+            "Projected CG: how the Newton steps hold G x = 0. Face Projection: mu is an unknown of each step, "
+            "whose direction is kept in ker G by projected CG with the projector onto ker(G Pi), Pi the free "
+            "directions (G Pi G' factored per step); Augmented Lagrangian: H = A + rho G'G and mu updated "
+            "after each step (Penalty, Penalty Balancing, Maximum Penalty, Multiplier Update Ratio). Auto: Face "
+            "Projection when the constraint forms G Pi G' (FETI's coarse space), else Augmented Lagrangian",
+            rcp(new Teuchos::StringValidator(
+                Teuchos::tuple<std::string>("Auto", "Face Projection", "Augmented Lagrangian"))));
     pl->set("Penalty", 1.0,
             "Projected CG: the augmented Lagrangian's rho of G x = 0, as a multiple of ||A||", range<double>(1e-6, 1e6));
     pl->set("Penalty Balancing", 5.0,

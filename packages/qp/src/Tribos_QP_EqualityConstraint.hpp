@@ -2,10 +2,32 @@
 // G mapping dual vectors to (small) coarse vectors.
 #pragma once
 
+#include "Tribos_LocalCsr.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
 namespace QP {
+
+// G on a face of the feasible set: with Pi the orthogonal projector onto the
+// free directions (every direction but a few fixed ones, each a unit
+// combination of a few rows of x), the operator
+//   T(u) = G'(G Pi G')^-1 G u.
+// T depends on the row space of G only, so G and G with orthonormalized rows
+// give the same T. u - Pi T(u) is the orthogonal projector onto
+// ker(G Pi) within range Pi, and for a right-hand side r in range Pi,
+// T(r - Pi A Pi y) is G'mu, the multiplier of the face problem
+// (docs/semismooth.md, "The equality constraint on the face").
+class FaceConstraint {
+ public:
+  virtual ~FaceConstraint() = default;
+  // The fixed directions: one row of `fixed` per direction, its columns the
+  // local rows of x (unit rows; directions on different ranks are
+  // independent). Factors G Pi G'. Collective. false: G Pi G' is singular
+  // (the free directions do not hold every motion that the rows of G hold).
+  virtual bool setFixedDirections(const LocalCsr& fixed) = 0;
+  // Tu = G'(G Pi G')^-1 G u. Collective.
+  virtual void apply(const Vector& u, Vector& Tu) const = 0;
+};
 
 class EqualityConstraint {
  public:
@@ -13,6 +35,8 @@ class EqualityConstraint {
   virtual RCP<const Map> rangeMap() const = 0;
   virtual void apply(const Vector& x, Vector& Gx) const = 0;
   virtual void applyTranspose(const Vector& y, Vector& Gty) const = 0;
+  // A new FaceConstraint of this G, or null when G cannot form G Pi G'.
+  virtual RCP<FaceConstraint> face() const { return Teuchos::null; }
 };
 
 // G given as an explicit matrix: row map = coarse map, domain map = x map.
