@@ -327,3 +327,76 @@ TEUCHOS_UNIT_TEST(RankIndependence, CoulombAlgorithm2) {
   out << "Coulomb Algorithm2 on " << comm->getSize() << " ranks vs 1: " << dr << "\n";
   TEST_COMPARE(dr, <, 1e-6);
 }
+
+// G on a face (QP::FaceConstraint of FETI's coarse space): with Pi the
+// projector onto the complement of a few fixed directions of contact rows,
+// T(u) = G'(G Pi G')^-1 G u is the operator with range in range G' and
+// G Pi T(u) = G u, and it is symmetric.
+TEUCHOS_UNIT_TEST(CoarseFace, InvertsGPiGtOnRangeG) {
+  auto comm = Tpetra::getDefaultComm();
+  auto disc = makeDisc(*comm);
+  Contact::ContactSpec contact;
+  contact.enabled = true;
+  const Setup s;
+  auto problem = rcp(new Feti::FetiProblem(disc, kSteel, loads(s), Contact::faceContactConstraints(disc, contact, comm),
+                                           Teuchos::ParameterList(), comm));
+  Contact::FrictionSpec fs;
+  fs.law = FrictionLaw::Coulomb;
+  fs.coefficient = 0.3;
+  Contact::FetiContactProblem cp(rcp(new Feti::FetiDual(problem)), fs);
+  const Friction::ContactDual& dual = cp.contactDual();
+  TEST_ASSERT(!dual.G.is_null());
+  auto face = dual.G->face();
+  TEST_ASSERT(!face.is_null());
+  // Fixed: the normal of every other contact, a tangential combination
+  // (0.6, 0.8) of the others.
+  LocalCsr fixed;
+  fixed.cols = static_cast<int>(dual.map()->getNodeNumElements());
+  for (int k = 0; k < dual.numLocalContacts(); ++k) {
+    if (k % 2 == 0) {
+      fixed.col.push_back(dual.normalRows[k]), fixed.val.push_back(1.0);
+    } else {
+      fixed.col.push_back(dual.tangentRows[2 * k]), fixed.val.push_back(0.6);
+      fixed.col.push_back(dual.tangentRows[2 * k + 1]), fixed.val.push_back(0.8);
+    }
+    fixed.rowptr.push_back(static_cast<int>(fixed.col.size()));
+    ++fixed.rows;
+  }
+  TEST_ASSERT(face->setFixedDirections(fixed));
+  auto removeFixed = [&](const Vector& u, Vector& Piu) {  // Pi u
+    Piu.assign(u);
+    auto v = Piu.getDataNonConst();
+    for (int q = 0; q < fixed.rows; ++q) {
+      double c = 0;
+      for (int j = fixed.rowptr[q]; j < fixed.rowptr[q + 1]; ++j) c += fixed.val[j] * v[fixed.col[j]];
+      for (int j = fixed.rowptr[q]; j < fixed.rowptr[q + 1]; ++j) v[fixed.col[j]] -= c * fixed.val[j];
+    }
+  };
+  Vector u(dual.map()), w(dual.map()), Tu(dual.map()), Tw(dual.map()), PiTu(dual.map()), back(dual.map());
+  u.randomize();
+  w.randomize();
+  face->apply(u, Tu);
+  face->apply(w, Tw);
+  Vector Gu(dual.G->rangeMap()), GPiTu(dual.G->rangeMap()), GTu(dual.G->rangeMap());
+  // G Pi T u = G u.
+  removeFixed(Tu, PiTu);
+  dual.G->apply(u, Gu);
+  dual.G->apply(PiTu, GPiTu);
+  GPiTu.update(-1.0, Gu, 1.0);
+  out << "||G Pi T u - G u|| / ||G u|| = " << GPiTu.norm2() / Gu.norm2() << "\n";
+  TEST_COMPARE(GPiTu.norm2(), <, 1e-10 * Gu.norm2());
+  // T u in range G' (G has orthonormal rows: G'G T u = T u).
+  dual.G->apply(Tu, GTu);
+  dual.G->applyTranspose(GTu, back);
+  back.update(-1.0, Tu, 1.0);
+  TEST_COMPARE(back.norm2(), <, 1e-10 * Tu.norm2());
+  // Symmetric.
+  const double a = Tu.dot(w), b = u.dot(Tw);
+  TEST_COMPARE(std::abs(a - b), <, 1e-10 * std::abs(a));
+  // No fixed direction: T = G'G.
+  TEST_ASSERT(face->setFixedDirections(LocalCsr{}));
+  face->apply(u, Tu);
+  dual.G->applyTranspose(Gu, back);
+  back.update(-1.0, Tu, 1.0);
+  TEST_COMPARE(back.norm2(), <, 1e-10 * Tu.norm2());
+}
