@@ -138,9 +138,9 @@ class NewtonSolve {
       int rows[3];
       for (int i = 0, m = rowsOf(c, rows); i < m; ++i) isContactRow_[rows[i]] = 1;
     }
-    const std::string equality = params.get<std::string>("Equality Constraint");
-    if (equality != "Augmented Lagrangian" && !G_.is_null()) face_ = G_->face();
-    TRIBOS_REQUIRE(equality != "Face Projection" || G_.is_null() || !face_.is_null(),
+    const bool faceProjection = params.get<std::string>("Equality Constraint") == "Face Projection";
+    if (faceProjection && !G_.is_null()) face_ = G_->face();
+    TRIBOS_REQUIRE(!faceProjection || G_.is_null() || !face_.is_null(),
                    "Semismooth Newton: Equality Constraint = Face Projection needs an equality constraint that "
                    "forms G Pi G' (FETI's coarse space); this one does not");
     if (!G_.is_null() && !warm.equalityMultiplier.is_null() &&
@@ -148,10 +148,10 @@ class NewtonSolve {
       warmMultiplier_ = warm.equalityMultiplier;
   }
 
-  // The augmented Lagrangian method, or the face projection when G can
-  // form G Pi G' (or there is no G).
+  // The augmented Lagrangian method, or (Equality Constraint = Face
+  // Projection) the face projection.
   FrictionStatus run(Vector& x, WarmStart& final) {
-    return face_.is_null() && !G_.is_null() ? runAugmented(x, final) : runFace(x, final);
+    return face_.is_null() ? runAugmented(x, final) : runFace(x, final);
   }
 
  private:
