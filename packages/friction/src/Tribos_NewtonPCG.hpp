@@ -24,10 +24,15 @@
 // every other row is free. With Pi the orthogonal projector onto the free
 // directions and d = d0 + y (d0 the fixed part), y solves
 //   Pi (H + K) Pi y = Pi (rhs - H d0)
-// by preconditioned CG with Pi (M + (I - P)/rho) Pi, to a relative residual
+// by preconditioned CG (by default with the slip curvature scaling
+// ||A|| (||A|| I + K)^-1), to a relative residual
 // eta_k (Eisenstat-Walker, choice 2, safeguarded), and the step length comes
-// from Armijo backtracking on psi = 1/2 ||Phi||^2, which costs no
+// from nonmonotone Armijo backtracking on psi = 1/2 ||Phi||^2, which costs no
 // application of H (v is linear in x).
+//
+// Equality Constraint = Face Projection holds G x = 0 instead by making mu
+// an unknown of each step, whose direction stays in ker G (projected CG
+// with the projector onto ker(G Pi), QP::FaceConstraint).
 //
 // Stops when ||(Phi(x), G x)|| <= tol ||r b||, r = rho Factor / ||A||, the
 // measure of the dense variant with one r for every row.
