@@ -536,7 +536,11 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
       break;
     }
     eta = forcingTerm(eta, nPhi, previous, etaMax, 0.5 * tol * normRB);
-    previous = nPhi;
+    // The first step's reduction (10-15 from rest, where the first system
+    // is close to a linear solve) says nothing of the local rate: Eisenstat
+    // and Walker's ratio starts after it, or it would ask the second system
+    // for eta ~ 5e-3.
+    previous = it == 0 ? -1.0 : nPhi;
     // The Newton system on the face: d = d0 + y, y in range Pi with
     //   Pi (A + K) Pi y + Pi G'dmu = r,  G Pi y = -G (x + d0),
     // y = y_p + z with the particular y_p = -Pi T(x + d0) and z in
@@ -655,7 +659,11 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
       break;
     }
     eta = forcingTerm(eta, nPhi, previous, etaMax, 0.5 * tol * normRB);
-    previous = nPhi;
+    // The first step's reduction (10-15 from rest, where the first system
+    // is close to a linear solve) says nothing of the local rate: Eisenstat
+    // and Walker's ratio starts after it, or it would ask the second system
+    // for eta ~ 5e-3.
+    previous = it == 0 ? -1.0 : nPhi;
     // The step: d = d0 + y.
     linearize(x, v_);
     Vector Hd0(map_), rhs(map_);
