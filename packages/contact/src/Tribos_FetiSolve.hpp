@@ -49,7 +49,7 @@ struct FetiSolveResult : SolveResult {
 // names a law need not name an algorithm too: for Coulomb friction where the
 // Dirichlet conditions hold every body (heldByDirichlet: the equality rows of
 // the dual hold every rigid motion) the matrix-free Semismooth Newton, which
-// takes from 0.35 to 0.8 of Algorithm 2's applications of F from rest on
+// takes from 0.28 to 0.74 of Algorithm 2's applications of F from rest on
 // the seed brick up to a million dofs, and a fraction of them in a load
 // step that starts near its solution (docs/semismooth.md); Algorithm2 on a
 // body that its contact alone holds (where the matrix-free Newton stalls);

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <memory>
@@ -178,6 +179,25 @@ class NewtonSolve {
 
   FrictionStatus runAugmented(Vector& x, WarmStart& final);
   FrictionStatus runFace(Vector& x, WarmStart& final);
+  // The state of the Newton iteration that both ways of holding G x = 0
+  // share.
+  struct Iteration {
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    int sinceExact = 0;        // steps since v was last computed from x, not carried by v + t dv
+    double previous = -1;      // ||Phi|| of the step before (-1: none counts)
+    double eta = 0;            // the forcing term
+    double nPhi = 0;           // ||Phi|| at x
+    int lineSearchFailures = 0;
+  };
+  // The head of step it: the measure at (x, v_), v_ recomputed from x by
+  // exactVelocity when due; the report; the stopping tests; the forcing
+  // term. false: the iteration ends (st says why).
+  bool beginStep(int it, const Vector& x, const std::function<void(Vector&)>& exactVelocity, Iteration& iter,
+                 FrictionStatus& st);
+  // The report of a step taken.
+  void reportStep(int cg, const Iteration& iter, double t, bool accepted) const;
+  // The end of the iteration: x into the feasible set, the counts.
+  void finish(Vector& x, const Iteration& iter, FrictionStatus& st) const;
   // The Eisenstat-Walker forcing term of the next step from ||Phi|| now and
   // before (previous <= 0: the first step keeps eta).
   static double forcingTerm(double eta, double nPhi, double previous, double etaMax, double floor);
@@ -488,65 +508,89 @@ int NewtonSolve::faceConjugateGradients(const Vector& r, double stop, int maxIte
   return it;
 }
 
-FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
-  const auto start = std::chrono::steady_clock::now();
-  FrictionStatus st;
+bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Vector&)>& exactVelocity,
+                            Iteration& iter, FrictionStatus& st) {
   const double normRB = std::max(r_ * dual_.normB(), 1e-300);
   const double tol = params_.get<double>("Relative Tolerance");
-  const int maxIter = params_.get<int>("Maximum Iterations");
-  const int maxPCG = params_.get<int>("Maximum CG Iterations");
-  const double etaMax = params_.get<double>("Maximum Forcing Term");
   const int stallSteps = params_.get<int>("Stall Steps");
-  const int exactEvery = params_.get<int>("Exact Velocity Steps");
+  iter.nPhi = phiNorm(x, v_);
+  const double nGx = normGx(x);
+  double measure = std::hypot(iter.nPhi, nGx) / normRB;
+  // v carried as v + t dv drifts from its definition by round-off and by
+  // the inexact CG's A d: recompute it every Exact Velocity Steps steps and
+  // before the stopping test is believed, so that converged speaks of the
+  // iterate, not of the recurrence.
+  if (iter.sinceExact > 0 && (iter.sinceExact >= params_.get<int>("Exact Velocity Steps") || measure <= tol)) {
+    exactVelocity(v_);
+    iter.sinceExact = 0;
+    iter.nPhi = phiNorm(x, v_);
+    measure = std::hypot(iter.nPhi, nGx) / normRB;
+  }
+  st.norm_gP = iter.nPhi / r_;
+  st.norm_Gx = nGx;
+  st.n_A = n_A_;
+  if (!out_.is_null())
+    *out_ << "Newton PCG " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << measure
+          << "  ||Phi|| " << iter.nPhi << "  ||G x|| " << nGx << "  eta " << iter.eta << "  n_A " << n_A_ << "\n";
+  if (newtonStepEnds(st, it, measure, nGx / normRB, tol, params_.get<int>("Maximum Iterations"), iter.start))
+    return false;
+  // A linear rate of 0.5-0.7 per step gains far more than a factor 2
+  // over Stall Steps steps; less is a stall (a body held by its contact
+  // alone, docs/semismooth.md), which a caller may hand to another method.
+  if (it >= stallSteps && measure > 0.5 * st.history[it - stallSteps]) {
+    st.reason = "Semismooth Newton: stalled (the measure fell by less than 2 over " + std::to_string(stallSteps) +
+                " steps)";
+    return false;
+  }
+  iter.eta = forcingTerm(iter.eta, iter.nPhi, iter.previous, params_.get<double>("Maximum Forcing Term"),
+                         0.5 * tol * normRB);
+  // The first step's reduction (10-15 from rest, where the first system
+  // is close to a linear solve) says nothing of the local rate: Eisenstat
+  // and Walker's ratio starts after it, or it would ask the second system
+  // for eta ~ 5e-3.
+  iter.previous = it == 0 ? -1.0 : iter.nPhi;
+  return true;
+}
+
+void NewtonSolve::reportStep(int cg, const Iteration& iter, double t, bool accepted) const {
+  if (!out_.is_null())
+    *out_ << "  step: " << cg << " CG iterations (eta " << iter.eta << "), step length " << t
+          << (accepted ? "" : " (no Armijo step)") << "\n";
+}
+
+void NewtonSolve::finish(Vector& x, const Iteration& iter, FrictionStatus& st) const {
+  // The feasible set: a converged Phi leaves x in it up to the tolerance.
+  const std::vector<SC> g = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
+  dual_.constraintSet(g).project(x);
+  st.slipBound = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
+  st.n_A = n_A_;
+  st.n_A_qpp = n_A_;
+  if (iter.lineSearchFailures > 0)
+    st.reason += " (" + std::to_string(iter.lineSearchFailures) + " line-search failures)";
+}
+
+FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
+  FrictionStatus st;
+  Iteration iter;
+  iter.eta = params_.get<double>("Maximum Forcing Term");
+  const int maxPCG = params_.get<int>("Maximum CG Iterations");
   // v = A x - b + w with w = G'mu: mu is an unknown of the Newton steps,
   // and every step keeps G x = 0 (its direction lies in ker G).
   w_.putScalar(0.0);
   if (!warmMultiplier_.is_null()) G_->applyTranspose(*warmMultiplier_, w_);
-  auto velocityAt = [&](const Vector& at, Vector& v) {
-    applyA(at, v);
+  auto velocityAt = [&](Vector& v) {
+    applyA(x, v);
     v.update(-1.0, *dual_.b, 1.0, w_, 1.0);
   };
-  velocityAt(x, v_);
+  velocityAt(v_);
   Vector Ad0(map_), rhs(map_), yp(map_), Ayp(map_), Az(map_), s(map_), wd(map_), Ad(map_), dv(map_);
-  int sinceExact = 0;
-  double previous = -1, eta = etaMax;
-  int lineSearchFailures = 0;
-  for (int it = 0;; ++it) {
-    double nPhi = phiNorm(x, v_);
-    const double nGx = normGx(x);
-    double measure = std::hypot(nPhi, nGx) / normRB;
-    // v carried as v + t (A d + G'dmu) drifts from A x - b + w by
-    // round-off and by the inexact CG: recompute it as in runAugmented.
-    if (sinceExact > 0 && (sinceExact >= exactEvery || measure <= tol)) {
-      velocityAt(x, v_);
-      sinceExact = 0;
-      nPhi = phiNorm(x, v_);
-      measure = std::hypot(nPhi, nGx) / normRB;
-    }
-    st.norm_gP = nPhi / r_;
-    st.norm_Gx = nGx;
-    st.n_A = n_A_;
-    if (!out_.is_null())
-      *out_ << "Newton PCG " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << measure
-            << "  ||Phi|| " << nPhi << "  ||G x|| " << nGx << "  eta " << eta << "  n_A " << n_A_ << "\n";
-    if (newtonStepEnds(st, it, measure, nGx / normRB, tol, maxIter, start)) break;
-    if (it >= stallSteps && measure > 0.5 * st.history[it - stallSteps]) {
-      st.reason = "Semismooth Newton: stalled (the measure fell by less than 2 over " + std::to_string(stallSteps) +
-                  " steps)";
-      break;
-    }
-    eta = forcingTerm(eta, nPhi, previous, etaMax, 0.5 * tol * normRB);
-    // The first step's reduction (10-15 from rest, where the first system
-    // is close to a linear solve) says nothing of the local rate: Eisenstat
-    // and Walker's ratio starts after it, or it would ask the second system
-    // for eta ~ 5e-3.
-    previous = it == 0 ? -1.0 : nPhi;
+  for (int it = 0; beginStep(it, x, velocityAt, iter, st); ++it) {
     // The Newton system on the face: d = d0 + y, y in range Pi with
     //   Pi (A + K) Pi y + Pi G'dmu = r,  G Pi y = -G (x + d0),
     // y = y_p + z with the particular y_p = -Pi T(x + d0) and z in
     // ker(G Pi) by projected CG; then G'dmu = T(r - Pi (A + K) Pi y).
     linearize(x, v_);
-    if (!face_.is_null() && !face_->setFixedDirections(fixedDirections())) {
+    if (!face_->setFixedDirections(fixedDirections())) {
       st.reason = "Semismooth Newton: the free directions of a Newton step do not hold every rigid motion "
                   "(G Pi G' is singular)";
       break;
@@ -566,10 +610,10 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
     s.update(1.0, rhs, -1.0);  // r - Pi (A + K) Pi y_p
     static const auto cgTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: CG");
     std::unique_ptr<Teuchos::TimeMonitor> cgTime(new Teuchos::TimeMonitor(*cgTimer));
-    const int cg = faceConjugateGradients(s, eta * rhs.norm2(), maxPCG, Az);
+    const int cg = faceConjugateGradients(s, iter.eta * rhs.norm2(), maxPCG, Az);
     cgTime.reset();
     st.inner_iterations += cg;
-    y_.update(1.0, yp, 1.0);  // y = y_p + z
+    y_.update(1.0, yp, 1.0);   // y = y_p + z
     Az.update(1.0, Ayp, 1.0);  // A y
     s.assign(Az);
     addCurvature(y_, s);
@@ -582,88 +626,37 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
     static const auto lsTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: line search");
     Teuchos::TimeMonitor lsTime(*lsTimer);
     bool accepted = false;
-    const double t = lineSearch(x, nPhi, d_, dv, accepted);
-    if (!accepted) ++lineSearchFailures;
-    if (!out_.is_null())
-      *out_ << "  step: " << cg << " CG iterations (eta " << eta << "), step length " << t << (accepted ? "" : " (no Armijo step)")
-            << "\n";
+    const double t = lineSearch(x, iter.nPhi, d_, dv, accepted);
+    if (!accepted) ++iter.lineSearchFailures;
+    reportStep(cg, iter, t, accepted);
     x.assign(xt_);
     v_.assign(vt_);
     w_.update(t, wd, 1.0);
-    ++sinceExact;
+    ++iter.sinceExact;
     st.outer_iterations = it + 1;
   }
-  const std::vector<SC> g = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
-  dual_.constraintSet(g).project(x);
-  st.slipBound = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
-  st.n_A = n_A_;
-  st.n_A_qpp = n_A_;
-  if (lineSearchFailures > 0) st.reason += " (" + std::to_string(lineSearchFailures) + " line-search failures)";
+  finish(x, iter, st);
   // mu = G w for G with orthonormal rows (w lies in range G').
-  RCP<Vector> mu;
-  if (!G_.is_null()) {
-    mu = rcp(new Vector(G_->rangeMap()));
-    G_->apply(w_, *mu);
-  }
+  auto mu = rcp(new Vector(G_->rangeMap()));
+  G_->apply(w_, *mu);
   final = {mu, rho_};
   return st;
 }
 
 FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
-  const auto start = std::chrono::steady_clock::now();
   FrictionStatus st;
-  const double normRB = std::max(r_ * dual_.normB(), 1e-300);
-  const double tol = params_.get<double>("Relative Tolerance");
-  const int maxIter = params_.get<int>("Maximum Iterations");
+  Iteration iter;
+  iter.eta = params_.get<double>("Maximum Forcing Term");
   const int maxPCG = params_.get<int>("Maximum CG Iterations");
-  const double etaMax = params_.get<double>("Maximum Forcing Term");
   const double multiplierRatio = params_.get<double>("Multiplier Update Ratio");
-  const int stallSteps = params_.get<int>("Stall Steps");
-  const int exactEvery = params_.get<int>("Exact Velocity Steps");
   // Limits with a little slack, so that rho0 * 2^k hits them exactly.
   const QP::RhoBalancing balancing{params_.get<double>("Penalty Balancing"), 2.0,
                                    params_.get<double>("Penalty") * normA_ * (1 - 1e-12),
                                    params_.get<double>("Maximum Penalty") * normA_ * (1 + 1e-12)};
-
-  velocity(x, v_);
-  int sinceExact = 0;  // steps since v was last computed from x, not carried by v + t H d
-  double previous = -1, eta = etaMax;
-  int lineSearchFailures = 0;
-  for (int it = 0;; ++it) {
-    double nPhi = phiNorm(x, v_);
-    const double nGx = normGx(x);
-    double measure = std::hypot(nPhi, nGx) / normRB;
-    // v carried as v + t H d (and + rho G'G x) drifts from H x - (b - G'mu)
-    // by round-off and by the inexact CG's H d: recompute it every Exact
-    // Velocity Steps steps and before the stopping test is believed, so that
-    // converged speaks of the iterate, not of the recurrence.
-    if (sinceExact > 0 && (sinceExact >= exactEvery || measure <= tol)) {
-      velocity(x, v_);
-      sinceExact = 0;
-      nPhi = phiNorm(x, v_);
-      measure = std::hypot(nPhi, nGx) / normRB;
-    }
-    st.norm_gP = nPhi / r_;
-    st.norm_Gx = nGx;
-    st.n_A = n_A_;
-    if (!out_.is_null())
-      *out_ << "Newton PCG " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << measure
-            << "  ||Phi|| " << nPhi << "  ||G x|| " << nGx << "  eta " << eta << "  n_A " << n_A_ << "\n";
-    if (newtonStepEnds(st, it, measure, nGx / normRB, tol, maxIter, start)) break;
-    // A linear rate of 0.5-0.7 per step gains far more than a factor 2
-    // over Stall Steps steps; less is a stall (a body held by its contact
-    // alone, docs/semismooth.md), which a caller may hand to another method.
-    if (it >= stallSteps && measure > 0.5 * st.history[it - stallSteps]) {
-      st.reason = "Semismooth Newton: stalled (the measure fell by less than 2 over " + std::to_string(stallSteps) +
-                  " steps)";
-      break;
-    }
-    eta = forcingTerm(eta, nPhi, previous, etaMax, 0.5 * tol * normRB);
-    // The first step's reduction (10-15 from rest, where the first system
-    // is close to a linear solve) says nothing of the local rate: Eisenstat
-    // and Walker's ratio starts after it, or it would ask the second system
-    // for eta ~ 5e-3.
-    previous = it == 0 ? -1.0 : nPhi;
+  // v = H x - (b - G'mu), carried as v + t H d (and + rho G'G x).
+  auto velocityAt = [&](Vector& v) { velocity(x, v); };
+  velocityAt(v_);
+  for (int it = 0; beginStep(it, x, velocityAt, iter, st); ++it) {
     // The step: d = d0 + y.
     linearize(x, v_);
     Vector Hd0(map_), rhs(map_);
@@ -672,7 +665,7 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
     freeRightHandSide(Hd0, rhs);
     static const auto cgTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: CG");
     std::unique_ptr<Teuchos::TimeMonitor> cgTime(new Teuchos::TimeMonitor(*cgTimer));
-    const int cg = conjugateGradients(rhs, eta, maxPCG, Hd_);
+    const int cg = conjugateGradients(rhs, iter.eta, maxPCG, Hd_);
     cgTime.reset();
     static const auto lsTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: line search");
     Teuchos::TimeMonitor lsTime(*lsTimer);
@@ -680,11 +673,9 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
     Hd_.update(1.0, Hd0, 1.0);
     d_.update(1.0, y_, 1.0);
     bool accepted = false;
-    const double t = lineSearch(x, nPhi, d_, Hd_, accepted);
-    if (!accepted) ++lineSearchFailures;
-    if (!out_.is_null())
-      *out_ << "  step: " << cg << " CG iterations (eta " << eta << "), step length " << t << (accepted ? "" : " (no Armijo step)")
-            << "\n";
+    const double t = lineSearch(x, iter.nPhi, d_, Hd_, accepted);
+    if (!accepted) ++iter.lineSearchFailures;
+    reportStep(cg, iter, t, accepted);
     x.assign(xt_);
     v_.assign(vt_);
     // The multiplier of G x = 0: mu <- mu + rho G x moves b - G'mu by
@@ -711,16 +702,10 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
         rho_ = rhoNew;
       }
     }
-    ++sinceExact;
+    ++iter.sinceExact;
     st.outer_iterations = it + 1;
   }
-  // The feasible set: a converged Phi leaves x in it up to the tolerance.
-  const std::vector<SC> g = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
-  dual_.constraintSet(g).project(x);
-  st.slipBound = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
-  st.n_A = n_A_;
-  st.n_A_qpp = n_A_;
-  if (lineSearchFailures > 0) st.reason += " (" + std::to_string(lineSearchFailures) + " line-search failures)";
+  finish(x, iter, st);
   final = {rcp(new Vector(*al_.multiplier(), Teuchos::Copy)), rho_};
   return st;
 }
