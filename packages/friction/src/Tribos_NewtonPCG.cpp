@@ -231,9 +231,6 @@ class NewtonSolve {
   // z = P_F Pi M Pi P_F w, M the preconditioner or the curvature scaling
   // (w with neither).
   void facePrecondition(const Vector& w, Vector& z);
-  // PCG on P_F Pi (A + K) Pi z = P_F r from z = 0 to ||res|| <= stop: z in
-  // y_, A z in Az. Returns the iterations.
-  int faceConjugateGradients(const Vector& r, double stop, int maxIter, Vector& Az);
   Vector Tu_{map_}, w_{map_};  // T's work vector; w = G'mu (runFace)
 
   void applyH(const Vector& p, Vector& Hp) {
@@ -256,9 +253,13 @@ class NewtonSolve {
   void addCurvature(const Vector& p, Vector& y) const;
   // z = Pi (M + (I - P) / rho) Pi w.
   void precondition(const Vector& w, Vector& z);
-  // PCG on Pi (H + K) Pi y = rhs from y = 0 to ||res|| <= eta ||rhs||; y_ and
-  // its H y into Hy. Returns the iterations.
-  int conjugateGradients(const Vector& rhs, double eta, int maxIter, Vector& Hy);
+  // The system operator of a CG solve: p -> q, with A p (or H p) in Ap for
+  // the recurrence of A y.
+  using SystemOperator = std::function<void(const Vector& p, Vector& Ap, Vector& q)>;
+  // PCG from y = 0 on q = system(p) until ||res|| <= stop, res the initial
+  // residual (overwritten); y in y_, A y in Ay. Returns the iterations.
+  int conjugateGradients(Vector& res, double stop, int maxIter, Vector& Ay, const SystemOperator& system,
+                         const std::function<void(const Vector&, Vector&)>& precondition);
 };
 
 double NewtonSolve::phiNorm(const Vector& x, const Vector& v) const {
@@ -342,25 +343,22 @@ void NewtonSolve::precondition(const Vector& w, Vector& z) {
   project(z);
 }
 
-int NewtonSolve::conjugateGradients(const Vector& rhs, double eta, int maxIter, Vector& Hy) {
-  Vector res(rhs, Teuchos::Copy), z(map_), p(map_), Hp(map_), q(map_);
+int NewtonSolve::conjugateGradients(Vector& res, double stop, int maxIter, Vector& Ay, const SystemOperator& system,
+                                    const std::function<void(const Vector&, Vector&)>& precondition) {
+  Vector z(map_), p(map_), Ap(map_), q(map_);
   y_.putScalar(0.0);
-  Hy.putScalar(0.0);
-  const double stop = eta * rhs.norm2();
+  Ay.putScalar(0.0);
   precondition(res, z);
   p.assign(z);
   double rz = res.dot(z);
   int it = 0;
   while (it < maxIter && res.norm2() > stop) {
-    applyH(p, Hp);
-    q.assign(Hp);
-    addCurvature(p, q);
-    project(q);
+    system(p, Ap, q);
     const double pq = p.dot(q);
-    if (!(pq > 0)) break;  // Pi (H + K) Pi is positive definite on range Pi: only round-off gets here
+    if (!(pq > 0)) break;  // positive definite on the subspace CG runs in: only round-off gets here
     const double alpha = rz / pq;
     y_.update(alpha, p, 1.0);
-    Hy.update(alpha, Hp, 1.0);
+    Ay.update(alpha, Ap, 1.0);
     res.update(-alpha, q, 1.0);
     ++it;
     precondition(res, z);
@@ -478,36 +476,6 @@ void NewtonSolve::facePrecondition(const Vector& w, Vector& z) {
   faceProject(z);
 }
 
-int NewtonSolve::faceConjugateGradients(const Vector& r, double stop, int maxIter, Vector& Az) {
-  Vector res(r, Teuchos::Copy), z(map_), p(map_), Ap(map_), q(map_);
-  faceProject(res);
-  y_.putScalar(0.0);
-  Az.putScalar(0.0);
-  facePrecondition(res, z);
-  p.assign(z);
-  double rz = res.dot(z);
-  int it = 0;
-  while (it < maxIter && res.norm2() > stop) {
-    applyA(p, Ap);
-    q.assign(Ap);
-    addCurvature(p, q);
-    project(q);
-    faceProject(q);
-    const double pq = p.dot(q);
-    if (!(pq > 0)) break;  // positive definite on ker(G Pi) within range Pi: only round-off gets here
-    const double alpha = rz / pq;
-    y_.update(alpha, p, 1.0);
-    Az.update(alpha, Ap, 1.0);
-    res.update(-alpha, q, 1.0);
-    ++it;
-    facePrecondition(res, z);
-    const double rzNew = res.dot(z);
-    p.update(1.0, z, rzNew / rz);
-    rz = rzNew;
-  }
-  return it;
-}
-
 bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Vector&)>& exactVelocity,
                             Iteration& iter, FrictionStatus& st) {
   const double normRB = std::max(r_ * dual_.normB(), 1e-300);
@@ -610,7 +578,18 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
     s.update(1.0, rhs, -1.0);  // r - Pi (A + K) Pi y_p
     static const auto cgTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: CG");
     std::unique_ptr<Teuchos::TimeMonitor> cgTime(new Teuchos::TimeMonitor(*cgTimer));
-    const int cg = faceConjugateGradients(s, iter.eta * rhs.norm2(), maxPCG, Az);
+    // CG on P_F Pi (A + K) Pi z = P_F (r - Pi (A + K) Pi y_p) from z = 0.
+    faceProject(s);
+    const int cg = conjugateGradients(
+        s, iter.eta * rhs.norm2(), maxPCG, Az,
+        [&](const Vector& p, Vector& Ap, Vector& q) {
+          applyA(p, Ap);
+          q.assign(Ap);
+          addCurvature(p, q);
+          project(q);
+          faceProject(q);
+        },
+        [&](const Vector& w, Vector& z) { facePrecondition(w, z); });
     cgTime.reset();
     st.inner_iterations += cg;
     y_.update(1.0, yp, 1.0);   // y = y_p + z
@@ -665,7 +644,17 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
     freeRightHandSide(Hd0, rhs);
     static const auto cgTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: CG");
     std::unique_ptr<Teuchos::TimeMonitor> cgTime(new Teuchos::TimeMonitor(*cgTimer));
-    const int cg = conjugateGradients(rhs, iter.eta, maxPCG, Hd_);
+    // CG on Pi (H + K) Pi y = rhs from y = 0.
+    Vector res(rhs, Teuchos::Copy);
+    const int cg = conjugateGradients(
+        res, iter.eta * rhs.norm2(), maxPCG, Hd_,
+        [&](const Vector& p, Vector& Hp, Vector& q) {
+          applyH(p, Hp);
+          q.assign(Hp);
+          addCurvature(p, q);
+          project(q);
+        },
+        [&](const Vector& w, Vector& z) { precondition(w, z); });
     cgTime.reset();
     static const auto lsTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: line search");
     Teuchos::TimeMonitor lsTime(*lsTimer);
