@@ -1,11 +1,10 @@
 #!/usr/bin/python3
 """Load-history benchmark: a 20-step history of the Coulomb brick (F = 0.3)
 side by side with the single static solve of the same mesh, in one run of
-this script, with the user's defaults: `Solver/Outer Algorithm = Auto` (the
-input names the seed paper's Algorithm 2; an input that names none gets
-Auto, which takes Algorithm 2 for the static solve and the matrix-free
-semismooth Newton method for the steps of the history); --set
-"Solver/Outer Algorithm=Algorithm2" measures Algorithm 2 in both.
+this script, with the user's defaults: `Solver/Outer Algorithm = Auto`
+(the matrix-free semismooth Newton method for the static solve and for the
+steps of the history); --set "Solver/Outer Algorithm=Algorithm2" measures
+Algorithm 2 in both.
 
 usage: scripts/bench_history.py [--levels 24 48] [--ranks 2] [--steps 20]
            [--set NAME=VALUE ...] [--tribos build/drivers/tribos]
