@@ -29,7 +29,7 @@ using Contact = AlartCurnier::Contact;
 // directions, the curvature K on them, the fixed part d0 of the step and the
 // right-hand side of the free equations (index 0 normal, 1.. tangential).
 struct ContactStep {
-  double Pi[3][3], K[3][3], d0[3], rhs[3];
+  double Pi[3][3], d0[3], rhs[3];
   double fixed[3][3];  // the fixed directions (unit, rows as Pi's), numFixed of them
   int numFixed;
   double curved[2][3], kappa[2];  // K = sum kappa_e w_e w_e' over numCurved unit directions
@@ -63,7 +63,7 @@ void contactStep(const Contact& c, const AlartCurnier::Blocks& B, ContactStep& o
   const int m = 1 + c.tangents;
   for (int p = 0; p < 3; ++p) {
     out.d0[p] = out.rhs[p] = 0;
-    for (int q = 0; q < 3; ++q) out.Pi[p][q] = out.K[p][q] = out.fixed[p][q] = 0;
+    for (int q = 0; q < 3; ++q) out.Pi[p][q] = out.fixed[p][q] = 0;
   }
   out.numFixed = out.numCurved = 0;
   auto direction = [&](const double* w, int offset, int size, double s, double dx) {
@@ -72,12 +72,9 @@ void contactStep(const Contact& c, const AlartCurnier::Blocks& B, ContactStep& o
     if (s > 1e-14 * (s + dx)) {
       for (int i = 0; i < size; ++i) {
         out.rhs[offset + i] += -wPhi / s * w[i];
-        for (int j = 0; j < size; ++j) {
-          out.Pi[offset + i][offset + j] += w[i] * w[j];
-          out.K[offset + i][offset + j] += dx / s * w[i] * w[j];
-        }
+        for (int j = 0; j < size; ++j) out.Pi[offset + i][offset + j] += w[i] * w[j];
       }
-      if (dx > 0) {
+      if (dx != 0) {
         for (int i = 0; i < 3; ++i) out.curved[out.numCurved][i] = 0;
         for (int i = 0; i < size; ++i) out.curved[out.numCurved][offset + i] = w[i];
         out.kappa[out.numCurved++] = dx / s;
@@ -194,8 +191,9 @@ class NewtonSolve {
   // term. false: the iteration ends (st says why).
   bool beginStep(int it, const Vector& x, const std::function<void(Vector&)>& exactVelocity, Iteration& iter,
                  FrictionStatus& st);
-  // The report of a step taken.
-  void reportStep(int cg, const Iteration& iter, double t, bool accepted) const;
+  // Along d_ (v_ along dv) by the line search, reported (cg: the step's CG
+  // iterations); x and v_ move there. Returns the step length.
+  double takeStep(Vector& x, const Vector& dv, int cg, Iteration& iter);
   // The end of the iteration: x into the feasible set, the counts.
   void finish(Vector& x, const Iteration& iter, FrictionStatus& st) const;
   // The Eisenstat-Walker forcing term of the next step from ||Phi|| now and
@@ -251,6 +249,8 @@ class NewtonSolve {
   void project(Vector& y) const;
   // y <- y + K p.
   void addCurvature(const Vector& p, Vector& y) const;
+  // q = Pi (Ap + K p): the free equations' operator applied to p, given A p.
+  void freeSystem(const Vector& p, const Vector& Ap, Vector& q) const;
   // z = Pi (M + (I - P) / rho) Pi w.
   void precondition(const Vector& w, Vector& z);
   // The system operator of a CG solve: p -> q, with A p (or H p) in Ap for
@@ -312,11 +312,21 @@ void NewtonSolve::addCurvature(const Vector& p, Vector& y) const {
   auto yv = y.getDataNonConst();
   const auto& contacts = ac_->contacts();
   for (size_t k = 0; k < contacts.size(); ++k) {
+    const ContactStep& c = steps_[k];
     int rows[3];
     const int m = rowsOf(contacts[k], rows);
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j) yv[rows[i]] += steps_[k].K[i][j] * pv[rows[j]];
+    for (int e = 0; e < c.numCurved; ++e) {
+      double wp = 0;
+      for (int i = 0; i < m; ++i) wp += c.curved[e][i] * pv[rows[i]];
+      for (int i = 0; i < m; ++i) yv[rows[i]] += c.kappa[e] * wp * c.curved[e][i];
+    }
   }
+}
+
+void NewtonSolve::freeSystem(const Vector& p, const Vector& Ap, Vector& q) const {
+  q.assign(Ap);
+  addCurvature(p, q);
+  project(q);
 }
 
 void NewtonSolve::precondition(const Vector& w, Vector& z) {
@@ -520,10 +530,16 @@ bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Ve
   return true;
 }
 
-void NewtonSolve::reportStep(int cg, const Iteration& iter, double t, bool accepted) const {
+double NewtonSolve::takeStep(Vector& x, const Vector& dv, int cg, Iteration& iter) {
+  bool accepted = false;
+  const double t = lineSearch(x, iter.nPhi, d_, dv, accepted);
+  if (!accepted) ++iter.lineSearchFailures;
   if (!out_.is_null())
     *out_ << "  step: " << cg << " CG iterations (eta " << iter.eta << "), step length " << t
           << (accepted ? "" : " (no Armijo step)") << "\n";
+  x.assign(xt_);
+  v_.assign(vt_);
+  return t;
 }
 
 void NewtonSolve::finish(Vector& x, const Iteration& iter, FrictionStatus& st) const {
@@ -572,9 +588,7 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
     project(yp);
     Ayp.putScalar(0.0);
     if (yp.normInf() > 0) applyA(yp, Ayp);
-    s.assign(Ayp);
-    addCurvature(yp, s);
-    project(s);
+    freeSystem(yp, Ayp, s);
     s.update(1.0, rhs, -1.0);  // r - Pi (A + K) Pi y_p
     static const auto cgTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: CG");
     std::unique_ptr<Teuchos::TimeMonitor> cgTime(new Teuchos::TimeMonitor(*cgTimer));
@@ -584,9 +598,7 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
         s, iter.eta * rhs.norm2(), maxPCG, Az,
         [&](const Vector& p, Vector& Ap, Vector& q) {
           applyA(p, Ap);
-          q.assign(Ap);
-          addCurvature(p, q);
-          project(q);
+          freeSystem(p, Ap, q);
           faceProject(q);
         },
         [&](const Vector& w, Vector& z) { facePrecondition(w, z); });
@@ -594,9 +606,7 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
     st.inner_iterations += cg;
     y_.update(1.0, yp, 1.0);   // y = y_p + z
     Az.update(1.0, Ayp, 1.0);  // A y
-    s.assign(Az);
-    addCurvature(y_, s);
-    project(s);
+    freeSystem(y_, Az, s);
     s.update(1.0, rhs, -1.0);  // r - Pi (A + K) Pi y
     applyT(s, wd);             // G'dmu
     d_.update(1.0, y_, 1.0);
@@ -604,12 +614,7 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
     dv.update(1.0, Ad, 1.0, wd, 0.0);
     static const auto lsTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: line search");
     Teuchos::TimeMonitor lsTime(*lsTimer);
-    bool accepted = false;
-    const double t = lineSearch(x, iter.nPhi, d_, dv, accepted);
-    if (!accepted) ++iter.lineSearchFailures;
-    reportStep(cg, iter, t, accepted);
-    x.assign(xt_);
-    v_.assign(vt_);
+    const double t = takeStep(x, dv, cg, iter);
     w_.update(t, wd, 1.0);
     ++iter.sinceExact;
     st.outer_iterations = it + 1;
@@ -650,9 +655,7 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
         res, iter.eta * rhs.norm2(), maxPCG, Hd_,
         [&](const Vector& p, Vector& Hp, Vector& q) {
           applyH(p, Hp);
-          q.assign(Hp);
-          addCurvature(p, q);
-          project(q);
+          freeSystem(p, Hp, q);
         },
         [&](const Vector& w, Vector& z) { precondition(w, z); });
     cgTime.reset();
@@ -661,12 +664,7 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
     st.inner_iterations += cg;
     Hd_.update(1.0, Hd0, 1.0);
     d_.update(1.0, y_, 1.0);
-    bool accepted = false;
-    const double t = lineSearch(x, iter.nPhi, d_, Hd_, accepted);
-    if (!accepted) ++iter.lineSearchFailures;
-    reportStep(cg, iter, t, accepted);
-    x.assign(xt_);
-    v_.assign(vt_);
+    takeStep(x, Hd_, cg, iter);
     // The multiplier of G x = 0: mu <- mu + rho G x moves b - G'mu by
     // -rho G'G x, so v by +rho G'G x. After every Newton step (Multiplier
     // Update Ratio = 0), or once the steps have solved the problem of the
