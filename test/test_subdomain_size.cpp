@@ -1,7 +1,7 @@
 // test_subdomain_size.cpp: Mesh/Subdomain Size, read from the example inputs
 // as a user gives it: the accepted forms (Grid, 0, Auto, a whole number, an
 // int in the XML file) and the refused ones; the grid of boxes a size gives
-// the brick; the measured Auto rule (H = 4 while that gives at most 1000
+// the brick; the measured Auto rule (H = 4 while that gives at most 12000
 // subdomains, 6 beyond, lowered until every rank has a subdomain); and the
 // METIS count of a mesh file, (H+1)^3 nodes per subdomain, at least one per
 // rank and per body and at most one per cell, unknown until the file is read.
@@ -90,9 +90,11 @@ TEUCHOS_UNIT_TEST(SubdomainSize, AutoRuleOnTheBrick) {
   };
   const std::vector<Case> cases = {
       {12, 1, 4, {9, 3, 3}},      // 36 x 12 x 12 cells: 81 subdomains of 4
-      {24, 2, 4, {18, 6, 6}},     // 648 of 4 (<= 1000)
-      {36, 2, 6, {18, 6, 6}},     // 2187 of 4 would be too many: 648 of 6
-      {48, 2, 6, {24, 8, 8}},     // the million-dof brick: 1536 of 6
+      {24, 2, 4, {18, 6, 6}},     // 648 of 4
+      {36, 2, 4, {27, 9, 9}},     // 2187 of 4
+      {48, 2, 4, {36, 12, 12}},   // the million-dof brick: 5184 of 4
+      {60, 2, 4, {45, 15, 15}},   // 10125 of 4, the largest count measured
+      {64, 2, 6, {32, 8, 8}},     // 12288 of 4 would be too many: boxes of about 6 (8 cells across 64)
       {4, 1, 4, {3, 1, 1}},       // the seed's own three cubes
       {4, 4, 3, {4, 1, 1}},       // 3 boxes of 4 are fewer than 4 ranks: boxes of 3
       {1, 2, 1, {3, 1, 1}},       // 3 x 1 x 1 cells: one box per cell
@@ -118,8 +120,9 @@ TEUCHOS_UNIT_TEST(SubdomainSize, MeshFileCountFromItsNodes) {
     int ranks, H, subdomains, bodies = 1;
   };
   const std::vector<Case> cases = {
-      {"Auto", 125000, 7e5, 2, 4, 1000},  // 1000 parts of 5^3 nodes: still 4
-      {"Auto", 200000, 1e6, 2, 6, 583},   // 1600 of 4 would be too many: 200000 / 7^3
+      {"Auto", 125000, 7e5, 2, 4, 1000},  // 1000 parts of 5^3 nodes
+      {"Auto", 1.5e6, 8e6, 2, 4, 12000},  // 12000 parts of 4: still 4
+      {"Auto", 2e6, 1e7, 2, 6, 5831},     // 16000 of 4 would be too many: 2e6 / 7^3
       {"Auto", 100, 400, 3, 2, 4},        // fewer parts of 4 and 3 than ranks: 100 / 3^3
       {"4", 100, 400, 3, 4, 3},           // a given size: one part per rank at least
       {"1", 1000, 5, 1, 1, 5},            // at most one part per cell

@@ -102,11 +102,12 @@ struct SubdomainSizing {
 };
 SubdomainSizing subdomainSizing(const Teuchos::ParameterList& params);
 // The measured rule (docs/scaling.md, Tet4 bricks on 2 ranks): H = 4 is the
-// fastest while it gives at most kAutoSubdomains subdomains, H = 6 beyond
-// (the coarse problem, 6 rows per subdomain, grows and the dense blocks of 6
-// are still cheap); then H is lowered until there are at least numRanks
-// subdomains. subdomainsOfSize(H): the count size H gives.
-constexpr double kAutoSubdomains = 1000;
+// fastest while it gives at most kAutoSubdomains subdomains (measured up to
+// 10 125 of them), H = 6 beyond, where the coarse problem (6 rows per
+// subdomain, replicated on every rank) is expected to outgrow what the
+// smaller dense blocks save; then H is lowered until there are at least
+// numRanks subdomains. subdomainsOfSize(H): the count size H gives.
+constexpr double kAutoSubdomains = 12000;
 template <class Count>
 int automaticSubdomainSize(const Count& subdomainsOfSize, int numRanks) {
   int H = subdomainsOfSize(4) <= kAutoSubdomains ? 4 : 6;

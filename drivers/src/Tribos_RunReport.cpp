@@ -35,6 +35,8 @@ void setSemismooth(const SemismoothReport& m, IO::Summary& s) {
   s.set("time_assembly_s", m.assemblySeconds);
   s.set("time_reduction_s", m.reductionSeconds);
   s.set("time_newton_s", m.newtonSeconds);
+  s.set("cg_iterations", m.cgIterations);
+  s.set("time_preconditioner_setup_s", m.preconditionerSeconds);
 }
 
 void setFeti(const FetiReport& f, IO::Summary& s) {

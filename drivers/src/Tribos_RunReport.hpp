@@ -42,9 +42,9 @@ struct OuterAlgorithmReport {
 
 // The semismooth* Newton method (a serial method on rank 0).
 struct SemismoothReport {
-  long long newtonIterations = 0;
+  long long newtonIterations = 0, cgIterations = 0;
   std::vector<double> residuals;
-  double assemblySeconds = 0, reductionSeconds = 0, newtonSeconds = 0;
+  double assemblySeconds = 0, reductionSeconds = 0, newtonSeconds = 0, preconditionerSeconds = 0;
 };
 
 // One load step: its pseudo-time, the solve's work, the KKT residuals of its

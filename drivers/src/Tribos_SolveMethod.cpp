@@ -233,6 +233,8 @@ class SemismoothMethod : public MethodBase {
     newton.assemblySeconds = r.assemblySeconds;
     newton.reductionSeconds = r.reductionSeconds;
     newton.newtonSeconds = r.newtonSeconds;
+    newton.cgIterations = r.cgIterations;
+    newton.preconditionerSeconds = r.preconditionerSeconds;
     report.semismooth = newton;
     report.frictionLaw = frictionLawName(plane.law);
     report.outerIterations = r.iterations;

@@ -114,7 +114,7 @@ namespace {
 // and factored there on a serial communicator.
 class DirectSolve : public MonolithicLinearSolver {
  public:
-  bool solve(const CrsMatrix& K, const Vector& f, const MultiVector&, Vector& u, const Teuchos::ParameterList&,
+  bool solve(const CrsMatrix& K, const Vector& f, const ElasticityModes&, Vector& u, const Teuchos::ParameterList&,
              int& iterations) const override {
     const auto map = K.getRowMap();
     const auto comm = map->getComm();
@@ -155,20 +155,14 @@ class DirectSolve : public MonolithicLinearSolver {
 // modes as near null space.
 class CGMueLuSolve : public MonolithicLinearSolver {
  public:
-  bool solve(const CrsMatrix& K, const Vector& f, const MultiVector& nullspace, Vector& u,
+  bool solve(const CrsMatrix& K, const Vector& f, const ElasticityModes& modes, Vector& u,
              const Teuchos::ParameterList& params, int& iterations) const override {
     Teuchos::ParameterList mueluParams;
     mueluParams.set("verbosity", "none");
-    mueluParams.set("coarse: max size", 1000);
     mueluParams.set("number of equations", 3);
-    // The coarse level is smoothed, not factored: the distributed Amesos2 KLU2
-    // of this Trilinos build is unreliable (see DirectSolve).
-    mueluParams.set("coarse: type", "RELAXATION");
-    mueluParams.sublist("coarse: params").set("relaxation: type", "Symmetric Gauss-Seidel");
-    mueluParams.sublist("coarse: params").set("relaxation: sweeps", 4);
+    setCoarseLevelOnOneRank(mueluParams, 1000, static_cast<long long>(K.getGlobalNumRows()), K.getComm()->getSize());
     auto A = Teuchos::rcp_const_cast<CrsMatrix>(Teuchos::rcpFromRef(K));
-    RCP<Operator> M = mueluPreconditioner(A, Teuchos::rcp_const_cast<MultiVector>(Teuchos::rcpFromRef(nullspace)),
-                                          mueluParams);
+    RCP<Operator> M = mueluPreconditioner(A, modes, mueluParams);
     const auto r = preconditionedCG(A, M, f, u, params.get<double>("Tolerance"), false,
                                     params.get<int>("Maximum Iterations"));
     iterations = r.iterations;
@@ -203,21 +197,30 @@ RCP<const Teuchos::ParameterList> MonolithicSystem::getValidParameters() {
   return pl;
 }
 
-// Rigid-body modes of the whole body at the owned dofs.
-RCP<MultiVector> MonolithicSystem::nullSpace() const {
-  auto nullspace = rcp(new MultiVector(map_, 6));
+// Rigid-body modes of the whole body at the owned dofs; the owned nodes'
+// coordinates, numbered as their dofs (node g: dofs 3g..3g+2).
+ElasticityModes MonolithicSystem::modes() const {
+  ElasticityModes m;
+  m.nullspace = rcp(new MultiVector(map_, 6));
+  const auto& owned = disc_.ownedNodes();
   for (size_t i = 0; i < map_->getNodeNumElements(); ++i) {
-    const auto& x = disc_.part.coords[disc_.ownedNodes()[i / 3]];
-    for (int k = 0; k < 6; ++k) nullspace->replaceLocalValue(i, k, rigidBodyMode(k, x)[i % 3]);
+    const auto& x = disc_.part.coords[owned[i / 3]];
+    for (int k = 0; k < 6; ++k) m.nullspace->replaceLocalValue(i, k, rigidBodyMode(k, x)[i % 3]);
   }
-  return nullspace;
+  std::vector<GO> nodes;
+  for (int n : owned) nodes.push_back(disc_.nodeIndex()[n]);
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  m.coordinates = rcp(new MultiVector(rcp(new Map(invalid, Teuchos::ArrayView<const GO>(nodes), 0, comm_)), 3));
+  for (size_t i = 0; i < owned.size(); ++i)
+    for (int b = 0; b < 3; ++b) m.coordinates->replaceLocalValue(i, b, disc_.part.coords[owned[i]][b]);
+  return m;
 }
 
 MonolithicResult MonolithicSystem::solve(const Teuchos::ParameterList& params) const {
   MonolithicResult res;
   auto u = rcp(new Vector(map_));
   const auto solver = monolithicSolvers().create(params.get<std::string>("Linear Solver"));
-  res.converged = solver->solve(*K_, *f_, *nullSpace(), *u, params, res.iterations);
+  res.converged = solver->solve(*K_, *f_, modes(), *u, params, res.iterations);
   Vector r(map_);
   K_->apply(*u, r);
   r.update(1.0, *f_, -1.0);

@@ -13,6 +13,7 @@
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_NodalVector.hpp"
+#include "Tribos_PreconditionedCG.hpp"
 #include "Tribos_Registry.hpp"
 #include "Tribos_Types.hpp"
 
@@ -31,7 +32,7 @@ struct MonolithicResult {
 class MonolithicLinearSolver {
  public:
   virtual ~MonolithicLinearSolver() = default;
-  virtual bool solve(const CrsMatrix& K, const Vector& f, const MultiVector& nullSpace, Vector& u,
+  virtual bool solve(const CrsMatrix& K, const Vector& f, const ElasticityModes& modes, Vector& u,
                      const Teuchos::ParameterList& params, int& iterations) const = 0;
 };
 using MonolithicSolverRegistry = Registry<MonolithicLinearSolver>;
@@ -47,8 +48,9 @@ class MonolithicSystem {
   static RCP<const Teuchos::ParameterList> getValidParameters();
 
   RCP<const CrsMatrix> matrix() const { return K_; }
-  // The rigid-body modes at the owned dofs (near null space of K).
-  RCP<MultiVector> nullSpace() const;
+  // The rigid-body modes at the owned dofs (near null space of K) and the
+  // coordinates of the owned nodes.
+  ElasticityModes modes() const;
   RCP<const Vector> rhs() const { return f_; }
   // A vector on the owned dofs, at every node of the rank's part. Collective.
   NodalVector atPartNodes(const Vector& owned) const;

@@ -10,10 +10,32 @@
 namespace Tribos {
 namespace Fem {
 
-RCP<MueLuOperator> mueluPreconditioner(const RCP<CrsMatrix>& A, const RCP<MultiVector>& nullspace,
+RCP<MueLuOperator> mueluPreconditioner(const RCP<CrsMatrix>& A, const ElasticityModes& modes,
                                        Teuchos::ParameterList params) {
-  params.sublist("user data").set("Nullspace", nullspace);
+  params.sublist("user data").set("Nullspace", modes.nullspace);
+  if (!modes.coordinates.is_null()) params.sublist("user data").set("Coordinates", modes.coordinates);
   return MueLu::CreateTpetraPreconditioner<SC, LO, GO, Node>(Teuchos::rcp_implicit_cast<Operator>(A), params);
+}
+
+void setCoarseLevelOnOneRank(Teuchos::ParameterList& p, int coarseMaxSize, long long rows, int numRanks) {
+  p.set("coarse: max size", coarseMaxSize);
+  if (numRanks > 1 && rows <= coarseMaxSize) {
+    p.set("coarse: type", "RELAXATION");
+    p.sublist("coarse: params").set("relaxation: type", "Symmetric Gauss-Seidel");
+    p.sublist("coarse: params").set("relaxation: sweeps", 4);
+    return;
+  }
+  p.set("coarse: type", "KLU2");
+  if (numRanks == 1) return;
+  p.set("repartition: enable", true);
+  p.set("repartition: partitioner", "zoltan2");  // asks for the node coordinates
+  p.set("repartition: start level", 1);
+  // A level with fewer rows than this on some rank goes to rows /
+  // coarseMaxSize parts: the coarsest to one. The finer levels keep their
+  // distribution (no rebalancing for an imbalance of nonzeros).
+  p.set("repartition: min rows per proc", coarseMaxSize);
+  p.set("repartition: max imbalance", 1e300);
+  p.set("repartition: remap parts", false);
 }
 
 CGResult preconditionedCG(const RCP<const Operator>& A, const RCP<Operator>& M, const Vector& b, Vector& x,

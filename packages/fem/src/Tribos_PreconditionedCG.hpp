@@ -17,10 +17,27 @@ namespace Fem {
 
 using MueLuOperator = MueLu::TpetraOperator<SC, LO, GO, Node>;
 
+// What MueLu needs of an elasticity matrix beside its values: the
+// rigid-body modes (near null space, on the matrix's row map) and the node
+// coordinates (3 columns on the node map: node g holds rows 3g..3g+2).
+struct ElasticityModes {
+  RCP<MultiVector> nullspace, coordinates;
+};
+
 // A MueLu hierarchy for A (params: MueLu's list) with the rigid-body modes
 // as near null space.
-RCP<MueLuOperator> mueluPreconditioner(const RCP<CrsMatrix>& A, const RCP<MultiVector>& nullspace,
+RCP<MueLuOperator> mueluPreconditioner(const RCP<CrsMatrix>& A, const ElasticityModes& modes,
                                        Teuchos::ParameterList params);
+
+// The coarsest level of a hierarchy for a matrix of `rows` rows on numRanks
+// ranks: at most coarseMaxSize rows, factored by KLU2 on one rank. On several
+// ranks MueLu first moves it there (repartitioning to one part, for which
+// Zoltan2 takes its trivial path; it asks for the node coordinates): Amesos2
+// KLU2 of this Trilinos build returns wrong solutions on more than one rank,
+// and a smoothed coarse level costs a third to a half more CG steps
+// (docs/semismooth.md). A matrix that is its own coarsest level on several
+// ranks cannot be moved: it is smoothed (four Gauss-Seidel sweeps).
+void setCoarseLevelOnOneRank(Teuchos::ParameterList& mueluParams, int coarseMaxSize, long long rows, int numRanks);
 
 struct CGResult {
   bool converged = false;

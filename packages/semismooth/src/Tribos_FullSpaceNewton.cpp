@@ -19,23 +19,12 @@ namespace Semismooth {
 namespace {
 
 Teuchos::ParameterList mueluParameters(const Teuchos::ParameterList& params, const std::string& reuse,
-                                       const std::string& algorithm, int numRanks) {
+                                       const std::string& algorithm, long long rows, int numRanks) {
   Teuchos::ParameterList p;
   p.set("verbosity", "none");
   p.set("number of equations", 3);  // the rotation is per node: 3x3 node blocks stay blocks
   p.set("transpose: use implicit", true);
-  p.set("coarse: max size", 2000);
-  if (numRanks == 1) {
-    // One process: the coarse level is factored (Amesos2 KLU2 is reliable on
-    // a one-rank communicator).
-    p.set("coarse: type", "KLU2");
-  } else {
-    // Amesos2 KLU2 of this Trilinos build returns wrong solutions on more
-    // than one rank: the coarse level is smoothed instead.
-    p.set("coarse: type", "RELAXATION");
-    p.sublist("coarse: params").set("relaxation: type", "Symmetric Gauss-Seidel");
-    p.sublist("coarse: params").set("relaxation: sweeps", 4);
-  }
+  Fem::setCoarseLevelOnOneRank(p, 2000, rows, numRanks);
   if (params.get<std::string>("MueLu Smoother") == "Chebyshev") {
     p.set("smoother: type", "CHEBYSHEV");
     p.sublist("smoother: params").set("chebyshev: degree", 2);
@@ -119,17 +108,24 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
       }
   }
 
+  // The node coordinates (MueLu moves the coarse level to one rank with them).
+  auto nodeMap = rcp(new Map(static_cast<Tpetra::global_size_t>(N), static_cast<size_t>((endDof_ - firstDof_) / 3), 0, comm));
+  auto coordinates = rcp(new MultiVector(nodeMap, 3));
+  for (int node = firstDof_ / 3; node < endDof_ / 3; ++node)
+    for (int b = 0; b < 3; ++b) coordinates->replaceGlobalValue(node, b, problem.coords[node][b]);
+  const Fem::ElasticityModes modes{nullspace, coordinates};
+
   const std::string reuse = params.get<std::string>("MueLu Reuse");
   // K_rr: all contact dofs as unit rows; its hierarchy is built once.
   // Smoothed aggregation: the setup is paid once, the better convergence in
   // every equilibrium correction.
-  Krr_ = std::make_unique<MueLuCG>(graph, nullspace, mueluParameters(params, "none", "sa", P));
+  Krr_ = std::make_unique<MueLuCG>(graph, modes, mueluParameters(params, "none", "sa", n, P));
   Krr_->setValues(graphValues(std::vector<char>(3 * sys_.m, 1)));
   // The Newton matrices: the first hierarchy is built on K with all contact
   // dofs free, so that the reused prolongators do not depend on the sets of
   // the first step.
-  newton_ = std::make_unique<MueLuCG>(graph, nullspace,
-                                      mueluParameters(params, reuse, params.get<std::string>("MueLu Algorithm"), P),
+  newton_ = std::make_unique<MueLuCG>(graph, modes,
+                                      mueluParameters(params, reuse, params.get<std::string>("MueLu Algorithm"), n, P),
                                       reuse == "full");
   newton_->setValues(graphValues(std::vector<char>(3 * sys_.m, 0)));
 

@@ -14,9 +14,9 @@
 namespace Tribos {
 namespace Semismooth {
 
-MueLuCG::MueLuCG(const RCP<const CrsGraph>& graph, const RCP<MultiVector>& nullspace,
+MueLuCG::MueLuCG(const RCP<const CrsGraph>& graph, const Fem::ElasticityModes& modes,
                  const Teuchos::ParameterList& mueluParams, bool keepPreconditioner)
-    : A_(rcp(new CrsMatrix(graph))), nullspace_(nullspace), mueluParams_(mueluParams),
+    : A_(rcp(new CrsMatrix(graph))), modes_(modes), mueluParams_(mueluParams),
       keepPreconditioner_(keepPreconditioner) {
   TRIBOS_REQUIRE(graph->isFillComplete(), "MueLuCG: the graph must be filled");
   A_->fillComplete();
@@ -54,13 +54,13 @@ void MueLuCG::setValues(const std::vector<double>& values, bool updatePreconditi
   }
   A_->fillComplete();
   if (M_.is_null()) {
-    M_ = Fem::mueluPreconditioner(A_, nullspace_, mueluParams_);
+    M_ = Fem::mueluPreconditioner(A_, modes_, mueluParams_);
   } else if (keepPreconditioner_ || !updatePreconditioner) {
     // The hierarchy of the first matrix, unchanged; its finest level applies
     // the new values of A_ (the same object).
   } else if (mueluParams_.get<std::string>("reuse: type", "none") == "none") {
     // A fresh hierarchy (the only way to honour "reuse: type" = "none").
-    M_ = Fem::mueluPreconditioner(A_, nullspace_, mueluParams_);
+    M_ = Fem::mueluPreconditioner(A_, modes_, mueluParams_);
   } else {
     MueLu::ReuseTpetraPreconditioner<SC, LO, GO, Node>(A_, *M_);
   }

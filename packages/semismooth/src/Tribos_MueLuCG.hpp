@@ -10,12 +10,8 @@
 
 #include <vector>
 
+#include "Tribos_PreconditionedCG.hpp"
 #include "Tribos_Types.hpp"
-
-namespace MueLu {
-template <class Scalar, class LocalOrdinal, class GlobalOrdinal, class Node>
-class TpetraOperator;
-}
 
 namespace Tribos {
 namespace Semismooth {
@@ -23,8 +19,9 @@ namespace Semismooth {
 class MueLuCG {
  public:
   // graph: filled, rows distributed over the graph's communicator.
-  // nullspace: near null space of the matrices (rigid-body modes).
-  MueLuCG(const RCP<const CrsGraph>& graph, const RCP<MultiVector>& nullspace, const Teuchos::ParameterList& mueluParams,
+  // modes: near null space of the matrices (rigid-body modes) and the node
+  // coordinates.
+  MueLuCG(const RCP<const CrsGraph>& graph, const Fem::ElasticityModes& modes, const Teuchos::ParameterList& mueluParams,
           bool keepPreconditioner = false);
   ~MueLuCG();
 
@@ -43,7 +40,7 @@ class MueLuCG {
   std::vector<size_t> rowStart_;  // per owned row: its range in setValues()' array
   std::vector<LO> viewPos_;       // position of each value in the row's local view
   RCP<MueLu::TpetraOperator<SC, LO, GO, Node>> M_;
-  RCP<MultiVector> nullspace_;
+  Fem::ElasticityModes modes_;
   Teuchos::ParameterList mueluParams_;
   bool keepPreconditioner_ = false;
   double setupSeconds_ = 0;

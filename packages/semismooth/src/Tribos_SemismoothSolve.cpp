@@ -45,13 +45,13 @@ Contact::ContactNodeResults contactNodeResults(const SemismoothResult& r) {
 struct Broadcast {
   std::vector<double> u, Ku, f, residuals;
   char converged = 0;
-  int iterations = 0;
-  double assemblySeconds = 0, reductionSeconds = 0, newtonSeconds = 0;
+  int iterations = 0, cgIterations = 0;
+  double assemblySeconds = 0, reductionSeconds = 0, newtonSeconds = 0, preconditionerSeconds = 0;
 
   template <class Buffer, class Op>
   void fields(Buffer& b, Op op) {
-    op(b, u), op(b, Ku), op(b, f), op(b, residuals), op(b, converged), op(b, iterations);
-    op(b, assemblySeconds), op(b, reductionSeconds), op(b, newtonSeconds);
+    op(b, u), op(b, Ku), op(b, f), op(b, residuals), op(b, converged), op(b, iterations), op(b, cgIterations);
+    op(b, assemblySeconds), op(b, reductionSeconds), op(b, newtonSeconds), op(b, preconditionerSeconds);
   }
   void broadcast(const Comm& comm) {
     ByteBuffer b;
@@ -88,8 +88,8 @@ SemismoothSolveResult solvePlaneContact(const Mesh::Mesh& mesh, const Fem::Mater
   Broadcast all;
   SemismoothSolveResult out;
   if (comm->getRank() == 0) {
-    all = {r.u, r.Ku, r.f, r.residuals, r.converged, r.iterations, r.assemblySeconds, r.reductionSeconds,
-           r.solverSeconds};
+    all = {r.u, r.Ku, r.f, r.residuals, r.converged, r.iterations, r.cgIterations, r.assemblySeconds,
+           r.reductionSeconds, r.solverSeconds, r.preconditionerSeconds};
     out.contact = contactNodeResults(r);
   }
   all.broadcast(*comm);
@@ -107,6 +107,8 @@ SemismoothSolveResult solvePlaneContact(const Mesh::Mesh& mesh, const Fem::Mater
   out.assemblySeconds = all.assemblySeconds;
   out.reductionSeconds = all.reductionSeconds;
   out.newtonSeconds = all.newtonSeconds;
+  out.cgIterations = all.cgIterations;
+  out.preconditionerSeconds = all.preconditionerSeconds;
   out.solveSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -36,6 +36,8 @@ struct PlaneContact {
 struct SemismoothSolveResult : Contact::SolveResult {
   std::vector<double> residuals;  // ||S x^ - l + y^|| / ||l|| after each approximation step
   double assemblySeconds = 0, reductionSeconds = 0, newtonSeconds = 0;
+  int cgIterations = 0;              // CG steps of every solve (Reduced CG, CG+MueLu)
+  double preconditionerSeconds = 0;  // CG+MueLu: every MueLu setup
 };
 
 // Solves on every rank of comm (collective; every rank holds mesh). params:
