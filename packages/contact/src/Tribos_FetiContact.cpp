@@ -1,6 +1,7 @@
 #include "Tribos_FetiContact.hpp"
 
 #include "Tribos_DualPreconditioner.hpp"
+#include "Tribos_QP_Utils.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_CrsMatrix.hpp>
@@ -137,7 +138,7 @@ void requireNoPrescribedSlip(const std::vector<Feti::ContactConstraint>& contact
 }
 
 FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const PairFriction& friction, double normPFP)
-    : scaling_(normPFP > 0 ? Friction::ScalingTransform::withNorm(normPFP) : rcp(new Friction::ScalingTransform(20))),
+    : scaling_(normPFP > 0 ? Friction::ScalingTransform::withNorm(normPFP) : rcp(new Friction::ScalingTransform(QP::kNormSteps))),
       dual_(dual) {
   runLaw(friction);  // checks every pair's law
   const auto& lc = dual->problem().contact();

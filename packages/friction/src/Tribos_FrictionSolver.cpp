@@ -16,6 +16,7 @@
 #include "Tribos_Validators.hpp"
 #include "Tribos_QP.hpp"
 #include "Tribos_QP_AugmentedLagrangian.hpp"
+#include "Tribos_QP_Utils.hpp"
 #include "Tribos_Progress.hpp"
 
 namespace Tribos {
@@ -56,7 +57,7 @@ RCP<QP::QPSolver> makeQPSolver(const std::string& type, const ParameterList& par
   return solver;
 }
 
-SC estimateHessianNorm(const ContactDual& dual, long& n_A) { return dual.hessianNorm(20, n_A); }
+SC estimateHessianNorm(const ContactDual& dual, long& n_A) { return dual.hessianNorm(QP::kNormSteps, n_A); }
 
 // The record of one outer step (FrictionStatus::steps): residuals relative to
 // ||b||, as the stopping tests measure them, so that runs of different sizes

@@ -16,6 +16,7 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_Progress.hpp"
 #include "Tribos_QP_AugmentedLagrangian.hpp"
+#include "Tribos_QP_Utils.hpp"
 #include "Tribos_SemismoothNewton.hpp"
 
 namespace Tribos {
@@ -119,7 +120,7 @@ class NewtonSolve {
         G_(dual.G), equality_(G_.is_null() ? RCP<const QP::EqualityConstraint>(rcp(new QP::NoEqualityConstraint(map_->getComm()))) : G_),
         al_(*dual.A, *equality_, dual.jointHessian.get()), v_(map_), Hd_(map_), d_(map_), y_(map_), xt_(map_),
         vt_(map_), tmp_(map_), GtGw_(map_), Gx_(equality_->rangeMap()) {
-    normA_ = dual.hessianNorm(20, n_A_);
+    normA_ = dual.hessianNorm(QP::kNormSteps, n_A_);
     rho_ = params.get<double>("Penalty") * normA_;
     if (!warm.equalityMultiplier.is_null() && warm.equalityMultiplier->getMap()->isSameAs(*al_.multiplier()->getMap())) {
       al_.multiplier()->assign(*warm.equalityMultiplier);

@@ -73,8 +73,8 @@ TEUCHOS_UNIT_TEST(Transforms, ScalingMakesNormOneAndKeepsTheSolution) {
   chain.add(scaling).forward(d.dual);
   TEST_FLOATING_EQUALITY(scaling->scale() * scaling->norm(), 1.0, 1e-15);
   // ||A|| of the dense matrix by many power steps: the transform's estimate
-  // is the power iteration's (from below) times the safety factor 1.1 of
-  // QP::estimateNorm, so ||s A|| lies in [0.9, 1].
+  // is the largest Ritz value of its Lanczos steps (from below) times the
+  // safety factor 1.1 of QP::estimateNorm, so ||s A|| lies in [0.9, 1].
   Vec v(m.problem.size(), 1.0);
   double normA = 0;
   for (int step = 0; step < 500; ++step) {
@@ -93,7 +93,7 @@ TEUCHOS_UNIT_TEST(Transforms, ScalingMakesNormOneAndKeepsTheSolution) {
   Friction::ContactDual replaced = d.dual;
   replaced.A = unscaled;
   const double again = replaced.hessianNorm(20, n_A);
-  TEST_EQUALITY(n_A, 20L);
+  TEST_EQUALITY(n_A, static_cast<long>(std::min<size_t>(20, m.problem.size())));  // Lanczos: at most n steps
   TEST_COMPARE(again, >=, s * normA * 0.9);
   TEST_COMPARE(again, <=, 1.1 * s * normA * (1 + 1e-10));
   const Vec x = solveDual(d.dual, d.map, chain);

@@ -13,6 +13,10 @@
 namespace Tribos {
 namespace QP {
 
+// Lanczos steps of estimateNorm that reach ||A|| of the FETI duals measured
+// (docs/feti.md, "The norm of the dual operator").
+constexpr int kNormSteps = 10;
+
 // Parameters every gradient-projection solver (and SMALBE) understands.
 struct CommonParameters {
   SC rtol = 1e-6;
@@ -20,7 +24,7 @@ struct CommonParameters {
   int maxIterations = 1000;
   SC alphaBar = 1.9;       // alpha_bar = alphaBar / ||A||
   SC Gamma = 1.0;
-  int powerIterations = 20;
+  int powerIterations = kNormSteps;
   Verbosity verbosity = Verbosity::None;
 };
 
@@ -30,9 +34,10 @@ void addCommonParameters(Teuchos::ParameterList& pl, const CommonParameters& def
 // Reads them back from a list already validated against addCommonParameters.
 CommonParameters readCommonParameters(const Teuchos::ParameterList& pl);
 
-// Upper estimate of ||A|| for SPD A: 'iterations' power steps from a
-// rank-independent start, the Rayleigh-type ratio ||Av||/||v|| inflated by
-// 'safety' because the power method approaches ||A|| from below.
+// Upper estimate of ||A|| for SPD A: 'iterations' Lanczos steps (at most n,
+// the dimension; fewer at an invariant subspace) from a rank-independent
+// start, the largest Ritz value inflated by 'safety' because it approaches
+// ||A|| from below.
 // Every application of A increments n_A.
 SC estimateNorm(const Operator& A, int iterations, long& n_A, SC safety = 1.1);
 

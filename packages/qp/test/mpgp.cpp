@@ -44,7 +44,7 @@ TEUCHOS_UNIT_TEST(MPGP, DisksProjectedGradient) {
     const int active = countActiveCircles(s, xref);
     TEST_COMPARE(active, >, 0);
     TEST_COMPARE(active, <, n / 2);  // reference has active and inactive disks
-    checkCounts(r, 20, name, out, success);
+    checkCounts(r, Tribos::QP::kNormSteps, name, out, success);
   }
 }
 
@@ -74,7 +74,7 @@ TEUCHOS_UNIT_TEST(MPGP, MixedSetsProjectedGradient) {
     TEST_EQUALITY(r.x[3], 0);  // radius 0 keeps the pair at 0
     TEST_EQUALITY(r.x[18], 0.25);
     TEST_EQUALITY(r.x[19], -0.5);  // fixed entries unchanged
-    checkCounts(r, 20, name, out, success);
+    checkCounts(r, Tribos::QP::kNormSteps, name, out, success);
   }
 }
 
@@ -140,5 +140,5 @@ TEUCHOS_UNIT_TEST(MPGP, FixedOutsideBlocks) {
   TEST_ASSERT(rb.st.converged);
   TEST_COMPARE(maxDiff(rb.x, refB), <, 1e-8);  // MPRGP on the bound block
   TEST_EQUALITY(maxDiff(Vec(rb.x.begin(), rb.x.begin() + 8), Vec(x0.begin(), x0.begin() + 8)), 0);  // disk block frozen
-  checkCounts(rb, 20, "MPRGP bound block", out, success);
+  checkCounts(rb, Tribos::QP::kNormSteps, "MPRGP bound block", out, success);
 }
