@@ -80,7 +80,8 @@ def main():
     ap.add_argument("--sizes", type=subdomain_size, nargs="+", default=["6"],
                     help="Mesh/Subdomain Size values: whole numbers or Auto (the H it chose is printed)")
     ap.add_argument("--ranks", type=int, default=2)
-    ap.add_argument("--tolerance", type=float, default=1e-4, help="Algorithm 2 relative tolerance")
+    ap.add_argument("--tolerance", type=float, default=1e-4,
+                    help="relative tolerance of the contact solve (Algorithm 2's, which Auto's Newton method takes)")
     ap.add_argument("--precision", choices=["Double", "Single"], default="Single", help="dense block precision")
     ap.add_argument("--no-linear", action="store_true", help="skip the monolithic linear solve")
     ap.add_argument("--set", action="append", default=[], help="extra NAME=VALUE for the contact runs")
