@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Scaling benchmark: the brick with Coulomb friction F = 0.3 (Algorithm 2)
+"""Scaling benchmark: the brick with Coulomb friction F = 0.3 (the outer
+algorithm of the input: Auto, the matrix-free Newton method, unless --set names one)
 from a hundred thousand to a few million degrees of freedom, side by side with
 the linear elastic solve of the same mesh by the monolithic Belos CG + MueLu
 path on the same ranks, and with the memory bandwidth of the machine.
