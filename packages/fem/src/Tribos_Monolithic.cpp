@@ -207,8 +207,9 @@ ElasticityModes MonolithicSystem::modes() const {
     const auto& x = disc_.part.coords[owned[i / 3]];
     for (int k = 0; k < 6; ++k) m.nullspace->replaceLocalValue(i, k, rigidBodyMode(k, x)[i % 3]);
   }
+  const auto& index = disc_.nodeIndex();
   std::vector<GO> nodes;
-  for (int n : owned) nodes.push_back(disc_.nodeIndex()[n]);
+  for (int n : owned) nodes.push_back(index[n]);
   const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
   m.coordinates = rcp(new MultiVector(rcp(new Map(invalid, Teuchos::ArrayView<const GO>(nodes), 0, comm_)), 3));
   for (size_t i = 0; i < owned.size(); ++i)

@@ -12,6 +12,10 @@ namespace Fem {
 
 RCP<MueLuOperator> mueluPreconditioner(const RCP<CrsMatrix>& A, const ElasticityModes& modes,
                                        Teuchos::ParameterList params) {
+  // setCoarseLevelOnOneRank's move of the coarse level asks Zoltan2, which
+  // asks for the coordinates even for one part.
+  TRIBOS_REQUIRE(!modes.coordinates.is_null() || !params.get<bool>("repartition: enable", false),
+                 "MueLu: moving the coarse level to one rank needs the node coordinates");
   params.sublist("user data").set("Nullspace", modes.nullspace);
   if (!modes.coordinates.is_null()) params.sublist("user data").set("Coordinates", modes.coordinates);
   return MueLu::CreateTpetraPreconditioner<SC, LO, GO, Node>(Teuchos::rcp_implicit_cast<Operator>(A), params);

@@ -86,9 +86,9 @@ SC estimateNorm(const Operator& A, int iterations, long& n_A, SC safety) {
   q.scale(1.0 / q.norm2());
   previous.putScalar(0.0);
   // Lanczos: the largest eigenvalue theta of the tridiagonal T_k approaches
-  // ||A|| from below, at k steps about as closely as 3k power steps (FETI
-  // duals: 10 steps give the limit of 60 power steps, where 20 power steps
-  // can still be 12 % low, docs/feti.md). No reorthogonalization: its loss
+  // ||A|| from below, faster than the power method (FETI duals: 10 steps
+  // give the limit of 60 power steps, where 20 power steps can still be 12 %
+  // low, docs/feti.md). No reorthogonalization: its loss
   // adds copies of converged eigenvalues, never a larger one.
   // At most n steps: the Krylov space of an n x n matrix has n dimensions.
   const int steps = static_cast<int>(std::min<Tpetra::global_size_t>(iterations, A.getDomainMap()->getGlobalNumElements()));
