@@ -40,15 +40,17 @@ class FullSpaceNewton {
   // right-hand side). Returns S x - l = (K u - f)_c.
   std::vector<double> equilibrate(const std::vector<double>& x, double absTol);
 
-  // Newton step at u (contact part x^): solves N du = -(K u - f + [0; y^])
-  // with N = K, fixed contact components decoupled (only the diagonal of K
-  // left in their rows and columns, du = 0 there) and G added on the
-  // tangential pair of sliding nodes, to
-  // ||residual|| <= absTol. Eliminating du_r gives (S_FF + G_FF) dx_F =
-  // -(S x^ - l + y^)_F. Then u <- u + du; returns x (the new contact part)
-  // and S x - l = (K u - f)_c.
-  void newtonStep(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
-                  const std::vector<double>& y, double absTol, std::vector<double>& x, std::vector<double>& Sxl);
+  // Newton step at x^: sets the contact part of u to x^ (u_r as it is, not
+  // in equilibrium) and solves N du = -(K u - f + [0; y^]) with N = K, fixed
+  // contact components decoupled (only the diagonal of K left in their rows
+  // and columns, du = 0 there) and G added on the tangential pair of sliding
+  // nodes, to ||residual|| <= absTol. Eliminating du_r gives
+  // (S_FF + G_FF) dx_F = -(S x^ - l + y^)_F for any u_r: the step also
+  // restores equilibrium, so no correction solve precedes it. Then
+  // u <- u + du; returns x (the new contact part) and S x - l = (K u - f)_c.
+  void newtonStep(const std::vector<double>& xHat, const std::vector<char>& freeComp,
+                  const std::vector<std::array<double, 4>>& G, const std::vector<double>& y, double absTol,
+                  std::vector<double>& x, std::vector<double>& Sxl);
 
   // u in global coordinates, 3 per node, prescribed values included.
   std::vector<double> displacement() const { return sys_.globalDisplacement(u_); }
@@ -61,10 +63,14 @@ class FullSpaceNewton {
  private:
   // K u - f on the free dofs.
   std::vector<double> residual() const;
+  // u_c = x at the contact components that are free dofs.
+  void setContactPart(const std::vector<double>& x);
   // Values of K on the full graph with the contact components that fixed[]
   // marks decoupled: their rows and columns keep only the diagonal of K, so
   // that the scaling the smoothers see does not change.
   std::vector<double> graphValues(const std::vector<char>& fixed) const;
+  // K on the full graph, with a nonzero at every entry a Newton matrix may fill.
+  std::vector<double> patternValues() const;
   // A solve on the full graph with b and x given on the free dofs.
   int solve(const MueLuCG& solver, const std::vector<double>& bFree, std::vector<double>& xFree, double absTol);
   // The contact part (3 per contact node) of a vector on the free dofs, with

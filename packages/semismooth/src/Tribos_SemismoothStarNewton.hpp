@@ -134,6 +134,8 @@ class SemismoothStarNewton {
   void linearization(const Approximation& ap, std::vector<char>& freeComp, std::vector<std::array<double, 4>>& G) const;
   void solveReduced(SemismoothResult& res, Approximation& ap, std::ostream* log);
   void solveFullSpace(SemismoothResult& res, Approximation& ap, std::ostream* log);
+  // ||(x - x^)/a|| for the step sizes a of the approximation step.
+  double naturalResidual(const std::vector<double>& x, const Approximation& ap) const;
   void record(SemismoothResult& res, const Approximation& ap, double rel, int k, std::ostream* log) const;
   void applyS(const std::vector<double>& x, std::vector<double>& Sx) const;
   void reducedCG(const std::vector<char>& freeComp, const std::vector<std::array<double, 4>>& G,
