@@ -43,10 +43,24 @@ LocalCsr dofPattern(int numNodes, const std::vector<int>& conn, int npc) {
   return A;
 }
 
-void addEntry(LocalCsr& A, int i, int j, double v) {
-  auto first = A.col.begin() + A.rowptr[i], last = A.col.begin() + A.rowptr[i + 1];
-  auto it = std::lower_bound(first, last, j);
-  A.val[it - A.col.begin()] += v;
+// Adds the element matrix Ke (3 npc x 3 npc, row-major) of the cell with
+// local nodes ln. In dofPattern's layout the three rows of a node hold the
+// same columns and a node's three columns are adjacent, so one search per
+// pair of nodes places a whole 3 x 3 block.
+void addElement(LocalCsr& A, const int* ln, int npc, const std::vector<double>& Ke) {
+  const int n = 3 * npc;
+  for (int a = 0; a < npc; ++a) {
+    const int row = 3 * ln[a];
+    auto first = A.col.begin() + A.rowptr[row], last = A.col.begin() + A.rowptr[row + 1];
+    for (int b = 0; b < npc; ++b) {
+      const int offset = static_cast<int>(std::lower_bound(first, last, 3 * ln[b]) - first);
+      for (int c = 0; c < 3; ++c) {
+        double* v = &A.val[A.rowptr[row + c] + offset];
+        const double* ke = &Ke[(3 * a + c) * n + 3 * b];
+        v[0] += ke[0], v[1] += ke[1], v[2] += ke[2];
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -86,8 +100,7 @@ SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain&
     const int* ln = &sub.connectivity[k * npc];
     const auto X = cellCoordinates(mesh, sub.cells[k]);
     const auto Ke = elementStiffness(mesh.type, X, mat.ofCell(mesh, sub.cells[k]));
-    for (int a = 0; a < 3 * npc; ++a)
-      for (int b = 0; b < 3 * npc; ++b) addEntry(sys.K, 3 * ln[a / 3] + a % 3, 3 * ln[b / 3] + b % 3, Ke[a * 3 * npc + b]);
+    addElement(sys.K, ln, npc, Ke);
   }
   sys.f = subdomainLoad(mesh, sub, loads);
   sys.coords.resize(nl);

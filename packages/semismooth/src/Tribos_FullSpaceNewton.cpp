@@ -126,19 +126,15 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
     for (int b = 0; b < 3; ++b) coordinates->replaceGlobalValue(node, b, problem.coords[node][b]);
   const Fem::ElasticityModes modes{nullspace, coordinates};
 
+  // One hierarchy for every matrix: K_rr (all contact components fixed) and
+  // the Newton matrices. Its prolongators are built once, on the first
+  // values (firstValues), and kept ("MueLu Reuse").
   const std::string reuse = params.get<std::string>("MueLu Reuse");
-  // K_rr: all contact dofs as unit rows; its hierarchy is built once.
-  // Smoothed aggregation: the setup is paid once, the better convergence in
-  // every equilibrium correction.
-  Krr_ = std::make_unique<MueLuCG>(graph, modes, mueluParameters(params, "none", "sa", n, P));
-  Krr_->setValues(graphValues(std::vector<char>(3 * sys_.m, 1)));
-  // The Newton matrices: the first hierarchy is built on K with all contact
-  // dofs free, so that the reused prolongators do not depend on the sets of
-  // the first step.
   newton_ = std::make_unique<MueLuCG>(graph, modes,
                                       mueluParameters(params, reuse, params.get<std::string>("MueLu Algorithm"), n, P),
                                       reuse == "full");
-  newton_->setValues(patternValues());
+  newton_->setValues(firstValues());
+  holdsKrr_ = true;
 
   // x = 0, u_r = K_rr^-1 f_r: l = -(K u - f)_c.
   u_.assign(nf, 0.0);
@@ -151,7 +147,7 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
 
 FullSpaceNewton::~FullSpaceNewton() = default;
 
-double FullSpaceNewton::setupSeconds() const { return Krr_->setupSeconds() + newton_->setupSeconds(); }
+double FullSpaceNewton::setupSeconds() const { return newton_->setupSeconds(); }
 
 std::vector<double> FullSpaceNewton::residual() const {
   std::vector<double> q(u_.size());
@@ -166,33 +162,40 @@ std::vector<double> FullSpaceNewton::contactPart(const std::vector<double>& vFre
   return c;
 }
 
-std::vector<double> FullSpaceNewton::graphValues(const std::vector<char>& fixed) const {
+std::vector<double> FullSpaceNewton::graphValues(const std::vector<char>& fixed, double couplingScale) const {
   std::vector<double> vals = baseValues_;
   const LocalCsr& K = sys_.Kfree;
   auto isFixed = [&](int j) { return sys_.reducedOfFree[j] >= 0 && fixed[sys_.reducedOfFree[j]]; };
   for (int j = 0; j < K.rows; ++j)
     for (int pos = K.rowptr[j]; pos < K.rowptr[j + 1]; ++pos)
       if (fullPos_[pos] >= 0 && (isFixed(j) || isFixed(K.col[pos])))
-        vals[fullPos_[pos]] = (K.col[pos] == j) ? K.val[pos] : 0.0;
+        vals[fullPos_[pos]] = (K.col[pos] == j) ? K.val[pos] : couplingScale * K.val[pos];
   return vals;
 }
 
-// Tpetra's matrix products skip zero values, so the coarse operators that
-// MueLu's reuse recomputes in place keep the pattern of the first ones: the
-// first hierarchy must see a nonzero wherever a later Newton matrix may hold
-// one. K's tangential coupling at a contact node (the x-y entry of its
-// diagonal block) can vanish: it is exactly zero at 13 of the 144 contact
-// nodes of the prism at level 4. A sliding node's curvature G fills it
-// later, so that entry gets a value far below K's diagonal here. Only the pattern and the prolongators of this first
-// hierarchy survive: the first Newton step sets up its own coarse operators.
-std::vector<double> FullSpaceNewton::patternValues() const {
-  std::vector<double> vals = graphValues(std::vector<char>(3 * sys_.m, 0));
-  for (int i = 0; i < sys_.m; ++i)
-    for (int q : {1, 2}) {  // the entries (x, y) and (y, x); the diagonal of the same row is q = 0 and 3
-      const auto at = [&](int e) { return sys_.tangentialEntries[i][e] < 0 ? -1 : fullPos_[sys_.tangentialEntries[i][e]]; };
-      const int pos = at(q), diag = at(q == 1 ? 0 : 3);
-      if (pos >= 0 && diag >= 0 && vals[pos] == 0.0) vals[pos] = 1e-12 * vals[diag];
-    }
+// The first values fix what every later setup keeps:
+// - the aggregates, hence the prolongators. They come from the graph of
+//   nonzeros: a contact node with its couplings removed would be isolated,
+//   without a coarse representation when a later Newton step frees it. So
+//   the couplings of the contact components are scaled by 1e-12, not
+//   removed: the graph is K's.
+// - the patterns of the coarse operators that the re-setups recompute in
+//   place: Tpetra's matrix products skip zero values, so there must be a
+//   nonzero wherever a later matrix may hold one. K's tangential coupling at
+//   a contact node (the x-y entry of its diagonal block) can vanish: it is
+//   exactly zero at 13 of the 144 contact nodes of the prism at level 4. A
+//   sliding node's curvature G fills it, so it gets 1e-12 sqrt(K_xx K_yy).
+// The matrix is K_rr up to these symmetric couplings of relative size 1e-12,
+// which the initial solve for l takes as K_rr (it asks for 1e-3).
+std::vector<double> FullSpaceNewton::firstValues() const {
+  constexpr double kCoupling = 1e-12;
+  std::vector<double> vals = graphValues(std::vector<char>(3 * sys_.m, 1), kCoupling);
+  for (int i = 0; i < sys_.m; ++i) {
+    const auto at = [&](int e) { return sys_.tangentialEntries[i][e] < 0 ? -1 : fullPos_[sys_.tangentialEntries[i][e]]; };
+    const auto Kat = [&](int e) { return sys_.Kfree.val[sys_.tangentialEntries[i][e]]; };
+    for (int q : {1, 2})  // the entries (x, y) and (y, x); q = 0 and 3 are the diagonal
+      if (at(q) >= 0 && vals[at(q)] == 0.0) vals[at(q)] = kCoupling * std::sqrt(Kat(0) * Kat(3));
+  }
   return vals;
 }
 
@@ -226,10 +229,14 @@ void FullSpaceNewton::setContactPart(const std::vector<double>& x) {
 
 std::vector<double> FullSpaceNewton::equilibrate(const std::vector<double>& x, double absTol) {
   setContactPart(x);
+  if (!holdsKrr_) {
+    newton_->setValues(graphValues(std::vector<char>(3 * sys_.m, 1)));
+    holdsKrr_ = true;
+  }
   std::vector<double> b = residual(), du;
   for (size_t j = 0; j < b.size(); ++j) b[j] = sys_.reducedOfFree[j] >= 0 ? 0.0 : -b[j];
   if (absTol < 0) absTol = equilibriumTolerance_ * norm2(b);
-  solve(*Krr_, b, du, absTol);
+  solve(*newton_, b, du, absTol);
   for (size_t j = 0; j < u_.size(); ++j)
     if (sys_.reducedOfFree[j] < 0) u_[j] += du[j];
   return contactPart(residual(), zeroAtPrescribed_);
@@ -254,6 +261,7 @@ void FullSpaceNewton::newtonStep(const std::vector<double>& xHat, const std::vec
   // Set up again every step (MueLu Reuse): keeping the last hierarchy, even
   // when only the curvatures G changed, costs more CG steps than a re-setup.
   newton_->setValues(vals);
+  holdsKrr_ = false;
 
   // Right-hand side -(K u - f + [0; y]); zero on the fixed components, whose
   // rows are unit rows (du = 0 there). Its interior part is the equilibrium

@@ -23,11 +23,11 @@ class MueLuCG;
 
 class FullSpaceNewton {
  public:
-  // Builds the MueLu hierarchies (rigid-body near null space from
+  // Builds the MueLu hierarchy (rigid-body near null space from
   // problem.coords, rotated into the contact frames) and solves
   // u_r = K_rr^-1 f_r (x = 0), which gives l = -(K u - f)_c.
-  // params: the SemismoothStarNewton list ("MueLu Smoother", "MueLu Reuse",
-  // "Equilibrium Tolerance", "CG Maximum Iterations").
+  // params: the SemismoothStarNewton list ("MueLu Smoother", "MueLu Algorithm",
+  // "MueLu Reuse", "Equilibrium Tolerance", "CG Maximum Iterations").
   FullSpaceNewton(const ContactProblem& problem, const Teuchos::ParameterList& params);
   ~FullSpaceNewton();
 
@@ -66,11 +66,13 @@ class FullSpaceNewton {
   // u_c = x at the contact components that are free dofs.
   void setContactPart(const std::vector<double>& x);
   // Values of K on the full graph with the contact components that fixed[]
-  // marks decoupled: their rows and columns keep only the diagonal of K, so
-  // that the scaling the smoothers see does not change.
-  std::vector<double> graphValues(const std::vector<char>& fixed) const;
-  // K on the full graph, with a nonzero at every entry a Newton matrix may fill.
-  std::vector<double> patternValues() const;
+  // marks decoupled: their rows and columns keep only the diagonal of K (so
+  // that the scaling the smoothers see does not change), their couplings
+  // scaled by couplingScale.
+  std::vector<double> graphValues(const std::vector<char>& fixed, double couplingScale = 0.0) const;
+  // K_rr with a nonzero at every entry a Newton matrix may hold: the values
+  // the hierarchy is built on.
+  std::vector<double> firstValues() const;
   // A solve on the full graph with b and x given on the free dofs.
   int solve(const MueLuCG& solver, const std::vector<double>& bFree, std::vector<double>& xFree, double absTol);
   // The contact part (3 per contact node) of a vector on the free dofs, with
@@ -83,7 +85,8 @@ class FullSpaceNewton {
   int firstDof_ = 0, endDof_ = 0;   // owned full dofs [firstDof_, endDof_)
   RCP<const Map> map_, replicated_;
   RCP<const Import> gather_;
-  std::unique_ptr<MueLuCG> Krr_, newton_;
+  std::unique_ptr<MueLuCG> newton_;  // the hierarchy of K_rr and the Newton matrices
+  bool holdsKrr_ = false;             // whether newton_ holds K_rr now
   std::vector<double> u_, l_;    // u on the free dofs (rotated frame)
   std::vector<double> zeroAtPrescribed_;  // 3m zeros: residual entries at prescribed directions
   int maxIt_ = 0;

@@ -38,8 +38,8 @@ const NewtonSolverRegistry& newtonSolvers() {
           {"Dense Schur"});
     r.add("CG+MueLu", [] { return rcp(new Kind{Kind::FullSpace, Kind::ConjugateGradients}); },
           "no factorization at all: a full-space iterate u with (K u - f)_r = 0 gives S x - l = (K u - f)_c, Newton "
-          "steps are full-space solves by Belos CG preconditioned with MueLu (inexact Newton), K_rr solves "
-          "(equilibrium corrections) likewise; needs the node coordinates");
+          "steps are full-space solves by Belos CG preconditioned with MueLu (inexact Newton) that also restore "
+          "interior equilibrium; needs the node coordinates");
     return r;
   }();
   return registry;
@@ -82,14 +82,15 @@ RCP<const Teuchos::ParameterList> SemismoothStarNewton::getValidParameters() {
   pl->set("MueLu Smoother", "Chebyshev", "CG+MueLu: smoother on all levels but the coarsest (factored)",
           rcp(new Teuchos::StringValidator(tuple<std::string>("Chebyshev", "Symmetric Gauss-Seidel"))));
   pl->set("MueLu Algorithm", "unsmoothed",
-          "CG+MueLu: MueLu \"multigrid algorithm\" of the Newton matrices, set up again every step: unsmoothed "
-          "(plain aggregation: sparser coarse operators, half the re-setup time, a few more CG steps; prism L8: 23 s in "
-          "all) or sa (smoothed aggregation; prism L8: 30 s). The K_rr hierarchy (built once) is always sa",
+          "CG+MueLu: MueLu \"multigrid algorithm\" of the hierarchy of K_rr and the Newton matrices, set up again "
+          "every step: unsmoothed (plain aggregation: sparser coarse operators, a third of the re-setup time, a few "
+          "more CG steps; prism L8 on 2 ranks: 21.7 s of solve) or sa (smoothed aggregation)",
           rcp(new Teuchos::StringValidator(tuple<std::string>("sa", "unsmoothed"))));
   pl->set("MueLu Reuse", "RP",
-          "CG+MueLu: MueLu \"reuse: type\" for the Newton matrices of successive steps: RP keeps the prolongators "
-          "(built once on K) and recomputes the coarse operators and smoothers, tP keeps the tentative prolongators, "
-          "none rebuilds the hierarchy each step",
+          "CG+MueLu: MueLu \"reuse: type\" for the matrices of successive steps: RP keeps the prolongators "
+          "(built once, on K's graph) and recomputes the coarse operators and smoothers, tP keeps the tentative "
+          "prolongators, none rebuilds the hierarchy each step, full keeps the first hierarchy (K_rr's; slow, for "
+          "experiments)",
           rcp(new Teuchos::StringValidator(tuple<std::string>("RP", "tP", "none", "full"))));
   pl->set("Equilibrium Tolerance", 1e-3,
           "CG+MueLu: relative CG tolerance of the initial K_rr solve for l (the Newton steps restore interior "
