@@ -7,7 +7,9 @@
 
 #include <algorithm>
 
+#include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_Reduce.hpp"
 
 namespace Tribos {
 namespace Fem {
@@ -89,14 +91,18 @@ std::vector<double> subdomainLoad(const Mesh::Mesh& mesh, const Mesh::Subdomain&
   return f;
 }
 
-SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
-                                  const LoadCase& loads) {
+namespace {
+
+// K and f of the subdomain with the element matrices of the cells
+// [first, end) only.
+SubdomainSystem assembleCells(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
+                              const LoadCase& loads, size_t first, size_t end) {
   SubdomainSystem sys;
   sys.id = sub.id;
   sys.nodes = sub.nodes;
   const int npc = mesh.nodesPerCell(), nl = static_cast<int>(sub.nodes.size());
   sys.K = dofPattern(nl, sub.connectivity, npc);
-  for (size_t k = 0; k < sub.cells.size(); ++k) {
+  for (size_t k = first; k < end; ++k) {
     const int* ln = &sub.connectivity[k * npc];
     const auto X = cellCoordinates(mesh, sub.cells[k]);
     const auto Ke = elementStiffness(mesh.type, X, mat.ofCell(mesh, sub.cells[k]));
@@ -106,6 +112,25 @@ SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain&
   sys.coords.resize(nl);
   for (int n = 0; n < nl; ++n) sys.coords[n] = mesh.coords[sub.nodes[n]];
   sys.R = rigidBodyModes(sys.coords);
+  return sys;
+}
+
+}  // namespace
+
+SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
+                                  const LoadCase& loads) {
+  return assembleCells(mesh, sub, mat, loads, 0, sub.cells.size());
+}
+
+SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
+                                  const LoadCase& loads, const Comm& comm) {
+  const size_t n = sub.cells.size(), P = comm.getSize(), rank = comm.getRank();
+  SubdomainSystem sys;
+  // A cell refused on one rank must not leave the others in the sum.
+  checkOnEveryRank(comm, [&] { sys = assembleCells(mesh, sub, mat, loads, n * rank / P, n * (rank + 1) / P); });
+  if (P > 1)
+    MPI_Allreduce(MPI_IN_PLACE, sys.K.val.data(), static_cast<int>(sys.K.val.size()), MPI_DOUBLE, MPI_SUM,
+                  rawComm(comm));
   return sys;
 }
 

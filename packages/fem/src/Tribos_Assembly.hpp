@@ -27,6 +27,11 @@ struct SubdomainSystem {
 
 SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
                                   const LoadCase& loads);
+// The same system on every rank of comm, the element matrices shared out:
+// each rank computes a contiguous block of the cells, and K is their sum.
+// Collective.
+SubdomainSystem assembleSubdomain(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyMaterials& mat,
+                                  const LoadCase& loads, const Comm& comm);
 // Subdomain s of this rank's part, its nodes named by their mesh numbers.
 SubdomainSystem assembleSubdomain(const Mesh::Discretization& disc, int s, const BodyMaterials& mat,
                                   const LoadCase& loads);

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "Tribos_Assembly.hpp"
+#include "Tribos_Decomposition.hpp"
 #include "Tribos_Discretization.hpp"
 #include "Tribos_Monolithic.hpp"
 
@@ -171,6 +172,31 @@ void kernelTest(Mesh::CellType type, Teuchos::FancyOStream& out, bool& success) 
   }
 }
 
+// The assembly shared out over the ranks (each computes a block of the
+// cells, K summed) gives every rank the K of the serial assembly: the same
+// entries to round-off, and the rigid-body kernel.
+void sharedAssemblyTest(Mesh::CellType type, Teuchos::FancyOStream& out, bool& success) {
+  const auto comm = Tpetra::getDefaultComm();
+  Mesh::BoxSpec spec;
+  spec.type = type;
+  spec.cells = {5, 3, 4};
+  const Mesh::Mesh mesh = Mesh::generateBox(spec);
+  const Mesh::Subdomain whole = Mesh::extractSubdomains(mesh, std::vector<int>(mesh.numCells(), 0), 1)[0];
+  const Fem::Material mat{2.1e11, 0.3};
+  const auto serial = Fem::assembleSubdomain(mesh, whole, mat, {});
+  const auto shared = Fem::assembleSubdomain(mesh, whole, mat, {}, *comm);
+  TEST_ASSERT(shared.K.col == serial.K.col);
+  TEST_ASSERT(shared.K.rowptr == serial.K.rowptr);
+  double kmax = 0, diff = 0;
+  for (size_t k = 0; k < serial.K.val.size(); ++k) {
+    kmax = std::max(kmax, std::abs(serial.K.val[k]));
+    diff = std::max(diff, std::abs(shared.K.val[k] - serial.K.val[k]));
+  }
+  out << comm->getSize() << " ranks: max |K_shared - K| / max |K| = " << diff / kmax << "\n";
+  TEST_COMPARE(diff, <=, 1e-14 * kmax);
+  TEST_COMPARE(kmax, >, 0.0);
+}
+
 }  // namespace
 
 TEUCHOS_UNIT_TEST(PatchTest, Tet4Direct) { patchTest(Mesh::CellType::Tet4, "Direct", out, success); }
@@ -183,3 +209,5 @@ TEUCHOS_UNIT_TEST(Convergence, Hex8) { convergenceTest(Mesh::CellType::Hex8, out
 
 TEUCHOS_UNIT_TEST(RigidBodyKernel, Tet4) { kernelTest(Mesh::CellType::Tet4, out, success); }
 TEUCHOS_UNIT_TEST(RigidBodyKernel, Hex8) { kernelTest(Mesh::CellType::Hex8, out, success); }
+TEUCHOS_UNIT_TEST(SharedAssembly, Tet4) { sharedAssemblyTest(Mesh::CellType::Tet4, out, success); }
+TEUCHOS_UNIT_TEST(SharedAssembly, Hex8) { sharedAssemblyTest(Mesh::CellType::Hex8, out, success); }

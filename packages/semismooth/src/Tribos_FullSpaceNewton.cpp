@@ -7,8 +7,10 @@
 #include <Tpetra_MultiVector.hpp>
 #include <Tpetra_Vector.hpp>
 
+#include <algorithm>
 #include <cmath>
 
+#include "Tribos_AllGather.hpp"
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_MueLuCG.hpp"
@@ -72,6 +74,9 @@ FullSpaceNewton::FullSpaceNewton(const ContactProblem& problem, const Teuchos::P
   const int P = comm->getSize(), rank = comm->getRank();
   firstDof_ = 3 * static_cast<int>(static_cast<long long>(N) * rank / P);
   endDof_ = 3 * static_cast<int>(static_cast<long long>(N) * (rank + 1) / P);
+  // The free dofs are numbered in dof order: this rank's are a range too.
+  freeBegin_ = static_cast<int>(std::lower_bound(sys_.dofOfFree.begin(), sys_.dofOfFree.end(), firstDof_) - sys_.dofOfFree.begin());
+  freeEnd_ = static_cast<int>(std::lower_bound(sys_.dofOfFree.begin(), sys_.dofOfFree.end(), endDof_) - sys_.dofOfFree.begin());
   map_ = rcp(new Map(static_cast<Tpetra::global_size_t>(n), static_cast<size_t>(endDof_ - firstDof_), 0, comm));
   replicated_ = rcp(new Map(static_cast<Tpetra::global_size_t>(n), 0, comm, Tpetra::LocallyReplicated));
   gather_ = rcp(new Import(map_, replicated_));
@@ -150,10 +155,16 @@ FullSpaceNewton::~FullSpaceNewton() = default;
 double FullSpaceNewton::setupSeconds() const { return newton_->setupSeconds(); }
 
 std::vector<double> FullSpaceNewton::residual() const {
-  std::vector<double> q(u_.size());
-  sys_.Kfree.multiply(u_.data(), q.data());
-  for (size_t j = 0; j < q.size(); ++j) q[j] -= sys_.fFree[j];
-  return q;
+  // Each rank forms the rows of its own dofs, then every rank gets all (the
+  // iterate is replicated, the rows of the ranks follow in rank order).
+  const LocalCsr& K = sys_.Kfree;
+  std::vector<double> mine(freeEnd_ - freeBegin_);
+  for (int j = freeBegin_; j < freeEnd_; ++j) {
+    double s = -sys_.fFree[j];
+    for (int pos = K.rowptr[j]; pos < K.rowptr[j + 1]; ++pos) s += K.val[pos] * u_[K.col[pos]];
+    mine[j - freeBegin_] = s;
+  }
+  return allGatherv(mine, *map_->getComm());
 }
 
 std::vector<double> FullSpaceNewton::contactPart(const std::vector<double>& vFree, const std::vector<double>& atPrescribed) const {

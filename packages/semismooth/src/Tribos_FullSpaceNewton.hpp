@@ -61,7 +61,7 @@ class FullSpaceNewton {
   double cgSeconds() const { return cgSeconds_; }  // all CG solves so far
 
  private:
-  // K u - f on the free dofs.
+  // K u - f on the free dofs (every rank forms its rows). Collective.
   std::vector<double> residual() const;
   // u_c = x at the contact components that are free dofs.
   void setContactPart(const std::vector<double>& x);
@@ -83,6 +83,7 @@ class FullSpaceNewton {
   std::vector<int> fullPos_;     // position in the owned rows' value array of each Kfree entry (-1: not owned)
   std::vector<double> baseValues_;  // K on the owned rows of the full graph, prescribed dofs as unit rows
   int firstDof_ = 0, endDof_ = 0;   // owned full dofs [firstDof_, endDof_)
+  int freeBegin_ = 0, freeEnd_ = 0; // their free dofs [freeBegin_, freeEnd_)
   RCP<const Map> map_, replicated_;
   RCP<const Import> gather_;
   std::unique_ptr<MueLuCG> newton_;  // the hierarchy of K_rr and the Newton matrices

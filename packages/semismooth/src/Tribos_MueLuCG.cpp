@@ -44,13 +44,13 @@ void MueLuCG::setValues(const std::vector<double>& values, bool updatePreconditi
   TRIBOS_REQUIRE(values.size() == graph.getNodeNumEntries(),
                  "MueLuCG: " << values.size() << " values for a graph of " << graph.getNodeNumEntries() << " entries");
   A_->resumeFill();
-  std::vector<SC> rowValues;
-  for (LO row = 0; row < static_cast<LO>(graph.getNodeNumRows()); ++row) {
-    Teuchos::ArrayView<const LO> cols;
-    graph.getLocalRowView(row, cols);
-    rowValues.resize(cols.size());
-    for (size_t k = rowStart_[row]; k < rowStart_[row + 1]; ++k) rowValues[viewPos_[k]] = values[k];
-    A_->replaceLocalValues(row, cols, Teuchos::ArrayView<const SC>(rowValues));
+  {
+    // Straight into the local matrix (host memory on the Serial node): a
+    // replaceLocalValues per row searched every column.
+    const auto local = A_->getLocalMatrixHost();
+    const auto rowMap = local.graph.row_map;
+    for (LO row = 0; row < static_cast<LO>(graph.getNodeNumRows()); ++row)
+      for (size_t k = rowStart_[row]; k < rowStart_[row + 1]; ++k) local.values(rowMap(row) + viewPos_[k]) = values[k];
   }
   A_->fillComplete();
   if (M_.is_null()) {

@@ -83,11 +83,13 @@ std::vector<ContactNode> contactFaceNodes(const Mesh::Mesh& mesh, const std::map
 }
 
 ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
-                                   const std::string& contactFace, double gap, double slipBoundTraction) {
+                                   const std::string& contactFace, double gap, double slipBoundTraction,
+                                   const Comm* comm) {
   TRIBOS_REQUIRE(slipBoundTraction >= 0, "semismooth*: negative slip bound traction " << slipBoundTraction);
   // One subdomain covering the mesh: its K and f are the global ones.
   const Mesh::Subdomain whole = Mesh::extractSubdomains(mesh, std::vector<int>(mesh.numCells(), 0), 1)[0];
-  Fem::SubdomainSystem sys = Fem::assembleSubdomain(mesh, whole, material, loads);
+  Fem::SubdomainSystem sys =
+      comm ? Fem::assembleSubdomain(mesh, whole, material, loads, *comm) : Fem::assembleSubdomain(mesh, whole, material, loads);
   for (int i = 0; i < static_cast<int>(whole.nodes.size()); ++i)
     TRIBOS_REQUIRE(whole.nodes[i] == i, "semismooth*: the mesh has unused nodes");
 
@@ -112,7 +114,9 @@ SemismoothResult solveFromMesh(const Mesh::Mesh& mesh, const Fem::Material& mate
   // Built alike on every rank from the whole mesh: a refusal is the input's
   // fault, agreed on so that no rank aborts the others.
   ContactProblem problem;
-  auto build = [&] { problem = buildContactProblem(mesh, material, loads, contactFace, gap, slipBoundTraction); };
+  auto build = [&] {
+    problem = buildContactProblem(mesh, material, loads, contactFace, gap, slipBoundTraction, comm.get());
+  };
   if (comm.is_null()) build();
   else checkOnEveryRank(*comm, build);
   problem.comm = comm;

@@ -212,8 +212,11 @@ std::vector<ContactNode> contactFaceNodes(const Mesh::Mesh& mesh, const std::map
                                           const std::string& contactFace, double gap, double slipBoundTraction);
 
 // The contact problem solveFromMesh() solves (for tests and other drivers).
+// With a communicator its ranks share the element matrices out and every
+// rank gets the whole problem (collective).
 ContactProblem buildContactProblem(const Mesh::Mesh& mesh, const Fem::Material& material, const Fem::LoadCase& loads,
-                                   const std::string& contactFace, double gap, double slipBoundTraction);
+                                   const std::string& contactFace, double gap, double slipBoundTraction,
+                                   const Comm* comm = nullptr);
 
 }  // namespace Semismooth
 }  // namespace Tribos
