@@ -177,9 +177,9 @@ std::vector<double> FullSpaceNewton::graphValues(const std::vector<char>& fixed,
   std::vector<double> vals = baseValues_;
   const LocalCsr& K = sys_.Kfree;
   auto isFixed = [&](int j) { return sys_.reducedOfFree[j] >= 0 && fixed[sys_.reducedOfFree[j]]; };
-  for (int j = 0; j < K.rows; ++j)
+  for (int j = freeBegin_; j < freeEnd_; ++j)  // the rows this rank holds
     for (int pos = K.rowptr[j]; pos < K.rowptr[j + 1]; ++pos)
-      if (fullPos_[pos] >= 0 && (isFixed(j) || isFixed(K.col[pos])))
+      if (isFixed(j) || isFixed(K.col[pos]))
         vals[fullPos_[pos]] = (K.col[pos] == j) ? K.val[pos] : couplingScale * K.val[pos];
   return vals;
 }
