@@ -65,7 +65,8 @@ struct SemismoothResult {
   double assemblySeconds = 0, reductionSeconds = 0, solverSeconds = 0;
   double newtonFactorSeconds = 0;     // part of solverSeconds
   // "Reduced CG": total CG steps (= K_rr solves); "CG+MueLu": total CG steps
-  // of all full-space solves (initial, equilibrium corrections, Newton).
+  // of the Newton steps and the confirmations of the residual (not the
+  // initial solve, part of reductionSeconds).
   int cgIterations = 0;
   // "CG+MueLu": all MueLu setups (the first ones are part of reductionSeconds,
   // the re-setups per Newton step part of solverSeconds).
