@@ -235,6 +235,10 @@ def disk_full(mpi, tribos, work, np_):
 
 
 def main():
+    # A run stopped from outside (a CI job cancelled, a kill of the process
+    # group) sends SIGTERM: leave through the finally blocks, which unmount
+    # the small tmpfs, instead of leaving it mounted under the build tree.
+    signal.signal(signal.SIGTERM, lambda signum, frame: sys.exit(128 + signum))
     sep = sys.argv.index("--")
     what, opts = sys.argv[1], sys.argv[2:sep]
     work = opts[opts.index("--work") + 1]
