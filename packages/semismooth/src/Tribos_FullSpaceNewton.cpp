@@ -184,6 +184,11 @@ std::vector<double> FullSpaceNewton::graphValues(const std::vector<char>& fixed,
   return vals;
 }
 
+int FullSpaceNewton::ownedTangentialPos(int i, int q) const {
+  const int e = sys_.tangentialEntries[i][q];
+  return e < 0 ? -1 : fullPos_[e];
+}
+
 // The first values fix what every later setup keeps:
 // - the aggregates, hence the prolongators. They come from the graph of
 //   nonzeros: a contact node with its couplings removed would be isolated,
@@ -202,10 +207,11 @@ std::vector<double> FullSpaceNewton::firstValues() const {
   constexpr double kCoupling = 1e-12;
   std::vector<double> vals = graphValues(std::vector<char>(3 * sys_.m, 1), kCoupling);
   for (int i = 0; i < sys_.m; ++i) {
-    const auto at = [&](int e) { return sys_.tangentialEntries[i][e] < 0 ? -1 : fullPos_[sys_.tangentialEntries[i][e]]; };
-    const auto Kat = [&](int e) { return sys_.Kfree.val[sys_.tangentialEntries[i][e]]; };
-    for (int q : {1, 2})  // the entries (x, y) and (y, x); q = 0 and 3 are the diagonal
-      if (at(q) >= 0 && vals[at(q)] == 0.0) vals[at(q)] = kCoupling * std::sqrt(Kat(0) * Kat(3));
+    const auto Kat = [&](int q) { return sys_.Kfree.val[sys_.tangentialEntries[i][q]]; };
+    for (int q : {1, 2}) {  // the entries (x, y) and (y, x); q = 0 and 3 are the diagonal
+      const int pos = ownedTangentialPos(i, q);
+      if (pos >= 0 && vals[pos] == 0.0) vals[pos] = kCoupling * std::sqrt(Kat(0) * Kat(3));
+    }
   }
   return vals;
 }
@@ -266,7 +272,7 @@ void FullSpaceNewton::newtonStep(const std::vector<double>& xHat, const std::vec
   for (int i = 0; i < sys_.m; ++i)
     if (freeComp[3 * i] && freeComp[3 * i + 1])
       for (int q = 0; q < 4; ++q) {
-        const int pos = fullPos_[sys_.tangentialEntries[i][q]];
+        const int pos = ownedTangentialPos(i, q);
         if (pos >= 0) vals[pos] += G[i][q];
       }
   // Set up again every step (MueLu Reuse): keeping the last hierarchy, even

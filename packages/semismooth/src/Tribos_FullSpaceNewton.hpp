@@ -73,6 +73,10 @@ class FullSpaceNewton {
   // K_rr with a nonzero at every entry a Newton matrix may hold: the values
   // the hierarchy is built on.
   std::vector<double> firstValues() const;
+  // Where this rank holds entry q (row-major 2 x 2) of the tangential block
+  // of contact node i in the value array; -1 when another rank holds it or
+  // a tangential direction is prescribed.
+  int ownedTangentialPos(int i, int q) const;
   // A solve on the full graph with b and x given on the free dofs.
   int solve(const MueLuCG& solver, const std::vector<double>& bFree, std::vector<double>& xFree, double absTol);
   // The contact part (3 per contact node) of a vector on the free dofs, with

@@ -20,18 +20,17 @@ MueLuCG::MueLuCG(const RCP<const CrsGraph>& graph, const Fem::ElasticityModes& m
       keepPreconditioner_(keepPreconditioner) {
   TRIBOS_REQUIRE(graph->isFillComplete(), "MueLuCG: the graph must be filled");
   A_->fillComplete();
-  // Global columns of each owned row in increasing order, and where each
-  // sits in the row's local view (the order setValues() fills).
+  // For each value setValues() receives (owned rows in order, global columns
+  // increasing), its position in the local matrix's value array.
   const auto& colMap = *graph->getColMap();
-  rowStart_.assign(1, 0);
+  const auto rowMap = A_->getLocalMatrixHost().graph.row_map;
   for (LO row = 0; row < static_cast<LO>(graph->getNodeNumRows()); ++row) {
     Teuchos::ArrayView<const LO> cols;
     graph->getLocalRowView(row, cols);
     std::vector<std::pair<GO, LO>> order;
     for (LO k = 0; k < cols.size(); ++k) order.emplace_back(colMap.getGlobalElement(cols[k]), k);
     std::sort(order.begin(), order.end());
-    for (const auto& o : order) viewPos_.push_back(o.second);
-    rowStart_.push_back(viewPos_.size());
+    for (const auto& o : order) valuePos_.push_back(rowMap(row) + o.second);
   }
 }
 
@@ -48,9 +47,7 @@ void MueLuCG::setValues(const std::vector<double>& values, bool updatePreconditi
     // Straight into the local matrix (host memory on the Serial node): a
     // replaceLocalValues per row searched every column.
     const auto local = A_->getLocalMatrixHost();
-    const auto rowMap = local.graph.row_map;
-    for (LO row = 0; row < static_cast<LO>(graph.getNodeNumRows()); ++row)
-      for (size_t k = rowStart_[row]; k < rowStart_[row + 1]; ++k) local.values(rowMap(row) + viewPos_[k]) = values[k];
+    for (size_t k = 0; k < values.size(); ++k) local.values(valuePos_[k]) = values[k];
   }
   A_->fillComplete();
   if (M_.is_null()) {

@@ -37,8 +37,7 @@ class MueLuCG {
 
  private:
   RCP<CrsMatrix> A_;
-  std::vector<size_t> rowStart_;  // per owned row: its range in setValues()' array
-  std::vector<LO> viewPos_;       // position of each value in the row's local view
+  std::vector<size_t> valuePos_;  // per value of setValues(): its position in the local matrix
   RCP<MueLu::TpetraOperator<SC, LO, GO, Node>> M_;
   Fem::ElasticityModes modes_;
   Teuchos::ParameterList mueluParams_;
