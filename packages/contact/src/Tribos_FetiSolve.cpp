@@ -119,6 +119,12 @@ void solveInRounds(const FetiContactProblem& cp, const PairFriction& friction, c
       Teuchos::TimeMonitor checkTime(*checkTimer);
       checkResult(problem, friction, p, r, from.u);
     }
+    if (!out.is_null()) {
+      std::string which;
+      const double worst = r.kkt.worst(&which);
+      *out << "result check: largest KKT residual " << worst << " (" << which << "), limit " << r.verdict.limit
+           << "\n";
+    }
     if (!r.solverConverged || r.verdict.converged || round == rounds || Friction::atTightestTolerance(requested))
       break;
     requested = Friction::tightenedTolerance(requested, r.verdict.limit, r.kkt.worst());

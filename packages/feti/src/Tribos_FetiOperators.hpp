@@ -83,8 +83,12 @@ class CoarseSpace {
   // G_S G_S' for the rows S (all when null): sparse, both triangles, sorted
   // columns, replicated on every rank. Collective.
   LocalCsr gramian(const std::vector<char>* rows) const;
+  // "Coarse Problem" = Auto splits the factors among the ranks from this
+  // many coarse rows on (SplitCholesky).
+  static constexpr int kAutoSplitRows = 3000;
   // Sparse Cholesky factor of G_S G_S', or null when it is singular (some
-  // rigid motion touches no row S). Collective.
+  // rigid motion touches no row S). Split among the ranks or whole on each
+  // as "Coarse Problem" says (SplitCholesky). Collective.
   RCP<LocalSolver> factorGramian(const std::vector<char>* rows) const;
   // G Pi G' = GG' - sum_q (G q)(G q)' for the fixed directions q of a face
   // (the rows of `fixed`, unit vectors over this rank's dual rows; Pi the
@@ -124,6 +128,8 @@ class CoarseSpace {
   std::vector<int> segPtr_, segStart_, valPtr_;
   std::vector<double> segVal_;
   std::vector<int> blockLength_;  // r_s at coarse column ko[s]
+  // An unfactored Cholesky solver for a Gram matrix, as "Coarse Problem" says.
+  RCP<LocalSolver> newGramFactor() const;
   RCP<LocalSolver> GGt_, GEGEt_;  // factors of GG' and G_E G_E' (null: singular)
   mutable LocalCsr gram_;         // GG', kept once a face asks for it
   mutable std::vector<double> work_;

@@ -364,6 +364,14 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
             "reason is solved again with the right-hand side corrected by the exact F, so any accuracy is "
             "reached: docs/feti.md) or Double (twice the memory and traffic; no correction needed)",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Double", "Single"))));
+    pl->set("Coarse Problem", "Auto",
+            "the sparse Cholesky factors of the coarse problem GG' (and G_E G_E'): Replicated (every rank factors "
+            "and solves the whole of it), Split (each rank factors one part, found by METIS, and the ranks meet "
+            "on a separator whose Schur complement every rank factors densely: each rank reads a part of the "
+            "factor per solve, which is what the coarse solves of a large problem wait on; whole again when the "
+            "separator would exceed 3000 rows) or Auto (Split on several ranks from 3000 coarse rows on, i.e. "
+            "500 floating subdomains; docs/feti.md)",
+            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Auto", "Replicated", "Split"))));
     // The dual solver of a problem without contact reads its own sublist, so
     // that the whole FETI list of an input is handed to the problem as it is.
     pl->sublist("Projected CG", false, "the dual solver without contact (Feti::ProjectedCG)")
@@ -456,6 +464,7 @@ const Mesh::Discretization& FetiProblem::discretization() const {
 void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::ParameterList& p) {
   hasContact_ = contact;
   localSolverName_ = p.get<std::string>("Local Solver");
+  coarseProblem_ = p.get<std::string>("Coarse Problem");
   dirichlet_ = std::move(fc.dirichlet);
   const Numbering numbering = subdomainNumbering(systems_, *comm_);
   const int S = static_cast<int>(numbering.owner.size());

@@ -171,6 +171,8 @@ class FetiProblem {
   double factorMemoryMb() const { return Kplus_->memoryMb(); }
   double denseBlockMemoryMb() const { return Kplus_->denseBlockMemoryMb(); }
   const std::string& localSolverName() const { return localSolverName_; }
+  // "Coarse Problem": how CoarseSpace factors GG' (Auto, Replicated, Split).
+  const std::string& coarseProblem() const { return coarseProblem_; }
   // True when some local subdomain applies F from its dense block (K+)_bb.
   bool explicitDualOperator() const { return Kplus_->hasDenseBlocks(); }
   // True when some of this rank's dense blocks are stored in single
@@ -201,6 +203,7 @@ class FetiProblem {
   bool hasContact_ = false;
   RCP<const Comm> comm_;
   std::string localSolverName_;
+  std::string coarseProblem_ = "Auto";
   std::vector<Fem::SubdomainSystem> systems_;      // this rank's subdomains
   std::vector<GO> primalOffsets_;
   std::vector<int> kernelOffsets_;

@@ -39,6 +39,10 @@ void LocalSolver::solveFactor(double*, bool) const {
   throw Error(name() + ": no Cholesky factor to solve with (use CHOLMOD)");
 }
 
+void LocalSolver::trailingFactor(std::vector<double>&) const {
+  throw Error(name() + ": no Cholesky factor to read a trailing block from (use CHOLMOD)");
+}
+
 double LocalSolver::pivotRatio() const { throw Error(name() + ": no Cholesky factor (use CHOLMOD)"); }
 
 namespace {
@@ -180,8 +184,12 @@ class CholmodSolver : public LocalSolver {
     }
     dense_.reset();
     cholmod_sparse S = cholmodView(A, true);
-    cholmod_camd(&S, nullptr, 0, set.data(), perm.data(), &common_);
-    requireCholmodOk(common_, "constrained ordering");
+    if (ordering_ == Ordering::OwnOrderingFirst) {
+      orderOthersAlone(A, set, perm);
+    } else {
+      cholmod_camd(&S, nullptr, 0, set.data(), perm.data(), &common_);
+      requireCholmodOk(common_, "constrained ordering");
+    }
     for (auto it = perm.end() - last.size(); it != perm.end(); ++it)
       TRIBOS_REQUIRE(set[*it], "CHOLMOD: the constrained ordering did not put the given rows last");
     std::copy(last.begin(), last.end(), perm.end() - last.size());  // `last` in the caller's order
@@ -211,10 +219,7 @@ class CholmodSolver : public LocalSolver {
   }
   void inverseBlock(const std::vector<int>& dofs, std::vector<double>& Z) const override {
     if (dofs != last_ || dofs.empty()) return LocalSolver::inverseBlock(dofs, Z);
-    if (dense_)
-      dense_->trailingFactor(Z);
-    else
-      trailingFactor(Z);
+    trailingFactor(Z);
     const int nb = static_cast<int>(dofs.size());
     const int info = Blas::choleskyInverse(nb, Z.data());
     TRIBOS_REQUIRE(info == 0, "CHOLMOD: inverse of the trailing Cholesky block failed (LAPACK info " << info << ")");
@@ -236,6 +241,12 @@ class CholmodSolver : public LocalSolver {
     solveSystem(CHOLMOD_A, b, x, nrhs);
   }
   std::string name() const override { return "CHOLMOD"; }
+  void trailingFactor(std::vector<double>& Z) const override {
+    if (dense_)
+      dense_->trailingFactor(Z);
+    else
+      sparseTrailingFactor(Z);
+  }
 
  private:
   void solveSystem(int system, const double* b, double* x, int nrhs) const {
@@ -259,9 +270,35 @@ class CholmodSolver : public LocalSolver {
     cholmod_factorize(&S, L_, &common_);
     requireCholmodOk(common_, "factorization", L_);
   }
-  // The last |last_| rows and columns of L into Z, dense column-major (lower
-  // triangle; the strict upper triangle is zero).
-  void trailingFactor(std::vector<double>& Z) const {
+  // perm: the rows outside `last` (set[i] == 0) in the order CHOLMOD's
+  // analysis of their submatrix chooses, then the rows of `last`.
+  void orderOthersAlone(const LocalCsr& A, const std::vector<int>& set, std::vector<int>& perm) {
+    std::vector<int> others, position(n_, -1);
+    for (int i = 0; i < n_; ++i)
+      if (!set[i]) position[i] = static_cast<int>(others.size()), others.push_back(i);
+    LocalCsr B;
+    B.rows = B.cols = static_cast<int>(others.size());
+    for (int i : others) {
+      for (int k = A.rowptr[i]; k < A.rowptr[i + 1]; ++k)
+        if (position[A.col[k]] >= 0) B.col.push_back(position[A.col[k]]), B.val.push_back(A.val[k]);
+      B.rowptr.push_back(static_cast<int>(B.col.size()));
+    }
+    perm.clear();
+    if (B.rows > 0) {
+      cholmod_sparse S = cholmodView(B, false);
+      cholmod_factor* L = cholmod_analyze(&S, &common_);
+      requireCholmodOk(common_, "analysis");
+      TRIBOS_REQUIRE(L != nullptr, "CHOLMOD: analysis failed");
+      const int* p = static_cast<const int*>(L->Perm);
+      for (int k = 0; k < B.rows; ++k) perm.push_back(others[p[k]]);
+      cholmod_free_factor(&L, &common_);
+    }
+    for (int i = 0; i < n_; ++i)
+      if (set[i]) perm.push_back(i);
+  }
+  // The last |last_| rows and columns of the sparse L into Z, dense
+  // column-major (lower triangle; the strict upper triangle is zero).
+  void sparseTrailingFactor(std::vector<double>& Z) const {
     const int nb = static_cast<int>(last_.size()), first = n_ - nb;
     Z.assign(static_cast<size_t>(nb) * nb, 0.0);
     if (L_->is_super) {

@@ -31,6 +31,18 @@ class LocalSolver {
     (void)last;
     factor(A);
   }
+  // How factor(A, last) orders the other rows: by constrained minimum degree
+  // (CAMD: on a subdomain matrix it fills least), or as the factorization of
+  // the other rows alone would (CHOLMOD's own choice of AMD or METIS nested
+  // dissection: on a 3D grid of subdomains' rigid modes, as FETI's coarse
+  // problem, nested dissection fills far less). CHOLMOD backend only.
+  enum class Ordering { ConstrainedMinimumDegree, OwnOrderingFirst };
+  void setOrdering(Ordering ordering) { ordering_ = ordering; }
+
+ protected:
+  Ordering ordering_ = Ordering::ConstrainedMinimumDegree;
+
+ public:
   // New values of A on the pattern of the last factor(A): a numeric
   // refactorization that keeps the ordering and symbolic analysis where the
   // backend can (CHOLMOD); the others factor again.
@@ -52,6 +64,11 @@ class LocalSolver {
   // orthonormalize: with A = GG', the rows of L^-1 P G are orthonormal.
   // Only Cholesky backends have them (CHOLMOD); the others throw.
   virtual void solveFactor(double* x, bool transpose) const;
+  // After factor(A, last): the trailing |last| x |last| block of L (the
+  // Cholesky factor of the Schur complement on `last`), column-major, zero
+  // above the diagonal. Only Cholesky backends have it (CHOLMOD); the others
+  // throw.
+  virtual void trailingFactor(std::vector<double>& Z) const;
   // (min_i L_ii / max_i L_ii)^2, a cheap estimate of the reciprocal condition
   // number: a tiny value means A is singular in floating point although the
   // factorization succeeded on round-off. Cholesky backends only.

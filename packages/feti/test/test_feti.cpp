@@ -17,6 +17,7 @@
 #include "Tribos_FetiOperators.hpp"
 #include "Tribos_Monolithic.hpp"
 #include "Tribos_ProjectedCG.hpp"
+#include "Tribos_SplitCholesky.hpp"
 #include "Tribos_TestSupport.hpp"
 
 namespace {
@@ -294,6 +295,92 @@ TEUCHOS_UNIT_TEST(CoarseSpace, SparseGramianTFETI) {
 TEUCHOS_UNIT_TEST(CoarseSpace, SparseGramianFETI1) {
   checkCoarseSpace({Mesh::CellType::Hex8, {9, 4, 4}, 6, "Non-redundant", "Structured", {3, 2, 1}, false, "FETI-1"}, out,
                    success);
+}
+
+namespace {
+
+RCP<Feti::FetiProblem> problemWithCoarse(const Mesh::Discretization& disc, const std::string& coarseProblem,
+                                         const RCP<const Comm>& comm) {
+  Teuchos::ParameterList p;
+  p.set("Coarse Problem", coarseProblem);
+  return rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
+                                   p, comm));
+}
+
+}  // namespace
+
+// The coarse problem split among the ranks (SplitCholesky) against the one
+// every rank factors whole: the same projector P and the same G^'G^ = I - P
+// to round-off (G^ itself depends on the factor's ordering), and the split
+// factor's solves against CHOLMOD's of the whole GG'. On one rank nothing is
+// split; on 2 and 3 ranks METIS' parts and their separator are.
+TEUCHOS_UNIT_TEST(CoarseSpace, SplitAgreesWithReplicated) {
+  auto comm = Tpetra::getDefaultComm();
+  const Case c{Mesh::CellType::Tet4, {16, 8, 8}, 128, "Orthonormal", "Structured", {8, 4, 4}};
+  auto disc = makeDisc(c, *comm);
+  auto replicated = problemWithCoarse(disc, "Replicated", comm), split = problemWithCoarse(disc, "Split", comm);
+  Feti::CoarseSpace whole(replicated), shared(split);
+  TEST_EQUALITY(whole.size(), shared.size());
+  Vector x(replicated->dualMap()), P1(replicated->dualMap()), P2(replicated->dualMap());
+  auto xv = x.getDataNonConst();
+  for (size_t i = 0; i < xv.size(); ++i) xv[i] = std::cos(0.37 * (i + 11 * comm->getRank()) + 0.5);
+  xv = Teuchos::null;
+  whole.project(x, P1);
+  shared.project(x, P2);
+  P2.update(-1.0, P1, 1.0);
+  out << "|P_split x - P x| / |P x| = " << P2.norm2() / P1.norm2() << "\n";
+  TEST_COMPARE(P2.norm2(), <, 1e-12 * P1.norm2());
+  // G^'G^ x = (I - P) x whichever factor orthonormalizes.
+  std::vector<double> y;
+  Vector Q(replicated->dualMap());
+  shared.applyOrthonormal(x, y);
+  shared.applyOrthonormalTranspose(y, Q);
+  Q.update(1.0, P1, -1.0, x, 1.0);  // G^'G^ x + P x - x
+  out << "|G^'G^ x - (I - P) x| / |x| = " << Q.norm2() / x.norm2() << "\n";
+  TEST_COMPARE(Q.norm2(), <, 1e-12 * x.norm2());
+  // The split factor itself.
+  const LocalCsr A = whole.gramian(nullptr);
+  std::vector<int> blocks;
+  for (int k : replicated->kernelOffsets())
+    if (blocks.empty() || k > blocks.back()) blocks.push_back(k);
+  Feti::SplitCholesky chol(comm, blocks);
+  chol.factor(A);
+  out << "ranks " << comm->getSize() << ": split " << chol.isSplit() << ", separator rows " << chol.separatorRows()
+      << " of " << A.rows << "\n";
+  TEST_EQUALITY(chol.isSplit(), comm->getSize() > 1);
+  auto reference = createLocalSolver("CHOLMOD");
+  reference->factor(A);
+  std::vector<double> b(A.rows), x1(A.rows), x2(A.rows), r(A.rows);
+  for (int i = 0; i < A.rows; ++i) b[i] = std::sin(0.9 * i + 0.3);
+  reference->solve(b.data(), x1.data(), 1);
+  chol.solve(b.data(), x2.data(), 1);
+  A.multiply(x2.data(), r.data());
+  double dx = 0, nx = 0, res = 0, nb = 0;
+  for (int i = 0; i < A.rows; ++i) {
+    dx = std::max(dx, std::abs(x2[i] - x1[i])), nx = std::max(nx, std::abs(x1[i]));
+    res = std::max(res, std::abs(r[i] - b[i])), nb = std::max(nb, std::abs(b[i]));
+  }
+  out << "split solve: |x - x_CHOLMOD| / |x| = " << dx / nx << ", |A x - b| / |b| = " << res / nb << "\n";
+  TEST_COMPARE(dx, <, 1e-10 * nx);
+  TEST_COMPARE(res, <, 1e-12 * nb);
+  // ||L^-1 P b||^2 = b'A^-1 b, and L^-T undoes it: P'L^-T L^-1 P b = A^-1 b.
+  std::vector<double> z(b);
+  chol.solveFactor(z.data(), false);
+  double zz = 0, bx = 0;
+  for (int i = 0; i < A.rows; ++i) zz += z[i] * z[i], bx += b[i] * x1[i];
+  chol.solveFactor(z.data(), true);
+  double dz = 0;
+  for (int i = 0; i < A.rows; ++i) dz = std::max(dz, std::abs(z[i] - x1[i]));
+  out << "|L^-1 P b|^2 / b'A^-1 b - 1 = " << zz / bx - 1 << ", |P'L^-T L^-1 P b - A^-1 b| / |A^-1 b| = " << dz / nx
+      << "\n";
+  TEST_COMPARE(std::abs(zz / bx - 1), <, 1e-12);
+  TEST_COMPARE(dz, <, 1e-10 * nx);
+  TEST_COMPARE(chol.pivotRatio(), >, 1e-12);
+  // Not positive definite: every rank throws, none waits.
+  LocalCsr negative = A;
+  for (double& v : negative.val) v = -v;
+  Feti::SplitCholesky broken(comm, blocks);
+  TEST_THROW(broken.factor(negative), CollectiveError);
 }
 
 // A problem of disc without contact whose dual operator is explicit, its
