@@ -31,7 +31,7 @@
 #include "Tribos_Discretization.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_LocalSolver.hpp"
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 using namespace Tribos;
 
@@ -129,7 +129,7 @@ std::vector<std::string> split(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   // Kokkos (used by Amesos2 and Tacho) is initialized by the Tpetra guard.
   Tpetra::ScopeGuard guard(&argc, &argv);
   std::string element = "both", solvers = "CHOLMOD,KLU2,Tacho";

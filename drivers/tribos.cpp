@@ -17,10 +17,10 @@
 #include <vector>
 
 #include "Tribos_Driver.hpp"
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 int main(int argc, char** argv) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   // Line-buffered stdout, so that --verbose lines reach a pipe as they happen.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   // Kokkos answers --help itself: keep it from seeing ours.

@@ -32,7 +32,7 @@
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_Summary.hpp"
 #include "Tribos_Progress.hpp"
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 namespace {
 
@@ -317,7 +317,7 @@ bool helpRequested(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   if (helpRequested(argc, argv)) {
     std::cout << usage();
     return kConverged;

@@ -50,7 +50,7 @@ extern "C" {
 #include "fc3d_compute_error.h"
 }
 
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 namespace {
 
@@ -298,7 +298,7 @@ Row runTribos(const std::string& name, const FCLIB::LocalProblem& p, const Args&
 }  // namespace
 
 int main(int argc, char** argv) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   try {

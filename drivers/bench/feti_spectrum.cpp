@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "Tribos_FetiDual.hpp"
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 using namespace Tribos;
 
@@ -112,7 +112,7 @@ Dense sandwich(const Dense& P, const Dense& A, int m) { return multiply(P, multi
 }  // namespace
 
 int main(int argc, char** argv) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   std::string element = "Hex8";

@@ -25,7 +25,7 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_SemismoothStarNewton.hpp"
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 namespace {
 
@@ -40,7 +40,7 @@ void setParameter(Teuchos::ParameterList& pl, const std::string& name, const std
 }  // namespace
 
 int main(int argc, char** argv) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   Tpetra::ScopeGuard scope(&argc, &argv);
   using namespace Tribos;
   std::string input;

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "Tribos_DenseBlas.hpp"
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 namespace {
 
@@ -68,7 +68,7 @@ double bestTime(int repeat, Kernel kernel) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   MPI_Init(&argc, &argv);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -1,5 +1,7 @@
 #include "Tribos_RunReport.hpp"
 
+#include "Tribos_BlasKernels.hpp"
+
 namespace Tribos {
 
 namespace {
@@ -83,6 +85,9 @@ IO::Summary RunReport::toSummary() const {
   // Mesh.
   s.set("algorithm", algorithm);
   s.set("ranks", ranks);
+  // The BLAS kernel set ("" for a BLAS other than OpenBLAS), since dense
+  // factorizations depend on it (Tribos_BlasKernels.hpp).
+  s.set("blas_kernels", blasKernelName());
   s.set("subdomains", subdomains);
   if (subdomainSize > 0) s.set("subdomain_size", subdomainSize);
   s.set("element", element);

@@ -217,7 +217,7 @@ std::vector<double> referenceSolve(int n, Contact::ContactSolver& solver, const 
 }  // namespace
 
 int main(int argc, char** argv) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   Tpetra::ScopeGuard scope(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   const int n = argc > 1 ? std::atoi(argv[1]) : 4;

@@ -20,7 +20,7 @@
 
 #include "Tribos_QP.hpp"
 #include "Tribos_Types.hpp"
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 namespace {
 
@@ -57,7 +57,7 @@ RCP<CrsMatrix> laplacian(const RCP<const Map>& map) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;

@@ -47,7 +47,7 @@
 #include <vector>
 
 #include "Tribos_Driver.hpp"
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 namespace fs = std::filesystem;
 
@@ -451,7 +451,7 @@ std::string runCase(const Case& c, const Paths& paths, const Teuchos::RCP<const 
 }  // namespace
 
 int main(int argc, char** argv) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   Tpetra::ScopeGuard guard(&argc, &argv);
   const auto comm = Tpetra::getDefaultComm();

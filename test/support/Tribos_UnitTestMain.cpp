@@ -5,10 +5,10 @@
 #include <Teuchos_UnitTestRepository.hpp>
 #include <Tpetra_Core.hpp>
 
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 int main(int argc, char* argv[]) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   Teuchos::GlobalMPISession mpi(&argc, &argv);
   Tpetra::ScopeGuard tpetra(&argc, &argv);
   // A check that fails on one rank fails the test on every rank.

@@ -34,7 +34,7 @@
 #include "Tribos_FrictionLaw.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_MeshFile.hpp"
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 #include "Tribos_NodalVector.hpp"
 #include "Tribos_ResultKKT.hpp"
 #include "Tribos_TpetraSubdomain.hpp"

@@ -1,6 +1,7 @@
 #include "Tribos_SplitCholesky.hpp"
 
 #include <Teuchos_BLAS.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 #include <metis.h>
 #include <mpi.h>
 
@@ -98,7 +99,11 @@ void SplitCholesky::factor(const LocalCsr& A) {
   TRIBOS_REQUIRE(A.rows == A.cols, "SplitCholesky: matrix is not square (" << A.rows << " x " << A.cols << ")");
   n_ = A.rows;
   whole_ = local_ = Teuchos::null;
-  const std::vector<int> rowPart = partition(A);
+  std::vector<int> rowPart;
+  {
+    Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::split Cholesky: partition"));
+    rowPart = partition(A);
+  }
   if (rowPart.empty()) {
     whole_ = createLocalSolver("CHOLMOD");
     checkOnEveryRank(*comm_, [&] { whole_->factor(A); });
@@ -137,7 +142,11 @@ void SplitCholesky::factorSplit(const LocalCsr& A, const std::vector<int>& rowPa
   std::iota(last.begin(), last.end(), np);
   local_ = createLocalSolver("CHOLMOD");
   local_->setOrdering(LocalSolver::Ordering::OwnOrderingFirst);
-  checkOnEveryRank(*comm_, [&] { local_->factor(M, last); });
+  {
+    Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::split Cholesky: factor of the part"));
+    checkOnEveryRank(*comm_, [&] { local_->factor(M, last); });
+  }
+  Teuchos::TimeMonitor separatorTime(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::split Cholesky: separator"));
   local_->trailingFactor(Lt_);
   // sum_p (Lt_p Lt_p' - A_ss) + A_ss, summed on rank 0 and broadcast so that
   // every rank factors the same matrix to the last bit.

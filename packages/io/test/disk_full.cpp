@@ -24,7 +24,7 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_OutputDirectory.hpp"
 #include "Tribos_ResultSet.hpp"
-#include "Tribos_MpiStartup.hpp"
+#include "Tribos_ProcessStartup.hpp"
 
 using namespace Tribos;
 using namespace Tribos::Test;
@@ -204,7 +204,7 @@ TEUCHOS_UNIT_TEST(SmallDisk, Tmpfs96kNotReserved) { smallDiskCase("96k", false, 
 TEUCHOS_UNIT_TEST(SmallDisk, Tmpfs24kReserved) { smallDiskCase("24k", true, out, success); }
 
 int main(int argc, char* argv[]) {
-  Tribos::prepareMpiStartup();  // before MPI_Init
+  Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   Teuchos::GlobalMPISession mpi(&argc, &argv);
   Tpetra::ScopeGuard tpetra(&argc, &argv);
   // Only a test program may do this, never the library: with SIGXFSZ ignored,
