@@ -225,6 +225,12 @@ TEUCHOS_UNIT_TEST(FetiVsMonolithic, Hex8NonRedundantStructuredFeti1DirichletExpl
 
 namespace {
 
+// x: a fixed dual vector with different values on every rank.
+void fillDual(Vector& x, const Comm& comm) {
+  auto xv = x.getDataNonConst();
+  for (size_t i = 0; i < xv.size(); ++i) xv[i] = std::cos(0.37 * (i + 11 * comm.getRank()) + 0.5);
+}
+
 // The sparse GG' (assembled from 6 x 6 blocks on every rank) against G G'
 // column by column through applyG(applyGt(e_j)); the projector and the
 // orthonormalized constraint built on its sparse Cholesky factor:
@@ -259,9 +265,7 @@ void checkCoarseSpace(const Case& c, Teuchos::FancyOStream& out, bool& success) 
   TEST_COMPARE(worst, <=, 1e-13 * scale);
   TEST_COMPARE(static_cast<double>(A.val.size()), <, 1.0 * n * n);  // sparse: not every pair of subdomains couples
   Vector x(problem->dualMap()), Px(problem->dualMap()), PPx(problem->dualMap());
-  auto xv = x.getDataNonConst();
-  for (size_t i = 0; i < xv.size(); ++i) xv[i] = std::cos(0.37 * (i + 11 * comm->getRank()) + 0.5);
-  xv = Teuchos::null;
+  fillDual(x, *comm);
   coarse.project(x, Px);
   coarse.project(Px, PPx);
   std::vector<double> GPx, Gx;
@@ -299,12 +303,18 @@ TEUCHOS_UNIT_TEST(CoarseSpace, SparseGramianFETI1) {
 
 namespace {
 
+// The problem of disc without contact, with the FETI parameters p.
+RCP<Feti::FetiProblem> problemWith(const Mesh::Discretization& disc, const Teuchos::ParameterList& p,
+                                   const RCP<const Comm>& comm) {
+  return rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
+                                   p, comm));
+}
+
 RCP<Feti::FetiProblem> problemWithCoarse(const Mesh::Discretization& disc, const std::string& coarseProblem,
                                          const RCP<const Comm>& comm) {
   Teuchos::ParameterList p;
   p.set("Coarse Problem", coarseProblem);
-  return rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
-                                   p, comm));
+  return problemWith(disc, p, comm);
 }
 
 }  // namespace
@@ -322,9 +332,7 @@ TEUCHOS_UNIT_TEST(CoarseSpace, SplitAgreesWithReplicated) {
   Feti::CoarseSpace whole(replicated), shared(split);
   TEST_EQUALITY(whole.size(), shared.size());
   Vector x(replicated->dualMap()), P1(replicated->dualMap()), P2(replicated->dualMap());
-  auto xv = x.getDataNonConst();
-  for (size_t i = 0; i < xv.size(); ++i) xv[i] = std::cos(0.37 * (i + 11 * comm->getRank()) + 0.5);
-  xv = Teuchos::null;
+  fillDual(x, *comm);
   whole.project(x, P1);
   shared.project(x, P2);
   P2.update(-1.0, P1, 1.0);
@@ -391,8 +399,7 @@ RCP<Feti::FetiProblem> explicitProblem(const Mesh::Discretization& disc, const s
   Teuchos::ParameterList p;
   p.set("Dual Operator", "Explicit");
   p.set("Dense Block Precision", precision);
-  return rcp(new Feti::FetiProblem(disc, Fem::Material{2.1e11, 0.3}, loads(), std::vector<Feti::ContactConstraint>(),
-                                   p, comm));
+  return problemWith(disc, p, comm);
 }
 }  // namespace
 
