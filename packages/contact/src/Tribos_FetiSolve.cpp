@@ -127,7 +127,11 @@ void solveInRounds(const FetiContactProblem& cp, const PairFriction& friction, c
     }
     if (!r.solverConverged || r.verdict.converged || round == rounds || Friction::atTightestTolerance(requested))
       break;
-    requested = Friction::tightenedTolerance(requested, r.verdict.limit, r.kkt.worst());
+    // A quarter of the miss: the KKT residuals of the result (maxima over the
+    // nodes) grow against the solver's measure (a norm over all rows) as the
+    // iterate converges; on the million-dof brick their ratio went from 13 to
+    // 27 within a round, and half the miss left a second round 9 % short.
+    requested = Friction::tightenedTolerance(requested, r.verdict.limit, r.kkt.worst(), 0.25);
     start = sol.x;
   }
 }

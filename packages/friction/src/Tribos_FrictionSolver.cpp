@@ -35,8 +35,8 @@ FrictionStatus followedBy(const FrictionStatus& earlier, const FrictionStatus& n
   return sum;
 }
 
-double tightenedTolerance(double requested, double target, double achieved) {
-  return std::max(kTightestTolerance, requested * std::min(0.1, 0.5 * target / std::max(achieved, target)));
+double tightenedTolerance(double requested, double target, double achieved, double margin) {
+  return std::max(kTightestTolerance, requested * std::min(0.1, margin * target / std::max(achieved, target)));
 }
 
 using Teuchos::ParameterList;

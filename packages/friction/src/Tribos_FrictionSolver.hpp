@@ -63,10 +63,12 @@ FrictionStatus followedBy(const FrictionStatus& earlier, const FrictionStatus& n
 
 // The tolerance of a next solve when a solve met its own stopping test but
 // its result missed the target by the factor achieved / target (> 1): the
-// requested tolerance scaled by half that miss, at least tenfold, down to
-// 1e-15 (a solver's stopping test and the result's residuals are in a
-// roughly fixed ratio, so one or two such rounds meet the target).
-double tightenedTolerance(double requested, double target, double achieved);
+// requested tolerance scaled by margin times that miss (half by default), at
+// least tenfold, down to 1e-15 (a solver's stopping test and the result's
+// residuals are in a roughly fixed ratio, so one or two such rounds meet the
+// target; a smaller margin where the ratio is known to grow as the iterate
+// converges).
+double tightenedTolerance(double requested, double target, double achieved, double margin = 0.5);
 // The floor of tightenedTolerance: a solve asked for it cannot be tightened.
 constexpr double kTightestTolerance = 1e-15;
 inline bool atTightestTolerance(double requested) { return requested <= kTightestTolerance * (1 + 1e-4); }
