@@ -310,10 +310,12 @@ RCP<Feti::FetiProblem> problemWith(const Mesh::Discretization& disc, const Teuch
                                    p, comm));
 }
 
-RCP<Feti::FetiProblem> problemWithCoarse(const Mesh::Discretization& disc, const std::string& coarseProblem,
-                                         const RCP<const Comm>& comm) {
+RCP<Feti::FetiProblem> problemWithCoarse(const Mesh::Discretization& disc, const Case& c,
+                                         const std::string& coarseProblem, const RCP<const Comm>& comm) {
   Teuchos::ParameterList p;
   p.set("Coarse Problem", coarseProblem);
+  p.set("Gluing", c.gluing);
+  p.set("Formulation", c.formulation);
   return problemWith(disc, p, comm);
 }
 
@@ -324,11 +326,12 @@ RCP<Feti::FetiProblem> problemWithCoarse(const Mesh::Discretization& disc, const
 // to round-off (G^ itself depends on the factor's ordering), and the split
 // factor's solves against CHOLMOD's of the whole GG'. On one rank nothing is
 // split; on 2 and 3 ranks METIS' parts and their separator are.
-TEUCHOS_UNIT_TEST(CoarseSpace, SplitAgreesWithReplicated) {
+namespace {
+
+void checkSplitCoarseProblem(const Case& c, Teuchos::FancyOStream& out, bool& success) {
   auto comm = Tpetra::getDefaultComm();
-  const Case c{Mesh::CellType::Tet4, {16, 8, 8}, 128, "Orthonormal", "Structured", {8, 4, 4}};
   auto disc = makeDisc(c, *comm);
-  auto replicated = problemWithCoarse(disc, "Replicated", comm), split = problemWithCoarse(disc, "Split", comm);
+  auto replicated = problemWithCoarse(disc, c, "Replicated", comm), split = problemWithCoarse(disc, c, "Split", comm);
   Feti::CoarseSpace whole(replicated), shared(split);
   TEST_EQUALITY(whole.size(), shared.size());
   Vector x(replicated->dualMap()), P1(replicated->dualMap()), P2(replicated->dualMap());
@@ -389,6 +392,21 @@ TEUCHOS_UNIT_TEST(CoarseSpace, SplitAgreesWithReplicated) {
   for (double& v : negative.val) v = -v;
   Feti::SplitCholesky broken(comm, blocks);
   TEST_THROW(broken.factor(negative), CollectiveError);
+}
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(CoarseSpace, SplitAgreesWithReplicated) {
+  checkSplitCoarseProblem({Mesh::CellType::Tet4, {16, 8, 8}, 128, "Orthonormal", "Structured", {8, 4, 4}}, out,
+                          success);
+}
+
+// FETI-1: the subdomains at the clamped end keep fewer than six rigid modes
+// (blocks of GG' of other sizes, some subdomains with none).
+TEUCHOS_UNIT_TEST(CoarseSpace, SplitAgreesWithReplicatedFETI1) {
+  checkSplitCoarseProblem(
+      {Mesh::CellType::Hex8, {16, 8, 8}, 128, "Non-redundant", "Structured", {8, 4, 4}, false, "FETI-1"}, out,
+      success);
 }
 
 // A problem of disc without contact whose dual operator is explicit, its
