@@ -15,6 +15,8 @@ dense variant too), on 1, 2 and 3 ranks:
   - with each preconditioner (Slip Curvature, the default; None; FETI's
     Lumped and Dirichlet) and each way of holding G x = 0 (Augmented
     Lagrangian, the default; Face Projection) it reaches the same solution;
+  - with the coarse problem split among 2 and 3 ranks (192 subdomains) it
+    reaches the same solution;
   - the load history of test/check_load_history.py (pressed, sheared out,
     back, out the other way) solved by it agrees step by step with
     Algorithm 2's.
@@ -62,6 +64,17 @@ def main():
               % (np_, relative(u, ref_u), relative(u, displacements(dense_out)[0])))
         check(s["contact"] == dense["contact"], "%d ranks: the contact counts of the dense Newton: %s against %s"
               % (np_, s["contact"], dense["contact"]))
+    # The coarse problem split among the ranks (FETI/Coarse Problem = Split,
+    # docs/feti.md): 192 subdomains of one cube, so that every rank holds a
+    # part of GG' besides the separator; the solution of Algorithm 2 on the
+    # input's 3 subdomains.
+    for np_ in (2, 3):
+        out, s, _ = run(args, "split_coarse_np%d" % np_, np_,
+                        LEVEL + MATRIX_FREE + ["Mesh/Subdomain Size=1", "Solver/FETI/Coarse Problem=Split"])
+        if s:
+            check(s["converged"] and relative(displacements(out)[0], ref_u) < 1e-6,
+                  "%d ranks, the coarse problem split (%d subdomains): converged to the same solution (%.2e)"
+                  % (np_, s["subdomains"], relative(displacements(out)[0], ref_u)))
     for equality in ("Face Projection", "Augmented Lagrangian"):
         for pc in ("Slip Curvature", "None", "Lumped", "Dirichlet"):
             if equality == "Augmented Lagrangian" and pc == "Slip Curvature":
