@@ -10,6 +10,7 @@
 
 #include "Tribos_Decomposition.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_FetiOperators.hpp"
 #include "Tribos_FetiProblem.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_LocalSolver.hpp"
@@ -83,10 +84,16 @@ double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec
   // double inverse and its packed copy coexist (counted as 16 b^2 per
   // subdomain in double, 12 b^2 when the copy is rounded to float).
   const bool single = params.sublist("Solver").sublist("FETI").get<std::string>("Dense Block Precision") == "Single";
-  // The coarse problem, replicated: two sparse Cholesky factors (GG' and
-  // G_E G_E') of order 6S; their fill was measured as 4.8 (6S)^1.5 values
-  // each on box decompositions (docs/scaling.md).
-  const double coarseBytes = 2.0 * 8.0 * 4.8 * std::pow(6.0 * S, 1.5);
+  // The coarse problem: two sparse Cholesky factors (GG' and G_E G_E') of
+  // order 6S; their fill was measured as 4.8 (6S)^1.5 values each on box
+  // decompositions (docs/scaling.md). Split among the ranks (Coarse Problem,
+  // docs/feti.md) a rank holds its part and the separator's dense blocks:
+  // 0.52-0.6 of the whole on 2 ranks at S = 5184, taken as 1/ranks + 0.1.
+  const std::string coarse = params.sublist("Solver").sublist("FETI").get<std::string>("Coarse Problem");
+  const bool split =
+      numRanks > 1 && (coarse == "Split" || (coarse == "Auto" && 6 * S >= Feti::CoarseSpace::kAutoSplitRows));
+  const double coarseBytes =
+      2.0 * 8.0 * 4.8 * std::pow(6.0 * S, 1.5) * (split ? std::min(1.0, 1.0 / numRanks + 0.1) : 1.0);
   // CHOLMOD factors small subdomains densely when it forms their blocks
   // (packed: d^2/2 doubles).
   const bool denseFactor = explicitF && d <= kDenseFactorRows &&
