@@ -106,6 +106,11 @@ class FetiMethod : public MethodBase {
     const Contact::PairFriction friction = contact ? Input::pairFriction(params_) : Contact::PairFriction{{}};
     const auto out = options_.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
                                       : RCP<Teuchos::FancyOStream>();
+    // The solvers' progress lines are collective figures: once, from rank 0.
+    if (!out.is_null()) {
+      out->setProcRankAndSize(comm_->getRank(), comm_->getSize());
+      out->setOutputToRootOnly(0);
+    }
     StepSolution sol;
     // The first step sets the problem up; a history keeps it for the next.
     if (problem_.is_null()) {
