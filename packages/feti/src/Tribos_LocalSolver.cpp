@@ -273,16 +273,10 @@ class CholmodSolver : public LocalSolver {
   // perm: the rows outside `last` (set[i] == 0) in the order CHOLMOD's
   // analysis of their submatrix chooses, then the rows of `last`.
   void orderOthersAlone(const LocalCsr& A, const std::vector<int>& set, std::vector<int>& perm) {
-    std::vector<int> others, position(n_, -1);
+    std::vector<int> others;
     for (int i = 0; i < n_; ++i)
-      if (!set[i]) position[i] = static_cast<int>(others.size()), others.push_back(i);
-    LocalCsr B;
-    B.rows = B.cols = static_cast<int>(others.size());
-    for (int i : others) {
-      for (int k = A.rowptr[i]; k < A.rowptr[i + 1]; ++k)
-        if (position[A.col[k]] >= 0) B.col.push_back(position[A.col[k]]), B.val.push_back(A.val[k]);
-      B.rowptr.push_back(static_cast<int>(B.col.size()));
-    }
+      if (!set[i]) others.push_back(i);
+    const LocalCsr B = A.principalSubmatrix(others);
     perm.clear();
     if (B.rows > 0) {
       cholmod_sparse S = cholmodView(B, false);

@@ -122,24 +122,15 @@ void SplitCholesky::factorSplit(const LocalCsr& A, const std::vector<int>& rowPa
     if (rowPart[i] < 0) separator_.push_back(i);
   }
   const int np = static_cast<int>(part_.size()), ns = static_cast<int>(separator_.size());
-  // M_p = [A_pp A_ps; A_sp A_ss] in the local numbering (part, then separator).
-  std::vector<int> local(n_, -1);
-  for (int k = 0; k < np; ++k) local[part_[k]] = k;
-  for (int k = 0; k < ns; ++k) local[separator_[k]] = np + k;
-  LocalCsr M;
-  M.rows = M.cols = np + ns;
-  std::vector<std::pair<int, double>> row;
-  for (int r = 0; r < np + ns; ++r) {
-    const int i = r < np ? part_[r] : separator_[r - np];
-    row.clear();
-    for (int k = A.rowptr[i]; k < A.rowptr[i + 1]; ++k)
-      if (local[A.col[k]] >= 0) row.emplace_back(local[A.col[k]], A.val[k]);
-    std::sort(row.begin(), row.end());
-    for (const auto& [c, v] : row) M.col.push_back(c), M.val.push_back(v);
-    M.rowptr.push_back(static_cast<int>(M.col.size()));
-  }
-  std::vector<int> last(ns);
-  std::iota(last.begin(), last.end(), np);
+  // M_p = [A_pp A_ps; A_sp A_ss]: A on the part's and the separator's rows,
+  // in increasing order, the separator's positions ordered last.
+  std::vector<int> rows(part_);
+  rows.insert(rows.end(), separator_.begin(), separator_.end());
+  std::sort(rows.begin(), rows.end());
+  const LocalCsr M = A.principalSubmatrix(rows);
+  partPosition_.clear();
+  std::vector<int> last;
+  for (int k = 0; k < np + ns; ++k) (rowPart[rows[k]] < 0 ? last : partPosition_).push_back(k);
   local_ = createLocalSolver("CHOLMOD");
   local_->setOrdering(LocalSolver::Ordering::OwnOrderingFirst);
   {
@@ -154,9 +145,10 @@ void SplitCholesky::factorSplit(const LocalCsr& A, const std::vector<int>& rowPa
   if (ns > 0)
     Teuchos::BLAS<int, double>().SYRK(Teuchos::LOWER_TRI, Teuchos::NO_TRANS, ns, ns, 1.0, Lt_.data(), ns, 0.0,
                                       S.data(), ns);
+  const LocalCsr separatorBlock = A.principalSubmatrix(separator_);
   for (int r = 0; r < ns; ++r)
-    for (int k = M.rowptr[np + r]; k < M.rowptr[np + r + 1]; ++k)
-      if (M.col[k] >= np) Ass[static_cast<size_t>(M.col[k] - np) * ns + r] = M.val[k];
+    for (int k = separatorBlock.rowptr[r]; k < separatorBlock.rowptr[r + 1]; ++k)
+      Ass[static_cast<size_t>(separatorBlock.col[k]) * ns + r] = separatorBlock.val[k];
   for (int j = 0; j < ns; ++j)
     for (int i = j; i < ns; ++i) {
       const size_t at = static_cast<size_t>(j) * ns + i;
@@ -181,15 +173,16 @@ void SplitCholesky::factorSplit(const LocalCsr& A, const std::vector<int>& rowPa
   partOffsets_.assign(1, 0);
   for (int c : partCounts_) partOffsets_.push_back(partOffsets_.back() + c);
   w_.assign(static_cast<size_t>(np) + ns, 0.0);
+  yp_.assign(np, 0.0);
   zs_.assign(ns, 0.0);
   gathered_.assign(partRows_.size(), 0.0);
 }
 
 void SplitCholesky::forward(const double* b) const {
   const int np = static_cast<int>(part_.size()), ns = static_cast<int>(separator_.size());
-  for (int k = 0; k < np; ++k) w_[k] = b[part_[k]];
-  std::fill(w_.begin() + np, w_.end(), 0.0);
-  local_->solveFactor(w_.data(), false);
+  std::fill(w_.begin(), w_.end(), 0.0);
+  for (int k = 0; k < np; ++k) w_[partPosition_[k]] = b[part_[k]];
+  local_->solveFactor(w_.data(), false);  // to M_p's order: the part, then the separator
   // t_p = w_[np..]: -Lt_p t_p = L_sp z_p, summed over the ranks.
   std::copy(w_.begin() + np, w_.end(), zs_.begin());
   triangularProduct(Lt_, ns, false, zs_.data());
@@ -203,12 +196,13 @@ void SplitCholesky::backward() const {
   schur_.solveUpperT(zs_);  // y_s
   std::copy(zs_.begin(), zs_.end(), w_.begin() + np);
   triangularProduct(Lt_, ns, true, w_.data() + np);  // Lt_p' y_s
-  local_->solveFactor(w_.data(), true);
+  local_->solveFactor(w_.data(), true);               // back to M_p's rows
+  for (int k = 0; k < np; ++k) yp_[k] = w_[partPosition_[k]];
 }
 
 void SplitCholesky::gatherSolution(double* x) const {
   const int np = static_cast<int>(part_.size());
-  MPI_Allgatherv(w_.data(), np, MPI_DOUBLE, gathered_.data(), partCounts_.data(), partOffsets_.data(), MPI_DOUBLE,
+  MPI_Allgatherv(yp_.data(), np, MPI_DOUBLE, gathered_.data(), partCounts_.data(), partOffsets_.data(), MPI_DOUBLE,
                  rawComm(*comm_));
   for (size_t k = 0; k < partRows_.size(); ++k) x[partRows_[k]] = gathered_[k];
   for (size_t k = 0; k < separator_.size(); ++k) x[separator_[k]] = zs_[k];

@@ -79,7 +79,8 @@ class SplitCholesky : public LocalSolver {
   std::vector<double> Lt_;           // Lt_p, |s| x |s| column-major lower
   DenseCholesky schur_;              // L_ss
   double pivotRatio_ = 1;
-  mutable std::vector<double> w_, zs_, gathered_;
+  std::vector<int> partPosition_;    // the part's rows in M_p (its rows increasing)
+  mutable std::vector<double> w_, zs_, yp_, gathered_;
 
   // Per row: the owning rank's number, or -1 for the separator; empty when A
   // is not split.
@@ -87,7 +88,7 @@ class SplitCholesky : public LocalSolver {
   void factorSplit(const LocalCsr& A, const std::vector<int>& rowPart);
   // b (whole) -> z_p in w_[0, |part|), z_s in zs_.
   void forward(const double* b) const;
-  // z_p in w_[0, |part|), z_s in zs_ -> y_p in w_[0, |part|), y_s in zs_.
+  // z_p in w_[0, |part|), z_s in zs_ -> y_p in yp_, y_s in zs_.
   void backward() const;
   // y_p of every rank and y_s into x (whole).
   void gatherSolution(double* x) const;
