@@ -17,6 +17,8 @@ dense variant too), on 1, 2 and 3 ranks:
     Lagrangian, the default; Face Projection) it reaches the same solution;
   - with the coarse problem split among 2 and 3 ranks (192 subdomains) it
     reaches the same solution;
+  - at F = 0.6, where Newton steps that lag the slip bound cycle, the
+    steps with the slip bounds frozen reach Algorithm 2's solution;
   - the load history of test/check_load_history.py (pressed, sheared out,
     back, out the other way) solved by it agrees step by step with
     Algorithm 2's.
@@ -86,6 +88,21 @@ def main():
                 check(s["converged"] and relative(displacements(out)[0], ref_u) < 1e-6,
                       "%s, Preconditioner %s: converged to the same solution (%.2e)"
                       % (equality, pc, relative(displacements(out)[0], ref_u)))
+
+    # High friction (F = 0.6, Auto's subdomains of 4 cells): the Newton steps,
+    # which lag the slip bound, cycle between two points there (a contact
+    # changing state back and forth) and stalled after 30 steps; with the
+    # slip bounds frozen once the measure stops halving (Slip Bound Freeze
+    # Steps) they converge to Algorithm 2's solution, on 1 and 2 ranks.
+    high = LEVEL + ["Contact/Friction Coefficient=0.6", "Mesh/Subdomain Size=Auto"]
+    hf_out, hf, _ = run(args, "high_friction_algorithm2", 2, high + ALGORITHM2)
+    for np_ in (1, 2) if hf else ():
+        out, s, _ = run(args, "high_friction_np%d" % np_, np_, high + MATRIX_FREE)
+        if s:
+            d = relative(displacements(out)[0], displacements(hf_out)[0])
+            check(s["converged"] and s["outer_algorithm"] == "Semismooth Newton" and d < 1e-6,
+                  "%d ranks, F = 0.6: the Newton method converged (%s) to Algorithm 2's solution (%.2e)"
+                  % (np_, s["stop_reason"], d))
 
     # The load history, step by step against Algorithm 2's.
     href_out, href, _ = run(args, "history_algorithm2", 2, LEVEL + HISTORY + ALGORITHM2)

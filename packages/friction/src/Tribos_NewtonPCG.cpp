@@ -128,7 +128,13 @@ class NewtonSolve {
     }
     r_ = params.get<double>("rho Factor") / normA_;
     const std::vector<double> rho(map_->getNodeNumElements(), r_);
-    ac_ = rcp(new AlartCurnier(dual, rho));
+    coulomb_ = rcp(new AlartCurnier(dual, rho));
+    ac_ = coulomb_;
+    // Whether any rank holds a Coulomb contact: a rank without contact rows
+    // has no friction coefficients, and the slip-bound freeze (collective
+    // norms) must be decided alike on every rank.
+    int localCoulomb = dual.frictionCoefficient.empty() ? 0 : 1;
+    Teuchos::reduceAll(*map_->getComm(), Teuchos::REDUCE_MAX, localCoulomb, Teuchos::outArg(coulombLaw_));
     steps_.resize(ac_->contacts().size());
     const std::string pc = params.get<std::string>("Preconditioner");
     scaleCurvature_ = pc == "Slip Curvature";
@@ -162,7 +168,8 @@ class NewtonSolve {
   RCP<const QP::EqualityConstraint> G_;
   RCP<const QP::EqualityConstraint> equality_;  // G, or a constraint without rows
   QP::AugmentedLagrangian al_;
-  RCP<AlartCurnier> ac_;
+  RCP<AlartCurnier> coulomb_;  // the problem's function: the stopping measure
+  RCP<AlartCurnier> ac_;       // the function the Newton steps solve: coulomb_, or its slip bounds frozen
   RCP<const Operator> M_;
   std::vector<ContactStep> steps_;
   std::vector<char> isContactRow_;
@@ -171,6 +178,9 @@ class NewtonSolve {
   SC normA_ = 1, rho_ = 1, r_ = 1;
   long n_A_ = 0;
   bool scaleCurvature_ = false;         // Preconditioner = Slip Curvature
+  int coulombLaw_ = 0;                  // 1: Coulomb contacts on some rank (slip bounds that depend on x)
+  bool slipBoundsFrozen_ = false;       // ac_ is coulomb_ with frozen slip bounds
+  int coulombFrom_ = 0;                 // the step from which ac_ was coulomb_ last
   std::deque<double> recentPsi_;        // psi of the last steps (lineSearch)
   RCP<QP::FaceConstraint> face_;        // G on the faces (runFace), null: no G, or runAugmented
   RCP<const Vector> warmMultiplier_;    // mu of a nearby problem, null: none
@@ -241,8 +251,17 @@ class NewtonSolve {
     applyH(x, v);
     v.update(-1.0, al_.linearTerm(*dual_.b), 1.0);
   }
-  // ||Phi(x, v)|| (the Alart-Curnier function; r v on free rows).
-  double phiNorm(const Vector& x, const Vector& v) const;
+  // ||Phi(x, v)|| (the Alart-Curnier function the steps solve, or the
+  // given one; r v on free rows).
+  double phiNorm(const Vector& x, const Vector& v) const { return phiNorm(x, v, *ac_); }
+  double phiNorm(const Vector& x, const Vector& v, const AlartCurnier& ac) const;
+  // Freezes the slip bounds at their values at (x, v_) (slipBoundsFrozen_)
+  // and restarts what depends on the merit function; returns ||Phi|| of
+  // the frozen function at x, equal to the Coulomb one there.
+  double freezeSlipBounds(const Vector& x, Iteration& iter);
+  // Back to the problem's slip bounds at step it; returns ||Phi|| there
+  // (nPhi, the Coulomb one).
+  double releaseSlipBounds(int it, double nPhi, Iteration& iter);
   double normGx(const Vector& x) const { return G_.is_null() ? 0.0 : al_.normGx(x); }
   // The Newton system at (x, v): steps_, d0 into d_ (local), returns ||Phi||.
   void linearize(const Vector& x, const Vector& v);
@@ -263,11 +282,11 @@ class NewtonSolve {
                          const std::function<void(const Vector&, Vector&)>& precondition);
 };
 
-double NewtonSolve::phiNorm(const Vector& x, const Vector& v) const {
+double NewtonSolve::phiNorm(const Vector& x, const Vector& v, const AlartCurnier& ac) const {
   const auto xv = x.getData(), vv = v.getData();
   double local = 0;
   AlartCurnier::Blocks B;
-  for (const Contact& c : ac_->contacts()) {
+  for (const Contact& c : ac.contacts()) {
     AlartCurnier::blocks(c, xv.getRawPtr(), vv.getRawPtr(), r_, r_, B);
     for (int i = 0; i <= c.tangents; ++i) local += B.phi[i] * B.phi[i];
   }
@@ -492,9 +511,13 @@ bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Ve
   const double normRB = std::max(r_ * dual_.normB(), 1e-300);
   const double tol = params_.get<double>("Relative Tolerance");
   const int stallSteps = params_.get<int>("Stall Steps");
+  // The stopping measure is always the problem's (Coulomb) residual; the
+  // steps may solve the function with frozen slip bounds (iter.nPhi).
+  auto problemPhi = [&] { return slipBoundsFrozen_ ? phiNorm(x, v_, *coulomb_) : iter.nPhi; };
   iter.nPhi = phiNorm(x, v_);
+  double nPhi = problemPhi();
   const double nGx = normGx(x);
-  double measure = std::hypot(iter.nPhi, nGx) / normRB;
+  double measure = std::hypot(nPhi, nGx) / normRB;
   // v carried as v + t dv drifts from its definition by round-off and by
   // the inexact CG's A d: recompute it every Exact Velocity Steps steps and
   // before the stopping test is believed, so that converged speaks of the
@@ -503,14 +526,18 @@ bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Ve
     exactVelocity(v_);
     iter.sinceExact = 0;
     iter.nPhi = phiNorm(x, v_);
-    measure = std::hypot(iter.nPhi, nGx) / normRB;
+    nPhi = problemPhi();
+    measure = std::hypot(nPhi, nGx) / normRB;
   }
-  st.norm_gP = iter.nPhi / r_;
+  st.norm_gP = nPhi / r_;
   st.norm_Gx = nGx;
   st.n_A = n_A_;
   if (!out_.is_null())
     *out_ << "Newton PCG " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << measure
-          << "  ||Phi|| " << iter.nPhi << "  ||G x|| " << nGx << "  eta " << iter.eta << "  n_A " << n_A_ << "\n";
+          << "  ||Phi|| " << nPhi << "  ||G x|| " << nGx << "  eta " << iter.eta << "  n_A " << n_A_
+          << (slipBoundsFrozen_ ? "  (frozen slip bounds: ||Phi|| " : "");
+  if (!out_.is_null() && slipBoundsFrozen_) *out_ << iter.nPhi << ")";
+  if (!out_.is_null()) *out_ << "\n";
   if (newtonStepEnds(st, it, measure, nGx / normRB, tol, params_.get<int>("Maximum Iterations"), iter.start))
     return false;
   // A linear rate of 0.5-0.7 per step gains far more than a factor 2
@@ -521,6 +548,20 @@ bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Ve
                 " steps)";
     return false;
   }
+  // Coulomb: the steps lag the slip bound (its dependence on the normal
+  // multiplier would make the Newton systems unsymmetric), which can leave
+  // them cycling between two points where a contact changes state back and
+  // forth. When the measure has not halved over Slip Bound Freeze Steps
+  // steps, the bounds are frozen and the steps solve that Tresca problem,
+  // whose Jacobian is exact, until its residual is a tenth of the Coulomb
+  // one; then the steps take the bounds again, from a point off the cycle.
+  if (coulombLaw_) {
+    const int freezeSteps = params_.get<int>("Slip Bound Freeze Steps");
+    if (slipBoundsFrozen_ && iter.nPhi <= 0.1 * nPhi)
+      iter.nPhi = releaseSlipBounds(it, nPhi, iter);
+    else if (!slipBoundsFrozen_ && it >= coulombFrom_ + freezeSteps && measure > 0.5 * st.history[it - freezeSteps])
+      iter.nPhi = freezeSlipBounds(x, iter);
+  }
   iter.eta = forcingTerm(iter.eta, iter.nPhi, iter.previous, params_.get<double>("Maximum Forcing Term"),
                          0.5 * tol * normRB);
   // The first step's reduction (10-15 from rest, where the first system
@@ -529,6 +570,28 @@ bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Ve
   // for eta ~ 5e-3.
   iter.previous = it == 0 ? -1.0 : iter.nPhi;
   return true;
+}
+
+double NewtonSolve::freezeSlipBounds(const Vector& x, Iteration& iter) {
+  const auto xv = x.getData(), vv = v_.getData();
+  ac_ = rcp(new AlartCurnier(coulomb_->withSlipBoundsAt(xv.getRawPtr(), vv.getRawPtr())));
+  if (!out_.is_null()) *out_ << "  the slip bounds are frozen\n";
+  slipBoundsFrozen_ = true;
+  // A new merit function: the nonmonotone history and the forcing terms'
+  // ratio start again.
+  recentPsi_.clear();
+  iter.previous = -1;
+  return phiNorm(x, v_);
+}
+
+double NewtonSolve::releaseSlipBounds(int it, double nPhi, Iteration& iter) {
+  ac_ = coulomb_;
+  slipBoundsFrozen_ = false;
+  coulombFrom_ = it;
+  recentPsi_.clear();
+  iter.previous = -1;
+  if (!out_.is_null()) *out_ << "  the slip bounds follow the normal multipliers again\n";
+  return nPhi;
 }
 
 double NewtonSolve::takeStep(Vector& x, const Vector& dv, int cg, Iteration& iter) {

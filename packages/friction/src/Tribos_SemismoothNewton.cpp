@@ -89,6 +89,16 @@ AlartCurnier::AlartCurnier(const ContactDual& dual, std::vector<double> rho)
     if (!used[i]) freeRows_.push_back(i);
 }
 
+AlartCurnier AlartCurnier::withSlipBoundsAt(const double* x, const double* v) const {
+  AlartCurnier frozen(*this);
+  for (Contact& c : frozen.contacts_) {
+    const double tauN = x[c.normal] - rho_[c.normal] * v[c.normal];
+    c.bound += c.friction * std::max(0.0, tauN + c.offset);
+    c.friction = 0.0;
+  }
+  return frozen;
+}
+
 void AlartCurnier::blocks(const Contact& c, const double* x, const double* v, double rhoN, double rhoT,
                           Blocks& out) {
   const int m = 1 + c.tangents;
@@ -333,6 +343,13 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
     pl->set("Exact Velocity Steps", 10,
             "Projected CG: v = H x - (b - G'mu) is computed from x (one application of A) after this many Newton "
             "steps that carried it as v + t H d, and before the stopping test is believed",
+            range<int>(1, 1000000));
+    pl->set("Slip Bound Freeze Steps", 6,
+            "Projected CG, Coulomb: when the stopping measure has not halved over this many Newton steps, the slip "
+            "bounds are frozen at their current values and the steps solve that Tresca problem, whose Jacobian is "
+            "exact, until its residual is a tenth of the Coulomb one; then they follow the normal multipliers "
+            "again. Steps that lag the slip bound can cycle between two points where a contact changes state "
+            "back and forth (docs/semismooth.md)",
             range<int>(1, 1000000));
     pl->set("Stall Steps", 30,
             "Projected CG: stop as stalled when the stopping measure has not halved over this many Newton steps",

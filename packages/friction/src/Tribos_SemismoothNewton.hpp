@@ -67,6 +67,10 @@ class AlartCurnier {
   void jacobian(const std::vector<double>& x, const std::vector<double>& v, const LocalCsr& A, double mu,
                 LocalCsr& J) const;
   const std::vector<double>& rho() const { return rho_; }
+  // The same function with every contact's slip bound frozen at its value
+  // R = bound + friction max(0, tau_N + offset) at (x, v), as Tresca bounds
+  // (friction 0). x, v indexed by the local rows.
+  AlartCurnier withSlipBoundsAt(const double* x, const double* v) const;
 
   // R = bound + friction max(0, tau_N + offset): Coulomb's slip bound, or
   // Tresca's given one (friction = 0).
