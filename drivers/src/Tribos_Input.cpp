@@ -219,8 +219,10 @@ RCP<const ParameterList> validParameters() {
   contact.set("Enabled", false, "solve a contact problem");
   contact.set("Face", "zmin",
               "without Pairs: the contact face (a box face, or a planar surface of Mesh/File); the rigid plane lies a "
-              "distance Gap beyond it, parallel to it. Not used with Pairs");
-  contact.set("Gap", 0.0, "without Pairs: initial normal gap between the face and the plane. Not used with Pairs");
+              "distance Gap beyond it, parallel to it. Not used with Pairs, where a value other than this default is refused");
+  contact.set("Gap", 0.0,
+              "without Pairs: initial normal gap between the face and the plane. Not used with Pairs, where a value "
+              "other than this default is refused");
   contact.set("Friction Law", "Coulomb", "Frictionless, Tresca (given slip bound) or Coulomb (the default of every pair)",
               frictionLawValidator());
   contact.set("Friction Coefficient", 0.3, "Coulomb friction coefficient F (the default of every pair)",
@@ -550,6 +552,20 @@ void validatePairs(const ParameterList& params) {
   const auto& pairs = contact.sublist("Pairs");
   TRIBOS_REQUIRE(pairs.numParams() == 0 || contact.get<bool>("Enabled"),
                  "Contact/Pairs names " << pairs.numParams() << " pair(s) but Contact/Enabled = false");
+  // Face and Gap describe the one contact of a face against a rigid plane;
+  // beside pairs they are not read. Their defaults stay accepted (the
+  // effective parameters that a run writes carry every default).
+  if (pairs.numParams() > 0) {
+    const auto& defaults = validParameters()->sublist("Contact");
+    TRIBOS_REQUIRE(contact.get<std::string>("Face") == defaults.get<std::string>("Face"),
+                   "\"Contact/Face\" = \"" << contact.get<std::string>("Face")
+                                          << "\" is not used with Contact/Pairs (each pair names its Slave Surface "
+                                             "and Master Surface, or its rigid plane): remove it");
+    TRIBOS_REQUIRE(contact.get<double>("Gap") == defaults.get<double>("Gap"),
+                   "\"Contact/Gap\" = " << contact.get<double>("Gap")
+                                      << " is not used with Contact/Pairs (a pair's gap is where its surfaces lie in "
+                                         "the mesh, or where its Plane Point puts the rigid plane): remove it");
+  }
   for (auto it = pairs.begin(); it != pairs.end(); ++it) {
     const std::string path = "Contact/Pairs/" + pairs.name(it);
     const auto& pair = pairs.sublist(pairs.name(it));
