@@ -64,6 +64,12 @@ std::vector<SC> ContactDual::normalForce(const Vector& x) const {
   return lambdaN;
 }
 
+bool ContactDual::coulombOnSomeRank() const {
+  int local = frictionCoefficient.empty() ? 0 : 1, any = 0;
+  Teuchos::reduceAll(*map()->getComm(), Teuchos::REDUCE_MAX, local, Teuchos::outArg(any));
+  return any != 0;
+}
+
 std::vector<SC> ContactDual::coulombSlipBound(const Vector& x) const {
   TRIBOS_REQUIRE(frictionCoefficient.size() == normalRows.size(), "Coulomb friction needs a friction coefficient per contact");
   auto lambdaN = normalForce(x);

@@ -74,6 +74,10 @@ struct ContactDual {
   RCP<const Map> map() const { return b->getMap(); }
   SC normB() const { return (bReference.is_null() ? b : bReference)->norm2(); }
   int numLocalContacts() const { return static_cast<int>(normalRows.size()); }
+  // Whether some rank holds Coulomb contacts (collective): a rank without
+  // contacts has no friction coefficients whatever the law, so a decision
+  // by the law must be taken from all ranks alike.
+  bool coulombOnSomeRank() const;
   // ||A|| from above: the estimate above while it belongs to A, else
   // `powerSteps` power iterations (collective; n_A counts them).
   SC hessianNorm(int powerSteps, long& n_A) const;

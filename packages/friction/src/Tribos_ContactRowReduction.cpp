@@ -147,7 +147,7 @@ ContactRowReduction::ContactRowReduction(const ContactDual& dual) : map_(dual.ma
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, local, Teuchos::outArg(any));
     return any == 0;
   };
-  if (onNoRank(dual.frictionCoefficient.empty())) rc.frictionCoefficient.clear();
+  if (!dual.coulombOnSomeRank()) rc.frictionCoefficient.clear();
   if (onNoRank(dual.slipBound.empty())) rc.slipBound.clear();
 
   // A~ = A + G'G, dense, and G.

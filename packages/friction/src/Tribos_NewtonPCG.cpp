@@ -130,11 +130,7 @@ class NewtonSolve {
     const std::vector<double> rho(map_->getNodeNumElements(), r_);
     coulomb_ = rcp(new AlartCurnier(dual, rho));
     ac_ = coulomb_;
-    // Whether any rank holds a Coulomb contact: a rank without contact rows
-    // has no friction coefficients, and the slip-bound freeze (collective
-    // norms) must be decided alike on every rank.
-    int localCoulomb = dual.frictionCoefficient.empty() ? 0 : 1;
-    Teuchos::reduceAll(*map_->getComm(), Teuchos::REDUCE_MAX, localCoulomb, Teuchos::outArg(coulombLaw_));
+    coulombLaw_ = dual.coulombOnSomeRank();  // the slip-bound freeze takes collective norms
     steps_.resize(ac_->contacts().size());
     const std::string pc = params.get<std::string>("Preconditioner");
     scaleCurvature_ = pc == "Slip Curvature";
@@ -178,8 +174,7 @@ class NewtonSolve {
   SC normA_ = 1, rho_ = 1, r_ = 1;
   long n_A_ = 0;
   bool scaleCurvature_ = false;         // Preconditioner = Slip Curvature
-  int coulombLaw_ = 0;                  // 1: Coulomb contacts on some rank (slip bounds that depend on x)
-  bool slipBoundsFrozen_ = false;       // ac_ is coulomb_ with frozen slip bounds
+  bool coulombLaw_ = false;             // Coulomb contacts on some rank (slip bounds that depend on x)
   int coulombFrom_ = 0;                 // the step from which ac_ was coulomb_ last
   std::deque<double> recentPsi_;        // psi of the last steps (lineSearch)
   RCP<QP::FaceConstraint> face_;        // G on the faces (runFace), null: no G, or runAugmented
@@ -255,13 +250,11 @@ class NewtonSolve {
   // given one; r v on free rows).
   double phiNorm(const Vector& x, const Vector& v) const { return phiNorm(x, v, *ac_); }
   double phiNorm(const Vector& x, const Vector& v, const AlartCurnier& ac) const;
-  // Freezes the slip bounds at their values at (x, v_) (slipBoundsFrozen_)
-  // and restarts what depends on the merit function; returns ||Phi|| of
-  // the frozen function at x, equal to the Coulomb one there.
-  double freezeSlipBounds(const Vector& x, Iteration& iter);
-  // Back to the problem's slip bounds at step it; returns ||Phi|| there
-  // (nPhi, the Coulomb one).
-  double releaseSlipBounds(int it, double nPhi, Iteration& iter);
+  bool slipBoundsFrozen() const { return ac_ != coulomb_; }
+  // The Newton steps solve `ac` from here on: coulomb_, or coulomb_ with its
+  // slip bounds frozen at (x, v_). A new merit function: the nonmonotone
+  // history and the forcing terms' ratio start again.
+  void solveFunction(const RCP<AlartCurnier>& ac, Iteration& iter);
   double normGx(const Vector& x) const { return G_.is_null() ? 0.0 : al_.normGx(x); }
   // The Newton system at (x, v): steps_, d0 into d_ (local), returns ||Phi||.
   void linearize(const Vector& x, const Vector& v);
@@ -513,7 +506,7 @@ bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Ve
   const int stallSteps = params_.get<int>("Stall Steps");
   // The stopping measure is always the problem's (Coulomb) residual; the
   // steps may solve the function with frozen slip bounds (iter.nPhi).
-  auto problemPhi = [&] { return slipBoundsFrozen_ ? phiNorm(x, v_, *coulomb_) : iter.nPhi; };
+  auto problemPhi = [&] { return slipBoundsFrozen() ? phiNorm(x, v_, *coulomb_) : iter.nPhi; };
   iter.nPhi = phiNorm(x, v_);
   double nPhi = problemPhi();
   const double nGx = normGx(x);
@@ -532,12 +525,12 @@ bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Ve
   st.norm_gP = nPhi / r_;
   st.norm_Gx = nGx;
   st.n_A = n_A_;
-  if (!out_.is_null())
+  if (!out_.is_null()) {
     *out_ << "Newton PCG " << std::setw(3) << it << "  measure " << std::scientific << std::setprecision(3) << measure
-          << "  ||Phi|| " << nPhi << "  ||G x|| " << nGx << "  eta " << iter.eta << "  n_A " << n_A_
-          << (slipBoundsFrozen_ ? "  (frozen slip bounds: ||Phi|| " : "");
-  if (!out_.is_null() && slipBoundsFrozen_) *out_ << iter.nPhi << ")";
-  if (!out_.is_null()) *out_ << "\n";
+          << "  ||Phi|| " << nPhi << "  ||G x|| " << nGx << "  eta " << iter.eta << "  n_A " << n_A_;
+    if (slipBoundsFrozen()) *out_ << "  (frozen slip bounds: ||Phi|| " << iter.nPhi << ")";
+    *out_ << "\n";
+  }
   if (newtonStepEnds(st, it, measure, nGx / normRB, tol, params_.get<int>("Maximum Iterations"), iter.start))
     return false;
   // A linear rate of 0.5-0.7 per step gains far more than a factor 2
@@ -557,10 +550,16 @@ bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Ve
   // one; then the steps take the bounds again, from a point off the cycle.
   if (coulombLaw_) {
     const int freezeSteps = params_.get<int>("Slip Bound Freeze Steps");
-    if (slipBoundsFrozen_ && iter.nPhi <= 0.1 * nPhi)
-      iter.nPhi = releaseSlipBounds(it, nPhi, iter);
-    else if (!slipBoundsFrozen_ && it >= coulombFrom_ + freezeSteps && measure > 0.5 * st.history[it - freezeSteps])
-      iter.nPhi = freezeSlipBounds(x, iter);
+    if (slipBoundsFrozen() && iter.nPhi <= 0.1 * nPhi) {
+      solveFunction(coulomb_, iter);
+      coulombFrom_ = it;
+      iter.nPhi = nPhi;
+    } else if (!slipBoundsFrozen() && it >= coulombFrom_ + freezeSteps &&
+               measure > 0.5 * st.history[it - freezeSteps]) {
+      const auto xv = x.getData(), vv = v_.getData();
+      solveFunction(rcp(new AlartCurnier(coulomb_->withSlipBoundsAt(xv.getRawPtr(), vv.getRawPtr()))), iter);
+      iter.nPhi = nPhi;  // the frozen function equals the Coulomb one at x
+    }
   }
   iter.eta = forcingTerm(iter.eta, iter.nPhi, iter.previous, params_.get<double>("Maximum Forcing Term"),
                          0.5 * tol * normRB);
@@ -572,26 +571,12 @@ bool NewtonSolve::beginStep(int it, const Vector& x, const std::function<void(Ve
   return true;
 }
 
-double NewtonSolve::freezeSlipBounds(const Vector& x, Iteration& iter) {
-  const auto xv = x.getData(), vv = v_.getData();
-  ac_ = rcp(new AlartCurnier(coulomb_->withSlipBoundsAt(xv.getRawPtr(), vv.getRawPtr())));
-  if (!out_.is_null()) *out_ << "  the slip bounds are frozen\n";
-  slipBoundsFrozen_ = true;
-  // A new merit function: the nonmonotone history and the forcing terms'
-  // ratio start again.
+void NewtonSolve::solveFunction(const RCP<AlartCurnier>& ac, Iteration& iter) {
+  ac_ = ac;
   recentPsi_.clear();
   iter.previous = -1;
-  return phiNorm(x, v_);
-}
-
-double NewtonSolve::releaseSlipBounds(int it, double nPhi, Iteration& iter) {
-  ac_ = coulomb_;
-  slipBoundsFrozen_ = false;
-  coulombFrom_ = it;
-  recentPsi_.clear();
-  iter.previous = -1;
-  if (!out_.is_null()) *out_ << "  the slip bounds follow the normal multipliers again\n";
-  return nPhi;
+  if (!out_.is_null())
+    *out_ << (slipBoundsFrozen() ? "  the slip bounds are frozen\n" : "  the slip bounds follow the normal multipliers again\n");
 }
 
 double NewtonSolve::takeStep(Vector& x, const Vector& dv, int cg, Iteration& iter) {

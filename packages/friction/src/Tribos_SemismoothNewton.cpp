@@ -92,8 +92,7 @@ AlartCurnier::AlartCurnier(const ContactDual& dual, std::vector<double> rho)
 AlartCurnier AlartCurnier::withSlipBoundsAt(const double* x, const double* v) const {
   AlartCurnier frozen(*this);
   for (Contact& c : frozen.contacts_) {
-    const double tauN = x[c.normal] - rho_[c.normal] * v[c.normal];
-    c.bound += c.friction * std::max(0.0, tauN + c.offset);
+    c.bound = slipBound(c, x[c.normal] - rho_[c.normal] * v[c.normal]);
     c.friction = 0.0;
   }
   return frozen;
@@ -114,7 +113,7 @@ void AlartCurnier::blocks(const Contact& c, const double* x, const double* v, do
     out.Dx[0][0] = 1.0;
   }
   const double candidate = tauN + c.offset;
-  const double R = c.bound + c.friction * std::max(0.0, candidate);
+  const double R = slipBound(c, tauN);
   double z[2] = {0, 0}, nz = 0;
   for (int j = 0; j + 1 < m; ++j) {
     z[j] = x[c.tangent[j]] - c.centre[j] - rhoT * v[c.tangent[j]];

@@ -27,6 +27,8 @@
 // by default a dense LU (LAPACK).
 #pragma once
 
+#include <algorithm>
+
 #include <Teuchos_ParameterList.hpp>
 
 #include <chrono>
@@ -90,6 +92,8 @@ class AlartCurnier {
     double Dx[3][3], Dv[3][3];
   };
   static void blocks(const Contact& c, const double* x, const double* v, double rhoN, double rhoT, Blocks& out);
+  // The slip bound R of contact c at tau_N = x_N - rho_N v_N.
+  static double slipBound(const Contact& c, double tauN) { return c.bound + c.friction * std::max(0.0, tauN + c.offset); }
 
  private:
   std::vector<Contact> contacts_;
