@@ -36,9 +36,9 @@ namespace {
 
 const char* const kSemismooth = "SemismoothStarNewton";
 
-// The outer algorithms of friction's registry, then the semismooth* method.
+// The outer algorithms that solve the FETI dual, then the semismooth* method.
 std::vector<std::string> outerAlgorithms() {
-  auto names = Friction::frictionSolvers().names();
+  auto names = Friction::dualSolverNames();
   names.push_back(kSemismooth);
   return names;
 }
@@ -239,14 +239,17 @@ RCP<const ParameterList> validParameters() {
              "Monolithic (assembled global solve), FETI, or Auto: Monolithic without contact, FETI with it "
              "(contact problems are FETI's)",
              choice(tuple<std::string>("Auto", "Monolithic", "FETI")));
-  Array<std::string> outer(1, Contact::kAutoOuterAlgorithm);
-  for (const auto& name : outerAlgorithms()) outer.push_back(name);
-  for (const auto& alias : Friction::frictionSolvers().aliases()) outer.push_back(alias);
+  // The FETI solve's choices (the list the solve validates again), and the
+  // semismooth* method, which the driver runs itself.
+  Array<std::string> outer(
+      *Contact::fetiSolveParameters()->getEntry("Outer Algorithm").validator()->validStringValues());
+  outer.push_back(kSemismooth);
   solver.set("Outer Algorithm", Contact::kAutoOuterAlgorithm,
              "contact problems: Auto (Coulomb friction: in a load history where Dirichlet conditions hold every "
              "body Semismooth Newton, matrix-free, followed by Algorithm2 if it stops short, otherwise Algorithm2; "
-             "Algorithm1 for Tresca friction and frictionless contact); " + Friction::frictionSolvers().documentation() + "; " + kSemismooth +
-                 " (Tresca or frictionless by the semismooth* Newton method)",
+             "Algorithm1 for Tresca friction and frictionless contact); " + Friction::dualSolverDocumentation() + "; " + kSemismooth +
+                 " (Tresca or frictionless by the semismooth* Newton method). An alias is read as the algorithm it "
+                 "names, and the effective parameters name that algorithm",
              choice(outer));
   // The result check's parameters, as the FETI solve defines them.
   for (const char* name : {"Result Check Factor", "Result Check Rounds"})
@@ -657,6 +660,16 @@ void validateStepSolvers(const ParameterList& params) {
                                  "step; use Formulation = TFETI (Dirichlet conditions as rows of B), or one step");
 }
 
+// An alias of an outer algorithm (Tresca for Algorithm1) is replaced by the
+// algorithm's name where the input is read: every list built from the input
+// (the FETI solve's, the effective parameters written beside the result)
+// then holds the name that the solver's own choices hold.
+void resolveOuterAlgorithm(ParameterList& solver) {
+  const std::string outer = solver.get<std::string>("Outer Algorithm");
+  if (outer == Contact::kAutoOuterAlgorithm || outer == kSemismooth) return;
+  solver.set("Outer Algorithm", Friction::frictionSolvers().canonical(outer));
+}
+
 // Subdomain Size is Auto by default, the size measured fastest; an input
 // that gives its decomposition (Subdomain Grid, or Subdomains for METIS) and
 // no size keeps that decomposition. The list is resolved in place, so the
@@ -673,6 +686,7 @@ void validate(ParameterList& params, const std::string& source) {
   try {
     validateLevel(params, *validParameters(), "");
     resolveSubdomainSize(params.sublist("Mesh"));
+    resolveOuterAlgorithm(params.sublist("Solver"));
     const auto& mesh = params.sublist("Mesh");
     for (const char* key : {"X Range", "Y Range", "Z Range"}) {
       const auto& r = mesh.get<Array<double>>(key);

@@ -32,21 +32,18 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <condition_variable>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <mutex>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
-#include "Tribos_Driver.hpp"
+#include "driver_call.hpp"
 #include "Tribos_ProcessStartup.hpp"
 
 namespace fs = std::filesystem;
@@ -174,98 +171,6 @@ void listCases(const std::vector<Case>& cases) {
   }
 }
 
-// What one rank's call printed on its standard output and error: the file
-// descriptors 1 and 2 point to files of their own while the call runs, so
-// that the C++ streams (which write through the C ones) and a library's C
-// output are caught alike, in the order printed.
-class Capture {
- public:
-  Capture() : out_(std::tmpfile()), err_(std::tmpfile()), savedOut_(dup(1)), savedErr_(dup(2)) {
-    if (!out_ || !err_ || savedOut_ < 0 || savedErr_ < 0) throw std::runtime_error("cannot capture the output");
-  }
-  void begin() {
-    flushAll();
-    dup2(fileno(out_), 1);
-    dup2(fileno(err_), 2);
-  }
-  // Ends the capture; returns {stdout, stderr}.
-  std::pair<std::string, std::string> end() {
-    flushAll();
-    dup2(savedOut_, 1);
-    dup2(savedErr_, 2);
-    return {takeText(fileno(out_)), takeText(fileno(err_))};
-  }
-  // The process's own standard output, also while a capture runs.
-  int realOut() const { return savedOut_; }
-
- private:
-  static void flushAll() {
-    std::cout.flush();
-    std::cerr.flush();
-    std::fflush(stdout);
-    std::fflush(stderr);
-  }
-  static std::string takeText(int fd) {
-    std::string text;
-    lseek(fd, 0, SEEK_SET);
-    char buffer[65536];
-    for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<size_t>(n));
-    if (ftruncate(fd, 0) != 0) throw std::runtime_error("cannot empty a capture file");
-    lseek(fd, 0, SEEK_SET);
-    return text;
-  }
-  FILE* out_;
-  FILE* err_;
-  int savedOut_, savedErr_;
-};
-
-// Ends the program when a case runs longer than kTimeoutSeconds (a hang),
-// naming the case on the real standard output.
-class Watchdog {
- public:
-  explicit Watchdog(int realOut) : realOut_(realOut), thread_([this] { watch(); }) {}
-  ~Watchdog() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    wake_.notify_all();
-    thread_.join();
-  }
-  void start(const std::string& what) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    what_ = what;
-    deadline_ = std::chrono::steady_clock::now() + std::chrono::seconds(kTimeoutSeconds);
-    running_ = true;
-  }
-  void stop() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    running_ = false;
-  }
-
- private:
-  void watch() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    while (!stop_) {
-      if (running_ && std::chrono::steady_clock::now() > deadline_) {
-        const std::string line =
-            "FAIL: " + what_ + ": no exit within " + std::to_string(kTimeoutSeconds) + " s (hang)\n";
-        if (write(realOut_, line.data(), line.size()) < 0) {
-        }
-        _exit(1);  // mpiexec ends the other ranks
-      }
-      wake_.wait_for(lock, std::chrono::seconds(1));
-    }
-  }
-  int realOut_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::string what_;
-  std::chrono::steady_clock::time_point deadline_;
-  bool running_ = false, stop_ = false;
-  std::thread thread_;
-};
-
 struct Paths {
   std::string source, generated, work;
 };
@@ -296,21 +201,6 @@ std::vector<std::string> driverArgs(const Case& c, const std::string& input, con
   }
   if (!output) args.insert(args.end(), {"--output", out});
   return args;
-}
-
-// Every rank's text on rank 0.
-std::vector<std::string> gatherText(const std::string& mine, int size, int rank) {
-  const int length = static_cast<int>(mine.size());
-  std::vector<int> lengths(size), offsets(size, 0);
-  MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-  for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + lengths[r - 1];
-  std::string all(rank == 0 ? static_cast<size_t>(offsets.back() + lengths.back()) : 0, '\0');
-  MPI_Gatherv(mine.data(), length, MPI_CHAR, rank == 0 ? &all[0] : nullptr, lengths.data(), offsets.data(), MPI_CHAR,
-              0, MPI_COMM_WORLD);
-  std::vector<std::string> texts;
-  if (rank == 0)
-    for (int r = 0; r < size; ++r) texts.push_back(all.substr(static_cast<size_t>(offsets[r]), lengths[r]));
-  return texts;
 }
 
 // Result files (.h5, .xmf, .json, not hidden) and temporaries (.tmp) left
@@ -407,7 +297,7 @@ Options parseOptions(int argc, char** argv) {
 
 // Runs one case on every rank; on rank 0 returns why it failed ("" if not).
 std::string runCase(const Case& c, const Paths& paths, const Teuchos::RCP<const Teuchos::Comm<int>>& comm,
-                    Capture& capture, Watchdog& watchdog) {
+                    DriverCall::Capture& capture, DriverCall::Watchdog& watchdog) {
   const int rank = comm->getRank(), size = comm->getSize();
   const std::string work = paths.work + "/" + c.name + "_np" + std::to_string(size), out = work + "/out";
   std::string input, problem;
@@ -424,19 +314,8 @@ std::string runCase(const Case& c, const Paths& paths, const Teuchos::RCP<const 
   MPI_Bcast(&prepared, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (!prepared) return problem.empty() ? "cannot prepare the case (rank 0)" : problem;
 
-  const auto args = driverArgs(c, input, work, out);
-  const fs::path home = fs::current_path();
-  fs::current_path(work);
-  watchdog.start(c.name + " (np " + std::to_string(size) + ")");
-  capture.begin();
-  const int code = Tribos::runDriver(args, comm);
-  const auto [stdOut, stdErr] = capture.end();
-  watchdog.stop();
-  fs::current_path(home);
-
-  std::vector<int> codes(size);
-  MPI_Gather(&code, 1, MPI_INT, codes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-  const auto outs = gatherText(stdOut, size, rank), errs = gatherText(stdErr, size, rank);
+  const auto [codes, outs, errs] = DriverCall::call(driverArgs(c, input, work, out), work,
+                                                   c.name + " (np " + std::to_string(size) + ")", comm, capture, watchdog);
   if (rank != 0) return "";
   const std::string why = judge(c, codes, outs, errs, out);
   if (why.empty()) return "";
@@ -463,8 +342,8 @@ int main(int argc, char** argv) {
       if (rank == 0) listCases(cases);
       return 0;
     }
-    Capture capture;
-    Watchdog watchdog(capture.realOut());
+    DriverCall::Capture capture;
+    DriverCall::Watchdog watchdog(capture.realOut(), kTimeoutSeconds);
     int run = 0, failed = 0;
     const auto start = std::chrono::steady_clock::now();
     for (const Case& c : cases) {

@@ -219,13 +219,15 @@ RCP<const Teuchos::ParameterList> fetiSolveParameters() {
   static RCP<Teuchos::ParameterList> pl;
   if (pl.is_null()) {
     pl = Teuchos::parameterList("Solver");
-    auto names = Friction::frictionSolvers().names();
-    names.insert(names.begin(), kAutoOuterAlgorithm);
+    // The algorithms that solve this dual, and their aliases (outerAlgorithmFor maps them).
+    std::vector<std::string> names{kAutoOuterAlgorithm};
+    for (const auto& list : {Friction::dualSolverNames(), Friction::dualSolverAliases()})
+      names.insert(names.end(), list.begin(), list.end());
     pl->set("Outer Algorithm", kAutoOuterAlgorithm,
             "contact problems: Auto (Coulomb friction: in a load history where Dirichlet conditions hold every body "
             "Semismooth Newton, matrix-free, at Algorithm 2's Relative Tolerance, followed by Algorithm2 if it stops short, "
             "otherwise Algorithm2; "
-            "Algorithm1 for Tresca friction and frictionless contact); " + Friction::frictionSolvers().documentation(),
+            "Algorithm1 for Tresca friction and frictionless contact); " + Friction::dualSolverDocumentation(),
             rcp(new Teuchos::StringValidator(Teuchos::Array<std::string>(names.begin(), names.end()))));
     pl->set("Result Check Factor", 100.0,
             "converged means every KKT residual of the written result (docs/friction.md) is at most this factor "

@@ -18,6 +18,7 @@
 #include <Teuchos_DefaultSerialComm.hpp>
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
+#include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Tpetra_Core.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_MultiVector.hpp>
@@ -25,6 +26,7 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -568,6 +570,45 @@ TEUCHOS_UNIT_TEST(Embedding, FrictionOfPairs) {
   TEST_ASSERT(f[0].law == FrictionLaw::Coulomb && f[0].coefficient == kFriction);
   TEST_ASSERT(f[1].law == FrictionLaw::Coulomb && f[1].coefficient == kFriction);
   TEST_ASSERT(f[2].law == FrictionLaw::Coulomb && f[2].coefficient == 0.5);
+}
+
+// Every choice that getValidParameters() offers for "Outer Algorithm" (an
+// alias too) solves a problem of a law it documents: a choice no law solves
+// would pass setParameters and fail in solve(). A law it does not solve is
+// refused naming the algorithm.
+TEUCHOS_UNIT_TEST(Embedding, EveryOfferedOuterAlgorithmSolves) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Grid g;
+  const auto choices = Contact::ContactSolver::getValidParameters()->getEntry("Outer Algorithm").validator()->validStringValues();
+  for (const std::string& algorithm : *choices) {
+    int solved = 0;
+    for (const char* law : {"Tresca", "Coulomb"}) {
+      auto params = parameters();
+      params->set("Outer Algorithm", algorithm);
+      params->sublist("Friction").set("Law", law).set("Slip Bound Traction", 0.1 * kPressure);
+      Contact::SolveStatus status = Contact::SolveStatus::Unconverged;
+      const std::string error = errorOf([&] { newPath(g, comm, Stiffness::Crs, status, 0, params); });
+      out << algorithm << ", " << law << ": " << (error.empty() ? "solved" : error) << "\n";
+      TEST_ASSERT(error.empty() ? status == Contact::SolveStatus::Converged
+                                : contains(error, "Outer Algorithm = "));
+      solved += error.empty();
+    }
+    TEST_ASSERT(solved > 0);
+  }
+}
+
+// The valid list, validators included, written as a Teuchos XML file and
+// read back.
+TEUCHOS_UNIT_TEST(Embedding, ValidParametersWrittenAsXml) {
+  const auto valid = Contact::ContactSolver::getValidParameters();
+  const std::string xml = errorOf([&] {
+    std::ostringstream os;
+    Teuchos::writeParameterListToXmlOStream(*valid, os);
+    const auto back = Teuchos::getParametersFromXmlString(os.str());
+    TEST_EQUALITY(back->sublist("Friction").get<std::string>("Law"), "Frictionless");
+  });
+  out << xml << "\n";
+  TEST_ASSERT(xml.empty());
 }
 
 }  // namespace

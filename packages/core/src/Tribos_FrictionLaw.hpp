@@ -9,7 +9,10 @@
 
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_ValidatorXMLConverterDB.hpp>
 
+#include <istream>
+#include <ostream>
 #include <string>
 
 #include "Tribos_Error.hpp"
@@ -28,14 +31,34 @@ inline const char* frictionLawName(FrictionLaw law) {
   return "?";
 }
 
-// Accepts the three names, documents them and maps them to the enum.
+// The law as its name in text (Teuchos' XML files write the validator's
+// values so, and read them back).
+inline std::ostream& operator<<(std::ostream& out, FrictionLaw law) { return out << frictionLawName(law); }
+inline std::istream& operator>>(std::istream& in, FrictionLaw& law) {
+  std::string name;
+  in >> name;
+  for (FrictionLaw l : {FrictionLaw::Frictionless, FrictionLaw::Tresca, FrictionLaw::Coulomb})
+    if (name == frictionLawName(l)) {
+      law = l;
+      return in;
+    }
+  in.setstate(std::ios::failbit);
+  return in;
+}
+
+// Accepts the three names, documents them and maps them to the enum. A list
+// holding it can be written by Teuchos::writeParameterListToXmlFile (its
+// converter is registered with it).
 inline RCP<const Teuchos::StringToIntegralParameterEntryValidator<FrictionLaw>> frictionLawValidator() {
   using Teuchos::tuple;
-  static const auto validator = rcp(new Teuchos::StringToIntegralParameterEntryValidator<FrictionLaw>(
-      tuple<std::string>("Frictionless", "Tresca", "Coulomb"),
-      tuple<std::string>("no tangential force", "a given slip bound (a traction times the nodal area)",
-                         "the slip bound F lambda_N of the normal force"),
-      tuple<FrictionLaw>(FrictionLaw::Frictionless, FrictionLaw::Tresca, FrictionLaw::Coulomb), "Friction Law"));
+  static const auto validator = [] {
+    TEUCHOS_ADD_STRINGTOINTEGRALVALIDATOR_CONVERTER(FrictionLaw);
+    return rcp(new Teuchos::StringToIntegralParameterEntryValidator<FrictionLaw>(
+        tuple<std::string>("Frictionless", "Tresca", "Coulomb"),
+        tuple<std::string>("no tangential force", "a given slip bound (a traction times the nodal area)",
+                           "the slip bound F lambda_N of the normal force"),
+        tuple<FrictionLaw>(FrictionLaw::Frictionless, FrictionLaw::Tresca, FrictionLaw::Coulomb), "Friction Law"));
+  }();
   return validator;
 }
 

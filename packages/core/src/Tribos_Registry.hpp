@@ -10,6 +10,7 @@
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <utility>
@@ -81,10 +82,13 @@ class Registry {
 
   std::string namesText() const { return joinNames(names()); }
 
-  // "CHOLMOD (supernodal Cholesky); KLU2 (...)", for parameter documentation.
-  std::string documentation() const {
+  // "CHOLMOD (supernodal Cholesky); KLU2 (...)", for parameter documentation:
+  // every component, or those of `only` when it is given.
+  std::string documentation(const std::vector<std::string>& only = {}) const {
     std::string out;
-    for (const auto& e : entries_) out += (out.empty() ? "" : "; ") + e.name + " (" + e.description + ")";
+    for (const auto& e : entries_)
+      if (only.empty() || std::find(only.begin(), only.end(), e.name) != only.end())
+        out += (out.empty() ? "" : "; ") + e.name + " (" + e.description + ")";
     return out;
   }
 

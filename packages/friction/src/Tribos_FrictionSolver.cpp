@@ -3,6 +3,7 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Tpetra_Vector.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -13,6 +14,7 @@
 #include "Tribos_NonsmoothGaussSeidel.hpp"
 #include "Tribos_SemismoothNewton.hpp"
 #include "Tribos_Error.hpp"
+#include "Tribos_FrictionLaw.hpp"
 #include "Tribos_Validators.hpp"
 #include "Tribos_QP.hpp"
 #include "Tribos_QP_AugmentedLagrangian.hpp"
@@ -524,6 +526,31 @@ const FrictionSolverRegistry& frictionSolvers() {
     return r;
   }();
   return registry;
+}
+
+std::vector<std::string> dualSolverNames() {
+  std::vector<std::string> out;
+  for (const auto& name : frictionSolvers().names())
+    for (FrictionLaw law : {FrictionLaw::Frictionless, FrictionLaw::Tresca, FrictionLaw::Coulomb})
+      if (frictionSolvers().accepts(name, frictionLawName(law))) {
+        out.push_back(name);
+        break;
+      }
+  return out;
+}
+
+std::vector<std::string> dualSolverAliases() {
+  const auto names = dualSolverNames();
+  std::vector<std::string> out;
+  for (const auto& alias : frictionSolvers().aliases())
+    if (std::find(names.begin(), names.end(), frictionSolvers().canonical(alias)) != names.end()) out.push_back(alias);
+  return out;
+}
+
+std::string dualSolverDocumentation() {
+  std::string doc = frictionSolvers().documentation(dualSolverNames());
+  for (const auto& alias : dualSolverAliases()) doc += "; " + alias + " (" + frictionSolvers().canonical(alias) + ")";
+  return doc;
 }
 
 RCP<FrictionSolver> FrictionSolverFactory::create(const std::string& name, const ParameterList& params) const {

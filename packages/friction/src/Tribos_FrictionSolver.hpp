@@ -191,6 +191,14 @@ class Algorithm2 : public SingleLoopSolver {
 using FrictionSolverRegistry = Registry<FrictionSolver, const Teuchos::ParameterList&>;
 const FrictionSolverRegistry& frictionSolvers();
 
+// The outer algorithms that solve a dual whose operator is only applied
+// (FETI's): those that accept a friction law (Frictionless, Tresca or
+// Coulomb), in the registry's order; not NSGS, which reads W's entries.
+// Their aliases, and their documentation for a parameter choosing one.
+std::vector<std::string> dualSolverNames();
+std::vector<std::string> dualSolverAliases();
+std::string dualSolverDocumentation();
+
 class FrictionSolverFactory {
  public:
   RCP<FrictionSolver> create(const std::string& name, const Teuchos::ParameterList& params) const;
