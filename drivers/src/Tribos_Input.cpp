@@ -845,9 +845,14 @@ double meshExtent(const Mesh::Mesh& mesh) {
   return std::hypot(box.x[1] - box.x[0], box.y[1] - box.y[0], box.z[1] - box.z[0]);
 }
 
+// A scale the solver forms products of: within [kMinScale, kMaxScale], or
+// exactly 0 where the quantity may vanish (a load or a length; nonzero, it
+// must be representable too: a load of 1e-300 is not zero to the solver,
+// and its products underflow).
 void requireScale(double scale, bool mayVanish, const std::string& what) {
-  TRIBOS_REQUIRE(scale <= kMaxScale && (mayVanish || scale >= kMinScale),
-                 what << " is " << (scale > kMaxScale ? "above " : "below ") << (scale > kMaxScale ? kMaxScale : kMinScale)
+  const bool above = scale > kMaxScale;
+  TRIBOS_REQUIRE(!above && (scale >= kMinScale || (mayVanish && scale == 0)),
+                 what << " is " << (above ? "above " : "below ") << (above ? kMaxScale : kMinScale)
                       << ": beyond the scales whose products double precision represents; state the problem in "
                          "other units (e.g. mm and MPa) or correct the value");
 }
@@ -858,25 +863,26 @@ std::string quoted(const std::string& path, double value) {
   return os.str();
 }
 
-}  // namespace
-
-namespace {
-
-// The largest |curve(t)| over the step times of the curve `name` ("": the
-// ramp): a load's largest multiple of its Value in the run.
-double largestFactor(const ParameterList& params, const std::string& name) {
-  const Fem::LoadCurve curve = loadCurve(params, name);
-  double largest = 0;
-  for (double t : loadStepTimes(params)) largest = std::max(largest, std::abs(curve(t)));
-  return largest;
+// A load at one step: its Value times its curve ("": the ramp min(t, 1)) at
+// the step time t. What names it beside its path: the curve, the factor and
+// the time, unless the factor is 1 without a curve (the static problem).
+std::string stepText(const std::string& curve, double t, double factor) {
+  if (curve.empty() && factor == 1) return "";
+  std::ostringstream os;
+  os << " times " << (curve.empty() ? std::string("the ramp min(t, 1)") : "\"Load Curves/" + curve + "\"") << " ("
+     << factor << " at the step time " << t << ")";
+  return os.str();
 }
 
-// How a load's scale names its curve: nothing for the ramp (at most 1).
-std::string curveFactorText(const ParameterList& params, const std::string& name) {
-  if (name.empty()) return "";
-  std::ostringstream os;
-  os << " times \"Load Curves/" << name << "\" (at most " << largestFactor(params, name) << " over the steps)";
-  return os.str();
+// check(scale x |curve(t)|, stepText) at every step time t: a load's scale
+// at each step of the run, whether its curve or the ramp scales it.
+template <class Check>
+void atEveryStep(const ParameterList& params, const std::string& curveName, double scale, Check check) {
+  const Fem::LoadCurve curve = loadCurve(params, curveName);
+  for (double t : loadStepTimes(params)) {
+    const double factor = curve(t);
+    check(scale * std::abs(factor), stepText(curveName, t, factor));
+  }
 }
 
 }  // namespace
@@ -899,44 +905,45 @@ void checkScales(const ParameterList& params, const Mesh::Mesh& mesh) {
     requireScale(E * L, false, os.str());
     softest = std::min(softest, E);
   }
-  // Loads: their resultant over the mesh, and the displacement they cause in the softest material
-  // (each with its curve's largest value over the steps: the load's largest in the run).
-  const auto& bc = params.sublist("Boundary Conditions");
-  const std::string volumeCurve = bc.get<std::string>("Volume Force Curve");
-  std::vector<std::pair<std::string, double>> loads = {
-      {"\"Boundary Conditions/Volume Force\"" + curveFactorText(params, volumeCurve),
-       maxAbs(bc.get<Array<double>>("Volume Force")) * L * L * L * largestFactor(params, volumeCurve)}};
-  const auto& tractions = bc.sublist("Traction");
-  for (auto it = tractions.begin(); it != tractions.end(); ++it) {
-    const auto& item = tractions.sublist(tractions.name(it));
-    const std::string curve = item.get<std::string>("Curve");
-    loads.emplace_back("\"Boundary Conditions/Traction/" + tractions.name(it) + "/Value\"" +
-                           curveFactorText(params, curve),
-                       maxAbs(item.get<Array<double>>("Value")) * L * L * largestFactor(params, curve));
-  }
-  // The Tresca slip bounds act as loads where the contact slips.
-  const auto& contact = params.sublist("Contact");
-  const auto& pairs = contact.sublist("Pairs");
-  loads.emplace_back("\"Contact/Slip Bound Traction\"", contact.get<double>("Slip Bound Traction") * L * L);
-  for (auto it = pairs.begin(); it != pairs.end(); ++it)
-    loads.emplace_back("\"Contact/Pairs/" + pairs.name(it) + "/Slip Bound Traction\"",
-                       pairs.sublist(pairs.name(it)).get<double>("Slip Bound Traction") * L * L);
-  for (const auto& [load, resultant] : loads) {  // load: the quoted path, and its curve
+  // Loads at every step: their resultant over the mesh, and the displacement
+  // they cause in the softest material.
+  auto requireLoad = [&](const std::string& name, double resultant) {
     std::ostringstream os;
-    os << load << extent.str() << " gives a resultant force of about " << resultant;
+    os << name << extent.str() << " gives a resultant force of about " << resultant;
     requireScale(resultant, true, os.str());
     os << " and a displacement of about " << resultant / (softest * L) << " in the softest material";
     requireScale(resultant / (softest * L), true, os.str());
+  };
+  const auto& bc = params.sublist("Boundary Conditions");
+  const std::string volumeCurve = bc.get<std::string>("Volume Force Curve");
+  atEveryStep(params, volumeCurve, maxAbs(bc.get<Array<double>>("Volume Force")) * L * L * L,
+              [&](double resultant, const std::string& step) {
+                requireLoad("\"Boundary Conditions/Volume Force\"" + step, resultant);
+              });
+  const auto& tractions = bc.sublist("Traction");
+  for (auto it = tractions.begin(); it != tractions.end(); ++it) {
+    const auto& item = tractions.sublist(tractions.name(it));
+    atEveryStep(params, item.get<std::string>("Curve"), maxAbs(item.get<Array<double>>("Value")) * L * L,
+                [&](double resultant, const std::string& step) {
+                  requireLoad("\"Boundary Conditions/Traction/" + tractions.name(it) + "/Value\"" + step, resultant);
+                });
   }
-  // Lengths: prescribed displacements, gaps, plane points.
+  // The Tresca slip bounds act as loads where the contact slips (the same at every step).
+  const auto& contact = params.sublist("Contact");
+  const auto& pairs = contact.sublist("Pairs");
+  requireLoad("\"Contact/Slip Bound Traction\"", contact.get<double>("Slip Bound Traction") * L * L);
+  for (auto it = pairs.begin(); it != pairs.end(); ++it)
+    requireLoad("\"Contact/Pairs/" + pairs.name(it) + "/Slip Bound Traction\"",
+                pairs.sublist(pairs.name(it)).get<double>("Slip Bound Traction") * L * L);
+  // Lengths: prescribed displacements (at every step), gaps, plane points.
   const auto& dirichlet = bc.sublist("Dirichlet");
   for (auto it = dirichlet.begin(); it != dirichlet.end(); ++it) {
     const std::string path = "Boundary Conditions/Dirichlet/" + dirichlet.name(it) + "/Value";
     const auto& item = dirichlet.sublist(dirichlet.name(it));
-    const std::string curve = item.get<std::string>("Curve");
     const double u = maxAbs(item.get<Array<double>>("Value"));
-    requireScale(u * largestFactor(params, curve), true,
-                 quoted(path, u) + " (its largest component)" + curveFactorText(params, curve));
+    atEveryStep(params, item.get<std::string>("Curve"), u, [&](double scale, const std::string& step) {
+      requireScale(scale, true, quoted(path, u) + " (its largest component)" + step);
+    });
   }
   requireScale(std::abs(contact.get<double>("Gap")), true, quoted("Contact/Gap", contact.get<double>("Gap")));
   for (auto it = pairs.begin(); it != pairs.end(); ++it) {
