@@ -549,7 +549,47 @@ void checkSemismooth(const ParameterList& list) {
   }
 }
 
-// Pairs: a slave surface, a usable plane normal, and Contact enabled.
+// Why a contact pair does not read `entry` ("" when it does): a rigid plane
+// (no Master Surface) reads Plane Point and Plane Normal, and a master
+// surface the Discretization (against a plane both give the same rows); a
+// contact pair reads its Friction Law and that law's own parameter
+// (Coulomb: Friction Coefficient, Tresca: Slip Bound Traction); a glued pair
+// has no friction.
+std::string unusedPairEntry(const ParameterList& pair, const std::string& entry) {
+  const bool plane = pair.get<std::string>("Master Surface").empty();
+  const std::string law = pair.get<std::string>("Friction Law");
+  if ((entry == "Plane Point" || entry == "Plane Normal") && !plane)
+    return "a pair with a Master Surface contacts that surface, not a rigid plane";
+  if (entry == "Discretization" && plane)
+    return "against a rigid plane (no Master Surface) Mortar and Node To Segment give the same rows";
+  if ((entry == "Friction Law" || entry == "Friction Coefficient" || entry == "Slip Bound Traction") &&
+      pair.get<std::string>("Type") == "Glued")
+    return "a pair of Type = Glued has no friction (its surfaces do not move relative to each other)";
+  if (entry == "Friction Coefficient" && law != "Coulomb")
+    return "Friction Law = " + law + " has no friction coefficient (Coulomb's)";
+  if (entry == "Slip Bound Traction" && law != "Tresca")
+    return "Friction Law = " + law + " has no given slip bound (Tresca's)";
+  return "";
+}
+
+// Every entry of a pair that its kind does not read keeps its default (the
+// effective parameters a run writes carry every default); another value is
+// refused by name instead of ignored.
+void requireEveryPairEntryUsed(const ParameterList& contact, const ParameterList& pair, const std::string& path) {
+  const ParameterList defaults = pairItem(contact);
+  for (auto it = pair.begin(); it != pair.end(); ++it) {
+    const std::string& entry = pair.name(it);
+    const std::string why = unusedPairEntry(pair, entry);
+    if (why.empty() || pair.getEntry(entry).getAny(false) == defaults.getEntry(entry).getAny(false)) continue;
+    std::ostringstream value;
+    if (pair.isType<std::string>(entry)) value << "\"" << pair.get<std::string>(entry) << "\"";
+    else pair.getEntry(entry).getAny(false).print(value);
+    throw Error("\"" + path + "/" + entry + "\" = " + value.str() + " is not used: " + why + "; remove it");
+  }
+}
+
+// Pairs: a slave surface, a usable plane normal, no entry their kind does
+// not read, and Contact enabled.
 void validatePairs(const ParameterList& params) {
   const auto& contact = params.sublist("Contact");
   const auto& pairs = contact.sublist("Pairs");
@@ -577,6 +617,7 @@ void validatePairs(const ParameterList& params) {
     const auto& x = pair.get<Array<double>>("Plane Point");
     TRIBOS_REQUIRE(n.size() == 3 && x.size() == 3, "\"" << path << "/Plane Normal\" and \"Plane Point\" need 3 components");
     TRIBOS_REQUIRE(norm(Vec3{n[0], n[1], n[2]}) > 0, "\"" << path << "/Plane Normal\" is zero");
+    requireEveryPairEntryUsed(contact, pair, path);
   }
   const auto& bodies = params.sublist("Bodies");
   for (auto it = bodies.begin(); it != bodies.end(); ++it) {

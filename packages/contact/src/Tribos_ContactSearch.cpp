@@ -13,6 +13,7 @@
 #include "Tribos_Loads.hpp"
 #include "Tribos_Mortar.hpp"
 #include "Tribos_NodalVector.hpp"
+#include "Tribos_RigidMotions.hpp"
 #include "Tribos_Vec3.hpp"
 
 namespace Tribos {
@@ -342,6 +343,123 @@ std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const 
                                             << " within the search distance");
   }
   return out;
+}
+
+namespace {
+
+// Bodies joined by shared nodes: unit[b] the smallest body of b's unit, and
+// the unit of every node (-1: no cell uses it).
+struct BondedUnits {
+  std::vector<int> unit, nodeUnit;
+  explicit BondedUnits(const Mesh::Mesh& mesh) : unit(mesh.numBodies()), nodeUnit(mesh.numNodes(), -1) {
+    for (size_t b = 0; b < unit.size(); ++b) unit[b] = static_cast<int>(b);
+    std::vector<int> nodeBody(mesh.numNodes(), -1);
+    for (int c = 0; c < mesh.numCells(); ++c)
+      for (int a = 0; a < mesh.nodesPerCell(); ++a) {
+        int& b = nodeBody[mesh.cell(c)[a]];
+        if (b < 0) b = mesh.bodyOf(c);
+        else join(b, mesh.bodyOf(c));
+      }
+    for (int n = 0; n < mesh.numNodes(); ++n)
+      if (nodeBody[n] >= 0) nodeUnit[n] = root(nodeBody[n]);
+  }
+  int root(int b) { return unit[b] == b ? b : unit[b] = root(unit[b]); }
+  void join(int a, int b) {
+    a = root(a), b = root(b);
+    unit[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// Whether a pair's master surface faces its slave surface somewhere: at some
+// slave node its contact normal (the master's inward normal) lies within 60
+// degrees of the slave face's outward normal there.
+bool masterFacesSlave(const Mesh::Mesh& mesh, const std::vector<ContactConstraint>& constraints, int pair,
+                      const std::string& slave) {
+  std::vector<Vec3> outward(mesh.numNodes(), Vec3{0, 0, 0});
+  for (const Mesh::Facet& f : mesh.face(slave)) {
+    const auto& x = mesh.coords;
+    const Vec3 a = cross(minus(x[f.nodes[1]], x[f.nodes[0]]), minus(x[f.nodes.back()], x[f.nodes[0]]));
+    for (int n : f.nodes)
+      for (int d = 0; d < 3; ++d) outward[n][d] += a[d];
+  }
+  for (const auto& c : constraints)
+    if (c.pair == pair && norm(outward[c.node]) > 0 && dot(c.normal, normalized(outward[c.node])) >= 0.5) return true;
+  return false;
+}
+
+}  // namespace
+
+void requireEveryBodyHeldAlone(const Mesh::Mesh& mesh, const std::map<long long, double>& dirichlet,
+                               const std::vector<ContactPair>& pairs, const std::vector<char>& holdsTangentially,
+                               const std::vector<ContactConstraint>& constraints) {
+  BondedUnits units(mesh);
+  for (int u = 0; u < mesh.numBodies(); ++u) {
+    if (units.root(u) != u) continue;
+    // The unit's nodes, numbered locally, then the points where a row's
+    // master side in the unit acts (the weighted mean of its master nodes:
+    // a rigid motion moves sum w_i x_i as it moves that point).
+    std::vector<Vec3> coords;
+    std::vector<int> local(mesh.numNodes(), -1);
+    for (int n = 0; n < mesh.numNodes(); ++n)
+      if (units.nodeUnit[n] == u) local[n] = static_cast<int>(coords.size()), coords.push_back(mesh.coords[n]);
+    std::vector<Fem::HeldDirection> held;
+    for (const auto& [dof, value] : dirichlet)
+      if (local[dof / 3] >= 0) {
+        Fem::HeldDirection h{local[dof / 3], {0, 0, 0}};
+        h.direction[dof % 3] = 1;
+        held.push_back(h);
+      }
+    std::vector<char> touches(pairs.size(), 0);  // pairs with rows between the unit and something else
+    for (const auto& c : constraints) {
+      bool master = false;  // a master node of the row in the unit
+      double inUnit = 0;     // their weight (mortar weights may be negative)
+      Vec3 xp{0, 0, 0};
+      for (const auto& [m, w] : c.master) {
+        if (units.nodeUnit[m] != u) continue;
+        master = true, inUnit += w;
+        for (int d = 0; d < 3; ++d) xp[d] += w * mesh.coords[m][d];
+      }
+      const bool slave = local[c.node] >= 0;
+      int at = -1;  // the local point where the row acts on the unit alone
+      if (slave && !master) {
+        at = local[c.node];
+      } else if (!slave && master && std::abs(inUnit) > 1e-12) {
+        at = static_cast<int>(coords.size());
+        coords.push_back({xp[0] / inUnit, xp[1] / inUnit, xp[2] / inUnit});
+      }
+      if (at < 0) continue;  // a row within the unit: internal forces only
+      touches[c.pair] = 1;
+      for (const auto& d : {c.normal, c.t1, c.t2}) {
+        held.push_back({at, d});
+        if (!holdsTangentially[c.pair]) break;
+      }
+    }
+    if (coords.empty()) continue;
+    const auto free = Fem::freeRigidMotions(coords, held);
+    if (free.empty()) continue;
+    std::string names, motions, on, why;
+    int count = 0;
+    for (int b = 0; b < mesh.numBodies(); ++b)
+      if (units.root(b) == u) names += (count++ ? ", '" : "'") + mesh.bodyName(b) + "'";
+    for (const auto& m : free) motions += (motions.empty() ? "" : ", ") + m;
+    for (size_t p = 0; p < pairs.size(); ++p) {
+      if (!touches[p]) continue;
+      on += (on.empty() ? "'" : ", '") + pairs[p].name + "'";
+      if (!pairs[p].master.empty() && !masterFacesSlave(mesh, constraints, static_cast<int>(p), pairs[p].slave))
+        why += "; the master surface '" + pairs[p].master + "' of contact pair '" + pairs[p].name +
+               "' does not face its slave surface '" + pairs[p].slave +
+               "' (its normal lies more than 60 degrees from the slave's at every slave node), so the pair holds "
+               "nothing along the slave's normal";
+    }
+    std::ostringstream os;
+    os << (count == 1 ? "body " + names + " is" : "bodies " + names + " (bonded) are") << " free to move rigidly ("
+       << motions << ") while the other bodies stay: no Dirichlet condition holds "
+       << (count == 1 ? "it" : "them") << " and "
+       << (on.empty() ? std::string("no contact pair acts on ") + (count == 1 ? "it" : "them")
+                      : "contact pair(s) " + on + " hold only other motions")
+       << why << "; add a Dirichlet condition that holds the motion, or correct the pairs";
+    throw Error(os.str());
+  }
 }
 
 ContactPair planeBeyondFace(const Mesh::Mesh& mesh, const std::string& face, double gap) {

@@ -42,6 +42,7 @@
 
 #include <array>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,19 @@ struct ContactPair {
 // that fall back to node-to-segment.
 std::vector<Feti::ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const std::vector<ContactPair>& pairs,
                                                         std::vector<std::string>* notes = nullptr);
+
+// Refuses (Tribos::Error naming the body, the free motions and the pairs on
+// it) a body that can move rigidly while every other body stays: a motion
+// that neither its Dirichlet dofs (dirichlet: constrained dofs 3 n + c)
+// nor a contact row between it and another body or a rigid plane touches
+// (the rows' normals; their tangents too where holdsTangentially[pair]:
+// friction or a glued pair). Bodies that share nodes count as one. Where a
+// pair's master surface does not face its slave surface (its normal more
+// than 60 degrees from the slave's at every slave node), the message says
+// that this is why the pair holds nothing along the slave's normal.
+void requireEveryBodyHeldAlone(const Mesh::Mesh& mesh, const std::map<long long, double>& dirichlet,
+                               const std::vector<ContactPair>& pairs, const std::vector<char>& holdsTangentially,
+                               const std::vector<Feti::ContactConstraint>& constraints);
 
 // The rigid plane a distance gap beyond a planar face, parallel to it
 // (Contact/Face and Gap of a one-face run): every node of the face gets the

@@ -569,6 +569,15 @@ void requireEveryBodyHeld(const Mesh::Mesh& mesh, const std::map<long long, doub
     os << "; add a Dirichlet condition that holds it";
     throw Error(os.str());
   }
+  // Each body alone, the others staying: a pair that holds it in no
+  // direction the motion takes (e.g. a master surface that does not face
+  // the slave) leaves it free within its group.
+  std::vector<char> tangential(pairs.size());
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const auto& f = frictionOfPair(friction, static_cast<int>(p));
+    tangential[p] = pairs[p].glued || (f.law != FrictionLaw::Frictionless && (f.coefficient > 0 || f.slipBoundTraction > 0));
+  }
+  requireEveryBodyHeldAlone(mesh, dirichlet, pairs, tangential, constraints);
 }
 
 }  // namespace Contact

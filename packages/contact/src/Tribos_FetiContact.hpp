@@ -60,7 +60,9 @@ FrictionLaw runLaw(const PairFriction& friction);
 // pair has friction or is glued). A motion none of these touches leaves the
 // displacement undetermined whatever the contact does, e.g. a body whose one
 // pair joins two of its own surfaces. (Relative motions of the bodies of a
-// group are found later, by the coarse space.) dirichlet: constrained dofs
+// group are found later, by the coarse space.) Then each body alone, the
+// others staying (requireEveryBodyHeldAlone): a pair whose master surface
+// does not face its slave is named there. dirichlet: constrained dofs
 // 3 n + c of the mesh's nodes.
 void requireEveryBodyHeld(const Mesh::Mesh& mesh, const std::map<long long, double>& dirichlet,
                           const std::vector<Contact::ContactPair>& pairs, const PairFriction& friction,
