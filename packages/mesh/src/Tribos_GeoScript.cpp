@@ -21,6 +21,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "Tribos_CleanupOnSignal.hpp"
 #include "Tribos_Error.hpp"
 #include "detail/Tribos_MeshFacets.hpp"
 
@@ -80,7 +81,7 @@ void setLimit(int resource, rlim_t soft, rlim_t hard) {
   sigset_t none;
   sigemptyset(&none);
   sigprocmask(SIG_SETMASK, &none, nullptr);
-  for (int sig : {SIGXCPU, SIGXFSZ, SIGPIPE, SIGTERM, SIGINT}) signal(sig, SIG_DFL);
+  for (int sig : {SIGXCPU, SIGXFSZ, SIGPIPE, SIGTERM, SIGINT, SIGHUP}) signal(sig, SIG_DFL);
   const int in = open("/dev/null", O_RDONLY);
   const int out = open(s.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
   if (in < 0 || out < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(out, 2) < 0) _exit(127);
@@ -168,8 +169,11 @@ std::string seconds(double s) {
 }
 
 // The message for a child that did not leave a mesh, or "" when it did.
+// runSignal: the signal that told the run to end (and killed the child), or 0.
 std::string failure(const Ending& e, const std::vector<std::string>& log, const MeshFileOptions& options,
-                    double fileBound) {
+                    double fileBound, int runSignal) {
+  if (runSignal != 0)
+    return "Gmsh was stopped: the run received signal " + std::to_string(runSignal) + " (" + strsignal(runSignal) + ")";
   const std::string timeLimit = "its time limit of " + seconds(options.geoTimeLimit) + " (Mesh/Geo Time Limit)";
   if (e.timedOut)
     return "Gmsh did not finish meshing the script within " + timeLimit +
@@ -228,6 +232,11 @@ GeoScriptMesh::GeoScriptMesh(const std::string& script, const std::string& file,
   TRIBOS_REQUIRE(mkdtemp(&pattern[0]), file << ": cannot create a temporary directory for Gmsh in "
                                             << std::filesystem::temp_directory_path() << ": " << std::strerror(errno));
   dir_ = pattern;  // mode 0700: the script's output is the run's alone
+  onSignal_ = std::make_unique<CleanupOnSignal>([this] {
+    const pid_t child = child_.load();
+    if (child > 0) kill(-child, SIGKILL);
+    removeDirectory();
+  });
   msh_ = dir_ + "/mesh.msh";
   log_ = dir_ + "/gmsh.log";
   try {
@@ -249,20 +258,26 @@ GeoScriptMesh::GeoScriptMesh(const std::string& script, const std::string& file,
     TRIBOS_REQUIRE(child >= 0, file << ": cannot start gmsh: " << std::strerror(errno));
     if (child == 0) runChild(setup);
     setpgid(child, child);  // also here: the group exists whichever process runs first
+    child_.store(child);
     const Ending ending = waitFor(child, options.geoTimeLimit);
-    const std::string error = failure(ending, logTail(log_), options, fileBound);
+    const std::string error = failure(ending, logTail(log_), options, fileBound, onSignal_->signal());
     TRIBOS_REQUIRE(error.empty(), file << ": " << error);
     std::error_code ec;
     TRIBOS_REQUIRE(std::filesystem::is_regular_file(msh_, ec),
                    file << ": Gmsh wrote no mesh; its last lines: " << lastLines(logTail(log_)));
   } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove_all(dir_, ec);
+    onSignal_.reset();
+    removeDirectory();
     throw;
   }
 }
 
 GeoScriptMesh::~GeoScriptMesh() {
+  onSignal_.reset();
+  removeDirectory();
+}
+
+void GeoScriptMesh::removeDirectory() {
   std::error_code ec;
   std::filesystem::remove_all(dir_, ec);
 }

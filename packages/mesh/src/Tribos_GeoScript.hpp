@@ -6,11 +6,16 @@
 // the limit it reached instead of hanging or exhausting the run's machine.
 #pragma once
 
+#include <sys/types.h>
+
+#include <atomic>
+#include <memory>
 #include <string>
 
 #include "Tribos_MeshFile.hpp"
 
 namespace Tribos {
+class CleanupOnSignal;
 namespace Mesh {
 
 // The gmsh executable that meshes .geo scripts: the one found when Tribos
@@ -27,6 +32,11 @@ std::string gmshExecutable();
 // (options.geoTimeLimit; at the deadline the whole process group is killed),
 // the size of any file it writes (the memory limit, or 64 GB), no core file.
 // The caller has checked options.runGeoScript (requireGeoScriptAllowed).
+//
+// SIGTERM, SIGINT or SIGHUP of the run, while the object lives, kill the
+// child's process group and remove the directory before the signal ends
+// the run (CleanupOnSignal): neither outlives a run stopped by mpirun or
+// Ctrl-C.
 //
 // Throws Tribos::Error naming `file` (how messages call the script) and the
 // way it ended: the time limit (Mesh/Geo Time Limit), the memory limit
@@ -45,7 +55,10 @@ class GeoScriptMesh {
   const std::string& directory() const { return dir_; }
 
  private:
+  void removeDirectory();
   std::string dir_, msh_, log_;
+  std::atomic<pid_t> child_{0};
+  std::unique_ptr<CleanupOnSignal> onSignal_;
 };
 
 }  // namespace Mesh

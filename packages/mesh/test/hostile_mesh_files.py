@@ -10,12 +10,20 @@ and 2 ranks:
   run converges, which shows that the first check can fail.
 - A FIFO named as a .msh Mesh/File (nobody writes to it, so opening it would
   block): refused as not a regular file within seconds, exit 1.
+- A run stopped while Gmsh meshes its script (a loop without end): SIGTERM
+  and SIGINT to mpiexec on 1 and 2 ranks, and to a one-rank tribos without
+  mpiexec. The run ends by the signal within seconds, Gmsh ends with it, and
+  neither Gmsh's private temporary directory (in TMPDIR) nor a result is
+  left.
 
 Every run must end within its timeout, and a refused run leaves no result.
 """
+import glob
 import os
+import signal
 import subprocess
 import sys
+import time
 
 SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 INPUT = os.path.join(SOURCE, "input", "gmsh_block_pressure.xml")
@@ -43,6 +51,65 @@ def expect(ok, what, p=None):
 
 def results_in(out):
     return [n for n in os.listdir(out) if n.endswith((".h5", ".xmf", ".json"))] if os.path.isdir(out) else []
+
+
+def processes_running(fragment):
+    """The pids of the processes whose command line holds `fragment`."""
+    pids = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open("/proc/%s/cmdline" % entry, "rb") as f:
+                if fragment.encode() in f.read():
+                    pids.append(int(entry))
+        except OSError:
+            pass
+    return pids
+
+
+def stopped_while_meshing(launch, label, sig, work):
+    """Runs LOOP (a .geo without end) through `launch` (a command line before
+    the input), sends `sig` to the launched process once Gmsh runs, and
+    checks what is left."""
+    tmp = os.path.join(work, "tmp_" + label)
+    os.makedirs(tmp, exist_ok=True)
+    for left in glob.glob(os.path.join(tmp, "tribos-geo-*")):
+        subprocess.run(["rm", "-rf", left])
+    script = os.path.join(work, "loop_%s.geo" % label)  # its name finds its Gmsh
+    with open(script, "w") as f:
+        f.write("x = 0;\nFor i In {1:1e15}\n  x = x + 1;\nEndFor\n")
+    out = os.path.join(work, "stopped_" + label)
+    env = dict(os.environ, TMPDIR=tmp)
+    p = subprocess.Popen(launch + [INPUT, "--set", "Mesh/File=" + script, "--set", "Mesh/Run Geo Script=true",
+                                   "--set", "Mesh/Geo Time Limit=120", "--output", out],
+                         env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=True)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and not (processes_running(script) and glob.glob(os.path.join(tmp, "tribos-geo-*"))):
+        time.sleep(0.1)
+    meshing = bool(processes_running(script))
+    expect(meshing, "%s: Gmsh runs the script" % label)
+    p.send_signal(sig)
+    try:
+        _, err = p.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.communicate()
+        expect(False, "%s: the run ends within 30 s of %s" % (label, sig.name))
+        return
+    # The ranks are gone when the launcher returns; give the kernel a moment to reap Gmsh.
+    for _ in range(20):
+        if not processes_running(script):
+            break
+        time.sleep(0.1)
+    expect(p.returncode != 0, "%s: the run ends by %s (exit %d)" % (label, sig.name, p.returncode))
+    expect(not processes_running(script), "%s: Gmsh ended with the run" % label)
+    left = glob.glob(os.path.join(tmp, "tribos-geo-*"))
+    expect(not left, "%s: Gmsh's temporary directory removed (left: %s)" % (label, left))
+    expect(not results_in(out), "%s: no result written" % label)
+    if not meshing or left:
+        print("--- stderr ---\n" + err[-2000:])
 
 
 def main():
@@ -84,6 +151,14 @@ def main():
                    "np %s: a FIFO as Mesh/File is refused (exit %d)" % (np_, p.returncode), p)
             expect(not results_in(out), "np %s: the refused run wrote no result" % np_)
         os.remove(fifo)
+
+        # Stopped while Gmsh meshes: the launcher's SIGTERM and SIGINT.
+        mpiexec = [np_ if c == "NP" else c for c in command[:-1]] + [command[-1]]
+        for sig in (signal.SIGTERM, signal.SIGINT):
+            stopped_while_meshing(mpiexec, "mpiexec_%s_np%s" % (sig.name, np_), sig, work)
+    # The same signals to tribos itself, one rank without mpiexec.
+    for sig in (signal.SIGTERM, signal.SIGINT):
+        stopped_while_meshing([command[-1]], "tribos_%s" % sig.name, sig, work)
     if failures:
         sys.exit("%d check(s) failed" % len(failures))
 

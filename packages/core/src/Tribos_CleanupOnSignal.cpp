@@ -1,0 +1,91 @@
+#include "Tribos_CleanupOnSignal.hpp"
+
+#include <cerrno>
+#include <cstring>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+
+namespace {
+
+constexpr int kSignals[3] = {SIGTERM, SIGINT, SIGHUP};
+
+// The write end of the live object's pipe, read by the handler (a
+// lock-free atomic: async-signal-safe).
+std::atomic<int> writeEnd{-1};
+
+void onSignal(int sig) {
+  const int saved = errno;
+  const int fd = writeEnd.load();
+  const unsigned char byte = static_cast<unsigned char>(sig);
+  if (fd >= 0 && ::write(fd, &byte, 1) < 0) {
+  }
+  errno = saved;
+}
+
+}  // namespace
+
+CleanupOnSignal::CleanupOnSignal(std::function<void()> cleanup) : cleanup_(std::move(cleanup)) {
+  TRIBOS_REQUIRE(::pipe2(pipe_, O_CLOEXEC) == 0, "cannot create a pipe for the signal handler: " << std::strerror(errno));
+  int expected = -1;
+  if (!writeEnd.compare_exchange_strong(expected, pipe_[1])) {
+    ::close(pipe_[0]);
+    ::close(pipe_[1]);
+    throw Error("CleanupOnSignal: another one is alive in this process");
+  }
+  watcher_ = std::thread([this] { watch(); });
+  for (int k = 0; k < 3; ++k) {
+    if (::sigaction(kSignals[k], nullptr, &previous_[k]) != 0) continue;
+    const bool ignored = !(previous_[k].sa_flags & SA_SIGINFO) && previous_[k].sa_handler == SIG_IGN;
+    if (ignored) continue;
+    struct sigaction action {};
+    action.sa_handler = onSignal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART;
+    installed_[k] = ::sigaction(kSignals[k], &action, nullptr) == 0;
+  }
+}
+
+CleanupOnSignal::~CleanupOnSignal() {
+  const unsigned char stop = 0;
+  if (::write(pipe_[1], &stop, 1) < 0) {
+  }
+  watcher_.join();
+  restore();
+  writeEnd.store(-1);
+  ::close(pipe_[0]);
+  ::close(pipe_[1]);
+}
+
+void CleanupOnSignal::restore() {
+  for (int k = 0; k < 3; ++k)
+    if (installed_[k]) {
+      ::sigaction(kSignals[k], &previous_[k], nullptr);
+      installed_[k] = false;
+    }
+}
+
+void CleanupOnSignal::watch() {
+  unsigned char sig = 0;
+  for (;;) {
+    const ssize_t n = ::read(pipe_[0], &sig, 1);
+    if (n == 1) break;
+    if (n < 0 && errno == EINTR) continue;
+    return;
+  }
+  if (sig == 0) return;  // the destructor
+  received_.store(sig);
+  try {
+    cleanup_();
+  } catch (...) {
+    // The process ends by the signal below whatever the cleanup managed.
+  }
+  restore();
+  ::kill(::getpid(), sig);
+}
+
+}  // namespace Tribos
