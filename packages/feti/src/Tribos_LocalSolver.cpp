@@ -404,12 +404,15 @@ class TachoSolver : public LocalSolver {
   using Driver = Tacho::Driver<double, Kokkos::Device<Kokkos::Serial, Kokkos::HostSpace>>;
 
  public:
-  ~TachoSolver() override {
-    if (factored_) solver_.release();
-  }
+  ~TachoSolver() override { releaseDriver(); }
   void factor(const LocalCsr& A) override {
     TRIBOS_REQUIRE(A.rows == A.cols, "Tacho: matrix is not square (" << A.rows << " x " << A.cols << ")");
-    if (factored_) solver_.release();
+    // A driver of its own for every factorization: Tacho's release() leaves
+    // state behind, and a driver analysed and factored again after it does
+    // not solve the new matrix (the semismooth* Newton matrices are factored
+    // again at every step).
+    releaseDriver();
+    solver_ = std::make_unique<Driver>();
     n_ = A.rows;
     // The driver keeps views of the graph: they are members.
     ap_ = Driver::size_type_array("ap", A.rowptr.size());
@@ -427,16 +430,16 @@ class TachoSolver : public LocalSolver {
     for (int i = 0; i < n_; ++i) peri(perm(i)) = i;  // Tacho's (perm, peri) = CHOLMOD's (Perm, its inverse)
     // Below this order Tacho factors a dense copy with LAPACK (O(n^3)), far
     // slower than its sparse path on subdomain matrices of a few hundred dofs.
-    solver_.setSmallProblemThresholdsize(64);
-    solver_.analyze(n_, ap_, aj_, perm, peri);
-    solver_.initialize();
-    solver_.factorize(ax_);
-    factored_ = true;
+    solver_->setSmallProblemThresholdsize(64);
+    solver_->analyze(n_, ap_, aj_, perm, peri);
+    solver_->initialize();
+    solver_->factorize(ax_);
   }
   void solve(const double* b, double* x, int nrhs) const override {
     Driver::value_type_matrix B("b", n_, nrhs), X("x", n_, nrhs), T("t", n_, nrhs);
     std::copy(b, b + static_cast<size_t>(n_) * nrhs, B.data());
-    solver_.solve(X, B, T);
+    TRIBOS_REQUIRE(solver_, "Tacho: solve before factor");
+    solver_->solve(X, B, T);
     std::copy(X.data(), X.data() + static_cast<size_t>(n_) * nrhs, x);
   }
   std::string name() const override { return "Tacho"; }
@@ -456,12 +459,15 @@ class TachoSolver : public LocalSolver {
   int size() const override { return n_; }
 
  private:
-  mutable Driver solver_;
+  void releaseDriver() {
+    if (solver_) solver_->release();
+    solver_.reset();
+  }
+  std::unique_ptr<Driver> solver_;
   Driver::size_type_array ap_;
   Driver::ordinal_type_array aj_;
   Driver::value_type_array ax_;
   int n_ = 0;
-  bool factored_ = false;
 };
 
 }  // namespace

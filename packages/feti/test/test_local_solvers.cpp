@@ -123,3 +123,37 @@ TEUCHOS_UNIT_TEST(LocalSolver, InverseBlockTet4Small) { checkInverseBlocks(Mesh:
 // 4^3 cells (375 dofs): CHOLMOD factors it densely (DenseBoundaryLast), the
 // other backends by unit-vector solves, and the blocks must agree.
 TEUCHOS_UNIT_TEST(LocalSolver, InverseBlockTet4Dense) { checkInverseBlocks(Mesh::CellType::Tet4, 4, out, success); }
+
+// A second factorization on the same solver (refactor: new values on the
+// pattern of the first, as the semismooth* Newton matrices come) solves the
+// new matrix, not the first one.
+TEUCHOS_UNIT_TEST(LocalSolver, RefactorSolvesTheNewMatrix) {
+  for (int cells : {2, 7}) {
+    std::vector<int> faceDofs;
+    const auto K = regularizedStiffness(Mesh::CellType::Hex8, cells, faceDofs);
+    LocalCsr K2 = K;  // another SPD matrix on the same pattern
+    for (int i = 0; i < K2.rows; ++i)
+      for (int k = K2.rowptr[i]; k < K2.rowptr[i + 1]; ++k)
+        K2.val[k] *= (K2.col[k] == i ? 3.0 + std::sin(0.7 * i) : 1.0);
+    const int n = K.rows;
+    std::vector<double> x(n), b(n), y(n);
+    for (int i = 0; i < n; ++i) x[i] = std::cos(0.3 * i + 0.1);
+    K2.multiply(x.data(), b.data());
+    for (const auto& name : localSolverNames()) {
+      auto solver = createLocalSolver(name);
+      solver->factor(K);
+      solver->refactor(K2);
+      solver->solve(b.data(), y.data(), 1);
+      const double err = Test::relDiff(y, x);
+      out << cells << "^3 " << name << ": refactor, then ||y - x|| / ||x|| = " << err << "\n";
+      TEST_COMPARE(err, <, 1e-8);
+      auto again = createLocalSolver(name);  // factor twice (a backend that factors again on refactor)
+      again->factor(K);
+      again->factor(K2);
+      again->solve(b.data(), y.data(), 1);
+      const double err2 = Test::relDiff(y, x);
+      out << cells << "^3 " << name << ": factor twice, then ||y - x|| / ||x|| = " << err2 << "\n";
+      TEST_COMPARE(err2, <, 1e-8);
+    }
+  }
+}
