@@ -581,9 +581,19 @@ void requireEveryPairEntryUsed(const ParameterList& contact, const ParameterList
     const std::string& entry = pair.name(it);
     const std::string why = unusedPairEntry(pair, entry);
     if (why.empty() || pair.getEntry(entry).getAny(false) == defaults.getEntry(entry).getAny(false)) continue;
-    std::ostringstream value;
-    if (pair.isType<std::string>(entry)) value << "\"" << pair.get<std::string>(entry) << "\"";
-    else pair.getEntry(entry).getAny(false).print(value);
+    std::ostringstream value;  // as the input writes it: "text", {0, 0, 1}, 0.5
+    if (pair.isType<std::string>(entry)) {
+      value << "\"" << pair.get<std::string>(entry) << "\"";
+    } else if (pair.isType<Array<double>>(entry)) {
+      const auto& a = pair.get<Array<double>>(entry);
+      value << "{";
+      for (size_t i = 0; i < a.size(); ++i) value << (i ? ", " : "") << a[i];
+      value << "}";
+    } else if (pair.isType<double>(entry)) {
+      value << pair.get<double>(entry);
+    } else {
+      pair.getEntry(entry).getAny(false).print(value);
+    }
     throw Error("\"" + path + "/" + entry + "\" = " + value.str() + " is not used: " + why + "; remove it");
   }
 }
@@ -619,6 +629,21 @@ void validatePairs(const ParameterList& params) {
     TRIBOS_REQUIRE(norm(Vec3{n[0], n[1], n[2]}) > 0, "\"" << path << "/Plane Normal\" is zero");
     requireEveryPairEntryUsed(contact, pair, path);
   }
+  // One friction law per run (Contact::runLaw): a Tresca pair beside a
+  // Coulomb pair is refused naming the Friction Law of one of each.
+  std::string tresca, coulomb;  // the path of the first such pair
+  for (auto it = pairs.begin(); it != pairs.end(); ++it) {
+    const auto& pair = pairs.sublist(pairs.name(it));
+    if (pair.get<std::string>("Type") == "Glued") continue;
+    const std::string law = pair.get<std::string>("Friction Law"), path = "Contact/Pairs/" + pairs.name(it);
+    if (law == "Tresca" && tresca.empty()) tresca = path;
+    if (law == "Coulomb" && coulomb.empty()) coulomb = path;
+  }
+  TRIBOS_REQUIRE(tresca.empty() || coulomb.empty(),
+                 "contact pairs with Tresca and with Coulomb friction in one run (\""
+                     << tresca << "/Friction Law\" = \"Tresca\", \"" << coulomb
+                     << "/Friction Law\" = \"Coulomb\"): no outer algorithm solves both; make them all Coulomb (or "
+                        "Tresca)");
   const auto& bodies = params.sublist("Bodies");
   for (auto it = bodies.begin(); it != bodies.end(); ++it) {
     try {
