@@ -82,6 +82,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from hertz import cell, default_tribos, nodal_areas, parameter, timed_run  # noqa: E402 (shared with the Hertz benchmark)
+import tribos_summary  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 INPUT = os.path.join(ROOT, "input", "cattaneo_mindlin.xml")
@@ -170,9 +171,8 @@ def read_run(directory, base="solution"):
 
     path = os.path.join(directory, base + ".json")
     try:
-        with open(path) as f:
-            summary = json.load(f)
-    except (OSError, ValueError) as e:
+        summary = tribos_summary.load(path)
+    except (OSError, ValueError, KeyError) as e:
         fail("cannot read the summary %s: %s" % (path, e))
     rows = summary.get("steps")
     if not isinstance(rows, list) or not rows:

@@ -8,7 +8,7 @@ set -euo pipefail
 packages=(cmake g++ make pkg-config
   trilinos-all-dev libmetis-dev libhdf5-openmpi-dev libopenmpi-dev openmpi-bin
   libptscotch-dev libscotch-dev libmumps-dev libboost-dev libsuitesparse-dev
-  libopenblas0-serial hdf5-tools python3-numpy python3-h5py python3-matplotlib libgmsh-dev gmsh libexodusii-dev)
+  libopenblas0-serial hdf5-tools python3-numpy python3-h5py python3-matplotlib libgmsh-dev gmsh libexodusii-dev libssl-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

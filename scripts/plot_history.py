@@ -5,7 +5,8 @@ stick/slip counts over the steps, as PNG files beside the result.
 usage: scripts/plot_history.py DIR [--base NAME] [--output DIR]
 
 DIR is the output directory of a run (`tribos ... --output DIR`): the summary
-BASE.json with its list "steps" (one object per completed step: "time",
+BASE.json with its steps (tribos_summary.py: one object per completed step
+in the steps table BASE.steps.jsonl: "time",
 "contact" {"nodes", "active", "stick", "slip"}, "pairs" [{"name",
 "normal_force", "tangential_force"}], ...), the index BASE.xmf and the data
 files it names (BASE.step0001.h5 ... for a run of several steps, BASE.h5 for
@@ -31,7 +32,6 @@ complete (the index may list one more while a step is being written).
 """
 import argparse
 import glob
-import json
 import os
 import sys
 import xml.etree.ElementTree as ET
@@ -43,6 +43,9 @@ import matplotlib
 
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tribos_summary  # noqa: E402
 
 
 def fail(message):
@@ -72,11 +75,10 @@ def summary_file(directory, base):
 def read_steps(path):
     """The summary's list of steps, each checked for what the plots need."""
     try:
-        with open(path) as f:
-            summary = json.load(f)
-    except (OSError, ValueError) as e:
+        summary = tribos_summary.load(path)
+    except (OSError, ValueError, KeyError) as e:
         fail("cannot read the summary %s: %s" % (path, e))
-    steps = summary.get("steps") if isinstance(summary, dict) else None
+    steps = summary.get("steps")
     if not isinstance(steps, list) or not steps:
         fail("the summary %s has no list \"steps\": a result written before runs had load steps, or not a "
              "tribos summary" % path)

@@ -37,6 +37,9 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+import tribos_summary  # noqa: E402
+
 failures = []
 
 
@@ -65,7 +68,7 @@ def run(args, name, np_, sets, expect=0, input_file=None):
     if p.returncode != expect:
         print(p.stderr[-3000:])
     summary = os.path.join(out, "solution.json")
-    s = json.load(open(summary)) if os.path.exists(summary) else None
+    s = tribos_summary.load(summary) if os.path.exists(summary) else None
     return out, s, p
 
 

@@ -48,6 +48,9 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+import tribos_summary  # noqa: E402
+
 failures = []
 BASE = "solution"
 STEPS = 6
@@ -80,8 +83,32 @@ def step_file(d, k):
 
 
 def summary(d):
+    """The summary with its steps (the complete rows of its steps table)."""
+    return tribos_summary.load(os.path.join(d, BASE + ".json"))
+
+
+def raw_summary(d):
     with open(os.path.join(d, BASE + ".json")) as f:
         return json.load(f)
+
+
+def write_summary(d, s):
+    with open(os.path.join(d, BASE + ".json"), "w") as f:
+        json.dump(s, f, indent=2)
+
+
+def table_path(d):
+    return os.path.join(d, BASE + ".steps.jsonl")
+
+
+def table_rows(d):
+    with open(table_path(d)) as f:
+        return [json.loads(line) for line in f if line.endswith("\n")]
+
+
+def write_table(d, rows, tail=""):
+    with open(table_path(d), "w") as f:
+        f.write("".join(json.dumps(r) + "\n" for r in rows) + tail)
 
 
 def history_rows(d):
@@ -102,19 +129,29 @@ def snapshot(d):
 
 def killed_copy(full, d, k):
     """A copy of the uninterrupted result as a run killed after step k while
-    it committed step k + 1 leaves it: the summary lists steps 1..k, step
-    k + 1's data file and history rows are there, the later steps' are not."""
+    it committed step k + 1 leaves it: the summary says steps 1..k are
+    complete, step k + 1's data file, its row of the steps table and its
+    history rows are there (and half the row of step k + 2), the later steps'
+    files are not."""
     shutil.rmtree(d, ignore_errors=True)
     shutil.copytree(full, d)
-    s = summary(d)
-    s["steps"] = s["steps"][:k]
-    with open(os.path.join(d, BASE + ".json"), "w") as f:
-        json.dump(s, f, indent=2)
+    s = raw_summary(d)
+    s["steps_completed"] = k
+    write_summary(d, s)
+    rows = table_rows(d)
+    write_table(d, rows[:k + 1], json.dumps(rows[k + 1])[:40])
     rows = history_rows(d)
     with open(os.path.join(d, BASE + ".history.csv"), "w", newline="") as f:
         csv.writer(f, lineterminator="\n").writerows([rows[0]] + [r for r in rows[1:] if int(r[6]) <= k + 1])
     for step in range(k + 2, STEPS + 1):
         os.remove(step_file(d, step))
+
+
+def record_digest(d, k):
+    """The steps table of d records the present digest of step k's file."""
+    rows = table_rows(d)
+    rows[k - 1]["sha256"] = digest(step_file(d, k))
+    write_table(d, rows)
 
 
 def read_step(d, k):
@@ -183,7 +220,33 @@ def refusal(args, np_, name, d, regex, extra=None, sets=HISTORY):
     check(snapshot(d) == before, "np %d, %s: the directory is left as it was" % (np_, name))
 
 
+def not_a_result(args, np_, work):
+    """--restart of what is not a result directory: each exit 1 saying what
+    the path is, nothing created there."""
+    places = os.path.join(work, "places")
+    shutil.rmtree(places, ignore_errors=True)
+    os.makedirs(os.path.join(places, "empty"))
+    with open(os.path.join(places, "file"), "w") as f:
+        f.write("not a directory\n")
+    os.symlink("loop", os.path.join(places, "loop"))
+    for name, regex in (("missing", r": the directory does not exist"),
+                        ("file", r": it is not a directory \(a regular file\)"),
+                        ("loop", r": cannot access the directory \(Too many levels of symbolic links\)"),
+                        ("empty", r": it is not a result directory of Output/Base Name = solution: it holds no "
+                                  r"solution\.json")):
+        path = os.path.join(places, name)
+        before = sorted(os.listdir(places)) + (sorted(os.listdir(path)) if os.path.isdir(path) else [])
+        p = tribos(args, np_, ["--restart", path])
+        ok = p.returncode == 1 and re.search(re.escape(path) + regex, p.stderr) is not None
+        check(ok, "np %d, --restart of a %s path: exit 1 naming /%s/ (exit %d)" % (np_, name, regex, p.returncode))
+        if not ok:
+            print(p.stderr[-2000:])
+        after = sorted(os.listdir(places)) + (sorted(os.listdir(path)) if os.path.isdir(path) else [])
+        check(after == before, "np %d, --restart of a %s path: nothing created" % (np_, name))
+
+
 def refusals(args, np_, full, work):
+    not_a_result(args, np_, work)
     cut = os.path.join(work, "cut")
     killed_copy(full, cut, KILLED_AFTER)
     refusal(args, np_, "another input", cut,
@@ -198,6 +261,24 @@ def refusals(args, np_, full, work):
         change(d)
         refusal(args, np_, name, d, regex)
 
+    # Step files that are not those their steps wrote: each refused by its
+    # digest, naming the step and the file.
+    def replaced_by_step_2(d):
+        shutil.copy(step_file(d, 2), step_file(d, 3))
+
+    def truncated(d):
+        size = os.path.getsize(step_file(d, 1))
+        with open(step_file(d, 1), "r+b") as f:
+            f.truncate(size // 3)
+
+    def doubled(d):
+        with h5py.File(step_file(d, 3), "r+") as f:
+            f["nodes/displacement"][...] *= 2.0
+
+    for name, change, k in (("step_3_is_step_2", replaced_by_step_2, 3), ("step_1_truncated", truncated, 1),
+                            ("step_3_doubled", doubled, 3)):
+        variant(name, change, re.escape(step_file(os.path.join(work, name), k)) +
+                r" is not the file step %d wrote: its SHA-256 is [0-9a-f]{64}, .*steps\.jsonl records" % k)
     variant("last_step_file_missing", lambda d: os.remove(step_file(d, 3)),
             re.escape(step_file(os.path.join(work, "last_step_file_missing"), 3)) + " is missing")
     variant("first_step_file_missing", lambda d: os.remove(step_file(d, 1)),
@@ -206,22 +287,35 @@ def refusals(args, np_, full, work):
     p = tribos(args, np_, ["--output", other_mesh], [s for s in HISTORY if "Mesh/Level" not in s] +
                ["Mesh/Level=3", "Load Steps/Times={0.5, 1}"])
     check(p.returncode == 0, "np %d: a level 3 run of two steps (exit %d)" % (np_, p.returncode))
-    variant("other_mesh", lambda d: shutil.copy(step_file(other_mesh, 2), step_file(d, 3)),
+    def other_mesh_recorded(d):
+        shutil.copy(step_file(other_mesh, 2), step_file(d, 3))
+        record_digest(d, 3)  # a record that vouches for it: the mesh check still refuses it
+    variant("other_mesh", other_mesh_recorded,
             re.escape(step_file(os.path.join(work, "other_mesh"), 3)) + r" holds \d+ nodes, the mesh of this input \d+")
 
     def rewrite_summary(d, edit):
-        s = summary(d)
+        s = raw_summary(d)
         edit(s)
-        with open(os.path.join(d, BASE + ".json"), "w") as f:
-            json.dump(s, f)
+        write_summary(d, s)
 
-    def not_converged(s):
-        s["steps"][-1]["converged"] = False
-        s["steps"][-1]["stop_reason"] = "maximum iterations"
-    variant("not_converged", lambda d: rewrite_summary(d, not_converged),
-            r"solution\.json: its last step 3 did not converge \(\"maximum iterations\"\)")
-    variant("no_step", lambda d: rewrite_summary(d, lambda s: s.update(steps=[])),
+    def not_converged(d):
+        rows = table_rows(d)
+        rows[KILLED_AFTER - 1]["converged"] = False
+        rows[KILLED_AFTER - 1]["stop_reason"] = "maximum iterations"
+        write_table(d, rows)
+    variant("not_converged", not_converged,
+            r"solution\.steps\.jsonl: its last step 3 did not converge \(\"maximum iterations\"\)")
+    variant("no_step", lambda d: rewrite_summary(d, lambda s: s.update(steps_completed=0)),
             r"solution\.json: it lists no complete step")
+    variant("table_short", lambda d: write_table(d, table_rows(d)[:2]),
+            r"solution\.steps\.jsonl: it has 2 complete rows; .*solution\.json says 3 steps are complete")
+
+    def row_of_other_file(d):
+        rows = table_rows(d)
+        rows[1]["file"] = os.path.basename(step_file(d, 3))
+        write_table(d, rows)
+    variant("row_names_other_file", row_of_other_file,
+            r"solution\.steps\.jsonl: its row 2 does not name the file \"solution\.step0002\.h5\"")
 
     def truncate(path):
         with open(path, "r+") as f:
@@ -253,16 +347,20 @@ def main():
         killed_copy(full, restarted, KILLED_AFTER)
         p = tribos(args, np_, ["--restart", restarted])
         if check(p.returncode == 0, "np %d: the restart after step %d (exit %d)" % (np_, KILLED_AFTER, p.returncode)):
-            check(json.loads(p.stdout)["steps"] == summary(restarted)["steps"], "np %d: the summary on stdout is the file's" % np_)
+            check(json.loads(p.stdout) == raw_summary(restarted), "np %d: the summary on stdout is the file's" % np_)
             check_restarted(args, np_, full, restarted)
         else:
             print(p.stderr[-3000:])
 
-        # The comparison detects a restart that loses the contact's state.
+        # The comparison detects a restart that loses the contact's state:
+        # step 3's displacement set to zero, and its digest recorded anew
+        # (as if the run had written it so; without that the restart
+        # refuses the file, refusals() below).
         forgetful = os.path.join(work, "forgetful")
         killed_copy(full, forgetful, KILLED_AFTER)
         with h5py.File(step_file(forgetful, KILLED_AFTER), "r+") as f:
             f["nodes/displacement"][...] = 0.0
+        record_digest(forgetful, KILLED_AFTER)
         p = tribos(args, np_, ["--restart", forgetful])
         if check(p.returncode == 0, "np %d: a restart from a zeroed step %d (exit %d)" % (np_, KILLED_AFTER, p.returncode)):
             worst = largest_difference(forgetful, full)

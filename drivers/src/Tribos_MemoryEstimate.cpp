@@ -139,18 +139,59 @@ std::string MemoryEstimate::describe() const {
   return bytes(total()) + " (mesh and vectors " + bytes(mesh) + ", solver " + bytes(solver) + ")";
 }
 
+namespace {
+
+// The counts of the mesh: the box's, or those of the mesh read from Mesh/File.
+MeshSize meshCounts(const Mesh::BoxSpec& spec, const MeshSize* meshSize) {
+  if (meshSize) return *meshSize;
+  const double cx = spec.cells[0], cy = spec.cells[1], cz = spec.cells[2];
+  MeshSize m;
+  m.nodes = (cx + 1) * (cy + 1) * (cz + 1);
+  m.cells = cx * cy * cz * (spec.type == Mesh::CellType::Tet4 ? 6.0 : 1.0);
+  return m;
+}
+
+}  // namespace
+
+double outputBytesPerStep(const Teuchos::ParameterList& params, const MeshSize* meshSize) {
+  const Mesh::BoxSpec spec = Input::boxSpec(params);
+  const MeshSize m = meshCounts(spec, meshSize);
+  // HDF5's metadata, then the datasets: geometry and displacement (3 doubles
+  // per node), topology (8-byte indices: 4 per tetrahedron, 8 per
+  // hexahedron, 8 for a mesh file), 4 cell fields.
+  const double nodesPerCell = meshSize || spec.type == Mesh::CellType::Hex8 ? 8.0 : 4.0;
+  double bytes = 16e3 + 48.0 * m.nodes + (8.0 * nodesPerCell + 32.0) * m.cells;
+  // The contact point set: about 33 numbers per contact node, the nodes of
+  // a face or two of the bodies.
+  if (params.sublist("Contact").get<bool>("Enabled")) bytes += 264.0 * 2.0 * std::pow(m.nodes, 2.0 / 3.0);
+  // The step's part of the index, its row of the steps table, its history rows.
+  return bytes + 6e3;
+}
+
+namespace {
+
+// What a history holds in memory for each of its steps: its time in the
+// parameter list, the run's list of times and the validated copy; and the
+// step's row of the summary when no steps table takes it (no results written).
+double historyBytes(const Teuchos::ParameterList& params) {
+  const double steps = static_cast<double>(Input::loadStepTimes(params).size());
+  return steps * (100.0 + (params.sublist("Output").get<bool>("Write Results") ? 0.0 : 2000.0));
+}
+
+}  // namespace
+
 MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks, int rank, bool verify,
                               const MeshSize* meshSize) {
   const Mesh::BoxSpec spec = Input::boxSpec(params);
-  const double cx = spec.cells[0], cy = spec.cells[1], cz = spec.cells[2];
-  const double nodes = meshSize ? meshSize->nodes : (cx + 1) * (cy + 1) * (cz + 1);
-  const double cells = meshSize ? meshSize->cells : cx * cy * cz * (spec.type == Mesh::CellType::Tet4 ? 6.0 : 1.0);
+  const MeshSize counts = meshCounts(spec, meshSize);
+  const double nodes = counts.nodes, cells = counts.cells;
   MemoryEstimate e;
   const Input::Method m = Input::method(params);
   // Rank 0 holds the whole mesh while it is read, checked and cut, and every
   // rank its part; the semismooth* method (serial) keeps it on every rank.
   const double whole = 400.0 * nodes + 50.0 * cells;
-  e.mesh = 80.0 * kMB + whole / numRanks + (rank == 0 || m == Input::Method::Semismooth ? whole : 0.0);
+  e.mesh = 80.0 * kMB + whole / numRanks + (rank == 0 || m == Input::Method::Semismooth ? whole : 0.0) +
+           historyBytes(params);
   if (m == Input::Method::Semismooth)
     e.solver = rank == 0 ? 28000.0 * nodes + factorBytes(3.0 * nodes) : 0.0;
   else if (m == Input::Method::Monolithic)

@@ -42,6 +42,12 @@ struct MemoryEstimate {
 MemoryEstimate estimateMemory(const Teuchos::ParameterList& params, int numRanks, int rank, bool verify,
                               const MeshSize* meshSize = nullptr);
 
+// The bytes one load step adds to the output directory: its data file (the
+// mesh, the displacement, the cell fields and the contact point set), its
+// part of the index, its row of the steps table and its history rows. Within
+// a factor of two, like the memory estimate.
+double outputBytesPerStep(const Teuchos::ParameterList& params, const MeshSize* meshSize = nullptr);
+
 // Memory this machine can give a run: MemAvailable, lowered by a cgroup
 // limit when there is one (bytes; 0 when unknown).
 double availableMemory();

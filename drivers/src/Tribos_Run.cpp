@@ -3,11 +3,15 @@
 #include <Teuchos_TimeMonitor.hpp>
 
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <limits>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -21,6 +25,8 @@
 #include "Tribos_Error.hpp"
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_FetiSolve.hpp"
+#include "Tribos_FileDigest.hpp"
+#include "Tribos_FileKind.hpp"
 #include "Tribos_FileSystem.hpp"
 #include "Tribos_GmshReader.hpp"
 #include "Tribos_History.hpp"
@@ -155,11 +161,11 @@ std::string outputDirectory(const Teuchos::ParameterList& params, const RunOptio
 // The files of a result set in Output/Directory, in the order they are
 // committed (the summary, the marker of a complete set, last).
 struct ResultNames {
-  std::string h5, xmf, parameters, history, summary;
+  std::string h5, xmf, parameters, history, steps, summary;
   explicit ResultNames(const std::string& base)
       : h5(base + ".h5"), xmf(base + ".xmf"), parameters(base + ".parameters.xml"), history(base + ".history.csv"),
-        summary(base + ".json") {}
-  std::vector<std::string> all() const { return {h5, xmf, parameters, history, summary}; }
+        steps(base + ".steps.jsonl"), summary(base + ".json") {}
+  std::vector<std::string> all() const { return {h5, xmf, parameters, history, steps, summary}; }
 };
 
 // Every file the run reads or writes, by the name messages give it.
@@ -184,31 +190,144 @@ std::vector<IO::RunFile> runFiles(const Teuchos::ParameterList& params, const Ru
   return files;
 }
 
+// The step number of a data file name of Base Name `base` (BASE.step<digits>.h5),
+// 0 for BASE.h5 and -1 for a name that is not one.
+long long seriesStepOf(const std::string& base, const std::string& name) {
+  if (!IO::StepSeries::isDataFileName(base, name)) return -1;
+  if (name == base + ".h5") return 0;
+  const std::string digits = name.substr(base.size() + 5, name.size() - base.size() - 8);
+  return digits.size() > 12 ? std::numeric_limits<long long>::max() : std::stoll(digits);
+}
+
+// --summary and --export-fclib must not name a data file of the result
+// series, links and ".." seen through: a step file the run writes, or one of
+// its Base Name that the run's first step removes (BASE.h5 and every
+// BASE.step<digits>.h5 of the directory: what an earlier run left). The
+// other files of the set are compared by requireDistinctFiles.
+void requireOutsideSeries(const Teuchos::ParameterList& params, const RunOptions& options, const Comm& comm) {
+  std::string error;
+  const auto& output = params.sublist("Output");
+  if (comm.getRank() == 0 && output.get<bool>("Write Results")) {
+    const std::string dir = outputDirectory(params, options), base = output.get<std::string>("Base Name");
+    const long long numSteps = static_cast<long long>(Input::loadStepTimes(params).size());
+    for (const auto& [role, path] : {std::pair<std::string, std::string>{"--summary", options.summaryFile},
+                                     {"--export-fclib", options.exportFclib}}) {
+      if (path.empty() || !error.empty()) continue;
+      std::error_code ec;
+      const auto resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+      if (ec || !sameFile(resolved.parent_path().string(), dir)) continue;
+      const long long step = seriesStepOf(base, resolved.filename().string());
+      if (step < 0) continue;
+      const std::string series = dir + "/" + base + ".json";
+      error = role + " " + path + " is " +
+              (numSteps > 1 && step >= 1 && step <= numSteps
+                   ? "the data file of load step " + std::to_string(step) + " of the result " + series
+                   : numSteps == 1 && step == 0 ? "the data file of the result " + series
+                                                : "a data file of Output/Base Name = " + base + " in " + dir +
+                                                      ", which the run removes when it writes its first step") +
+              "; the run would overwrite it";
+    }
+  }
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError(error);
+}
+
+// Two results of one directory must not share a file: Base Name P and
+// P.step<digits> do (P's load step file P.step0001.h5 is the data file of
+// the one-step result P.step0001, and a run of either removes or overwrites
+// the other's). Rank 0 looks for the summary of such a result, under the
+// directory's lock; the refusal names both.
+void requireNoNameClash(const IO::OutputDirectory& dir, const std::string& base, const Comm& comm) {
+  std::string error;
+  if (comm.getRank() == 0) {
+    std::string listError;
+    for (const std::string& name : directoryEntries(dir.path(), listError)) {
+      const std::string suffix = ".json";
+      if (!error.empty() || name.size() <= suffix.size() || name.compare(name.size() - 5, 5, suffix) != 0) continue;
+      const std::string other = name.substr(0, name.size() - suffix.size());
+      if (other == base) continue;
+      const std::string mine = dir.path() + "/" + base, theirs = dir.path() + "/" + other;
+      if (seriesStepOf(other, base + ".h5") > 0)
+        error = "Output/Base Name = " + base + ": the directory holds the result " + theirs + ".json, whose load step file " +
+                mine + ".h5 would be this run's data file; choose another Base Name or Output/Directory";
+      else if (seriesStepOf(base, other + ".h5") > 0)
+        error = "Output/Base Name = " + base + ": the directory holds the result " + theirs + ".json, whose data file " +
+                theirs + ".h5 has the name of a load step file of " + mine +
+                " (the run would remove or overwrite it); choose another Base Name or Output/Directory";
+    }
+    if (error.empty()) error = listError;
+  }
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError("output directory " + dir.path() + ": " + error);
+}
+
+// The output of the whole history must fit in the output directory's file
+// system: its steps' files (outputBytesPerStep) against the space free there.
+// The estimate is meant to be right within a factor of two: a history is
+// refused when half of it does not fit (what surely cannot be written); one
+// that fits the estimate but not the disk still ends cleanly (exit 3,
+// docs/exit_codes.md, disk full).
+void requireDiskSpace(const IO::OutputDirectory& dir, const Teuchos::ParameterList& params, const MeshSize* meshSize,
+                      const Comm& comm) {
+  const double steps = static_cast<double>(Input::loadStepTimes(params).size());
+  const double perStep = outputBytesPerStep(params, meshSize), needed = steps * perStep;
+  std::string error;
+  struct statvfs fs;
+  if (comm.getRank() == 0 && ::statvfs(dir.path().c_str(), &fs) == 0) {
+    const double free = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+    if (0.5 * needed > free) {
+      std::ostringstream os;
+      os.precision(3);
+      os << "the results of the " << steps << " steps of \"Load Steps/Times\" need about " << needed / 1e9
+         << " GB (" << perStep / 1e6 << " MB a step, within a factor of two), and the file system of " << dir.path()
+         << " has " << free / 1e9
+         << " GB free; write fewer steps, a coarser mesh, or into another Output/Directory";
+      error = os.str();
+    }
+  }
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError(error);
+}
+
 // Everything the run will write is checked before any work: the output
-// directory (created, locked for this run, probed) and the files named on
-// the command line.
+// directory (created, locked for this run, probed; no other result there
+// that shares a file with this one; room for the whole history) and the
+// files named on the command line.
 std::unique_ptr<IO::OutputDirectory> prepareOutput(const Teuchos::ParameterList& params, const RunOptions& options,
-                                                   const RCP<const Comm>& comm) {
+                                                   const MeshSize* meshSize, const RCP<const Comm>& comm) {
   std::unique_ptr<IO::OutputDirectory> dir;
-  if (params.sublist("Output").get<bool>("Write Results"))
+  if (params.sublist("Output").get<bool>("Write Results")) {
     dir = std::make_unique<IO::OutputDirectory>(outputDirectory(params, options), comm);
+    requireNoNameClash(*dir, params.sublist("Output").get<std::string>("Base Name"), *comm);
+    requireDiskSpace(*dir, params, meshSize, *comm);
+  }
   if (!options.summaryFile.empty()) IO::requireWritableFile(options.summaryFile, "--summary", comm);
   if (!options.exportFclib.empty()) IO::requireWritableFile(options.exportFclib, "--export-fclib", comm);
   return dir;
 }
+
+// What the writing of a load history carries from step to step: the rows
+// not yet written (a restart's kept rows first), and whether this run has
+// committed a step (after that the texts that grow are appended to).
+struct StepOutput {
+  IO::IterationHistory history;  // the rows not written yet
+  std::string stepLines;         // the steps table's lines not written yet
+  bool committed = false;
+};
 
 // Step "write": load step `step` of the run as the next step of the result
 // series (Tribos_StepSeries.hpp): one run of one step writes Base Name .h5
 // (with the verdict as root attributes) and .xmf as always, a history
 // BASE.step0001.h5, ... and an .xmf that plays them in time; with them, as
 // one set, .parameters.xml (the effective parameters, defaults filled and
-// the directory the run wrote to: the run again), .history.csv (one row per
-// outer iteration of every step so far, Tribos_History.hpp) and .json (the
-// summary of the steps so far, written last: a set without it is
-// incomplete).
+// the directory the run wrote to: the run again; written at the run's first
+// step), .history.csv (one row per outer iteration of every step so far,
+// Tribos_History.hpp, appended step by step), .steps.jsonl (one row per
+// step with its data file's digest, appended) and .json (the summary of the
+// steps so far, written last: a set without it is incomplete).
 void writeStep(const Teuchos::ParameterList& params, const IO::OutputDirectory& outputDir, IO::StepSeries& series,
-               int step, double time, const Discretized& d, const StepSolution& sol,
-               const IO::IterationHistory& history, RunReport& report, const RCP<const Comm>& comm) {
+               int step, double time, const Discretized& d, const StepSolution& sol, StepOutput& output,
+               RunReport& report, const RCP<const Comm>& comm) {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::output"));
   Progress::stage("writing results");
   const auto& disc = d.disc;
@@ -217,6 +336,7 @@ void writeStep(const Teuchos::ParameterList& params, const IO::OutputDirectory& 
   report.output = dir + "/" + names.xmf;
   report.parameters = dir + "/" + names.parameters;
   report.historyFile = dir + "/" + names.history;
+  report.stepsFile = names.steps;
   IO::StepResult result;
   if (params.sublist("Contact").get<bool>("Enabled"))
     result.pointSets.push_back(contactPointSet(disc, sol.result.contact, *comm));
@@ -228,12 +348,22 @@ void writeStep(const Teuchos::ParameterList& params, const IO::OutputDirectory& 
     result.uOwned.insert(result.uOwned.end(), un, un + 3);
   }
   result.cellFields = cellFields(disc, d.materials, sol.result.u);
-  Teuchos::ParameterList effective = params;
-  effective.sublist("Output").set("Directory", dir);
-  series.writeStep(step, time, disc, result,
-                   {{names.parameters, Input::toXml(effective)},
-                    {names.history, history.toCsv()},
-                    {names.summary, report.toSummary().toJson() + "\n"}});
+  const bool first = !output.committed;
+  series.writeStep(step, time, disc, result, [&](const IO::StepFile& file) {
+    std::vector<IO::TextFile> texts;
+    if (first) {
+      Teuchos::ParameterList effective = params;
+      effective.sublist("Output").set("Directory", dir);
+      texts.push_back({names.parameters, Input::toXml(effective)});
+    }
+    texts.push_back({names.history, (first ? IO::IterationHistory::csvHeader() : "") + output.history.csvRows(), true});
+    texts.push_back({names.steps, output.stepLines + stepRow(*report.lastStep, file.name, file.sha256).toJsonLine() + "\n", true});
+    texts.push_back({names.summary, report.toSummary().toJson() + "\n"});
+    return texts;
+  });
+  output.history.rows.clear();
+  output.stepLines.clear();
+  output.committed = true;
 }
 
 // The mesh of Mesh/File, read on rank 0 (and held there only) and checked
@@ -450,12 +580,14 @@ void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, 
 
 // A restarted run (tribos --restart DIR, docs/load_history.md): what it
 // continues from. The steps 1..completed of the run in DIR are done: their
-// rows of its summary and history are kept as they are, and the next step
-// starts from the displacement of the last of them.
+// files, their rows of its steps table and history are kept as they are, and
+// the next step starts from the displacement of the last of them.
 struct Restart {
-  std::string summaryFile;           // DIR/BASE.json: what lists the complete steps
+  std::string summaryFile;            // DIR/BASE.json: how many steps are complete
+  std::string stepsFile;              // DIR/BASE.steps.jsonl: their rows
   int completed = 0;
-  std::vector<IO::Summary> stepRows;  // the summary's rows of steps 1..completed
+  std::vector<IO::Summary> stepRows;  // the rows of steps 1..completed
+  std::string stepLines;              // the same, as the table's text
   IO::IterationHistory history;       // the history's rows of those steps
   std::vector<double> uOwned;         // the last one's displacement, 3 per owned node (after the mesh)
 };
@@ -470,6 +602,39 @@ std::string readText(const std::string& path, std::string& error) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// The first `count` lines of a text (fewer when it has fewer complete lines).
+std::vector<std::string> firstLines(const std::string& text, int count) {
+  std::vector<std::string> lines;
+  for (size_t at = 0; static_cast<int>(lines.size()) < count;) {
+    const size_t end = text.find('\n', at);
+    if (end == std::string::npos) break;  // a line a killed run left half written
+    lines.push_back(text.substr(at, end - at));
+    at = end + 1;
+  }
+  return lines;
+}
+
+// Why `dir` cannot be the result directory of a restart ("" when it can):
+// it must exist and be a directory, and hold the summary of Base Name.
+std::string restartDirectoryError(const std::string& dir, const std::string& summaryFile, const std::string& base) {
+  struct stat st;
+  if (::stat(dir.c_str(), &st) != 0)
+    return errno == ENOENT ? "the directory does not exist"
+                           : "cannot access the directory (" + systemReason(errno) + ")";
+  if (!S_ISDIR(st.st_mode)) return "it is not a directory (" + fileKind(st.st_mode) + ")";
+  if (::stat(summaryFile.c_str(), &st) == 0) return "";
+  const auto names = ResultNames(base).all();
+  std::string ignored;
+  bool resultFiles = false;
+  for (const std::string& name : directoryEntries(dir, ignored))
+    resultFiles = resultFiles || IO::StepSeries::isDataFileName(base, name) ||
+                  std::find(names.begin(), names.end(), name) != names.end();
+  return resultFiles ? "there is no summary " + summaryFile +
+                           ": the run there completed no step (run the input again without --restart)"
+                     : "it is not a result directory of Output/Base Name = " + base + ": it holds no " +
+                           fileNameOf(summaryFile) + " and no other file of such a result";
 }
 
 // A value of a validated list in words, for a message.
@@ -506,37 +671,41 @@ std::string firstDifference(const Teuchos::ParameterList& here, const Teuchos::P
 }
 
 // The result in DIR that --restart continues, checked before the mesh is
-// read: DIR holds a result of this input (its parameters file, Output/
-// Directory aside, holds the input's effective parameters) whose summary
-// lists the steps 1..k of its Load Steps in order, the last one converged,
-// with steps left to do, written on as many ranks as this run has (the
-// rows of a step file follow the ranks' ownership of the nodes), and a
-// history whose rows read. Every rank reads the same texts (rank 0's), so
-// that every refusal is the same CollectiveError on every rank.
+// read: DIR is a directory that holds a result of this input (its
+// parameters file, Output/Directory aside, holds the input's effective
+// parameters) whose summary says steps 1..k of its Load Steps are complete,
+// with steps left to do, written on as many ranks as this run has (the rows
+// of a step file follow the ranks' ownership of the nodes); whose steps
+// table has those k rows in order, at the input's times, each naming its
+// step file and that file's digest, the last one converged; and a history
+// whose rows read. Every rank reads the same texts (rank 0's), so that every
+// refusal is the same CollectiveError on every rank. The step files
+// themselves are checked once the directory is locked (readRestartState).
 Restart readRestart(const Teuchos::ParameterList& params, const RunOptions& options, const std::vector<double>& times,
                     const Comm& comm) {
   const std::string dir = outputDirectory(params, options);
   const auto& output = params.sublist("Output");
-  const ResultNames names(output.get<std::string>("Base Name"));
+  const std::string base = output.get<std::string>("Base Name");
+  const ResultNames names(base);
   Restart restart;
   restart.summaryFile = dir + "/" + names.summary;
+  restart.stepsFile = dir + "/" + names.steps;
   const std::string parametersFile = dir + "/" + names.parameters, historyFile = dir + "/" + names.history;
   if (!output.get<bool>("Write Results"))
     throw CollectiveError("--restart " + dir + ": Output/Write Results is false; a restart continues the result files");
   // Rank 0 reads, every rank checks the same texts.
-  std::string error, summaryText, historyText;
+  std::string error, summaryText, stepsText, historyText;
   if (comm.getRank() == 0) {
-    struct stat st;
-    if (::stat(restart.summaryFile.c_str(), &st) != 0)
-      error = "--restart " + dir + ": there is no summary " + restart.summaryFile +
-              ": the run there completed no step (run the input again without --restart)";
-    else
-      summaryText = readText(restart.summaryFile, error);
+    error = restartDirectoryError(dir, restart.summaryFile, base);
+    if (!error.empty()) error = "--restart " + dir + ": " + error;
+    if (error.empty()) summaryText = readText(restart.summaryFile, error);
+    if (error.empty()) stepsText = readText(restart.stepsFile, error);
     if (error.empty()) historyText = readText(historyFile, error);
   }
   error = agreeOnError(comm, error);
   if (!error.empty()) throw CollectiveError(error);
   summaryText = broadcastFromRoot(comm, summaryText);
+  stepsText = broadcastFromRoot(comm, stepsText);
   historyText = broadcastFromRoot(comm, historyText);
 
   // The same input: its parameters file read as an input is read.
@@ -554,39 +723,70 @@ Restart readRestart(const Teuchos::ParameterList& params, const RunOptions& opti
     throw CollectiveError("--restart " + dir + ": the result there is not of this input: its parameters (" +
                           parametersFile + ") differ: " + difference);
 
-  // The steps its summary lists.
-  auto refuse = [&](const std::string& why) { throw CollectiveError("--restart " + dir + ": " + restart.summaryFile + ": " + why); };
+  // How many steps its summary says are complete.
+  auto refuse = [&](const std::string& file, const std::string& why) {
+    throw CollectiveError("--restart " + dir + ": " + file + ": " + why);
+  };
   IO::Summary summary;
   try {
     summary = IO::Summary::fromJson(summaryText);
-    restart.stepRows = IO::Summary::objectsOf(summary.json("steps"));
   } catch (const Error& e) {
-    refuse(std::string("not a summary of a run: ") + e.what());
+    refuse(restart.summaryFile, std::string("not a summary of a run: ") + e.what());
   }
   const int numSteps = static_cast<int>(times.size());
   if (summary.json("load_steps") != std::to_string(numSteps))
-    refuse("it has load_steps " + summary.json("load_steps") + ", the input " + std::to_string(numSteps));
+    refuse(restart.summaryFile, "it has load_steps " + summary.json("load_steps") + ", the input " + std::to_string(numSteps));
   if (summary.json("ranks") != std::to_string(comm.getSize()))
-    refuse("the run ran on " + summary.json("ranks") + " ranks; restart it on as many (its step files' node rows follow them), not " +
-           std::to_string(comm.getSize()));
-  restart.completed = static_cast<int>(restart.stepRows.size());
-  if (restart.completed == 0) refuse("it lists no complete step (run the input again without --restart)");
+    refuse(restart.summaryFile, "the run ran on " + summary.json("ranks") +
+                                    " ranks; restart it on as many (its step files' node rows follow them), not " +
+                                    std::to_string(comm.getSize()));
+  if (summary.json("steps_file") != "\"" + names.steps + "\"")
+    refuse(restart.summaryFile, "it names no steps table " + names.steps + " (steps_file is " +
+                                    (summary.json("steps_file").empty() ? "absent" : summary.json("steps_file")) + ")");
+  const std::string completed = summary.json("steps_completed");
+  char* end = nullptr;
+  const long k = std::strtol(completed.c_str(), &end, 10);
+  if (completed.empty() || *end != '\0' || k < 0 || k > numSteps)
+    refuse(restart.summaryFile, "steps_completed is not a step count of the input's " + std::to_string(numSteps) + " steps");
+  restart.completed = static_cast<int>(k);
+  if (restart.completed == 0) refuse(restart.summaryFile, "it lists no complete step (run the input again without --restart)");
   if (restart.completed >= numSteps)
-    refuse("it lists all " + std::to_string(numSteps) + " steps: the run is complete, nothing is left to do");
-  for (int k = 0; k < restart.completed; ++k) {
-    const IO::Summary& row = restart.stepRows[k];
+    refuse(restart.summaryFile,
+           "it lists all " + std::to_string(numSteps) + " steps: the run is complete, nothing is left to do");
+
+  // Their rows: a killed run may have appended the row of the next step, or
+  // part of it, before its summary said so.
+  const auto lines = firstLines(stepsText, restart.completed);
+  if (static_cast<int>(lines.size()) < restart.completed)
+    refuse(restart.stepsFile, "it has " + std::to_string(lines.size()) + " complete rows; " + restart.summaryFile +
+                                  " says " + std::to_string(restart.completed) + " steps are complete");
+  for (int i = 0; i < restart.completed; ++i) {
+    const std::string step = std::to_string(i + 1);
+    IO::Summary row;
+    try {
+      row = IO::Summary::fromJson(lines[i]);
+    } catch (const Error& e) {
+      refuse(restart.stepsFile, "row " + step + " is not a step's row: " + e.what());
+    }
     const double time = std::strtod(row.json("time").c_str(), nullptr);
-    // The summary writes 10 significant digits.
-    if (row.json("step") != std::to_string(k + 1) || !(std::abs(time - times[k]) <= 1e-9 * std::abs(times[k])))
-      refuse("its row " + std::to_string(k + 1) + " of steps is not step " + std::to_string(k + 1) + " at t = " +
-             row.json("time") + " of Load Steps/Times");
+    // The table writes 10 significant digits.
+    if (row.json("step") != step || !(std::abs(time - times[i]) <= 1e-9 * std::abs(times[i])))
+      refuse(restart.stepsFile, "its row " + step + " is not step " + step + " at t = " + row.json("time") +
+                                    " of Load Steps/Times");
+    const std::string file = "\"" + IO::StepSeries::dataFileName(base, numSteps, i + 1) + "\"";
+    const std::string sha = row.json("sha256");
+    if (row.json("file") != file || sha.size() != 66 || sha.find_first_not_of("0123456789abcdef", 1) != 65)
+      refuse(restart.stepsFile, "its row " + step + " does not name the file " + file + " with its SHA-256 digest");
+    restart.stepRows.push_back(row);
+    restart.stepLines += lines[i] + "\n";
   }
   if (restart.stepRows.back().json("converged") != "true")
-    refuse("its last step " + std::to_string(restart.completed) + " did not converge (" +
-           restart.stepRows.back().json("stop_reason") + "): the run stopped there and would stop there again");
+    refuse(restart.stepsFile, "its last step " + std::to_string(restart.completed) + " did not converge (" +
+                                  restart.stepRows.back().json("stop_reason") +
+                                  "): the run stopped there and would stop there again");
 
   // Their history rows; a run killed while it committed a step may have
-  // renamed the history of the next step before the summary.
+  // appended the history of the next step before the summary said so.
   try {
     for (const IO::HistoryRow& row : IO::IterationHistory::fromCsv(historyText).rows)
       if (row.step <= restart.completed) restart.history.rows.push_back(row);
@@ -596,25 +796,42 @@ Restart readRestart(const Teuchos::ParameterList& params, const RunOptions& opti
   return restart;
 }
 
-// The displacement of the last step the restart continues from, each rank
-// reading the rows of the nodes it owns from its step file (rows in the
-// rank-contiguous numbering, Discretization::nodeIndex), after checking
-// that every step the summary lists has its file and that the last one
-// holds this mesh: as many nodes, each at the place this run has it. A
-// refusal is the same CollectiveError on every rank.
-void readRestartState(Restart& restart, const IO::StepSeries& series, const IO::OutputDirectory& dir,
-                      const Mesh::Discretization& disc, const Comm& comm) {
+// Each step file the restart continues from is the file its step wrote:
+// there, and with the SHA-256 digest the steps table recorded when the step
+// was written (a file replaced, truncated or edited since is refused). Rank 0
+// reads them; the verdict is the same on every rank.
+void verifyStepFiles(const Restart& restart, const IO::StepSeries& series, const IO::OutputDirectory& dir,
+                     const Comm& comm) {
   std::string error;
   if (comm.getRank() == 0)
     for (int k = 1; k <= restart.completed && error.empty(); ++k) {
+      Progress::stage("checking step file " + std::to_string(k) + " of " + std::to_string(restart.completed));
       struct stat st;
       const std::string file = dir.path() + "/" + series.dataFileName(k);
-      if (::stat(file.c_str(), &st) != 0)
+      const std::string recorded = restart.stepRows[k - 1].json("sha256");
+      if (::stat(file.c_str(), &st) != 0) {
         error = file + " is missing, though " + restart.summaryFile + " lists its step " + std::to_string(k);
+        continue;
+      }
+      const std::string digest = IO::sha256OfFile(file, error);
+      if (error.empty() && "\"" + digest + "\"" != recorded)
+        error = file + " is not the file step " + std::to_string(k) + " wrote: its SHA-256 is " + digest + ", " +
+                restart.stepsFile + " records " + recorded + " (the file was replaced or changed since)";
     }
   error = agreeOnError(comm, error);
   if (!error.empty()) throw CollectiveError("--restart " + dir.path() + ": " + error);
+}
 
+// The displacement of the last step the restart continues from, each rank
+// reading the rows of the nodes it owns from its step file (rows in the
+// rank-contiguous numbering, Discretization::nodeIndex), after checking
+// every step file (verifyStepFiles) and that the last one holds this mesh:
+// as many nodes, each at the place this run has it. A refusal is the same
+// CollectiveError on every rank.
+void readRestartState(Restart& restart, const IO::StepSeries& series, const IO::OutputDirectory& dir,
+                      const Mesh::Discretization& disc, const Comm& comm) {
+  verifyStepFiles(restart, series, dir, comm);
+  std::string error;
   const std::string file = dir.path() + "/" + series.dataFileName(restart.completed);
   const auto& owned = disc.ownedNodes();
   const long long count = static_cast<long long>(owned.size());
@@ -709,6 +926,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   report.input = options.inputName;
   // No output may be an input or another output: checked before the mesh is read.
   IO::requireDistinctFiles(runFiles(params, options), comm);
+  requireOutsideSeries(params, options, *comm);
   const std::vector<double> times = Input::loadStepTimes(params);
   std::optional<Restart> restart;
   if (!options.restartDir.empty()) restart = readRestart(params, options, times, *comm);
@@ -719,7 +937,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   Progress::stage("memory estimate");
   const MemoryEstimate memory = requireMemory(params, options.maxMemory, options.verify, comm, whole ? &fileSize : nullptr);
   Progress::stage("checking output paths");
-  const auto outputDir = prepareOutput(params, options, comm);
+  const auto outputDir = prepareOutput(params, options, whole ? &fileSize : nullptr, comm);
 
   const Discretized d = meshStep(params, options, std::move(whole), decomposition, *comm, report);
   const double meshSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -733,17 +951,18 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   if (outputDir)
     series = std::make_unique<IO::StepSeries>(*outputDir, params.sublist("Output").get<std::string>("Base Name"),
                                               numSteps, comm);
-  IO::IterationHistory history;
+  StepOutput output;
   int first = 0;  // the first step this run solves
   if (restart) {
-    // The steps done stay as they are: their files, summary rows and
-    // history rows; the method continues from the last one's displacement.
+    // The steps done stay as they are: their files, table rows and history
+    // rows; the method continues from the last one's displacement.
     readRestartState(*restart, *series, *outputDir, d.disc, *comm);
     first = restart->completed;
     series->continueAfter(std::vector<double>(times.begin(), times.begin() + first));
     method->resumeFrom(std::move(restart->uOwned));
-    history = std::move(restart->history);
-    report.earlierSteps = std::move(restart->stepRows);
+    output.history = std::move(restart->history);
+    output.stepLines = std::move(restart->stepLines);
+    report.stepsCompleted = first;
   }
   double setupSeconds = meshSeconds, solveSeconds = 0;
   for (int k = first; k < numSteps; ++k) {
@@ -755,14 +974,15 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     checkStep(params, options, d, loads, sol, comm, report);
     for (IO::HistoryRow row : sol.history.rows) {
       row.step = k + 1;
-      history.rows.push_back(row);
+      output.history.rows.push_back(row);
     }
     if (!report.converged && numSteps > 1) {
       std::ostringstream os;
       os << "load step " << k + 1 << " of " << numSteps << " (t = " << times[k] << "): " << report.stopReason;
       report.stopReason = os.str();
     }
-    report.steps.push_back(stepReport(params, k + 1, times[k], sol, report, *comm));
+    report.lastStep = stepReport(params, k + 1, times[k], sol, report, *comm);
+    report.stepsCompleted = k + 1;
     // Setup: from the start to a solver ready to iterate; solve: its iterations.
     setupSeconds += sol.setupSeconds;
     solveSeconds += sol.result.solveSeconds;
@@ -771,7 +991,11 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     report.maxAbsDisplacement = sol.result.u.normInf();
     report.memoryEstimateMb = maxOver(memory.total() / (1024.0 * 1024.0), *comm);
     report.peakRssMb = maxOver(IO::peakRssMb(), *comm);
-    if (series) writeStep(params, *outputDir, *series, k + 1, times[k], d, sol, history, report, comm);
+    if (series) writeStep(params, *outputDir, *series, k + 1, times[k], d, sol, output, report, comm);
+    else {
+      report.unwrittenSteps.push_back(stepRow(*report.lastStep));
+      output.history.rows.clear();
+    }
     if (!report.converged) break;
   }
   Progress::setStep(1, 1);

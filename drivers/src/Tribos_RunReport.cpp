@@ -78,6 +78,12 @@ IO::Summary stepSummary(const StepReport& r) {
 
 }  // namespace
 
+IO::Summary stepRow(const StepReport& step) { return stepSummary(step); }
+
+IO::Summary stepRow(const StepReport& step, const std::string& file, const std::string& sha256) {
+  return stepSummary(step).set("file", file).set("sha256", sha256);
+}
+
 IO::Summary RunReport::toSummary() const {
   IO::Summary s;
   s.set("problem", problem);
@@ -116,9 +122,9 @@ IO::Summary RunReport::toSummary() const {
   s.set("converged", converged);
   s.set("stop_reason", stopReason);
   s.set("load_steps", numSteps);
-  std::vector<IO::Summary> stepRows = earlierSteps;
-  for (const auto& step : steps) stepRows.push_back(stepSummary(step));
-  s.set("steps", stepRows);
+  s.set("steps_completed", stepsCompleted);
+  if (!stepsFile.empty()) s.set("steps_file", stepsFile);
+  else s.set("steps", unwrittenSteps);
   if (!verifyNote.empty()) s.set("verify_note", verifyNote);
   if (verifyRelativeDifference) s.set("verify_rel_diff_u", *verifyRelativeDifference);
   // Cost.

@@ -86,13 +86,17 @@ struct RunReport {
   std::string stopReason;
   std::optional<double> verifyRelativeDifference;  // --verify
   std::string verifyNote;
-  // Every load step so far (one for a run without Load Steps); the fields
-  // above are the last step's.
-  std::vector<StepReport> steps;
-  // A restarted run (tribos --restart): the rows of the steps the run it
-  // continues completed, as its summary has them; the summary lists them
-  // before this run's steps.
-  std::vector<IO::Summary> earlierSteps;
+  // The load steps: how many are complete (those of the run a restart
+  // continues included) and the last one; the fields above are its. Each
+  // step's row (stepRow) goes to the steps table as the step is written:
+  // the summary, rewritten at every step, keeps the same size at step 10 and
+  // at step 10^5.
+  int stepsCompleted = 0;
+  std::optional<StepReport> lastStep;
+  std::string stepsFile;  // the steps table, a file name beside the summary
+  // A run that writes no result set has no steps table: its summary, written
+  // once at the end (--summary, stdout), holds the step rows.
+  std::vector<IO::Summary> unwrittenSteps;
   int numSteps = 1;
   // The run's cost.
   double setupSeconds = 0, solveSeconds = 0, maxAbsDisplacement = 0, memoryEstimateMb = 0, peakRssMb = 0;
@@ -102,5 +106,11 @@ struct RunReport {
   // The summary: every field that the run filled, under its JSON name.
   IO::Summary toSummary() const;
 };
+
+// A step's row of the steps table: its figures and verdict (StepReport), and
+// the data file that holds its result with that file's SHA-256 digest.
+IO::Summary stepRow(const StepReport& step, const std::string& file, const std::string& sha256);
+// The row of a step that no file holds (a run that writes no results).
+IO::Summary stepRow(const StepReport& step);
 
 }  // namespace Tribos

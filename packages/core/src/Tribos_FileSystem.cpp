@@ -1,5 +1,6 @@
 #include "Tribos_FileSystem.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -32,6 +33,19 @@ bool isTemporaryName(const std::string& f) {
   for (size_t i = dot + 1; i < pidEnd; ++i)
     if (!std::isdigit(static_cast<unsigned char>(f[i]))) return false;
   return true;
+}
+
+std::vector<std::string> directoryEntries(const std::string& dir, std::string& error) {
+  std::vector<std::string> names;
+  DIR* d = ::opendir(dir.c_str());
+  if (!d) {
+    error = "cannot list " + dir + ": " + systemReason(errno);
+    return names;
+  }
+  while (const dirent* e = ::readdir(d))
+    if (std::strcmp(e->d_name, ".") != 0 && std::strcmp(e->d_name, "..") != 0) names.push_back(e->d_name);
+  ::closedir(d);
+  return names;
 }
 
 std::string directoryOf(const std::string& path) {

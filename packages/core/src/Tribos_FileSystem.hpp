@@ -7,6 +7,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_Types.hpp"
@@ -27,6 +28,10 @@ std::string temporaryPathFor(const std::string& path);
 // both exist, else the same path once the part that exists is resolved
 // (links, "..") and the rest normalized.
 bool sameFile(const std::string& a, const std::string& b);
+
+// The names in a directory ("." and ".." aside); on failure none, and
+// `error` says why.
+std::vector<std::string> directoryEntries(const std::string& dir, std::string& error);
 
 // The directory part of a path ("." when it has none) and the last component.
 std::string directoryOf(const std::string& path);

@@ -26,9 +26,14 @@ HistoryRow::HistoryRow()
       n_A(std::numeric_limits<double>::quiet_NaN()),
       seconds(std::numeric_limits<double>::quiet_NaN()) {}
 
-std::string IterationHistory::toCsv() const {
+std::string IterationHistory::csvHeader() {
+  return "outer_iteration,relative_residual,G_lambda_rel,slip_bound_change,n_A,time_s,step\n";
+}
+
+std::string IterationHistory::toCsv() const { return csvHeader() + csvRows(); }
+
+std::string IterationHistory::csvRows() const {
   std::ostringstream os;
-  os << "outer_iteration,relative_residual,G_lambda_rel,slip_bound_change,n_A,time_s,step\n";
   for (const auto& r : rows)
     os << r.iteration << ',' << field(r.relativeResidual) << ',' << field(r.gLambda) << ','
        << field(r.slipBoundChange) << ',' << field(r.n_A) << ',' << field(r.seconds) << ',' << r.step << '\n';
@@ -38,7 +43,7 @@ std::string IterationHistory::toCsv() const {
 IterationHistory IterationHistory::fromCsv(const std::string& csv) {
   std::istringstream in(csv);
   std::string line;
-  TRIBOS_REQUIRE(std::getline(in, line) && line + "\n" == IterationHistory().toCsv(),
+  TRIBOS_REQUIRE(std::getline(in, line) && line + "\n" == csvHeader(),
                  "line 1 is not the header of an iteration history");
   IterationHistory h;
   for (int number = 2; std::getline(in, line); ++number) {

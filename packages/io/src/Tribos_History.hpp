@@ -39,6 +39,10 @@ struct IterationHistory {
   // The header line and one line per row; numbers with 10 significant digits
   // (as the summary), NaN and infinities as empty fields.
   std::string toCsv() const;
+  // Its parts: the header line, and the lines of the rows (a history that
+  // grows by steps appends the rows of each step).
+  static std::string csvHeader();
+  std::string csvRows() const;
   // The rows of a text toCsv wrote (a restarted run continues its history):
   // the same header, then rows of 7 fields, empty fields NaN. Throws
   // Tribos::Error naming the line that is not such a row.

@@ -29,6 +29,15 @@ class ResultSet {
   // marker of a complete set, last.
   std::string add(const std::string& name);
 
+  // For commitExtension() only: at the commit, in the order of add() and
+  // append() calls, rank 0 writes `text` into the existing file dir/name at
+  // byte `offset` (its end when offset < 0) and flushes it. The files a set
+  // extends step by step (a history's rows, an index's closing tags
+  // overwritten by the next step and the tags again) grow by what the step
+  // adds: a step's commit costs the same at step 10 and at step 10^5. Not
+  // collective; call it on every rank alike (rank 0's text is written).
+  void append(const std::string& name, const std::string& text, long long offset = -1);
+
   // Collective. Rank 0 checks that every temporary was written and flushes it
   // to the device, removes the old files of the set (the last-added one, the
   // summary, first), then renames the temporaries in the order added, the
@@ -58,12 +67,19 @@ class ResultSet {
   // exceptions. Not collective.
   ~ResultSet();
 
+  // In commit order: a file renamed from its temporary, or text written into it.
+  struct Entry {
+    std::string path, temporary;  // temporary empty: an edit in place
+    std::string text;
+    long long offset = -1;
+  };
+
  private:
   void commitBy(bool removeOldFirst);
 
   const OutputDirectory& dir_;
   RCP<const Comm> comm_;
-  std::vector<std::pair<std::string, std::string>> files_;  // final path, temporary path
+  std::vector<Entry> files_;
   std::function<bool(const std::string&)> stale_;
 };
 

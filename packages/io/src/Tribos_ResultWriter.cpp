@@ -586,19 +586,27 @@ std::string xdmfIndex(const std::string& h5Name, const ResultLayout& layout) {
   return x.str();
 }
 
-std::string xdmfTimeSeries(const std::vector<SeriesStep>& steps) {
+std::string xdmfTimeSeriesHead() {
+  return std::string(kXdmfHead) + "    <Grid Name=\"steps\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+}
+
+std::string xdmfTimeSeriesStep(int step, const SeriesStep& s) {
   std::ostringstream x;
-  x << kXdmfHead << "    <Grid Name=\"steps\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (size_t k = 0; k < steps.size(); ++k) {
-    char time[32];
-    std::snprintf(time, sizeof time, "%.17g", steps[k].time);  // read back to the same double
-    x << "      <Grid Name=\"step " << k + 1 << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
-      << "        <Time Value=\"" << time << "\"/>\n";
-    xdmfGrids(x, 8, steps[k].h5Name, steps[k].layout);
-    x << "      </Grid>\n";
-  }
-  x << "    </Grid>\n" << kXdmfTail;
+  char time[32];
+  std::snprintf(time, sizeof time, "%.17g", s.time);  // read back to the same double
+  x << "      <Grid Name=\"step " << step << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+    << "        <Time Value=\"" << time << "\"/>\n";
+  xdmfGrids(x, 8, s.h5Name, s.layout);
+  x << "      </Grid>\n";
   return x.str();
+}
+
+std::string xdmfTimeSeriesTail() { return std::string("    </Grid>\n") + kXdmfTail; }
+
+std::string xdmfTimeSeries(const std::vector<SeriesStep>& steps) {
+  std::string x = xdmfTimeSeriesHead();
+  for (size_t k = 0; k < steps.size(); ++k) x += xdmfTimeSeriesStep(static_cast<int>(k) + 1, steps[k]);
+  return x + xdmfTimeSeriesTail();
 }
 
 void writeFileAtomically(const std::string& path, const std::string& text) {

@@ -122,6 +122,11 @@ struct SeriesStep {
 // with, per step in the order given, a spatial collection "step K" holding
 // <Time Value="t"/> and the grids xdmfIndex gives that step's file.
 std::string xdmfTimeSeries(const std::vector<SeriesStep>& steps);
+// Its three parts, xdmfTimeSeries = head + step(1) + ... + step(N) + tail:
+// a series adds a step by writing step(K) + tail over the old tail.
+std::string xdmfTimeSeriesHead();
+std::string xdmfTimeSeriesStep(int step, const SeriesStep& s);
+std::string xdmfTimeSeriesTail();
 
 // Writes text to path atomically: to path's directory under a temporary name
 // unique to this process (.NAME.<pid>.tmp), flushed to the device, then

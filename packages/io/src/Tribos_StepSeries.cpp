@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_FileDigest.hpp"
 #include "Tribos_FileSystem.hpp"
 #include "Tribos_ResultSet.hpp"
 
@@ -33,21 +34,21 @@ StepSeries::StepSeries(const OutputDirectory& dir, const std::string& baseName, 
   if (numSteps < 1) throw CollectiveError("a time series of results needs at least one step, not " + std::to_string(numSteps));
 }
 
-std::string StepSeries::dataFileName(int step) const {
-  if (numSteps_ == 1) return base_ + ".h5";
+std::string StepSeries::dataFileName(const std::string& base, int numSteps, int step) {
+  if (numSteps == 1) return base + ".h5";
   // Zero-padded to the width of the last step, at least 4 digits: the files
   // of a run sort in step order.
-  const int width = std::max<int>(4, static_cast<int>(std::to_string(numSteps_).size()));
+  const int width = std::max<int>(4, static_cast<int>(std::to_string(numSteps).size()));
   std::string number = std::to_string(step);
   number.insert(0, width > static_cast<int>(number.size()) ? width - number.size() : 0, '0');
-  return base_ + ".step" + number + ".h5";
+  return base + ".step" + number + ".h5";
 }
 
 std::string StepSeries::indexFileName() const { return base_ + ".xmf"; }
 
-bool StepSeries::isDataFileName(const std::string& name) const {
-  if (name == base_ + ".h5") return true;
-  const std::string head = base_ + ".step", tail = ".h5";
+bool StepSeries::isDataFileName(const std::string& base, const std::string& name) {
+  if (name == base + ".h5") return true;
+  const std::string head = base + ".step", tail = ".h5";
   if (name.size() <= head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
       name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
     return false;
@@ -58,27 +59,21 @@ bool StepSeries::isDataFileName(const std::string& name) const {
 
 // Every refusal before anything is written, the same on every rank: the
 // arguments are compared with rank 0's first, then checked.
-void StepSeries::check(int step, double time, const std::vector<TextFile>& texts, const StepResult& result) const {
+void StepSeries::check(int step, double time, const StepResult& result) const {
   std::ostringstream signature;
   signature << step << ' ' << exactly(time);
-  for (const TextFile& t : texts) signature << '\n' << t.name;
   std::ostringstream e;
   auto say = [&](const std::string& what) { e << (e.tellp() > 0 ? "; " : "") << what; };
   if (broadcastFromRoot(*comm_, signature.str()) != signature.str()) {
-    say("rank " + std::to_string(comm_->getRank()) + " passes another step, time or file names than rank 0");
+    say("rank " + std::to_string(comm_->getRank()) + " passes another step or time than rank 0");
   } else {
     const int next = stepsWritten() + 1;
     if (step != next) say("the next step is " + std::to_string(next) + ", not " + std::to_string(step));
     if (step > numSteps_) say("the series has " + std::to_string(numSteps_) + " steps");
     if (!std::isfinite(time)) say("its time " + exactly(time) + " is not finite");
-    else if (!written_.empty() && !(time > written_.back().time))
-      say("its time " + exactly(time) + " does not follow the time " + exactly(written_.back().time) + " of step " +
-          std::to_string(stepsWritten()));
-    if (texts.empty()) say("no text files given (the last one is the summary, the marker of a complete set)");
-    for (const TextFile& t : texts)
-      if (!isPlainFileName(t.name)) say("the text file name '" + t.name + "' is not a plain file name");
-      else if (isDataFileName(t.name) || t.name == indexFileName())
-        say("the text file name " + t.name + " is a name of the series' data files or index");
+    else if (written_ > 0 && !(time > lastTime_))
+      say("its time " + exactly(time) + " does not follow the time " + exactly(lastTime_) + " of step " +
+          std::to_string(written_));
     for (const auto& a : result.attributes.numbers)
       if (a.first == "step" || a.first == "time") say("the attribute " + a.first + " is the series' own");
   }
@@ -88,48 +83,108 @@ void StepSeries::check(int step, double time, const std::vector<TextFile>& texts
                           ": " + error);
 }
 
+void StepSeries::checkTexts(int step, const std::vector<TextFile>& texts) const {
+  std::ostringstream signature;
+  for (const TextFile& t : texts) signature << '\n' << t.name << ' ' << t.appended;
+  std::ostringstream e;
+  auto say = [&](const std::string& what) { e << (e.tellp() > 0 ? "; " : "") << what; };
+  if (broadcastFromRoot(*comm_, signature.str()) != signature.str()) {
+    say("rank " + std::to_string(comm_->getRank()) + " passes other file names than rank 0");
+  } else {
+    if (texts.empty() || texts.back().appended)
+      say("no text file replaced last (the summary, the marker of a complete set)");
+    for (size_t k = 0; k < texts.size(); ++k) {
+      const TextFile& t = texts[k];
+      if (!isPlainFileName(t.name)) say("the text file name '" + t.name + "' is not a plain file name");
+      else if (isDataFileName(t.name) || t.name == indexFileName())
+        say("the text file name " + t.name + " is a name of the series' data files or index");
+      for (size_t j = 0; j < k; ++j)
+        if (texts[j].name == t.name) say("the text file " + t.name + " is given twice");
+    }
+  }
+  const std::string error = agreeOnError(*comm_, e.str());
+  if (!error.empty())
+    throw CollectiveError("cannot write step " + std::to_string(step) + " of the results " + dir_.path() + "/" + base_ +
+                          ": " + error);
+}
+
+// Rank 0 reads the written file back; every rank gets its digest.
+std::string StepSeries::digestOf(const std::string& path) const {
+  std::string error, digest;
+  if (comm_->getRank() == 0) digest = sha256OfFile(path, error);
+  error = rootError(*comm_, error);
+  if (!error.empty()) throw RunFailure(error);
+  return broadcastFromRoot(*comm_, digest);
+}
+
+// The index of a series: whole at this run's first commit (with the steps
+// it continues, which have the layout of this one), then step by step over
+// its closing tags.
+void StepSeries::addIndex(ResultSet& files, int step, const SeriesStep& s) {
+  const std::string stepText = xdmfTimeSeriesStep(step, s);
+  if (committedThisRun_) {
+    files.append(indexFileName(), stepText + xdmfTimeSeriesTail(), indexTail_);
+    indexTail_ += static_cast<long long>(stepText.size());
+    return;
+  }
+  std::string text = xdmfTimeSeriesHead();
+  for (size_t k = 0; k < continuedTimes_.size(); ++k)
+    text += xdmfTimeSeriesStep(static_cast<int>(k) + 1, {continuedTimes_[k], dataFileName(static_cast<int>(k) + 1), s.layout});
+  text += stepText;
+  indexTail_ = static_cast<long long>(text.size());
+  writeTextFile(files.add(indexFileName()), text + xdmfTimeSeriesTail(), comm_);
+}
+
 void StepSeries::writeStep(int step, double time, const Mesh::Discretization& disc, const StepResult& result,
                            const std::vector<TextFile>& texts) {
-  check(step, time, texts, result);
+  writeStep(step, time, disc, result, [&texts](const StepFile&) { return texts; });
+}
+
+void StepSeries::writeStep(int step, double time, const Mesh::Discretization& disc, const StepResult& result,
+                           const StepTexts& texts) {
+  check(step, time, result);
   ResultSet files(dir_, comm_);
   const std::string dataName = dataFileName(step);
-  const std::string h5 = files.add(dataName), xmf = files.add(indexFileName());
-  std::vector<std::string> textPaths;
-  for (const TextFile& t : texts) textPaths.push_back(files.add(t.name));
-
+  const std::string h5 = files.add(dataName);
   const ResultWriter writer(disc, comm_);
-  std::vector<SeriesStep> steps = written_;
-  if (numSteps_ == 1) {
-    // A one-step run's files are those it has always written.
-    writer.write(h5, dataName, xmf, result.uOwned, result.nodeFields, result.cellFields, result.pointSets,
-                 result.attributes);
-    steps.push_back({time, dataName, {}});
-  } else {
-    // Each step file says which step it holds, so that it reads alone.
-    ResultAttributes attributes = result.attributes;
-    attributes.numbers.push_back({"step", static_cast<double>(step)});
-    attributes.numbers.push_back({"time", time});
-    steps.push_back({time, dataName,
-                     writer.writeData(h5, dataName, result.uOwned, result.nodeFields, result.cellFields,
-                                      result.pointSets, attributes)});
-    // Steps of the run this one continues: the files of one mesh and fields.
-    if (!layoutsKnown_)
-      for (auto& earlier : steps) earlier.layout = steps.back().layout;
-    writeTextFile(xmf, xdmfTimeSeries(steps), comm_);
-  }
-  for (size_t k = 0; k < texts.size(); ++k) writeTextFile(textPaths[k], texts[k].text, comm_);
+  const long long indexTail = indexTail_;
+  try {
+    if (numSteps_ == 1) {
+      // A one-step run's files are those it has always written.
+      writer.write(h5, dataName, files.add(indexFileName()), result.uOwned, result.nodeFields, result.cellFields,
+                   result.pointSets, result.attributes);
+    } else {
+      // Each step file says which step it holds, so that it reads alone.
+      ResultAttributes attributes = result.attributes;
+      attributes.numbers.push_back({"step", static_cast<double>(step)});
+      attributes.numbers.push_back({"time", time});
+      const ResultLayout layout = writer.writeData(h5, dataName, result.uOwned, result.nodeFields, result.cellFields,
+                                                   result.pointSets, attributes);
+      addIndex(files, step, {time, dataName, layout});
+    }
+    const std::vector<TextFile> textFiles = texts({step, time, dataName, digestOf(h5)});
+    checkTexts(step, textFiles);
+    for (const TextFile& t : textFiles)
+      if (t.appended && committedThisRun_) files.append(t.name, t.text);
+      else writeTextFile(files.add(t.name), t.text, comm_);
 
-  if (written_.empty()) {
-    // The directory may hold another run's result of this Base Name: it
-    // goes, its summary first, and with it every data file of any series of
-    // this name, before a file of this run arrives.
-    files.removeAtCommit([this](const std::string& name) { return isDataFileName(name); });
-    files.commit();
-  } else {
-    files.commitExtension();
+    if (written_ == 0) {
+      // The directory may hold another run's result of this Base Name: it
+      // goes, its summary first, and with it every data file of any series of
+      // this name, before a file of this run arrives.
+      files.removeAtCommit([this](const std::string& name) { return isDataFileName(name); });
+      files.commit();
+    } else {
+      files.commitExtension();
+    }
+  } catch (...) {
+    indexTail_ = indexTail;  // the step may be written again
+    throw;
   }
-  written_ = std::move(steps);
-  layoutsKnown_ = true;
+  written_ = step;
+  lastTime_ = time;
+  committedThisRun_ = true;
+  std::vector<double>().swap(continuedTimes_);
 }
 
 void StepSeries::continueAfter(const std::vector<double>& times) {
@@ -138,7 +193,7 @@ void StepSeries::continueAfter(const std::vector<double>& times) {
   auto say = [&](const std::string& what) { e << (e.tellp() > 0 ? "; " : "") << what; };
   if (broadcastFromRoot(*comm_, signature.str()) != signature.str())
     say("rank " + std::to_string(comm_->getRank()) + " passes other steps than rank 0");
-  else if (!written_.empty())
+  else if (written_ > 0)
     say("steps are written already");
   else if (times.empty() || static_cast<int>(times.size()) >= numSteps_)
     say("it continues after " + std::to_string(times.size()) + " of " + std::to_string(numSteps_) +
@@ -150,9 +205,9 @@ void StepSeries::continueAfter(const std::vector<double>& times) {
   const std::string error = agreeOnError(*comm_, e.str());
   if (!error.empty())
     throw CollectiveError("cannot continue the results " + dir_.path() + "/" + base_ + ": " + error);
-  for (size_t k = 0; k < times.size(); ++k)
-    written_.push_back({times[k], dataFileName(static_cast<int>(k) + 1), {}});
-  layoutsKnown_ = false;
+  continuedTimes_ = times;
+  written_ = static_cast<int>(times.size());
+  lastTime_ = times.back();
 }
 
 }  // namespace IO

@@ -14,20 +14,26 @@
 // the last of them the summary (BASE.json), the marker of a complete set.
 // The step number has 4 digits, more when N needs them.
 //
-// Every step replaces the index and the text files as one set (ResultSet,
+// Every step commits the index and the text files as one set (ResultSet,
 // the summary last). The first commit of a run removes what an earlier run
 // of the same Base Name left: its set, summary first, then every
 // BASE.h5 and BASE.step<digits>.h5, before any new file arrives. Later steps
-// only add their data file and rename the index and texts over the old ones,
-// the summary last: the summary in the directory always lists steps whose
-// files are all there (the index may list one step more while a step commits).
+// only add their data file, write their part of the index over its closing
+// tags (the tags after it), append to the texts that grow by steps and
+// rename the others over the old ones, the summary last: what a step costs
+// to write does not grow with the number of steps before it, and the
+// summary in the directory always lists steps whose files are all there
+// (the index and the appended texts may hold one step more while a step
+// commits, or after a kill then).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "Tribos_Discretization.hpp"
 #include "Tribos_OutputDirectory.hpp"
+#include "Tribos_ResultSet.hpp"
 #include "Tribos_ResultWriter.hpp"
 #include "Tribos_Types.hpp"
 
@@ -47,7 +53,25 @@ struct StepResult {
 struct TextFile {
   std::string name;
   std::string text;
+  // false: the file is replaced by text at every commit. true: the file
+  // grows by text: at the series' first commit in a run it is replaced (the
+  // caller gives its whole content then: a header, the rows of the steps a
+  // continued series keeps, and the step's), at later commits text is
+  // appended to it.
+  bool appended = false;
 };
+
+// A step's data file as the series committed it.
+struct StepFile {
+  int step = 0;
+  double time = 0;
+  std::string name;    // plain file name in the directory
+  std::string sha256;  // the digest of its content (Tribos_FileDigest.hpp)
+};
+
+// The text files of a step, given its data file (e.g. a summary that records
+// the file's digest). Called on every rank with the same StepFile.
+using StepTexts = std::function<std::vector<TextFile>(const StepFile&)>;
 
 class StepSeries {
  public:
@@ -67,6 +91,9 @@ class StepSeries {
   // Tribos::CollectiveError, nothing written. A write or commit failure:
   // Tribos::RunFailure on every rank, the steps committed before complete
   // in the directory, no temporary left.
+  // texts are asked for once the data file is written, with its digest.
+  void writeStep(int step, double time, const Mesh::Discretization& disc, const StepResult& result,
+                 const StepTexts& texts);
   void writeStep(int step, double time, const Mesh::Discretization& disc, const StepResult& result,
                  const std::vector<TextFile>& texts);
 
@@ -83,25 +110,35 @@ class StepSeries {
   void continueAfter(const std::vector<double>& times);
 
   // The file names of the series (plain names in the directory).
-  std::string dataFileName(int step) const;  // BASE.h5 (one step) or BASE.stepNNNN.h5
-  std::string indexFileName() const;         // BASE.xmf
+  std::string dataFileName(int step) const { return dataFileName(base_, numSteps_, step); }
+  std::string indexFileName() const;  // BASE.xmf
   // Whether fileName is a data file of a series of this Base Name, of any
   // number of steps (BASE.h5, BASE.step<digits>.h5).
-  bool isDataFileName(const std::string& fileName) const;
+  bool isDataFileName(const std::string& fileName) const { return isDataFileName(base_, fileName); }
+  // The same for a series of Base Name `base` and numSteps steps:
+  // BASE.h5 (one step) or BASE.stepNNNN.h5.
+  static std::string dataFileName(const std::string& base, int numSteps, int step);
+  static bool isDataFileName(const std::string& base, const std::string& fileName);
 
   int numSteps() const { return numSteps_; }
   // The steps committed so far.
-  int stepsWritten() const { return static_cast<int>(written_.size()); }
+  int stepsWritten() const { return written_; }
 
  private:
-  void check(int step, double time, const std::vector<TextFile>& texts, const StepResult& result) const;
+  void check(int step, double time, const StepResult& result) const;
+  void checkTexts(int step, const std::vector<TextFile>& texts) const;
+  std::string digestOf(const std::string& path) const;
+  void addIndex(ResultSet& files, int step, const SeriesStep& s);
 
   const OutputDirectory& dir_;
   std::string base_;
   int numSteps_;
   RCP<const Comm> comm_;
-  std::vector<SeriesStep> written_;  // the committed steps, the same on every rank
-  bool layoutsKnown_ = true;         // false after continueAfter until the next step gives the layout
+  int written_ = 0;                     // steps committed (by this run, or before it: continueAfter)
+  double lastTime_ = 0;                 // the time of step written_
+  bool committedThisRun_ = false;       // this run committed a step
+  std::vector<double> continuedTimes_;  // the steps continueAfter took over, until this run's first commit
+  long long indexTail_ = 0;             // where the index's closing tags begin
 };
 
 }  // namespace IO

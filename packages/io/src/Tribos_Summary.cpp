@@ -222,6 +222,22 @@ std::string Summary::toJson(int indent) const {
   return os.str();
 }
 
+std::string Summary::toJsonLine() const {
+  // A JSON text holds a line break only between tokens (one in a string is
+  // escaped), so each one with the indentation after it becomes a space.
+  const std::string text = toJson();
+  std::string line;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '\n') {
+      line += text[i];
+      continue;
+    }
+    while (i + 1 < text.size() && text[i + 1] == ' ') ++i;
+    line += ' ';
+  }
+  return line;
+}
+
 double peakRssMb() {
   struct rusage ru;
   getrusage(RUSAGE_SELF, &ru);

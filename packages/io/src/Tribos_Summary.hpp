@@ -23,6 +23,8 @@ class Summary {
   Summary& set(const std::string& key, const Summary& object);
   Summary& set(const std::string& key, const std::vector<Summary>& objects);  // an array of objects
   std::string toJson(int indent = 0) const;
+  // The same JSON on one line (a row of a JSON Lines table).
+  std::string toJsonLine() const;
   bool has(const std::string& key) const;
 
   // A summary read back (a restarted run continues its steps' rows): the

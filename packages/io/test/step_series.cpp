@@ -19,6 +19,7 @@
 #include "IoTestSupport.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_OutputDirectory.hpp"
+#include "Tribos_FileDigest.hpp"
 #include "Tribos_ResultSet.hpp"
 #include "Tribos_StepSeries.hpp"
 
@@ -426,13 +427,13 @@ TEUCHOS_UNIT_TEST(StepSeries, Refusals) {
   };
   refused("step 2 first", 2, 1.0, result, texts(1), "the next step is 1, not 2");
   refused("time not finite", 1, std::nan(""), result, texts(1), "not finite");
-  refused("no summary", 1, 1.0, result, {}, "no text files");
+  refused("no summary", 1, 1.0, result, {}, "no text file replaced last");
   refused("text named as a step file", 1, 1.0, result, {{"run.step0002.h5", "x"}}, "run.step0002.h5");
   IO::StepResult timed = result;
   timed.attributes.numbers.push_back({"time", 3.0});
   refused("attribute time", 1, 1.0, timed, texts(1), "attribute time");
   if (comm->getSize() > 1)
-    refused("times differ between ranks", 1, 1.0 + comm->getRank(), result, texts(1), "another step, time");
+    refused("times differ between ranks", 1, 1.0 + comm->getRank(), result, texts(1), "another step or time");
   if (comm->getRank() == 0) TEST_ASSERT(listDirectory(s.dir.path()) == std::vector<std::string>{".tribos.lock"});
   series.writeStep(1, 1.0, s.disc, result, texts(1));
   refused("time going back", 2, 1.0, stepResult(s.disc, 2, *comm), texts(2), "does not follow the time 1 of step 1");
@@ -467,4 +468,61 @@ TEUCHOS_UNIT_TEST(StepSeries, OneStepIsTheSingleResult) {
   }
   TEST_ASSERT(a.read<long long>("/mesh/topology") == b.read<long long>("/mesh/topology"));
   TEST_EQUALITY(a.number("step"), -12345.0);  // no attributes of a series
+}
+
+// Texts that grow by steps: at the first commit the file is what the step
+// gives (its header and rows), at each later one the step's rows are
+// appended; the others are replaced. Each step's texts are made knowing its
+// data file, whose digest is that of the committed file. The index, written
+// step by step over its closing tags, is at every step the index of all the
+// steps written (checkSeries parses it and reads every dataset it names).
+TEUCHOS_UNIT_TEST(StepSeries, AppendedTextsGrowByStep) {
+  const auto comm = Tpetra::getDefaultComm();
+  Setup s(comm);
+  const std::string dir = s.dir.path();
+  const std::vector<double> times = {0.5, 1.0, 1.5, 2.0};
+  IO::StepSeries series(s.dir, kBase, 4, comm);
+  std::string expected = "header\n";
+  for (int k = 1; k <= 4; ++k) {
+    IO::StepFile seen;
+    series.writeStep(k, times[k - 1], s.disc, stepResult(s.disc, k, *comm), [&](const IO::StepFile& f) {
+      seen = f;
+      const std::string row = "row " + std::to_string(k) + " " + f.name + "\n";
+      std::vector<IO::TextFile> t = texts(k);
+      t.insert(t.end() - 1, IO::TextFile{kBase + ".rows.txt", (k == 1 ? "header\n" : "") + row, true});
+      return t;
+    });
+    expected += "row " + std::to_string(k) + " " + series.dataFileName(k) + "\n";
+    TEST_EQUALITY(seen.step, k);
+    TEST_EQUALITY(seen.time, times[k - 1]);
+    TEST_EQUALITY(seen.name, series.dataFileName(k));
+    checkSeries(dir, series, s.disc, times, k, *comm, out, success);
+    if (comm->getRank() == 0) {
+      TEST_EQUALITY(readFile(dir + "/run.rows.txt"), expected);
+      std::string error;
+      TEST_EQUALITY(IO::sha256OfFile(dir + "/" + seen.name, error), seen.sha256);
+      TEST_EQUALITY(error, "");
+      TEST_EQUALITY(seen.sha256.size(), 64u);
+    }
+  }
+  // A new run of the directory starts the grown file again.
+  IO::StepSeries again(s.dir, kBase, 2, comm);
+  again.writeStep(1, 1.0, s.disc, stepResult(s.disc, 1, *comm),
+                  std::vector<IO::TextFile>{{kBase + ".rows.txt", "header\nrow 1\n", true}, {kBase + ".json", "{}\n"}});
+  if (comm->getRank() == 0) TEST_EQUALITY(readFile(dir + "/run.rows.txt"), "header\nrow 1\n");
+}
+
+// The SHA-256 of a file is the standard one (FIPS 180-4's example "abc"),
+// and a file that cannot be read is named.
+TEUCHOS_UNIT_TEST(StepSeries, FileDigest) {
+  const auto comm = Tpetra::getDefaultComm();
+  Setup s(comm);
+  if (comm->getRank() != 0) return;
+  const std::string path = s.dir.path() + "/abc.txt";
+  writePlainFile(path, "abc");
+  std::string error;
+  TEST_EQUALITY(IO::sha256OfFile(path, error), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  TEST_EQUALITY(error, "");
+  TEST_EQUALITY(IO::sha256OfFile(path + ".missing", error), "");
+  TEST_ASSERT(contains(error, "abc.txt.missing"));
 }
