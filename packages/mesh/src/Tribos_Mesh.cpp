@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "Tribos_BodyShape.hpp"
 #include "Tribos_Error.hpp"
 #include "detail/Tribos_MeshFacets.hpp"
 
@@ -154,6 +155,8 @@ void requireUsableBox(const BoxSpec& spec, const std::string& what) {
         ids.push_back(i * nx + (nx + 1) * (j * ny + (ny + 1) * k * nz));
       }
   detail::requireUsableCoordinates(corners, ids, what);
+  const bool box = nx > 0 && ny > 0 && nz > 0 && spec.x[1] > spec.x[0] && spec.y[1] > spec.y[0] && spec.z[1] > spec.z[0];
+  if (box) requireSolvableBox(spec, what);
 }
 
 Mesh generateBox(const BoxSpec& spec) {
@@ -163,6 +166,13 @@ Mesh generateBox(const BoxSpec& spec) {
   TRIBOS_REQUIRE(spec.x[1] > spec.x[0] && spec.y[1] > spec.y[0] && spec.z[1] > spec.z[0],
                  "Mesh: box ranges must be increasing intervals");
   requireUsableBox(spec, "the box");
+  return detail::boxMesh(spec);
+}
+
+namespace detail {
+
+Mesh boxMesh(const BoxSpec& spec) {
+  const int nx = spec.cells[0], ny = spec.cells[1], nz = spec.cells[2];
   Mesh mesh;
   mesh.type = spec.type;
   auto nodeId = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
@@ -202,6 +212,8 @@ Mesh generateBox(const BoxSpec& spec) {
   collectBoundaryFaces(mesh, spec);
   return mesh;
 }
+
+}  // namespace detail
 
 std::array<int, 3> prismLevelCells(int L) {
   TRIBOS_REQUIRE(L >= 1, "the prism level must be >= 1, got " << L);

@@ -106,7 +106,9 @@ constexpr double kMinExtent = 1e-50;
 
 // Refuses a box (its ranges) whose coordinates are not usable as above,
 // naming `what` (e.g. the parameters that give the ranges) and the corner
-// node by its number in generateBox's numbering. generateBox checks it too.
+// node by its number in generateBox's numbering, and a box whose cells or
+// whole shape double precision cannot solve (Tribos_BodyShape.hpp).
+// generateBox checks it too.
 void requireUsableBox(const BoxSpec& spec, const std::string& what);
 
 }  // namespace Mesh

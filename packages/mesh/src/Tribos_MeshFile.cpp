@@ -1,5 +1,6 @@
 #include "Tribos_MeshFile.hpp"
 
+#include "Tribos_BodyShape.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_ExodusReader.hpp"
 #include "Tribos_GmshReader.hpp"
@@ -22,11 +23,14 @@ Mesh readMeshFile(const std::string& path, std::vector<std::string>* warnings, c
   // First, whatever the name: a FIFO or a device would block or never end.
   detail::requireRegularFile(path, "mesh file \"" + path + "\"");
   const std::string extension = detail::lowerExtension(path);
-  if (extension == ".msh" || extension == ".geo") return readGmsh(path, warnings, options);
-  if (extension == ".exo" || extension == ".e" || extension == ".ex2" || extension == ".g")
-    return readExodus(path, warnings, options);
-  throw Error("mesh file \"" + path + "\": unknown extension " + (extension.empty() ? "(none)" : "\"" + extension + "\"") +
-              "; Tribos reads Gmsh (.msh, .geo) and Exodus II (.exo, .e, .ex2, .g) files");
+  const bool gmsh = extension == ".msh" || extension == ".geo";
+  const bool exodus = extension == ".exo" || extension == ".e" || extension == ".ex2" || extension == ".g";
+  if (!gmsh && !exodus)
+    throw Error("mesh file \"" + path + "\": unknown extension " + (extension.empty() ? "(none)" : "\"" + extension + "\"") +
+                "; Tribos reads Gmsh (.msh, .geo) and Exodus II (.exo, .e, .ex2, .g) files");
+  Mesh mesh = gmsh ? readGmsh(path, warnings, options) : readExodus(path, warnings, options);
+  requireSolvableBodies(mesh, "mesh file \"" + path + "\"");
+  return mesh;
 }
 
 }  // namespace Mesh

@@ -2,16 +2,17 @@
 // along z, "lower" with nl^3 and "upper" with nu^3 structured cells, each
 // cell split into tetrahedra (no recombination), so the contact faces are
 // triangulations whose diagonals do not match. Faces named as in
-// two_blocks.geo.
+// two_blocks.geo. The upper block is tu thick (default 1), its mesh lines
+// graded by the progression qu (default 1: uniform).
 SetFactory("OpenCASCADE");
-DefineConstant[nl = 3, nu = 4];
+DefineConstant[nl = 3, nu = 4, tu = 1, qu = 1];
 Box(1) = {0, 0, 0, 1, 1, 1};
-Box(2) = {0, 0, 1, 1, 1, 1};
+Box(2) = {0, 0, 1, 1, 1, tu};
 n[] = {nl, nu};
 For v In {1 : 2}
   faces[] = Boundary{ Volume{v}; };
   edges[] = Unique(Abs(Boundary{ Surface{faces[]}; }));
-  Transfinite Curve{edges[]} = n[v - 1] + 1;
+  Transfinite Curve{edges[]} = n[v - 1] + 1 Using Progression (v == 2 ? qu : 1);
   Transfinite Surface{faces[]};
   Transfinite Volume{v};
 EndFor

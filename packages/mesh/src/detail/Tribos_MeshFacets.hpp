@@ -21,6 +21,9 @@ using Point = std::array<double, 3>;
 // Six times the signed volume of the tetrahedron (o, a, b, c).
 double triple(const Point& o, const Point& a, const Point& b, const Point& c);
 
+// The box of generateBox, unchecked.
+Mesh boxMesh(const BoxSpec& spec);
+
 // Local faces of the reference cells, counter-clockwise seen from outside.
 const std::vector<std::vector<int>>& cellFaces(CellType type);
 
