@@ -278,7 +278,7 @@ void requireDiskSpace(const IO::OutputDirectory& dir, const Teuchos::ParameterLi
     if (0.5 * needed > free) {
       std::ostringstream os;
       os.precision(3);
-      os << "the results of the " << steps << " steps of \"Load Steps/Times\" need about " << needed / 1e9
+      os << "the results of the " << static_cast<long long>(steps) << " steps of \"Load Steps/Times\" need about " << needed / 1e9
          << " GB (" << perStep / 1e6 << " MB a step, within a factor of two), and the file system of " << dir.path()
          << " has " << free / 1e9
          << " GB free; write fewer steps, a coarser mesh, or into another Output/Directory";
