@@ -5,12 +5,15 @@
 // 0's stderr unless --quiet) by holding a Progress::Session.
 //
 // Short runs stay silent: nothing is printed until the run has lasted
-// kDelay seconds. From then on the current stage is printed (by a ticker
-// thread if the stage itself says nothing, so that one long factorization
-// still shows), every later stage as it starts, and iteration lines at most
-// one per kInterval seconds; each line is flushed. The current stage is kept
-// even when nothing is printed, so that an out-of-memory failure can say
-// where it happened.
+// kDelay seconds. From then on the current stage is printed, every later
+// stage as it starts, and iteration lines at most one per kInterval
+// seconds; each line is flushed. A line a second is the promise: when the
+// work says nothing for kInterval seconds (one long factorization, a loop
+// that reports no iterations, a search over many facets), the ticker thread
+// prints the stage again with the time spent in it, so that a silent
+// terminal always means a stopped run. The current stage is kept even when
+// nothing is printed, so that an out-of-memory failure can say where it
+// happened.
 #pragma once
 
 #include <chrono>
@@ -37,6 +40,9 @@ class Progress {
       s.start = Clock::now();
       s.stop = false;
       s.stepPrefix.clear();
+      s.printedStage = false;
+      s.lastIteration = s.lastLine = -1e300;
+      s.stageStart = 0;
       if (out) ticker_ = std::thread(tick);
     }
     ~Session() {
@@ -69,6 +75,7 @@ class Progress {
     State& s = state();
     std::lock_guard<std::mutex> lock(s.mutex);
     s.stage = s.stepPrefix + what;
+    s.stageStart = elapsed(s);
     s.printedStage = false;
     flushStage(s);
   }
@@ -111,7 +118,7 @@ class Progress {
     std::string stage = "start-up";
     std::string stepPrefix;
     bool printedStage = false, stop = false;
-    double lastIteration = -1e300;
+    double lastIteration = -1e300, lastLine = -1e300, stageStart = 0;
   };
   static State& state() {
     static State s;
@@ -124,16 +131,27 @@ class Progress {
     s.printedStage = true;
     print(s, s.stage);
   }
-  static void print(const State& s, const std::string& line) {
+  static void print(State& s, const std::string& line) {
     char stamp[32];
-    std::snprintf(stamp, sizeof stamp, "[%7.1f s] ", elapsed(s));
+    s.lastLine = elapsed(s);
+    std::snprintf(stamp, sizeof stamp, "[%7.1f s] ", s.lastLine);
     *s.out << stamp << line << std::endl;
+  }
+  // The stage again when nothing was printed for kInterval seconds.
+  static void heartbeat(State& s) {
+    if (!s.out || !s.printedStage) return;
+    const double t = elapsed(s);
+    if (t - s.lastLine < kInterval) return;
+    char spent[48];
+    std::snprintf(spent, sizeof spent, " (%.0f s in this stage)", t - s.stageStart);
+    print(s, "  " + s.stage + spent);
   }
   static void tick() {
     State& s = state();
     std::unique_lock<std::mutex> lock(s.mutex);
     while (!s.stop) {
       flushStage(s);
+      heartbeat(s);
       s.wake.wait_for(lock, std::chrono::milliseconds(250));
     }
   }

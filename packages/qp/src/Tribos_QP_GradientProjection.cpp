@@ -8,6 +8,7 @@
 #include <Tpetra_Vector.hpp>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_Progress.hpp"
 
 namespace Tribos {
 namespace QP {
@@ -77,6 +78,10 @@ QPStatus GradientProjectionSolver::solve(const Operator& A, const Vector& b, con
   for (;;) {
     gP.update(1.0, phi, 1.0, beta, 0.0);
     st.norm_gP = gP.norm2();
+    Progress::iteration([&] {
+      return name_ + " " + std::to_string(st.iterations) + ": ||g^P|| " + Progress::sci(st.norm_gP) + ", tolerance " +
+             Progress::sci(tol) + ", n_A " + std::to_string(st.n_A);
+    });
     if (st.norm_gP <= tol) {
       st.converged = true;
       st.reason = "||g^P|| <= tolerance";

@@ -10,6 +10,7 @@
 #include <Tpetra_Vector.hpp>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_Progress.hpp"
 #include "Tribos_QP_AugmentedLagrangian.hpp"
 #include "Tribos_QP_Factory.hpp"
 
@@ -152,6 +153,11 @@ QPStatus SMALBE::solve(const Operator& A, const Vector& b, const ConstraintSet& 
     normGx = step.normGx;
     st.norm_Gx = normGx;
     st.outer_iterations = k + 1;
+    Progress::iteration([&] {
+      return "SMALBE outer " + std::to_string(k + 1) + ": ||g^P|| " + Progress::sci(st.norm_gP) + ", ||Gx|| " +
+             Progress::sci(normGx) + ", tolerance " + Progress::sci(tol) + ", inner iterations " +
+             std::to_string(st.iterations);
+    });
     if (output_.wants(Verbosity::Medium))
       out << "SMALBE outer " << std::setw(4) << k + 1 << " ||g^P|| " << std::scientific << std::setprecision(3)
           << st.norm_gP << " ||Gx|| " << normGx << " rho " << rho << " M " << M << " inner " << ist.iterations
