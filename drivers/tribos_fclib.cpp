@@ -7,6 +7,7 @@
 // problem, unusable output path: nothing solved, nothing written); 2 not
 // converged (the result check failed, e.g. ||F_nat||/||q|| above --tolerance;
 // the summary and the solution file are still written, and stop_reason says why).
+// Every exit other than 0 says why in one line on stderr.
 // The solve runs on rank 0 with a communicator of one rank (Amesos2 is not
 // usable on multi-rank communicators in this Trilinos build); other ranks wait.
 // A run longer than 2 s shows its stage and iterations on stderr (--quiet: not).
@@ -29,6 +30,7 @@
 #include "Tribos_OutputDirectory.hpp"
 #include "Tribos_ResultWriter.hpp"
 #include "Tribos_FCLIB_Solve.hpp"
+#include "Tribos_FrictionSolver.hpp"
 #include "Tribos_ParameterReader.hpp"
 #include "Tribos_Summary.hpp"
 #include "Tribos_Progress.hpp"
@@ -48,7 +50,7 @@ std::string usage() {
          "--quiet              no progress lines on stderr (shown for runs longer than 2 s: stage, iterations)\n"
          "--algorithm NAME     a friction algorithm that solves Coulomb problems: " + names + "\n"
          "                     (default Algorithm2)\n"
-         "--tolerance TOL      0 < TOL < 1: the result must reach ||F_nat|| / ||q|| <= TOL (the natural-map error\n"
+         "--tolerance TOL      1e-15 <= TOL < 1: the result must reach ||F_nat|| / ||q|| <= TOL (the natural-map error\n"
          "                     relative to q; Siconos divides it by max(||q||, ||r||, ||u||)); the algorithm\n"
          "                     is asked for TOL and, when its own stopping test is met first, again from its\n"
          "                     result with a tighter tolerance.\n"
@@ -110,6 +112,13 @@ Args parse(int argc, char** argv) {
       a.tolerance = parseDouble("--tolerance", next("--tolerance"));
       TRIBOS_REQUIRE(a.tolerance > 0 && a.tolerance < 1,
                      "--tolerance: " << a.tolerance << " is out of range, expected 0 < TOL < 1");
+      // Below it the round-off of the solve is larger than the error asked
+      // for: the tightened rounds end with a search direction whose
+      // curvature is lost in round-off, not with an answer.
+      TRIBOS_REQUIRE(a.tolerance >= Friction::kTightestTolerance,
+                     "--tolerance: " << a.tolerance << " is below " << Friction::kTightestTolerance
+                                     << ", the smallest natural-map error relative to ||q|| that a solve in double "
+                                        "precision can be asked for");
     } else if (s == "--max-iterations") a.maxIterations = parseInt("--max-iterations", next("--max-iterations"));
     else if (s == "--mass-solver") a.massSolver = next("--mass-solver");
     else if (s == "--write-solution") a.writeSolution = next("--write-solution");
@@ -190,6 +199,7 @@ struct Outcome {
   IO::Summary summary;                  // input, title, kind and sizes, then the solve
   std::optional<IO::Summary> stored;    // the comparison with the stored solution
   bool converged = false;
+  std::string stopReason;
   std::vector<std::string> notes;
 };
 
@@ -303,6 +313,7 @@ Outcome run(const Args& args, const RCP<const Comm>& self) {
   if (!note.empty()) out.summary.set("note", note);
   if (out.stored) out.summary.set("stored_solution", *out.stored);
   out.converged = rep.converged;
+  out.stopReason = rep.stopReason;
   return out;
 }
 
@@ -337,8 +348,12 @@ int main(int argc, char** argv) {
       if (!args.summary.empty()) IO::writeFileAtomically(args.summary, json);
       std::cout << json;
       status = outcome.converged ? kConverged : kNotConverged;
+      if (!outcome.converged) std::cerr << "tribos_fclib: not converged: " << outcome.stopReason << std::endl;
     } catch (const std::exception& e) {
       std::cerr << "tribos_fclib: error: " << e.what() << std::endl;
+      status = kError;
+    } catch (...) {
+      std::cerr << "tribos_fclib: error: an exception that is not a std::exception" << std::endl;
       status = kError;
     }
   }

@@ -113,6 +113,10 @@ def title_array(f):
     replace(f, "fclib_local/info/title", np.array([b"one", b"two"]))
 
 
+def zero_W(f):
+    replace(f, "fclib_local/W/x", np.zeros_like(f["fclib_local/W/x"][()]))
+
+
 def zero_contacts_local(f):
     replace(f, "fclib_local/vectors/mu", np.zeros(0))
     replace(f, "fclib_local/vectors/q", np.zeros(0))
@@ -287,13 +291,17 @@ def bad_inputs(args):
 
 
 def solve(args, name, path, status=0, extra=()):
-    """Runs a solve that must report (status 0 or 2): summary and solution written."""
+    """Runs a solve that must report (status 0 or 2): summary and solution
+    written; exit 2 says why on stderr, the summary's stop_reason."""
     summary, solution = outputs(args.work, name)
     rc, out, err = run([args.driver, path, "--summary", summary, "--write-solution", solution, *extra])
     check(rc == status, f"{name}: exit status", f"{rc}, expected {status}\n{err}")
     s = json.loads(out) if out.startswith("{") else {}
     check(os.path.exists(summary) and json.load(open(summary)) == s, f"{name}: summary file = stdout")
     check(s.get("converged") == (status == 0), f"{name}: converged", s.get("stop_reason"))
+    if status != 0:
+        said = "tribos_fclib: not converged: %s" % s.get("stop_reason")
+        check(s.get("stop_reason") and said in err, f"{name}: the reason on stderr", f"'{said}' not in:\n{err}")
     check(not leftovers(args.work), f"{name}: temporaries left", leftovers(args.work))
     return s, solution
 
@@ -371,7 +379,10 @@ def not_converged(args):
                    ("--xml", xml))
     check(s.get("solver_converged") is False and s.get("stop_reason"), "not converged: reason", s.get("stop_reason"))
     check_solution_sizes("not_converged", sol, 48)
-    print("not converged: exit 2, results written", flush=True)
+    # W = 0: u = q whatever r; q of the sample breaks Coulomb's law, so no r solves it.
+    s, _ = solve(args, "w_zero", copy_of(args.samples, args.work, LOCAL, "w_zero", zero_W), 2)
+    check(s.get("stop_reason", "").startswith("the "), "W = 0: reason", s.get("stop_reason"))
+    print("not converged: exit 2, the reason on stderr, results written", flush=True)
 
 
 def usage_and_paths(args):
@@ -471,6 +482,9 @@ def tolerance_and_algorithms(args):
         ("tolerance_text", ["--tolerance", "1e-8x"], "--tolerance: \"1e-8x\" is not a finite number"),
         ("tolerance_zero", ["--tolerance", "0"], "--tolerance: 0 is out of range, expected 0 < TOL < 1"),
         ("tolerance_one", ["--tolerance", "1"], "--tolerance: 1 is out of range"),
+        ("tolerance_below_round_off", ["--tolerance", "1e-300"],
+         "--tolerance: 1e-300 is below 1e-15, the smallest natural-map error relative to ||q|| that a solve in double "
+         "precision can be asked for"),
         ("tolerance_missing", ["--tolerance"], "--tolerance needs a value"),
         ("iterations_zero", ["--max-iterations", "0"], "--max-iterations: 0 is out of range"),
         ("iterations_fraction", ["--max-iterations", "2.5"], "--max-iterations: \"2.5\" is not an integer"),
