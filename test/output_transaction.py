@@ -8,6 +8,15 @@
       runs killed (SIGKILL) at many moments never leave a mixed set: a
       summary (the set's last file) always comes with the h5 and xmf of the
       same run; the next run removes the killed runs' temporaries.
+  output_transaction.py history-kill --work DIR -- MPIEXEC... TRIBOS
+      a load history of 400 steps killed (SIGKILL) at many moments, each
+      time continued by --restart, until it completes: after every kill the
+      directory holds a consistent set (the summary counts k steps; the
+      steps table has k complete rows, each naming a step file whose SHA-256
+      it records; the history has rows of steps 1..k); --restart always
+      accepts what a kill left; the completed series equals the
+      uninterrupted run's (every step's displacement to 1e-12, its index,
+      steps table rows and history rows one per step).
   output_transaction.py disk-full --np N --work DIR -- MPIEXEC... TRIBOS
       output on filesystems too small for the result (tmpfs of 256 kB, and of
       sizes around the result's, where the HDF5 file fits but its index or
@@ -185,6 +194,103 @@ def kill(mpi, tribos, work):
     print("ok: %d runs killed between %.1f and %.1f s, every state consistent" % (kills, 0.3 * duration, duration))
 
 
+HISTORY_STEPS = 400
+
+
+def history_command(mpi, tribos, out, extra=()):
+    times = "{" + ", ".join(repr((k + 1) / 100.0) for k in range(HISTORY_STEPS)) + "}"
+    linear = os.path.join(os.path.dirname(HERE), "input", "brick_linear.xml")
+    return [("2" if c == "NP" else c) for c in mpi] + [tribos, linear, "--output", out, "--quiet",
+                                                      "--set", "Mesh/Level=3", "--set", "Load Steps/Times=" + times] + list(extra)
+
+
+def check_history(out):
+    """The set a killed history leaves: returns the steps its summary counts."""
+    import hashlib
+    summary = os.path.join(out, "solution.json")
+    if not os.path.exists(summary):
+        return 0
+    with open(summary) as f:
+        s = json.load(f)
+    k = s["steps_completed"]
+    with open(os.path.join(out, s["steps_file"])) as f:
+        lines = f.read().split("\n")
+    if len(lines) - 1 < k:
+        fail("the summary counts %d steps, the steps table has %d complete rows" % (k, len(lines) - 1))
+    for i, line in enumerate(lines[:k], 1):
+        row = json.loads(line)
+        path = os.path.join(out, row["file"])
+        if row["step"] != i or not os.path.exists(path):
+            fail("row %d of the steps table: step %s, file %s" % (i, row["step"], row["file"]))
+        with open(path, "rb") as f:
+            if hashlib.sha256(f.read()).hexdigest() != row["sha256"]:
+                fail("step %d's file %s is not the one its row records" % (i, row["file"]))
+    with open(os.path.join(out, "solution.history.csv")) as f:
+        steps = {int(line.split(",")[6]) for line in f.read().splitlines()[1:] if line.count(",") == 6}
+    if not set(range(1, k + 1)) <= steps:
+        fail("the history lacks rows of steps %s" % sorted(set(range(1, k + 1)) - steps))
+    return k
+
+
+def history_kill(mpi, tribos, work):
+    import h5py
+    import numpy as np
+    reference, out = os.path.join(work, "reference"), os.path.join(work, "out")
+    t = time.time()
+    done = subprocess.run(history_command(mpi, tribos, reference), capture_output=True, text=True, timeout=600)
+    duration = time.time() - t
+    if done.returncode != 0:
+        fail("the uninterrupted history failed: " + done.stderr)
+    random.seed(2)
+    kills, restarts = 0, 0
+    for attempt in range(40):
+        k = check_history(out) if os.path.isdir(out) else 0
+        if k == HISTORY_STEPS:
+            break
+        extra = ["--restart", out] if k > 0 else []
+        restarts += 1 if k > 0 else 0
+        p = subprocess.Popen(history_command(mpi, tribos, out, extra), stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True, start_new_session=True)
+        # Within what is left of the run: a kill while a step is written,
+        # or solved, or the restart reads the step files.
+        left = (HISTORY_STEPS - k) / HISTORY_STEPS
+        time.sleep(duration * max(0.1, left * (0.2 + 0.5 * random.random())) if attempt < 8 else 0)
+        if attempt < 8 and p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+            kills += 1
+        _, err = p.communicate()
+        wait_until_gone(p.pid, out)
+        if p.returncode not in (0, -signal.SIGKILL, 128 + signal.SIGKILL, 137):
+            fail("a run of the history (after %d steps) ended with exit %d:\n%s" % (k, p.returncode, err))
+    if check_history(out) != HISTORY_STEPS:
+        fail("the history did not complete after %d kills" % kills)
+    if kills < 4:
+        fail("only %d runs were killed before they ended; make the history longer" % kills)
+    with open(os.path.join(out, "solution.steps.jsonl")) as f:
+        rows = [json.loads(line) for line in f]
+    with open(os.path.join(reference, "solution.steps.jsonl")) as f:
+        ref_rows = [json.loads(line) for line in f]
+    if [(r["step"], r["time"], r["file"]) for r in rows] != [(r["step"], r["time"], r["file"]) for r in ref_rows]:
+        fail("the steps table of the continued history is not the uninterrupted one's")
+    with open(os.path.join(out, "solution.history.csv")) as f:
+        steps = [int(line.split(",")[6]) for line in f.read().splitlines()[1:]]
+    if steps != list(range(1, HISTORY_STEPS + 1)):
+        fail("the history of the continued run is not one row a step in order")
+    index = xml.etree.ElementTree.parse(os.path.join(out, "solution.xmf")).getroot()
+    if len(index.find("Domain").find("Grid").findall("Grid")) != HISTORY_STEPS:
+        fail("the index of the continued history does not list its %d steps" % HISTORY_STEPS)
+    worst = 0.0
+    for r in rows:
+        with h5py.File(os.path.join(out, r["file"]), "r") as a, h5py.File(os.path.join(reference, r["file"]), "r") as b:
+            u, v = np.array(a["nodes/displacement"]), np.array(b["nodes/displacement"])
+            worst = max(worst, float(np.max(np.abs(u - v)) / max(float(np.max(np.abs(v))), 1e-300)))
+    if worst > 1e-12:
+        fail("the continued history differs from the uninterrupted one by %.1e" % worst)
+    print("the uninterrupted history: %.1f s" % duration)
+    print("ok: %d kills, %d restarts, every state consistent; the history equals the uninterrupted one (%.1e)"
+          % (kills, restarts, worst))
+
+
 def run_on_small_disk(mpi, tribos, np_, out, size_kb):
     """One run with its output on a tmpfs of size_kb; returns (exit, message)."""
     subprocess.run(["umount", out], capture_output=True)
@@ -254,7 +360,8 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     {"concurrent": lambda: concurrent(mpi, tribos, work), "kill": lambda: kill(mpi, tribos, work),
-     "disk-full": lambda: disk_full(mpi, tribos, work, np_)}[what]()
+     "disk-full": lambda: disk_full(mpi, tribos, work, np_),
+     "history-kill": lambda: history_kill(mpi, tribos, work)}[what]()
 
 
 if __name__ == "__main__":
