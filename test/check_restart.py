@@ -279,6 +279,8 @@ def refusals(args, np_, full, work):
                             ("step_3_doubled", doubled, 3)):
         variant(name, change, re.escape(step_file(os.path.join(work, name), k)) +
                 r" is not the file step %d wrote: its SHA-256 is [0-9a-f]{64}, .*steps\.jsonl records" % k)
+    variant("no_summary", lambda d: os.remove(os.path.join(d, BASE + ".json")),
+            r"there is no summary .*solution\.json: the run there completed no step \(run the input again without --restart\)")
     variant("last_step_file_missing", lambda d: os.remove(step_file(d, 3)),
             re.escape(step_file(os.path.join(work, "last_step_file_missing"), 3)) + " is missing")
     variant("first_step_file_missing", lambda d: os.remove(step_file(d, 1)),
