@@ -24,7 +24,6 @@ And the steps table grows by one complete row a step: after the 3 steps it
 has 3 rows, each naming its step file and that file's SHA-256.
 """
 import argparse
-import hashlib
 import json
 import os
 import re
@@ -32,32 +31,16 @@ import shutil
 import subprocess
 import sys
 
-failures = []
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import check_restart  # noqa: E402 (one way to run the driver and compare directories)
+from check_restart import check, failures, snapshot  # noqa: E402
+
+sha256 = check_restart.digest
 SETS = ["Mesh/Level=1", "Load Steps/Times={0.5, 1, 1.5}"]
 
 
-def check(ok, what):
-    print(("ok: " if ok else "FAILED: ") + what)
-    if not ok:
-        failures.append(what)
-    return ok
-
-
 def tribos(args, np_, extra, sets=SETS):
-    cmd = args.launcher[:2] + [str(np_)] + args.launcher[2:] + [args.input, "--quiet"] + extra
-    for s in sets:
-        cmd += ["--set", s]
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=600)
-
-
-def sha256(path):
-    with open(path, "rb") as f:
-        return hashlib.sha256(f.read()).hexdigest()
-
-
-def snapshot(d):
-    return {n: sha256(os.path.join(d, n)) for n in sorted(os.listdir(d))
-            if n != ".tribos.lock" and os.path.isfile(os.path.join(d, n))}
+    return check_restart.tribos(args, np_, extra, sets)
 
 
 def refusal(args, np_, name, d, regex, extra, sets=SETS):
