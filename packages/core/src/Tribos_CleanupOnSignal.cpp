@@ -17,9 +17,13 @@ constexpr int kSignals[3] = {SIGTERM, SIGINT, SIGHUP};
 // The write end of the live object's pipe, read by the handler (a
 // lock-free atomic: async-signal-safe).
 std::atomic<int> writeEnd{-1};
+std::atomic<CleanupOnSignal::Urgent> urgentWork{nullptr};
+std::atomic<const void*> urgentContext{nullptr};
 
 void onSignal(int sig) {
   const int saved = errno;
+  const CleanupOnSignal::Urgent urgent = urgentWork.exchange(nullptr);
+  if (urgent) urgent(urgentContext.load());
   const int fd = writeEnd.load();
   const unsigned char byte = static_cast<unsigned char>(sig);
   if (fd >= 0 && ::write(fd, &byte, 1) < 0) {
@@ -29,7 +33,8 @@ void onSignal(int sig) {
 
 }  // namespace
 
-CleanupOnSignal::CleanupOnSignal(std::function<void()> cleanup) : cleanup_(std::move(cleanup)) {
+CleanupOnSignal::CleanupOnSignal(std::function<void()> cleanup, Urgent urgent, const void* context)
+    : cleanup_(std::move(cleanup)) {
   TRIBOS_REQUIRE(::pipe2(pipe_, O_CLOEXEC) == 0, "cannot create a pipe for the signal handler: " << std::strerror(errno));
   int expected = -1;
   if (!writeEnd.compare_exchange_strong(expected, pipe_[1])) {
@@ -37,6 +42,8 @@ CleanupOnSignal::CleanupOnSignal(std::function<void()> cleanup) : cleanup_(std::
     ::close(pipe_[1]);
     throw Error("CleanupOnSignal: another one is alive in this process");
   }
+  urgentContext.store(context);
+  urgentWork.store(urgent);
   watcher_ = std::thread([this] { watch(); });
   for (int k = 0; k < 3; ++k) {
     if (::sigaction(kSignals[k], nullptr, &previous_[k]) != 0) continue;
@@ -56,6 +63,7 @@ CleanupOnSignal::~CleanupOnSignal() {
   }
   watcher_.join();
   restore();
+  urgentWork.store(nullptr);
   writeEnd.store(-1);
   ::close(pipe_[0]);
   ::close(pipe_[1]);

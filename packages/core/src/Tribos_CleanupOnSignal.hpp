@@ -8,8 +8,11 @@
 // cleanup, then ends the process as the signal would have without it (its
 // previous action restored and the signal raised again). The handler only
 // writes the signal's number to a pipe; a thread of the object's own reads
-// it and runs the cleanup, where any call is allowed. A signal the process
-// ignores (nohup) stays ignored. One object at a time per process.
+// it and runs the cleanup, where any call is allowed. What cannot wait for
+// that thread (mpirun kills the other ranks' processes as soon as one of
+// them has died of the signal) is `urgent`, run in the handler itself: it
+// may make async-signal-safe calls only. A signal the process ignores
+// (nohup) stays ignored. One object at a time per process.
 #pragma once
 
 #include <signal.h>
@@ -22,7 +25,8 @@ namespace Tribos {
 
 class CleanupOnSignal {
  public:
-  explicit CleanupOnSignal(std::function<void()> cleanup);
+  using Urgent = void (*)(const void* context);
+  explicit CleanupOnSignal(std::function<void()> cleanup, Urgent urgent = nullptr, const void* context = nullptr);
   ~CleanupOnSignal();
   CleanupOnSignal(const CleanupOnSignal&) = delete;
   CleanupOnSignal& operator=(const CleanupOnSignal&) = delete;

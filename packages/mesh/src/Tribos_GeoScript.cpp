@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -125,6 +126,25 @@ Ending waitFor(pid_t child, double seconds) {
   return ending;
 }
 
+// The files of `dir` and then `dir`, by system calls alone (a signal
+// handler's): Gmsh writes no subdirectory.
+void removeFlatDirectory(const char* dir) {
+  const int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    alignas(8) char buffer[4096];
+    for (long n; (n = syscall(SYS_getdents64, fd, buffer, sizeof buffer)) > 0;)
+      for (long at = 0; at < n;) {
+        const auto* entry = reinterpret_cast<const struct dirent64*>(buffer + at);
+        const char* name = entry->d_name;
+        const bool dots = name[0] == '.' && (name[1] == 0 || (name[1] == '.' && name[2] == 0));
+        if (!dots) unlinkat(fd, name, 0);
+        at += entry->d_reclen;
+      }
+    close(fd);
+  }
+  rmdir(dir);
+}
+
 // The end of Gmsh's log: at most its last 64 kB, in lines.
 std::vector<std::string> logTail(const std::string& log) {
   std::ifstream in(log, std::ios::binary);
@@ -232,11 +252,20 @@ GeoScriptMesh::GeoScriptMesh(const std::string& script, const std::string& file,
   TRIBOS_REQUIRE(mkdtemp(&pattern[0]), file << ": cannot create a temporary directory for Gmsh in "
                                             << std::filesystem::temp_directory_path() << ": " << std::strerror(errno));
   dir_ = pattern;  // mode 0700: the script's output is the run's alone
-  onSignal_ = std::make_unique<CleanupOnSignal>([this] {
+  onSignal_ = std::make_unique<CleanupOnSignal>(
+      [this] {
     const pid_t child = child_.load();
-    if (child > 0) kill(-child, SIGKILL);
+    if (child > 0) {
+      kill(-child, SIGKILL);
+      // Gone before its directory is emptied (it may still be writing);
+      // WNOWAIT leaves its status to waitFor.
+      siginfo_t info{};
+      while (waitid(P_PID, child, &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+      }
+    }
     removeDirectory();
-  });
+  },
+      stopAtOnce, this);
   msh_ = dir_ + "/mesh.msh";
   log_ = dir_ + "/gmsh.log";
   try {
@@ -275,6 +304,13 @@ GeoScriptMesh::GeoScriptMesh(const std::string& script, const std::string& file,
 GeoScriptMesh::~GeoScriptMesh() {
   onSignal_.reset();
   removeDirectory();
+}
+
+void GeoScriptMesh::stopAtOnce(const void* self) {
+  const auto* mesh = static_cast<const GeoScriptMesh*>(self);
+  const pid_t child = mesh->child_.load();
+  if (child > 0) kill(-child, SIGKILL);
+  removeFlatDirectory(mesh->dir_.c_str());
 }
 
 void GeoScriptMesh::removeDirectory() {

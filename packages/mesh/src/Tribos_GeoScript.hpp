@@ -56,6 +56,8 @@ class GeoScriptMesh {
 
  private:
   void removeDirectory();
+  // In the signal handler: the child's group killed, the directory removed.
+  static void stopAtOnce(const void* self);
   std::string dir_, msh_, log_;
   std::atomic<pid_t> child_{0};
   std::unique_ptr<CleanupOnSignal> onSignal_;

