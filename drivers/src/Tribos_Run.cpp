@@ -21,6 +21,7 @@
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_ArrayScan.hpp"
 #include "Tribos_Assembly.hpp"
+#include "Tribos_CleanupOnSignal.hpp"
 #include "Tribos_ConstraintRows.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_FetiContact.hpp"
@@ -31,6 +32,7 @@
 #include "Tribos_GmshReader.hpp"
 #include "Tribos_History.hpp"
 #include "Tribos_MeshBroadcast.hpp"
+#include "Tribos_GeoScript.hpp"
 #include "Tribos_Input.hpp"
 #include "Tribos_InputXml.hpp"
 #include "Tribos_MemoryEstimate.hpp"
@@ -378,6 +380,11 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
                         double maxMemory, const Comm& comm) {
   Mesh::Mesh mesh;
   std::vector<std::string> warnings;
+  // A stop signal reaches every rank: the others give rank 0 the time to end
+  // the Gmsh child of a .geo and remove its directory before mpirun, once a
+  // rank has died, kills rank 0 by SIGKILL.
+  std::optional<SignalGrace> grace;
+  if (comm.getRank() != 0 && Mesh::isGeoScript(Input::meshFile(params))) grace.emplace(Mesh::kGeoSignalGraceSeconds);
   checkOnEveryRank(comm, [&] {
     if (comm.getRank() == 0) {
       mesh = Input::mesh(params, &warnings, memoryLimit(maxMemory));

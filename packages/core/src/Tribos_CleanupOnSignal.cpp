@@ -96,4 +96,20 @@ void CleanupOnSignal::watch() {
   ::kill(::getpid(), sig);
 }
 
+SignalGrace::SignalGrace(double seconds) : grace_(seconds), onSignal_([this] { wait(); }) {}
+
+SignalGrace::~SignalGrace() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    over_ = true;
+  }
+  ended_.notify_all();
+}
+
+// In the watcher thread, after a signal: the process ends by it when this returns.
+void SignalGrace::wait() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  ended_.wait_for(lock, grace_, [this] { return over_; });
+}
+
 }  // namespace Tribos

@@ -18,7 +18,10 @@
 #include <signal.h>
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <functional>
+#include <mutex>
 #include <thread>
 
 namespace Tribos {
@@ -45,6 +48,31 @@ class CleanupOnSignal {
   struct sigaction previous_[3];
   bool installed_[3] = {false, false, false};
   std::thread watcher_;
+};
+
+// What a process does while another one cleans up: under mpirun, the
+// ranks get the same signal, and mpirun kills the whole job by SIGKILL as
+// soon as one rank has died; a rank that dies of the signal at once can so
+// cut short rank 0's cleanup (a Gmsh child and its directory). While a
+// SignalGrace lives, SIGTERM, SIGINT and SIGHUP end the process only when
+// the object ends or `seconds` after the signal, whichever comes first, and
+// then by the signal as before; rank 0's death, which makes mpirun end the
+// job, usually comes first. A CleanupOnSignal: not beside another one.
+class SignalGrace {
+ public:
+  explicit SignalGrace(double seconds);
+  ~SignalGrace();
+  SignalGrace(const SignalGrace&) = delete;
+  SignalGrace& operator=(const SignalGrace&) = delete;
+
+ private:
+  void wait();
+
+  std::chrono::duration<double> grace_;
+  std::mutex mutex_;
+  std::condition_variable ended_;
+  bool over_ = false;
+  CleanupOnSignal onSignal_;  // last: it ends first, while the above lives
 };
 
 }  // namespace Tribos

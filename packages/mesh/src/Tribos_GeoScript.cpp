@@ -1,6 +1,7 @@
 #include "Tribos_GeoScript.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -126,23 +128,103 @@ Ending waitFor(pid_t child, double seconds) {
   return ending;
 }
 
-// The files of `dir` and then `dir`, by system calls alone (a signal
-// handler's): Gmsh writes no subdirectory.
-void removeFlatDirectory(const char* dir) {
-  const int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd >= 0) {
-    alignas(8) char buffer[4096];
-    for (long n; (n = syscall(SYS_getdents64, fd, buffer, sizeof buffer)) > 0;)
-      for (long at = 0; at < n;) {
-        const auto* entry = reinterpret_cast<const struct dirent64*>(buffer + at);
-        const char* name = entry->d_name;
-        const bool dots = name[0] == '.' && (name[1] == 0 || (name[1] == '.' && name[2] == 0));
-        if (!dots) unlinkat(fd, name, 0);
-        at += entry->d_reclen;
+// Deeper than Gmsh writes (its HOME, the directory: .fltk/fltk.org/fltk.prefs).
+constexpr int kRemovalDepth = 8;
+
+// What the directory `fd` holds, subdirectories `depth` levels deep
+// included, by system calls alone (a signal handler's); closes `fd`.
+void removeContents(int fd, int depth) {
+  alignas(8) char buffer[2048];
+  for (long n; (n = syscall(SYS_getdents64, fd, buffer, sizeof buffer)) > 0;)
+    for (long at = 0; at < n;) {
+      const auto* entry = reinterpret_cast<const struct dirent64*>(buffer + at);
+      const char* name = entry->d_name;
+      const bool dots = name[0] == '.' && (name[1] == 0 || (name[1] == '.' && name[2] == 0));
+      if (!dots && unlinkat(fd, name, 0) != 0 && errno == EISDIR && depth > 0) {
+        const int sub = openat(fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        if (sub >= 0) removeContents(sub, depth - 1);
+        unlinkat(fd, name, AT_REMOVEDIR);
       }
-    close(fd);
-  }
+      at += entry->d_reclen;
+    }
+  close(fd);
+}
+
+// `dir` and everything in it, in a signal handler.
+void removeDirectoryAtOnce(const char* dir) {
+  const int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd >= 0) removeContents(fd, kRemovalDepth);
   rmdir(dir);
+}
+
+// The child's group killed, and the child gone: it writes no more into its
+// directory. Its status is left to waitFor (WNOWAIT).
+void stopChild(pid_t child) {
+  if (child <= 0) return;
+  kill(-child, SIGKILL);
+  siginfo_t info{};
+  while (waitid(P_PID, child, &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+  }
+}
+
+// Directories of a run are named "tribos-geo-HOST-PID-XXXXXX": a run killed
+// by SIGKILL (no handler runs) leaves its own, which the next run on that
+// host finds by the pid (kill(pid, 0): no such process) and by the lock the
+// live run holds on it (flock, released with the process; it also covers a
+// run whose pid this process cannot see).
+std::string directoryPrefix() {
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  std::string prefix = "tribos-geo-";
+  for (const char* c = host; *c && prefix.size() < 80; ++c)
+    prefix += std::isalnum(static_cast<unsigned char>(*c)) || *c == '.' || *c == '-' ? *c : '_';
+  return prefix + "-";
+}
+
+// The pid in `name`, a directory of this host's runs, or 0.
+pid_t ownerOf(const std::string& name, const std::string& prefix) {
+  if (name.compare(0, prefix.size(), prefix) != 0) return 0;
+  const std::string rest = name.substr(prefix.size());  // PID-XXXXXX (mkdtemp's letters and digits)
+  const size_t dash = rest.find('-');
+  if (dash == 0 || dash > 9 || dash == std::string::npos || rest.size() != dash + 7) return 0;
+  for (size_t i = 0; i < rest.size(); ++i)
+    if (i != dash && !(i < dash ? std::isdigit(static_cast<unsigned char>(rest[i]))
+                                : std::isalnum(static_cast<unsigned char>(rest[i]))))
+      return 0;
+  return static_cast<pid_t>(std::stol(rest.substr(0, dash)));
+}
+
+bool processExists(pid_t pid) { return kill(pid, 0) == 0 || errno == EPERM; }
+
+// A leftover of this host's runs in `tmp`: its owner gone, nobody holding its
+// lock, this user's own directory (not a link).
+bool isLeftover(const std::string& tmp, const std::string& name, const std::string& prefix) {
+  const pid_t owner = ownerOf(name, prefix);
+  if (owner <= 0 || processExists(owner)) return false;
+  const std::string path = tmp + "/" + name;
+  struct stat st {};
+  if (lstat(path.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != geteuid()) return false;
+  const int fd = open(path.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool unlocked = flock(fd, LOCK_EX | LOCK_NB) == 0;
+  close(fd);
+  return unlocked;
+}
+
+// Removes the leftovers of this host's runs in `tmp`; what cannot be read
+// or removed is left as it was.
+void sweepLeftovers(const std::string& tmp, const std::string& prefix) {
+  std::vector<std::string> names;
+  if (DIR* d = opendir(tmp.c_str())) {
+    while (const struct dirent* e = readdir(d))
+      if (std::strncmp(e->d_name, prefix.c_str(), prefix.size()) == 0) names.push_back(e->d_name);
+    closedir(d);
+  }
+  for (const auto& name : names)
+    if (isLeftover(tmp, name, prefix)) {
+      std::error_code ec;
+      std::filesystem::remove_all(tmp + "/" + name, ec);
+    }
 }
 
 // The end of Gmsh's log: at most its last 64 kB, in lines.
@@ -248,27 +330,16 @@ GeoScriptMesh::GeoScriptMesh(const std::string& script, const std::string& file,
   const std::string gmsh = gmshExecutable();
   TRIBOS_REQUIRE(!gmsh.empty(), file << ": the gmsh program, which meshes .geo scripts, is not installed (Debian: "
                                         "apt-get install gmsh); or give a .msh file");
-  std::string pattern = (std::filesystem::temp_directory_path() / "tribos-geo-XXXXXX").string();
-  TRIBOS_REQUIRE(mkdtemp(&pattern[0]), file << ": cannot create a temporary directory for Gmsh in "
-                                            << std::filesystem::temp_directory_path() << ": " << std::strerror(errno));
-  dir_ = pattern;  // mode 0700: the script's output is the run's alone
-  onSignal_ = std::make_unique<CleanupOnSignal>(
-      [this] {
-    const pid_t child = child_.load();
-    if (child > 0) {
-      kill(-child, SIGKILL);
-      // Gone before its directory is emptied (it may still be writing);
-      // WNOWAIT leaves its status to waitFor.
-      siginfo_t info{};
-      while (waitid(P_PID, child, &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
-      }
-    }
-    removeDirectory();
-  },
-      stopAtOnce, this);
+  makeDirectory(file);
   msh_ = dir_ + "/mesh.msh";
   log_ = dir_ + "/gmsh.log";
   try {
+    onSignal_ = std::make_unique<CleanupOnSignal>(
+        [this] {
+          stopChild(child_.load());
+          removeDirectory();
+        },
+        stopAtOnce, this);
     // (a relative name as ./NAME: a script named "-3" is not an option)
     const std::string scriptArg = script.rfind('/', 0) == 0 ? script : "./" + script;
     setup.args = {gmsh, scriptArg, "-3", "-format", "msh41", "-o", msh_, "-nt", "1", "-v", "4", "-nopopup"};
@@ -297,6 +368,7 @@ GeoScriptMesh::GeoScriptMesh(const std::string& script, const std::string& file,
   } catch (...) {
     onSignal_.reset();
     removeDirectory();
+    close(lock_);
     throw;
   }
 }
@@ -304,13 +376,33 @@ GeoScriptMesh::GeoScriptMesh(const std::string& script, const std::string& file,
 GeoScriptMesh::~GeoScriptMesh() {
   onSignal_.reset();
   removeDirectory();
+  close(lock_);
+}
+
+// The leftovers of killed runs removed first, then this run's directory
+// made and locked.
+void GeoScriptMesh::makeDirectory(const std::string& file) {
+  const std::string tmp = std::filesystem::temp_directory_path().string();
+  const std::string prefix = directoryPrefix();
+  sweepLeftovers(tmp, prefix);
+  std::string pattern = tmp + "/" + prefix + std::to_string(getpid()) + "-XXXXXX";
+  TRIBOS_REQUIRE(mkdtemp(&pattern[0]),
+                 file << ": cannot create a temporary directory for Gmsh in " << tmp << ": " << std::strerror(errno));
+  dir_ = pattern;  // mode 0700: the script's output is the run's alone
+  lock_ = open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (lock_ < 0 || flock(lock_, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    if (lock_ >= 0) close(lock_);
+    lock_ = -1;
+    rmdir(dir_.c_str());
+    throw Error(file + ": cannot lock the temporary directory " + dir_ + " for Gmsh: " + std::strerror(error));
+  }
 }
 
 void GeoScriptMesh::stopAtOnce(const void* self) {
   const auto* mesh = static_cast<const GeoScriptMesh*>(self);
-  const pid_t child = mesh->child_.load();
-  if (child > 0) kill(-child, SIGKILL);
-  removeFlatDirectory(mesh->dir_.c_str());
+  stopChild(mesh->child_.load());
+  removeDirectoryAtOnce(mesh->dir_.c_str());
 }
 
 void GeoScriptMesh::removeDirectory() {

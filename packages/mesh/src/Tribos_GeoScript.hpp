@@ -18,6 +18,12 @@ namespace Tribos {
 class CleanupOnSignal;
 namespace Mesh {
 
+// How long the ranks that do not mesh wait, after a stop signal, for the
+// one that meshes to end Gmsh and remove its directory (SignalGrace,
+// Tribos_CleanupOnSignal.hpp): far more than that takes, and a run told to
+// end still ends within seconds.
+constexpr double kGeoSignalGraceSeconds = 5;
+
 // The gmsh executable that meshes .geo scripts: the one found when Tribos
 // was configured, else the first `gmsh` on PATH; "" when there is none.
 std::string gmshExecutable();
@@ -36,7 +42,10 @@ std::string gmshExecutable();
 // SIGTERM, SIGINT or SIGHUP of the run, while the object lives, kill the
 // child's process group and remove the directory before the signal ends
 // the run (CleanupOnSignal): neither outlives a run stopped by mpirun or
-// Ctrl-C.
+// Ctrl-C. The directory, TMPDIR/tribos-geo-HOST-PID-XXXXXX, is locked
+// (flock) while the object lives; one that a run killed by SIGKILL left
+// (its PID gone, its lock free) is removed by the next object made on
+// that host. The child dies with the run (PR_SET_PDEATHSIG).
 //
 // Throws Tribos::Error naming `file` (how messages call the script) and the
 // way it ended: the time limit (Mesh/Geo Time Limit), the memory limit
@@ -55,11 +64,13 @@ class GeoScriptMesh {
   const std::string& directory() const { return dir_; }
 
  private:
+  void makeDirectory(const std::string& file);
   void removeDirectory();
   // In the signal handler: the child's group killed, the directory removed.
   static void stopAtOnce(const void* self);
   std::string dir_, msh_, log_;
   std::atomic<pid_t> child_{0};
+  int lock_ = -1;  // the directory, open and locked: the run that made it lives
   std::unique_ptr<CleanupOnSignal> onSignal_;
 };
 
