@@ -6,7 +6,8 @@
 // Exit status: 0 converged; 1 bad input or error (usage, unreadable or invalid
 // problem, unusable output path: nothing solved, nothing written); 2 not
 // converged (the result check failed, e.g. ||F_nat||/||q|| above --tolerance;
-// the summary and the solution file are still written, and stop_reason says why).
+// the summary and the solution file are still written, and stop_reason says why);
+// 3 run failure: what was printed on stdout (the summary) could not be written.
 // Every exit other than 0 says why in one line on stderr.
 // The solve runs on rank 0 with a communicator of one rank (Amesos2 is not
 // usable on multi-rank communicators in this Trilinos build); other ranks wait.
@@ -15,7 +16,10 @@
 #include <Tpetra_Core.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -64,10 +68,20 @@ std::string usage() {
          "KKT residuals within Result Check Factor (default 100) times the requested tolerance, and with\n"
          "--tolerance ||F_nat|| / ||q|| <= TOL.\n"
          "exit status: 0 converged; 1 bad input or error (nothing written); 2 not converged (the result check\n"
-         "failed; results written, stop_reason says why).\n";
+         "failed; results written, stop_reason says why); 3 run failure: stdout could not be written.\n";
 }
 
-enum ExitStatus { kConverged = 0, kError = 1, kNotConverged = 2 };
+enum ExitStatus { kConverged = 0, kError = 1, kNotConverged = 2, kRunFailure = 3 };
+
+// `text` printed on stdout and flushed: "" when it and all printed there
+// before was written, else why not (a full disk, a file-size limit): output
+// lost is never exit 0.
+std::string printOnStdout(const std::string& text) {
+  errno = 0;  // the failing write's reason, whichever call makes it
+  std::cout << text << std::flush;
+  if (std::cout && std::fflush(stdout) == 0 && !std::ferror(stdout)) return "";
+  return errno != 0 ? std::strerror(errno) : "a write error";
+}
 
 struct Args {
   std::string input, xml, summary, algorithm, massSolver = FCLIB::kAutoMassSolver, writeSolution;
@@ -330,8 +344,10 @@ bool helpRequested(int argc, char** argv) {
 int main(int argc, char** argv) {
   Tribos::prepareProcess();  // before MPI_Init and any BLAS call
   if (helpRequested(argc, argv)) {
-    std::cout << usage();
-    return kConverged;
+    const std::string lost = printOnStdout(usage());
+    if (lost.empty()) return kConverged;
+    std::cerr << "tribos_fclib: run failed: cannot write the usage on stdout: " << lost << std::endl;
+    return kRunFailure;
   }
   Tpetra::ScopeGuard guard(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
@@ -346,9 +362,12 @@ int main(int argc, char** argv) {
       const Outcome outcome = run(args, self);
       const std::string json = outcome.summary.toJson() + "\n";
       if (!args.summary.empty()) IO::writeFileAtomically(args.summary, json);
-      std::cout << json;
-      status = outcome.converged ? kConverged : kNotConverged;
+      const std::string lost = printOnStdout(json);
+      status = !lost.empty() ? kRunFailure : outcome.converged ? kConverged : kNotConverged;
       if (!outcome.converged) std::cerr << "tribos_fclib: not converged: " << outcome.stopReason << std::endl;
+      if (!lost.empty())
+        std::cerr << "tribos_fclib: run failed: cannot write the summary on stdout: " << lost
+                  << (args.summary.empty() ? "" : " (it is in " + args.summary + ")") << std::endl;
     } catch (const std::exception& e) {
       std::cerr << "tribos_fclib: error: " << e.what() << std::endl;
       status = kError;

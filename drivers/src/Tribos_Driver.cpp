@@ -5,7 +5,10 @@
 
 #include <mpi.h>
 
+#include <cerrno>
 #include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <new>
 
@@ -44,6 +47,28 @@ const char* kUsage =
     "            3 run failure: output, memory or numerical breakdown (no result written)\n";
 
 enum Exit { kConverged = 0, kBadInput = 1, kNotConverged = 2, kRunFailure = 3 };
+
+// `text` printed on stdout by rank 0 and flushed, collective: "" when it and
+// all printed there before was written, else why not on every rank (a full
+// disk, a file-size limit): output lost is a failed run, never exit 0.
+std::string printOnStdout(const Comm& comm, const std::string& text) {
+  std::string why;
+  if (comm.getRank() == 0) {
+    errno = 0;  // the failing write's reason, whichever call makes it
+    std::cout << text << std::flush;
+    if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout))
+      why = errno != 0 ? std::strerror(errno) : "a write error";
+  }
+  return agreeOnError(comm, why);
+}
+
+// The exit of a run whose only output is `text` on stdout (--help, --print-parameters).
+int printed(const Comm& comm, const std::string& text, const char* what) {
+  const std::string lost = printOnStdout(comm, text);
+  if (lost.empty()) return kConverged;
+  if (comm.getRank() == 0) std::cerr << "tribos: run failed: cannot write " << what << " on stdout: " << lost << std::endl;
+  return kRunFailure;
+}
 
 struct Args {
   std::string input;
@@ -126,14 +151,23 @@ int runAndReport(const Args& args, const Teuchos::ParameterList& params, const R
     if (args.options.verbose)
       Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout, false, true, true, Teuchos::Union);
     const std::string json = result.summary.toJson() + "\n";
-    if (root) std::cout << json << std::flush;
+    const std::string lost = printOnStdout(*comm, json);
     if (!args.options.summaryFile.empty()) {
       try {
         IO::writeFileAtomically(args.options.summaryFile, json, comm);
       } catch (const RunFailure& e) {
-        if (root) std::cerr << "tribos: run failed: " << e.what() << " (the summary is on stdout)" << std::endl;
+        if (root)
+          std::cerr << "tribos: run failed: " << e.what() << (lost.empty() ? " (the summary is on stdout)" : "")
+                    << std::endl;
         return kRunFailure;
       }
+    }
+    if (!lost.empty()) {
+      if (root)
+        std::cerr << "tribos: run failed: cannot write the summary on stdout: " << lost
+                  << (args.options.summaryFile.empty() ? "" : " (it is in " + args.options.summaryFile + ")")
+                  << (result.written ? "; the result is written" : "") << std::endl;
+      return kRunFailure;
     }
     if (!result.converged) {
       if (root)
@@ -198,14 +232,12 @@ int runDriver(const std::vector<std::string>& argv, const RCP<const Comm>& comm)
     return kBadInput;
   }
   if (args.help) {
-    if (root) std::cout << kUsage;
-    return kConverged;
+    return printed(*comm, kUsage, "the usage");
   }
   if (args.printParameters) {
     // The effective list the run would use, as a file it accepts again; no
     // rank check, no output directory: no work at all.
-    if (root) std::cout << Input::toXml(*params) << std::flush;
-    return kConverged;
+    return printed(*comm, root ? Input::toXml(*params) : "", "the parameters");
   }
   // A file-size limit (ulimit -f) makes writes fail with EFBIG, reported
   // like a full disk, instead of killing the process. Not before: an output

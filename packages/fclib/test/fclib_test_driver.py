@@ -9,8 +9,8 @@ requires: exit status 1, the message fragment naming the dataset on stderr,
 nothing on stdout (the solve prints there first, so no solve happened), no
 summary, no solution file and no temporary left. The other cases check exit
 status 0 (valid and degenerate problems, --help), 2 (not converged, results
-still written) and 1 (usage and output path errors). Exits 1 if any check
-fails.
+still written), 1 (usage and output path errors) and 3 (stdout on /dev/full:
+the summary could not be printed). Exits 1 if any check fails.
 """
 import argparse
 import glob
@@ -425,6 +425,26 @@ def usage_and_paths(args):
     print(f"{len(cases) + 1} usage and output path cases", flush=True)
 
 
+def stdout_full(args):
+    """stdout on /dev/full (every write fails with ENOSPC): the summary lost
+    is exit 3 with the reason on stderr, never 0; --summary still holds it.
+    The same for --help."""
+    good = copy_of(args.samples, args.work, LOCAL, "stdout_full")
+    summary = os.path.join(args.work, "stdout_full.json")
+    with open("/dev/full", "w") as full:
+        p = subprocess.run([args.driver, good, "--quiet", "--summary", summary], stdout=full, stderr=subprocess.PIPE,
+                           text=True, preexec_fn=limit_memory)
+        said = "tribos_fclib: run failed: cannot write the summary on stdout: No space left on device (it is in %s)" \
+            % summary
+        check(p.returncode == 3 and said in p.stderr, "stdout full: exit 3 and the reason", f"{p.returncode}\n{p.stderr}")
+        check(os.path.exists(summary) and json.load(open(summary)).get("converged") is True,
+              "stdout full: the summary file written")
+        p = subprocess.run([args.driver, "--help"], stdout=full, stderr=subprocess.PIPE, text=True)
+        check(p.returncode == 3 and "cannot write the usage on stdout: No space left on device" in p.stderr,
+              "stdout full: --help exits 3 with the reason", f"{p.returncode}\n{p.stderr}")
+    print("stdout full: exit 3, the reason on stderr", flush=True)
+
+
 def parallel(args):
     if not args.mpiexec:
         return
@@ -521,6 +541,7 @@ def main():
         good_inputs(args)
         not_converged(args)
         usage_and_paths(args)
+        stdout_full(args)
         parallel(args)
     if failures:
         print(f"fclib_test_driver: {len(failures)} check(s) failed")
