@@ -44,7 +44,11 @@ def main():
         if p.returncode != 0:
             sys.exit("bench_history_output: the run failed (exit %d): %s" % (p.returncode, p.stderr[-2000:]))
         s = tribos_summary.load(os.path.join(out, "solution.json"))
-        mtime = [os.path.getmtime(os.path.join(out, r["file"])) for r in s["steps"]]
+        # A summary without the steps' file names (before the steps table)
+        # names them by the series' rule: 4 digits, more when N needs them.
+        width = max(4, len(str(n)))
+        files = [r.get("file", "solution.step%0*d.h5" % (width, r["step"])) for r in s["steps"]]
+        mtime = [os.path.getmtime(os.path.join(out, f)) for f in files]
         span = min(100, n - 1)
         first, last = mtime[span] - mtime[0], mtime[-1] - mtime[-1 - span]
         size = sum(os.path.getsize(os.path.join(out, f)) for f in os.listdir(out))
