@@ -972,11 +972,14 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     report.stepsCompleted = first;
   }
   double setupSeconds = meshSeconds, solveSeconds = 0;
+  // The loads and their curves, read once: a step costs the same whatever
+  // the length of the history and of its curves.
+  const Fem::LoadHistory loadHistory = Input::loadHistory(params);
   for (int k = first; k < numSteps; ++k) {
     Progress::setStep(k + 1, numSteps);
     // The input's loads as they are at t = 1 without Load Steps; a history
     // scales them by their curves.
-    const Fem::LoadCase loads = numSteps == 1 && times[0] == 1.0 ? d.loads : Input::loadCaseAt(params, times[k]);
+    const Fem::LoadCase loads = numSteps == 1 && times[0] == 1.0 ? d.loads : Fem::loadCaseAt(loadHistory, times[k]);
     StepSolution sol = method->solve(d, loads, report);
     checkStep(params, options, d, loads, sol, comm, report);
     for (IO::HistoryRow row : sol.history.rows) {
