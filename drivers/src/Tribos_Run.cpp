@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <limits>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -192,15 +191,6 @@ std::vector<IO::RunFile> runFiles(const Teuchos::ParameterList& params, const Ru
   return files;
 }
 
-// The step number of a data file name of Base Name `base` (BASE.step<digits>.h5),
-// 0 for BASE.h5 and -1 for a name that is not one.
-long long seriesStepOf(const std::string& base, const std::string& name) {
-  if (!IO::StepSeries::isDataFileName(base, name)) return -1;
-  if (name == base + ".h5") return 0;
-  const std::string digits = name.substr(base.size() + 5, name.size() - base.size() - 8);
-  return digits.size() > 12 ? std::numeric_limits<long long>::max() : std::stoll(digits);
-}
-
 // --summary and --export-fclib must not name a data file of the result
 // series, links and ".." seen through: a step file the run writes, or one of
 // its Base Name that the run's first step removes (BASE.h5 and every
@@ -218,7 +208,7 @@ void requireOutsideSeries(const Teuchos::ParameterList& params, const RunOptions
       std::error_code ec;
       const auto resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
       if (ec || !sameFile(resolved.parent_path().string(), dir)) continue;
-      const long long step = seriesStepOf(base, resolved.filename().string());
+      const long long step = IO::StepSeries::stepOfDataFileName(base, resolved.filename().string());
       if (step < 0) continue;
       const std::string series = dir + "/" + base + ".json";
       error = role + " " + path + " is " +
@@ -249,10 +239,10 @@ void requireNoNameClash(const IO::OutputDirectory& dir, const std::string& base,
       const std::string other = name.substr(0, name.size() - suffix.size());
       if (other == base) continue;
       const std::string mine = dir.path() + "/" + base, theirs = dir.path() + "/" + other;
-      if (seriesStepOf(other, base + ".h5") > 0)
+      if (IO::StepSeries::stepOfDataFileName(other, base + ".h5") > 0)
         error = "Output/Base Name = " + base + ": the directory holds the result " + theirs + ".json, whose load step file " +
                 mine + ".h5 would be this run's data file; choose another Base Name or Output/Directory";
-      else if (seriesStepOf(base, other + ".h5") > 0)
+      else if (IO::StepSeries::stepOfDataFileName(base, other + ".h5") > 0)
         error = "Output/Base Name = " + base + ": the directory holds the result " + theirs + ".json, whose data file " +
                 theirs + ".h5 has the name of a load step file of " + mine +
                 " (the run would remove or overwrite it); choose another Base Name or Output/Directory";

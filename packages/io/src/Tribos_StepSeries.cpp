@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "Tribos_Error.hpp"
@@ -46,15 +47,27 @@ std::string StepSeries::dataFileName(const std::string& base, int numSteps, int 
 
 std::string StepSeries::indexFileName() const { return base_ + ".xmf"; }
 
-bool StepSeries::isDataFileName(const std::string& base, const std::string& name) {
-  if (name == base + ".h5") return true;
+long long StepSeries::stepOfDataFileName(const std::string& base, const std::string& name) {
+  if (name == base + ".h5") return 0;
   const std::string head = base + ".step", tail = ".h5";
   if (name.size() <= head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
       name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
-    return false;
-  for (size_t i = head.size(); i < name.size() - tail.size(); ++i)
-    if (name[i] < '0' || name[i] > '9') return false;
-  return true;
+    return -1;
+  const std::string digits = name.substr(head.size(), name.size() - head.size() - tail.size());
+  if (digits.find_first_not_of("0123456789") != std::string::npos) return -1;
+  // More digits than a step count has: a step beyond every series.
+  return digits.size() > 12 ? std::numeric_limits<long long>::max() : std::stoll(digits);
+}
+
+bool StepSeries::isDataFileName(const std::string& base, const std::string& name) {
+  return stepOfDataFileName(base, name) >= 0;
+}
+
+// The refusals this rank found, agreed on by every rank (the lowest failing
+// rank speaks) and thrown as one CollectiveError: "<action> the results DIR/BASE: ...".
+void StepSeries::refuseIfAny(const std::string& action, const std::string& refusals) const {
+  const std::string error = agreeOnError(*comm_, refusals);
+  if (!error.empty()) throw CollectiveError(action + " the results " + dir_.path() + "/" + base_ + ": " + error);
 }
 
 // Every refusal before anything is written, the same on every rank: the
@@ -77,10 +90,7 @@ void StepSeries::check(int step, double time, const StepResult& result) const {
     for (const auto& a : result.attributes.numbers)
       if (a.first == "step" || a.first == "time") say("the attribute " + a.first + " is the series' own");
   }
-  const std::string error = agreeOnError(*comm_, e.str());
-  if (!error.empty())
-    throw CollectiveError("cannot write step " + std::to_string(step) + " of the results " + dir_.path() + "/" + base_ +
-                          ": " + error);
+  refuseIfAny("cannot write step " + std::to_string(step) + " of", e.str());
 }
 
 void StepSeries::checkTexts(int step, const std::vector<TextFile>& texts) const {
@@ -102,10 +112,7 @@ void StepSeries::checkTexts(int step, const std::vector<TextFile>& texts) const 
         if (texts[j].name == t.name) say("the text file " + t.name + " is given twice");
     }
   }
-  const std::string error = agreeOnError(*comm_, e.str());
-  if (!error.empty())
-    throw CollectiveError("cannot write step " + std::to_string(step) + " of the results " + dir_.path() + "/" + base_ +
-                          ": " + error);
+  refuseIfAny("cannot write step " + std::to_string(step) + " of", e.str());
 }
 
 // Rank 0 reads the written file back; every rank gets its digest.
@@ -202,9 +209,7 @@ void StepSeries::continueAfter(const std::vector<double>& times) {
     for (size_t k = 0; k < times.size(); ++k)
       if (!std::isfinite(times[k]) || (k > 0 && !(times[k] > times[k - 1])))
         say("the time " + exactly(times[k]) + " of step " + std::to_string(k + 1) + " is not finite or not increasing");
-  const std::string error = agreeOnError(*comm_, e.str());
-  if (!error.empty())
-    throw CollectiveError("cannot continue the results " + dir_.path() + "/" + base_ + ": " + error);
+  refuseIfAny("cannot continue", e.str());
   continuedTimes_ = times;
   written_ = static_cast<int>(times.size());
   lastTime_ = times.back();

@@ -119,6 +119,9 @@ class StepSeries {
   // BASE.h5 (one step) or BASE.stepNNNN.h5.
   static std::string dataFileName(const std::string& base, int numSteps, int step);
   static bool isDataFileName(const std::string& base, const std::string& fileName);
+  // The step whose data file fileName is (0 for BASE.h5), -1 for a name that
+  // is no data file of Base Name `base`.
+  static long long stepOfDataFileName(const std::string& base, const std::string& fileName);
 
   int numSteps() const { return numSteps_; }
   // The steps committed so far.
@@ -127,6 +130,7 @@ class StepSeries {
  private:
   void check(int step, double time, const StepResult& result) const;
   void checkTexts(int step, const std::vector<TextFile>& texts) const;
+  void refuseIfAny(const std::string& action, const std::string& refusals) const;
   std::string digestOf(const std::string& path) const;
   void addIndex(ResultSet& files, int step, const SeriesStep& s);
 

@@ -105,18 +105,6 @@ class JsonScanner {
     atEnd();
     return out;
   }
-  // The elements of the array the text is, as their texts.
-  std::vector<std::string> elements() {
-    std::vector<std::string> out;
-    expect('[');
-    if (!take(']')) {
-      do out.push_back(valueText());
-      while (take(','));
-      expect(']');
-    }
-    atEnd();
-    return out;
-  }
 
  private:
   [[noreturn]] void fail(const std::string& what) const {
@@ -204,12 +192,6 @@ std::string Summary::json(const std::string& key) const {
   for (const auto& e : entries_)
     if (e.first == key) return e.second;
   return "";
-}
-
-std::vector<Summary> Summary::objectsOf(const std::string& json) {
-  std::vector<Summary> out;
-  for (const auto& element : JsonScanner(json).elements()) out.push_back(fromJson(element));
-  return out;
 }
 
 std::string Summary::toJson(int indent) const {

@@ -34,9 +34,6 @@ class Summary {
   static Summary fromJson(const std::string& json);
   // The JSON text of a member's value, "" when there is no such member.
   std::string json(const std::string& key) const;
-  // The elements of the JSON array text `json`, each an object read as
-  // fromJson reads it. Throws Tribos::Error as fromJson.
-  static std::vector<Summary> objectsOf(const std::string& json);
 
  private:
   void put(const std::string& key, std::string json);
