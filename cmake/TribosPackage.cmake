@@ -49,7 +49,7 @@ set(TRIBOS_PUBLIC_HEADERS
   # feti and contact: the embedding API (Tribos.hpp includes it all)
   Tribos.hpp Tribos_FetiProblem.hpp Tribos_ConstraintRows.hpp Tribos_ContactConstraint.hpp Tribos_ContactSearch.hpp
   Tribos_FetiContact.hpp Tribos_FetiSolve.hpp Tribos_ResultKKT.hpp Tribos_TpetraSubdomain.hpp
-  Tribos_ContactConditions.hpp Tribos_ContactSolver.hpp
+  Tribos_ContactConditions.hpp Tribos_ContactSolver.hpp Tribos_AssembledContact.hpp Tribos_SolveResult.hpp
   # semismooth, io, fclib, driver
   Tribos_SemismoothStarNewton.hpp Tribos_ResultSet.hpp Tribos_ResultWriter.hpp Tribos_ParameterReader.hpp
   Tribos_FCLIB.hpp Tribos_FCLIB_SparseMatrix.hpp Tribos_FCLIB_Accuracy.hpp Tribos_FCLIB_Solve.hpp

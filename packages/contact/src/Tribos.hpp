@@ -20,6 +20,7 @@
 // included by name with their targets.
 #pragma once
 
+#include "Tribos_AssembledContact.hpp"
 #include "Tribos_Assembly.hpp"
 #include "Tribos_ConstraintRows.hpp"
 #include "Tribos_ContactConditions.hpp"

@@ -259,6 +259,10 @@ FetiLoadSteps::FetiLoadSteps(const RCP<Feti::FetiProblem>& problem, const PairFr
 
 FetiSolveResult FetiLoadSteps::solve(const Fem::LoadCase& loads) {
   problem_->setLoads(loads);
+  return solveNext();
+}
+
+FetiSolveResult FetiLoadSteps::solveNext() {
   Continuation from;
   if (!primal_.is_null()) {
     // Friction acts on the slip since the previous step: the tangential

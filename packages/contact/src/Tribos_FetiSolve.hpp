@@ -76,7 +76,7 @@ inline FetiSolveResult solveFeti(const RCP<const Feti::FetiProblem>& problem, co
   return solveFeti(problem, PairFriction{friction}, params, out);
 }
 
-// A FETI problem of a decomposed mesh solved at a sequence of loads, a
+// A FETI problem solved at a sequence of loads, a
 // quasi-static load history (docs/load_history.md): K, its factors, B, F's
 // operator and the coarse space are built once and serve every step; each
 // step starts from the previous step's multipliers, and its friction acts
@@ -90,6 +90,10 @@ class FetiLoadSteps {
   // The next step at loads (FetiProblem::setLoads). The first step is the
   // static solve of solveFeti. Collective.
   FetiSolveResult solve(const Fem::LoadCase& loads);
+  // The next step at the loads the problem now has (an application's,
+  // FetiProblem::setRightHandSides); the first is the static solve.
+  // Collective.
+  FetiSolveResult solveNext();
   // A history continued from a step solved elsewhere (an earlier run's last
   // complete step, read back from its result): the next solve acts on the
   // slip since uPrevious, a nodal displacement on problem->nodalLayout().

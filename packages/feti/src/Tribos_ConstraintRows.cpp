@@ -65,11 +65,114 @@ std::map<int, Mesh::NodeCopy> contactPartners(const Mesh::Discretization& disc,
   return partners;
 }
 
+void nodeRows(int node, const std::vector<Mesh::NodeCopy>& cp, const std::map<long long, double>& bc,
+              const std::string& gluing, bool eliminateDirichlet, const std::function<void(const DualRow&)>& emit) {
+  auto copyOf = [](const Mesh::NodeCopy& c, double weight) { return RowCopy{c.subdomain, c.localNode, weight}; };
+  const int k = static_cast<int>(cp.size());
+  const bool orthonormal = gluing == "Orthonormal", full = gluing == "Full";
+  for (int c = 0; c < 3; ++c) {
+    DualRow r{DualRow::Gluing};
+    r.node = node;
+    r.dir[c] = 1.0;
+    auto dirichlet = bc.find(3LL * node + c);
+    if (dirichlet != bc.end() && eliminateDirichlet) continue;  // eliminated in every copy
+    if (dirichlet != bc.end()) {
+      // Orthonormal: u = value on every copy (k orthonormal rows, no gluing
+      // needed); otherwise on the first copy, the copies being glued.
+      r.kind = DualRow::Dirichlet;
+      r.c = dirichlet->second;
+      for (int i = 0; i < (orthonormal ? k : 1); ++i) {
+        r.copies = {copyOf(cp[i], 1.0)};
+        emit(r);
+      }
+      if (orthonormal) continue;
+      r.kind = DualRow::Gluing;
+      r.c = 0.0;
+    }
+    if (orthonormal) {
+      // Helmert rows: an orthonormal basis of {w in R^k : sum w = 0}.
+      for (int j = 1; j < k; ++j) {
+        const double s = 1.0 / std::sqrt(static_cast<double>(j) * (j + 1));
+        r.copies.clear();
+        for (int i = 0; i < j; ++i) r.copies.push_back(copyOf(cp[i], s));
+        r.copies.push_back(copyOf(cp[j], -j * s));
+        emit(r);
+      }
+      continue;
+    }
+    for (int i = 0; i + 1 < k; ++i)
+      for (int j = i + 1; j < (full ? k : i + 2); ++j) {
+        r.copies = {copyOf(cp[i], 1.0), copyOf(cp[j], -1.0)};
+        emit(r);
+      }
+  }
+}
+
+void contactRows(const ContactConstraint& cc, const std::function<Mesh::NodeCopy(int)>& firstCopy,
+                 const std::map<long long, double>& bc, const std::array<double, 3>& x, bool eliminateDirichlet,
+                 std::vector<DualRow>& rows) {
+  auto copyOf = [](const Mesh::NodeCopy& c, double weight) { return RowCopy{c.subdomain, c.localNode, weight}; };
+  // A direction is left out when Dirichlet conditions fix it at the slave
+  // node and at every master node (then the row would repeat theirs). A
+  // Dirichlet condition on the normal takes the node out of the contact
+  // set. A friction direction goes with a Dirichlet condition on it at the
+  // slave node alone (a symmetry plane through the contact surface, where
+  // the friction across the plane vanishes): the node cannot move along
+  // it, and a mortar row, whose master weights reach off the plane, would
+  // otherwise tie a weighted mean of the free masters' motion across the
+  // plane with a multiplier that nothing determines well (the
+  // Cattaneo-Mindlin half model with mortar: 1387 iterations of
+  // Algorithm 2 for its first load step, 25 Newton steps without it).
+  auto fixedAt = [&](int node, const std::array<double, 3>& dir) {
+    std::array<bool, 3> fixed{};
+    for (int c = 0; c < 3; ++c) fixed[c] = bc.count(3LL * node + c) > 0;
+    return fixedDirection(dir, fixed, node);
+  };
+  auto fixedAtAll = [&](const std::array<double, 3>& dir) {
+    if (!fixedAt(cc.node, dir)) return false;
+    for (const auto& m : cc.master)
+      if (!fixedAt(m.first, dir)) return false;
+    return true;
+  };
+  // Out of the contact set (below) only if the values keep it out.
+  if (!cc.glued) Fem::requireNoPrescribedPenetration(bc, cc.node, x, cc.normal, cc.gap, cc.master);
+  if (!cc.glued && fixedAtAll(cc.normal)) return;
+  DualRow r{cc.glued ? DualRow::Bonded : DualRow::Normal};
+  r.node = cc.node;
+  r.copies = {copyOf(firstCopy(cc.node), 1.0)};
+  for (const auto& [node, weight] : cc.master) r.copies.push_back(copyOf(firstCopy(node), -weight));
+  const std::array<double, 3>* dirs[3] = {&cc.normal, &cc.t1, &cc.t2};
+  const DualRow::Kind kinds[3] = {DualRow::Normal, DualRow::Tangent1, DualRow::Tangent2};
+  std::vector<int> copyNodes{cc.node};
+  for (const auto& m : cc.master) copyNodes.push_back(m.first);
+  for (int j = 0; j < 3; ++j) {
+    if (cc.glued ? fixedAtAll(*dirs[j]) : j > 0 && fixedAt(cc.node, *dirs[j])) continue;
+    DualRow row = r;
+    row.kind = cc.glued ? DualRow::Bonded : kinds[j];
+    row.dir = *dirs[j];
+    row.c = j == 0 && !cc.glued ? cc.gap : 0.0;
+    // FETI-1 has eliminated the Dirichlet dofs from the subdomains, so the
+    // row must not act on them (K+ would move them by B'lambda): a copy
+    // whose node has the direction fixed (wholly, by fixedDirection) takes
+    // weight 0 and its known part, weight * dir . ubar, moves to c.
+    for (size_t k = 0; eliminateDirichlet && k < row.copies.size(); ++k) {
+      if (!fixedAt(copyNodes[k], row.dir)) continue;
+      double known = 0;
+      for (int c = 0; c < 3; ++c) {
+        const auto it = bc.find(3LL * copyNodes[k] + c);
+        if (it != bc.end()) known += row.dir[c] * it->second;
+      }
+      row.c -= row.copies[k].weight * known;
+      row.copies[k].weight = 0.0;
+    }
+    rows.push_back(row);
+  }
+}
+
 std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const std::map<long long, double>& bc,
                                         const std::vector<ContactConstraint>& contact, const std::string& gluing,
                                         bool eliminateDirichlet, const std::map<int, Mesh::NodeCopy>& partners) {
   const Mesh::Mesh& mesh = disc.part;  // the rank's part
-  auto copyOf = [](const Mesh::NodeCopy& c, double weight) { return RowCopy{c.subdomain, c.localNode, weight}; };
   // The first copy of a mesh node: from the part, or a contact partner's.
   auto firstCopy = [&](int meshNode) {
     const int n = disc.partNode(meshNode);
@@ -81,112 +184,16 @@ std::vector<DualRow> meshConstraintRows(const Mesh::Discretization& disc, const 
   };
   // A row belongs to the rank of its first copy's subdomain; only this
   // rank's rows are kept (the dual numbering is made from the counts).
-  auto mine = [&](int subdomain) { return disc.layout.owner(subdomain) == disc.myRank; };
   std::vector<DualRow> rows;
   auto emit = [&](const DualRow& r) {
-    if (mine(r.copies.front().subdomain)) rows.push_back(r);
+    if (disc.layout.owner(r.copies.front().subdomain) == disc.myRank) rows.push_back(r);
   };
-  const bool orthonormal = gluing == "Orthonormal", full = gluing == "Full";
-  for (int n = 0; n < mesh.numNodes(); ++n) {
-    const std::vector<Mesh::NodeCopy> cp = disc.copies(n);
-    const int k = static_cast<int>(cp.size());
-    const int node = disc.meshNode(n);
-    for (int c = 0; c < 3; ++c) {
-      DualRow r{DualRow::Gluing};
-      r.node = node;
-      r.dir[c] = 1.0;
-      auto dirichlet = bc.find(3LL * node + c);
-      if (dirichlet != bc.end() && eliminateDirichlet) continue;  // eliminated in every copy
-      if (dirichlet != bc.end()) {
-        // Orthonormal: u = value on every copy (k orthonormal rows, no gluing
-        // needed); otherwise on the first copy, the copies being glued.
-        r.kind = DualRow::Dirichlet;
-        r.c = dirichlet->second;
-        for (int i = 0; i < (orthonormal ? k : 1); ++i) {
-          r.copies = {copyOf(cp[i], 1.0)};
-          emit(r);
-        }
-        if (orthonormal) continue;
-        r.kind = DualRow::Gluing;
-        r.c = 0.0;
-      }
-      if (orthonormal) {
-        // Helmert rows: an orthonormal basis of {w in R^k : sum w = 0}.
-        for (int j = 1; j < k; ++j) {
-          const double s = 1.0 / std::sqrt(static_cast<double>(j) * (j + 1));
-          r.copies.clear();
-          for (int i = 0; i < j; ++i) r.copies.push_back(copyOf(cp[i], s));
-          r.copies.push_back(copyOf(cp[j], -j * s));
-          emit(r);
-        }
-        continue;
-      }
-      for (int i = 0; i + 1 < k; ++i)
-        for (int j = i + 1; j < (full ? k : i + 2); ++j) {
-          r.copies = {copyOf(cp[i], 1.0), copyOf(cp[j], -1.0)};
-          emit(r);
-        }
-    }
-  }
+  for (int n = 0; n < mesh.numNodes(); ++n) nodeRows(disc.meshNode(n), disc.copies(n), bc, gluing, eliminateDirichlet, emit);
   for (const ContactConstraint& cc : contact) {
     // The rows of a contact node start at its first copy.
     const int slave = disc.partNode(cc.node);
     if (slave < 0 || disc.nodeOwner()[slave] != disc.myRank) continue;
-    // A direction is left out when Dirichlet conditions fix it at the slave
-    // node and at every master node (then the row would repeat theirs). A
-    // Dirichlet condition on the normal takes the node out of the contact
-    // set. A friction direction goes with a Dirichlet condition on it at the
-    // slave node alone (a symmetry plane through the contact surface, where
-    // the friction across the plane vanishes): the node cannot move along
-    // it, and a mortar row, whose master weights reach off the plane, would
-    // otherwise tie a weighted mean of the free masters' motion across the
-    // plane with a multiplier that nothing determines well (the
-    // Cattaneo-Mindlin half model with mortar: 1387 iterations of
-    // Algorithm 2 for its first load step, 25 Newton steps without it).
-    auto fixedAt = [&](int node, const std::array<double, 3>& dir) {
-      std::array<bool, 3> fixed{};
-      for (int c = 0; c < 3; ++c) fixed[c] = bc.count(3LL * node + c) > 0;
-      return fixedDirection(dir, fixed, node);
-    };
-    auto fixedAtAll = [&](const std::array<double, 3>& dir) {
-      if (!fixedAt(cc.node, dir)) return false;
-      for (const auto& m : cc.master)
-        if (!fixedAt(m.first, dir)) return false;
-      return true;
-    };
-    // Out of the contact set (below) only if the values keep it out.
-    if (!cc.glued) Fem::requireNoPrescribedPenetration(bc, cc.node, mesh.coords[slave], cc.normal, cc.gap, cc.master);
-    if (!cc.glued && fixedAtAll(cc.normal)) continue;
-    DualRow r{cc.glued ? DualRow::Bonded : DualRow::Normal};
-    r.node = cc.node;
-    r.copies = {copyOf(firstCopy(cc.node), 1.0)};
-    for (const auto& [node, weight] : cc.master) r.copies.push_back(copyOf(firstCopy(node), -weight));
-    const std::array<double, 3>* dirs[3] = {&cc.normal, &cc.t1, &cc.t2};
-    const DualRow::Kind kinds[3] = {DualRow::Normal, DualRow::Tangent1, DualRow::Tangent2};
-    std::vector<int> copyNodes{cc.node};
-    for (const auto& m : cc.master) copyNodes.push_back(m.first);
-    for (int j = 0; j < 3; ++j) {
-      if (cc.glued ? fixedAtAll(*dirs[j]) : j > 0 && fixedAt(cc.node, *dirs[j])) continue;
-      DualRow row = r;
-      row.kind = cc.glued ? DualRow::Bonded : kinds[j];
-      row.dir = *dirs[j];
-      row.c = j == 0 && !cc.glued ? cc.gap : 0.0;
-      // FETI-1 has eliminated the Dirichlet dofs from the subdomains, so the
-      // row must not act on them (K+ would move them by B'lambda): a copy
-      // whose node has the direction fixed (wholly, by fixedDirection) takes
-      // weight 0 and its known part, weight * dir . ubar, moves to c.
-      for (size_t k = 0; eliminateDirichlet && k < row.copies.size(); ++k) {
-        if (!fixedAt(copyNodes[k], row.dir)) continue;
-        double known = 0;
-        for (int c = 0; c < 3; ++c) {
-          const auto it = bc.find(3LL * copyNodes[k] + c);
-          if (it != bc.end()) known += row.dir[c] * it->second;
-        }
-        row.c -= row.copies[k].weight * known;
-        row.copies[k].weight = 0.0;
-      }
-      rows.push_back(row);
-    }
+    contactRows(cc, firstCopy, bc, mesh.coords[slave], eliminateDirichlet, rows);
   }
   return rows;
 }

@@ -69,6 +69,20 @@ struct DualConstraints {
   LocalContact contact;
 };
 
+// The gluing and Dirichlet rows of one node (global number `node`) from its
+// copies (ascending subdomains), as meshConstraintRows makes them: each row
+// goes to emit (the caller keeps the rows of its own rank).
+void nodeRows(int node, const std::vector<Mesh::NodeCopy>& copies, const std::map<long long, double>& dirichlet,
+              const std::string& gluing, bool eliminateDirichlet, const std::function<void(const DualRow&)>& emit);
+// The rows of one contact constraint, appended to rows, as meshConstraintRows
+// makes them: on the first copies (firstCopy(node)) of its slave and master
+// nodes, leaving out the directions Dirichlet conditions fix. x: the slave
+// node's position (for messages). Throws Tribos::Error naming the node for
+// Dirichlet values that push it through its partner or fix an oblique mix
+// of its directions.
+void contactRows(const ContactConstraint& constraint, const std::function<Mesh::NodeCopy(int)>& firstCopy,
+                 const std::map<long long, double>& dirichlet, const std::array<double, 3>& x, bool eliminateDirichlet,
+                 std::vector<DualRow>& rows);
 // This rank's rows of a decomposed mesh (those whose first copy is on one
 // of its subdomains; in the order of the node numbers): gluing of the subdomain copies of every node
 // ("Orthonormal", "Non-redundant" or "Full"), the Dirichlet conditions

@@ -447,6 +447,35 @@ void FetiProblem::setLoads(const Fem::LoadCase& loads) {
   for (auto& [dof, value] : dirichlet_) value = values.at(dof);
 }
 
+void FetiProblem::setRightHandSides(const std::vector<std::vector<double>>& subdomainLoads,
+                                    const std::map<long long, double>& dirichletValues) {
+  TRIBOS_REQUIRE(!feti1_, "FetiProblem::setRightHandSides: FETI-1 eliminated the Dirichlet values in its subdomains");
+  TRIBOS_REQUIRE(subdomainLoads.size() == systems_.size(), "FetiProblem::setRightHandSides: "
+                                                               << subdomainLoads.size() << " loads for "
+                                                               << systems_.size() << " subdomains on rank "
+                                                               << comm_->getRank());
+  auto fv = f_->getDataNonConst();
+  size_t k = 0;
+  for (size_t s = 0; s < systems_.size(); ++s) {
+    TRIBOS_REQUIRE(static_cast<int>(subdomainLoads[s].size()) == systems_[s].numDofs(),
+                   "FetiProblem::setRightHandSides: subdomain " << systems_[s].id << " has " << systems_[s].numDofs()
+                                                                << " dofs, its load " << subdomainLoads[s].size());
+    systems_[s].f = subdomainLoads[s];
+    for (double v : systems_[s].f) fv[k++] = v;
+  }
+  // The same dofs as the rows fix, at other values.
+  auto valueOf = [&](long long dof) {
+    const auto it = dirichletValues.find(dof);
+    TRIBOS_REQUIRE(it != dirichletValues.end(), "FetiProblem::setRightHandSides: no value for the Dirichlet dof "
+                                                    << dof << " (node " << dof / 3 << ", component " << dof % 3
+                                                    << "); the conditions fix the same dofs at every load");
+    return it->second;
+  };
+  auto cv = constraints_.c->getDataNonConst();
+  for (const auto& [row, dof] : dirichletRows_) cv[row] = valueOf(dof);
+  for (auto& [dof, value] : dirichlet_) value = valueOf(dof);
+}
+
 void FetiProblem::setTangentialOffset(const Vector& previousPrimal) {
   Vector Bu(dualMap());
   B()->apply(previousPrimal, Bu);
@@ -491,7 +520,7 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
   if (!disc_) checkOnEveryRank(*comm_, [&] { checkRows(fc.rows, primalOffsets_, fc); });
   distributeRows(fc.rows, numbering.owner);
   keepOwnRows(fc, *comm_);
-  if (disc_) dirichletRows_ = dirichletRowsOf(fc.rows, comm_->getRank());
+  dirichletRows_ = dirichletRowsOf(fc.rows, comm_->getRank());
   constraints_ = assembleConstraints(fc.rows, primalMap_, primalOffsets_, fc.contact);
   contactConstraints_ = std::move(fc.contact);
   nodalLayout_ = makeNodalLayout();

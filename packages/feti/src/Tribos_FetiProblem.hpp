@@ -162,6 +162,13 @@ class FetiProblem {
   // Throws Error for a problem without a mesh or in FETI-1 (whose
   // subdomains eliminated the Dirichlet values). Collective.
   void setLoads(const Fem::LoadCase& loads);
+  // Any problem (TFETI) at other loads: subdomainLoads[k] the load f of
+  // local subdomain k (3 per local node), dirichletValues the prescribed
+  // value of every Dirichlet dof the problem's rows fix (global dof
+  // 3 node + c; at least those of this rank's rows and nodes). K, its
+  // factors and B stay. Throws Error for a missing value or a wrong size.
+  void setRightHandSides(const std::vector<std::vector<double>>& subdomainLoads,
+                         const std::map<long long, double>& dirichletValues);
   // c on the tangential contact rows: (B u)_T of a previous primal
   // displacement u, so that friction acts on the slip since u (B_T u = c_T
   // is stick); a zero u restores the static problem.

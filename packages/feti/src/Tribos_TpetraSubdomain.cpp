@@ -80,27 +80,6 @@ LocalCsr probe(const Operator& K, int n) {
   return compress(std::move(entries));
 }
 
-// FETI's K+ and the Cholesky factorization assume K = K'.
-void requireSymmetric(const LocalCsr& K, const std::string& name) {
-  const double tolerance = 1e-10 * K.maxAbsDiagonal();
-  Entries transposed(K.rows);
-  for (int i = 0; i < K.rows; ++i)
-    for (int k = K.rowptr[i]; k < K.rowptr[i + 1]; ++k) transposed[K.col[k]].push_back({i, K.val[k]});
-  const LocalCsr Kt = compress(std::move(transposed));
-  for (int i = 0; i < K.rows; ++i) {
-    // Both rows are sorted by column: walk them together.
-    int a = K.rowptr[i], b = Kt.rowptr[i];
-    while (a < K.rowptr[i + 1] || b < Kt.rowptr[i + 1]) {
-      const int ca = a < K.rowptr[i + 1] ? K.col[a] : K.cols, cb = b < Kt.rowptr[i + 1] ? Kt.col[b] : K.cols;
-      const int j = std::min(ca, cb);
-      const double kij = ca == j ? K.val[a++] : 0.0, kji = cb == j ? Kt.val[b++] : 0.0;
-      TRIBOS_REQUIRE(std::abs(kij - kji) <= tolerance,
-                     name << ": K is not symmetric: K(" << i << ", " << j << ") = " << kij << " but K(" << j << ", "
-                          << i << ") = " << kji);
-    }
-  }
-}
-
 void requireOnMap(const MultiVector& v, const Map& map, const std::string& what, const std::string& name) {
   TRIBOS_REQUIRE(v.getMap()->isSameAs(map), name << ": " << what << " has " << v.getMap()->getNodeNumElements()
                                                  << " local rows on a map that is not K's domain map; build it on "
@@ -145,6 +124,26 @@ std::vector<double> modes(const MultiVector& R, const Map& map, const std::strin
 }
 
 }  // namespace
+
+void requireSymmetric(const LocalCsr& K, const std::string& name) {
+  const double tolerance = 1e-10 * K.maxAbsDiagonal();
+  Entries transposed(K.rows);
+  for (int i = 0; i < K.rows; ++i)
+    for (int k = K.rowptr[i]; k < K.rowptr[i + 1]; ++k) transposed[K.col[k]].push_back({i, K.val[k]});
+  const LocalCsr Kt = compress(std::move(transposed));
+  for (int i = 0; i < K.rows; ++i) {
+    // Both rows are sorted by column: walk them together.
+    int a = K.rowptr[i], b = Kt.rowptr[i];
+    while (a < K.rowptr[i + 1] || b < Kt.rowptr[i + 1]) {
+      const int ca = a < K.rowptr[i + 1] ? K.col[a] : K.cols, cb = b < Kt.rowptr[i + 1] ? Kt.col[b] : K.cols;
+      const int j = std::min(ca, cb);
+      const double kij = ca == j ? K.val[a++] : 0.0, kji = cb == j ? Kt.val[b++] : 0.0;
+      TRIBOS_REQUIRE(std::abs(kij - kji) <= tolerance,
+                     name << ": K is not symmetric: K(" << i << ", " << j << ") = " << kij << " but K(" << j << ", "
+                          << i << ") = " << kji);
+    }
+  }
+}
 
 Fem::SubdomainSystem subdomainSystem(const TpetraSubdomain& s) {
   const std::string name = "TpetraSubdomain " + std::to_string(s.id);

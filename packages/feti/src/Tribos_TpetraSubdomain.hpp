@@ -28,6 +28,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 
+#include <string>
 #include <vector>
 
 #include "Tribos_Assembly.hpp"
@@ -53,6 +54,10 @@ struct TpetraSubdomain {
   RCP<const MultiVector> R;
 };
 
+// FETI's K+ and the Cholesky factorization assume K = K': throws
+// Tribos::Error naming `name` and the first pair of entries that differ by
+// more than 1e-10 max |K_ii|.
+void requireSymmetric(const LocalCsr& K, const std::string& name);
 // The subdomain as FetiProblem takes it. Throws Tribos::Error naming the
 // subdomain and the parameter: K null, not on one process, of the wrong
 // size, maps that differ, a RowMatrix not fill-complete or with a column
