@@ -117,6 +117,25 @@ struct Pieces {
 
 }  // namespace
 
+// A message with "node <k>" in a numbering of Tribos' own, with the
+// application's node ids instead (names[k]).
+static std::string withApplicationNodes(const std::string& message, const std::map<int, GO>& names) {
+  // "node <id>" -> "node <application id>"
+  std::string out;
+  size_t at = 0;
+  const std::string word = "node ";
+  for (size_t k = message.find(word); k != std::string::npos; k = message.find(word, at)) {
+    size_t end = k + word.size();
+    while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end]))) ++end;
+    out += message.substr(at, k + word.size() - at);
+    at = end;
+    if (end == k + word.size()) continue;
+    const auto it = names.find(std::stoi(message.substr(k + word.size(), end - k - word.size())));
+    out += it != names.end() ? std::to_string(it->second) : message.substr(k + word.size(), end - k - word.size());
+  }
+  return out + message.substr(at);
+}
+
 class AssembledFeti {
  public:
   AssembledFeti(const ContactProblem& p, const Teuchos::ParameterList& fetiParams, const RCP<const Comm>& comm);
@@ -129,6 +148,11 @@ class AssembledFeti {
   RCP<Vector> displacement(const Fem::NodalVector& u) const;
   RCP<Vector> reaction(const Fem::NodalVector& u) const;
   RCP<MultiVector> contactState(const Contact::ContactNodeResults& c) const;
+
+  // A message of Tribos' own numbering, with the application's node ids.
+  std::string withApplicationNodes(const std::string& message) const {
+    return Assembled::withApplicationNodes(message, application_);
+  }
 
   RCP<Feti::FetiProblem> problem;
   RCP<const Map> nodeMap;  // the owned nodes, application ids
@@ -154,6 +178,9 @@ class AssembledFeti {
   int rowNode(GO node) const;  // index in rowNodes_, -1 when absent
   void numberNodes(const ContactProblem& p);
   std::vector<Fem::SubdomainSystem> subdomains(const ContactProblem& p);
+  // FETI's K+ and the Cholesky factorization assume K = K' on every rank's
+  // rows; throws naming the two entries (application dofs) that differ.
+  void requireSymmetric(std::vector<std::vector<std::pair<int, double>>>& entries) const;
   void buildDirectory();
   std::map<long long, double> distributeDirichlet(const std::vector<std::pair<GO, double>>& dofValues);
   std::vector<std::vector<double>> subdomainLoads(const RCP<const Vector>& f) const;
@@ -238,6 +265,32 @@ std::vector<Fem::Point> AssembledFeti::rowCoordinates(const MultiVector& X) cons
   return out;
 }
 
+void AssembledFeti::requireSymmetric(std::vector<std::vector<std::pair<int, double>>>& entries) const {
+  double largest = 0;
+  for (size_t a = 0; a < entries.size(); ++a) {
+    std::sort(entries[a].begin(), entries[a].end());
+    for (const auto& [b, v] : entries[a])
+      if (b == static_cast<int>(a)) largest = std::max(largest, std::abs(v));
+  }
+  auto dof = [&](int a) { return 3 * rowNodes_[a / 3] + a % 3; };
+  // Entries of one row may repeat a column (summed, as Tpetra sums them).
+  auto value = [&](int a, int b) {
+    double sum = 0;
+    auto it = std::lower_bound(entries[a].begin(), entries[a].end(), std::make_pair(b, -HUGE_VAL));
+    for (; it != entries[a].end() && it->first == b; ++it) sum += it->second;
+    return sum;
+  };
+  for (size_t a = 0; a < entries.size(); ++a)
+    for (const auto& e : entries[a]) {
+      const int b = e.first;
+      const double kab = value(static_cast<int>(a), b), kba = value(b, static_cast<int>(a));
+      TRIBOS_REQUIRE(std::abs(kab - kba) <= 1e-10 * largest,
+                     "Assembled::ContactProblem: K is not symmetric on rank "
+                         << rank_ << ": K(" << dof(static_cast<int>(a)) << ", " << dof(b) << ") = " << kab << " but K("
+                         << dof(b) << ", " << dof(static_cast<int>(a)) << ") = " << kba);
+    }
+}
+
 // The rank's rows of K cut into its connected pieces, each a subdomain in
 // the ids of its nodes.
 std::vector<Fem::SubdomainSystem> AssembledFeti::subdomains(const ContactProblem& p) {
@@ -277,6 +330,7 @@ std::vector<Fem::SubdomainSystem> AssembledFeti::subdomains(const ContactProblem
       used[a / 3] = used[b / 3] = 1;
     }
   }
+  requireSymmetric(entries);
   // Pieces in the order of their smallest node id; nodes by ascending id.
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -321,8 +375,6 @@ std::vector<Fem::SubdomainSystem> AssembledFeti::subdomains(const ContactProblem
         }
         sys.K.rowptr.push_back(static_cast<int>(sys.K.col.size()));
       }
-    Feti::requireSymmetric(sys.K, "Assembled::ContactProblem: rank " + std::to_string(rank_) + "'s piece " +
-                                      std::to_string(s) + " of K");
     sys.f.assign(sys.numDofs(), 0.0);
     systems.push_back(std::move(sys));
   }
@@ -527,7 +579,17 @@ std::vector<Feti::ContactConstraint> AssembledFeti::contactConstraints(const Con
     search.push_back(c);
   }
   std::vector<Feti::ContactConstraint> constraints;
-  checkOnEveryRank(*comm_, [&] { constraints = Contact::contactConstraints(surface, search); });
+  checkOnEveryRank(*comm_, [&] {
+    try {
+      constraints = Contact::contactConstraints(surface, search);
+    } catch (const Error& e) {
+      // The search numbers the surface nodes 0, 1, ...: its messages get
+      // the application's node ids.
+      std::map<int, GO> names;
+      for (size_t m = 0; m < surfaceNodes_.size(); ++m) names[static_cast<int>(m)] = application_.at(surfaceNodes_[m]);
+      throw Error("Assembled::ContactProblem: " + Assembled::withApplicationNodes(e.what(), names));
+    }
+  });
   for (auto& cc : constraints) {
     cc.node = surfaceNodes_[cc.node];
     for (auto& m : cc.master) m.first = surfaceNodes_[m.first];
@@ -577,7 +639,11 @@ AssembledFeti::AssembledFeti(const ContactProblem& p, const Teuchos::ParameterLi
       const GO node = application_.at(cc.node);
       const int a = rowNode(node);
       const std::array<double, 3> x{rowCoords_[a][0], rowCoords_[a][1], rowCoords_[a][2]};
-      Feti::contactRows(cc, firstCopy, dirichlet_, x, false, fc.rows);
+      try {
+        Feti::contactRows(cc, firstCopy, dirichlet_, x, false, fc.rows);
+      } catch (const Error& e) {
+        throw Error("Assembled::ContactProblem: " + withApplicationNodes(e.what()));
+      }
       fc.contact.push_back(cc);
     }
   });
@@ -679,7 +745,10 @@ void ContactSolver::setProblem(const RCP<ContactProblem>& problem) {
   solved_ = false;
 }
 
-void ContactSolver::resetHistory() { startAgain_ = true; }
+void ContactSolver::resetHistory() {
+  startAgain_ = true;
+  previous_ = Fem::NodalVector();
+}
 
 namespace {
 
@@ -705,7 +774,6 @@ Contact::SolveStatus ContactSolver::solve() {
     feti_ = std::make_unique<AssembledFeti>(*problem_, params.sublist("FETI"), comm);
     stiffnessVersion_ = problem_->stiffnessVersion();
     pairsVersion_ = problem_->pairsVersion();
-    startAgain_ = true;
   }
   loadVersion_ = problem_->loadVersion();
   // The friction of every pair: "Pair <k>" where the list names it, the
@@ -719,7 +787,16 @@ Contact::SolveStatus ContactSolver::solve() {
     }
     friction.resize(problem_->contactPairs().size(), Contact::readPairFriction(own).front());
   }
-  if (startAgain_) steps_ = std::make_unique<Contact::FetiLoadSteps>(feti_->problem, friction, params, out_);
+  if (startAgain_ || rebuild) {
+    stepsBefore_ = startAgain_ || !steps_ ? 0 : stepsBefore_ + steps_->completedSteps();
+    steps_ = std::make_unique<Contact::FetiLoadSteps>(feti_->problem, friction, params, out_);
+    // A new stiffness (or other conditions) in the middle of a history: the
+    // next step's friction acts on the slip since the last one, when the
+    // subdomains hold the same nodes.
+    if (!startAgain_ && !previous_.empty() &&
+        previous_.layout().nodes() == feti_->problem->nodalLayout()->nodes())
+      steps_->resumeFrom(previous_);
+  }
   startAgain_ = false;
   summary_.rebuilt = rebuild;
   summary_.setupSeconds = secondsSince(t0);
@@ -730,8 +807,9 @@ Contact::SolveStatus ContactSolver::solve() {
   reaction_ = feti_->reaction(r.u);
   contact_ = feti_->contactState(r.contact);
   summary_.converged = r.verdict.converged;
-  summary_.reason = r.verdict.converged ? r.solverReason : r.verdict.stopReason;
-  summary_.step = steps_->completedSteps();
+  summary_.reason = feti_->withApplicationNodes(r.verdict.converged ? r.solverReason : r.verdict.stopReason);
+  previous_ = r.u;
+  summary_.step = stepsBefore_ + steps_->completedSteps();
   summary_.outerAlgorithm = r.outerAlgorithm;
   summary_.iterations = r.iterations;
   summary_.n_A = r.n_A;

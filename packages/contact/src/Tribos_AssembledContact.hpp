@@ -38,7 +38,8 @@
 // dofs) make the next solve a load step of a history (docs/load_history.md):
 // nothing is factored again, the step starts from the previous solution,
 // and friction acts on the slip since the previous step. setStiffness with
-// a new K of the same pattern builds the subdomains again.
+// a new K (same maps) factors the subdomains again and the history goes on
+// from the last step's displacement.
 #pragma once
 
 #include <Teuchos_ParameterListAcceptorDefaultBase.hpp>
@@ -217,6 +218,8 @@ class ContactSolver : public Teuchos::ParameterListAcceptorDefaultBase {
   std::unique_ptr<Contact::FetiLoadSteps> steps_;  // the history since the unloaded state
   int stiffnessVersion_ = -1, loadVersion_ = -1, pairsVersion_ = -1;
   bool startAgain_ = true;
+  int stepsBefore_ = 0;        // steps of the history solved before steps_ began
+  Fem::NodalVector previous_;  // the last step's displacement (Tribos' node numbers)
   bool solved_ = false;
   SolveSummary summary_;
   RCP<Vector> u_, reaction_;

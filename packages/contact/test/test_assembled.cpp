@@ -57,6 +57,7 @@ struct Box {
 // The application: its boxes assembled into one FECrsMatrix.
 struct App {
   std::vector<Box> boxes;
+  double E = kE;
   RCP<const Comm> comm = Tpetra::getDefaultComm();
   RCP<const Map> owned, overlap, overlapNodes;
   RCP<FEGraph> graph;
@@ -131,7 +132,7 @@ struct App {
     graph->endAssembly();
     K = rcp(new FEMatrix(graph));
     Fem::Material mat;
-    mat.E = kE, mat.nu = kNu;
+    mat.E = E, mat.nu = kNu;
     K->beginAssembly();
     forMyCells([&](const Box& B, int i, int j, int k) {
       const auto Ke = Fem::elementStiffness(Mesh::CellType::Hex8, cellPoints(B, i, j, k), mat);
@@ -261,6 +262,18 @@ TEUCHOS_UNIT_TEST(Assembled, PatchTestOnRigidPlane) {
   Vector half(*solver.getDisplacement(), Teuchos::Copy);
   half.scale(0.5);
   TEST_COMPARE(exactError(app, half, scale), <, 1e-8);
+
+  // A stiffer material (a new K on the same maps) in the middle of the
+  // history: the subdomains are factored again, the history goes on.
+  App stiffer;
+  stiffer.boxes = app.boxes;
+  stiffer.E = 2 * kE;
+  stiffer.assemble();
+  problem.setStiffness(stiffer.K);
+  TEST_ASSERT(solver.solve() == Contact::SolveStatus::Converged);
+  TEST_ASSERT(solver.getSummary().rebuilt);
+  TEST_EQUALITY(solver.getSummary().step, 3);
+  TEST_COMPARE(exactError(app, *solver.getDisplacement(), scale), <, 1e-8);
 }
 
 TEUCHOS_UNIT_TEST(Assembled, MortarPatchTestBetweenTwoBodies) {
@@ -359,6 +372,17 @@ TEUCHOS_UNIT_TEST(Assembled, Refusals) {
     if (app.comm->getRank() == 0) pair.slave.nodes.front() = 5;  // no node of the mesh
     problem.addContactPair(pair);
     TEST_ASSERT(contains(solveError(problem), "names node 5"));
+  }
+  {
+    // Nothing holds the body: refused, naming the free motions.
+    Assembled::ContactProblem problem(app.K, app.owned, app.coords);
+    problem.setLoad(app.topPressure(app.boxes[0], kPressure));
+    Assembled::ContactSolver solver(Teuchos::rcpFromRef(problem), tightParameters());
+    const std::string error = errorOf([&] {
+      if (solver.solve() != Contact::SolveStatus::Converged) throw Error(solver.getSummary().reason);
+    });
+    out << error << "\n";
+    TEST_ASSERT(contains(error, "translation") || contains(error, "rigid"));
   }
   {
     Assembled::ContactProblem problem(app.K, app.owned, app.coords);
