@@ -144,6 +144,10 @@ class AssembledFeti {
   // false (on every rank) when the Dirichlet conditions fix other dofs than
   // the problem was built with (then it must be built again). Collective.
   bool setRightHandSides(const ContactProblem& p);
+  // The problem's new K into the FETI problem by a numeric refactorization;
+  // false (on every rank) when its rows, pieces or pattern differ from the
+  // ones factored (then it must be built again). Collective.
+  bool setStiffness(const ContactProblem& p);
 
   RCP<Vector> displacement(const Fem::NodalVector& u) const;
   RCP<Vector> reaction(const Fem::NodalVector& u) const;
@@ -177,6 +181,14 @@ class AssembledFeti {
 
   int rowNode(GO node) const;  // index in rowNodes_, -1 when absent
   void numberNodes(const ContactProblem& p);
+  // The rank's rows of K (entries per row dof, in row-node dofs) and its
+  // connected pieces (row-node indices, ascending ids); checks them.
+  struct RankRows {
+    std::vector<std::vector<std::pair<int, double>>> entries;
+    std::vector<std::vector<int>> pieces;
+  };
+  RankRows readRows(const RowMatrix& K) const;
+  std::vector<LocalCsr> pieceMatrices(const RankRows& rows) const;
   std::vector<Fem::SubdomainSystem> subdomains(const ContactProblem& p);
   // FETI's K+ and the Cholesky factorization assume K = K' on every rank's
   // rows; throws naming the two entries (application dofs) that differ.
@@ -293,8 +305,7 @@ void AssembledFeti::requireSymmetric(std::vector<std::vector<std::pair<int, doub
 
 // The rank's rows of K cut into its connected pieces, each a subdomain in
 // the ids of its nodes.
-std::vector<Fem::SubdomainSystem> AssembledFeti::subdomains(const ContactProblem& p) {
-  const RowMatrix& K = *p.stiffness();
+AssembledFeti::RankRows AssembledFeti::readRows(const RowMatrix& K) const {
   TRIBOS_REQUIRE(K.isFillComplete() || K.getColMap() != Teuchos::null,
                  "Assembled::ContactProblem: K has no column map (fill it, as Tpetra's FECrsMatrix does between "
                  "beginAssembly() and endAssembly(), or call fillComplete())");
@@ -303,7 +314,8 @@ std::vector<Fem::SubdomainSystem> AssembledFeti::subdomains(const ContactProblem
   const int n = static_cast<int>(rowNodes_.size());
   // Per row dof: (row node, component); entries as (row dof, column dof).
   auto dofOf = [&](GO gid) { return 3 * rowNode(gid / 3) + static_cast<int>(gid % 3); };
-  std::vector<std::vector<std::pair<int, double>>> entries(3 * n);
+  RankRows out;
+  out.entries.resize(3 * n);
   Pieces pieces(n);
   std::vector<char> used(n, 0);
   RowMatrix::nonconst_local_inds_host_view_type index("index", K.getNodeMaxNumRowEntries());
@@ -325,24 +337,55 @@ std::vector<Fem::SubdomainSystem> AssembledFeti::subdomains(const ContactProblem
                             "summed over the ranks. Give K as the rank's elements sum it, an FECrsMatrix before "
                             "endAssembly() (or the overlap CrsMatrix of the rank's elements)");
       const int b = dofOf(column);
-      entries[a].push_back({b, kij});
+      out.entries[a].push_back({b, kij});
       pieces.join(a / 3, b / 3);
       used[a / 3] = used[b / 3] = 1;
     }
   }
-  requireSymmetric(entries);
+  requireSymmetric(out.entries);
   // Pieces in the order of their smallest node id; nodes by ascending id.
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int x, int y) { return rowIds_[x] < rowIds_[y]; });
   std::map<int, int> pieceOfRoot;
-  pieces_.clear();
   for (int a : order) {
     if (!used[a]) continue;
-    const auto inserted = pieceOfRoot.insert({pieces.root(a), static_cast<int>(pieces_.size())});
-    if (inserted.second) pieces_.emplace_back();
-    pieces_[inserted.first->second].push_back(a);
+    const auto inserted = pieceOfRoot.insert({pieces.root(a), static_cast<int>(out.pieces.size())});
+    if (inserted.second) out.pieces.emplace_back();
+    out.pieces[inserted.first->second].push_back(a);
   }
+  return out;
+}
+
+// K of each piece in its local dofs (3 local node + c), columns ascending.
+std::vector<LocalCsr> AssembledFeti::pieceMatrices(const RankRows& rows) const {
+  std::vector<LocalCsr> out;
+  std::vector<int> local(rowNodes_.size(), -1);
+  for (const auto& nodes : rows.pieces) {
+    for (size_t l = 0; l < nodes.size(); ++l) local[nodes[l]] = static_cast<int>(l);
+    LocalCsr K;
+    K.rows = K.cols = 3 * static_cast<int>(nodes.size());
+    for (int a : nodes)
+      for (int c = 0; c < 3; ++c) {
+        auto row = rows.entries[3 * a + c];
+        for (auto& e : row) e.first = 3 * local[e.first / 3] + e.first % 3;
+        std::sort(row.begin(), row.end());
+        for (size_t k = 0; k < row.size(); ++k) {
+          if (k > 0 && row[k].first == row[k - 1].first) K.val.back() += row[k].second;
+          else K.col.push_back(row[k].first), K.val.push_back(row[k].second);
+        }
+        K.rowptr.push_back(static_cast<int>(K.col.size()));
+      }
+    out.push_back(std::move(K));
+  }
+  return out;
+}
+
+// The rank's rows of K cut into its connected pieces, each a subdomain in
+// the ids of its nodes.
+std::vector<Fem::SubdomainSystem> AssembledFeti::subdomains(const ContactProblem& p) {
+  RankRows rows = readRows(*p.stiffness());
+  pieces_ = rows.pieces;
   const int mine = static_cast<int>(pieces_.size());
   std::vector<int> counts(size_);
   Teuchos::gatherAll<int, int>(*comm_, 1, &mine, size_, counts.data());
@@ -351,34 +394,41 @@ std::vector<Fem::SubdomainSystem> AssembledFeti::subdomains(const ContactProblem
     if (r == rank_) firstSubdomain_ = static_cast<int>(subdomainOwner_.size());
     subdomainOwner_.insert(subdomainOwner_.end(), counts[r], r);
   }
+  std::vector<LocalCsr> K = pieceMatrices(rows);
   std::vector<Fem::SubdomainSystem> systems;
-  std::vector<int> local(n, -1);
   for (int s = 0; s < mine; ++s) {
     Fem::SubdomainSystem sys;
     sys.id = firstSubdomain_ + s;
-    const auto& nodes = pieces_[s];
-    for (size_t l = 0; l < nodes.size(); ++l) {
-      local[nodes[l]] = static_cast<int>(l);
-      sys.nodes.push_back(rowIds_[nodes[l]]);
-      sys.coords.push_back(rowCoords_[nodes[l]]);
+    for (int a : pieces_[s]) {
+      sys.nodes.push_back(rowIds_[a]);
+      sys.coords.push_back(rowCoords_[a]);
     }
-    const int m = static_cast<int>(nodes.size());
-    sys.K.rows = sys.K.cols = 3 * m;
-    for (int l = 0; l < m; ++l)
-      for (int c = 0; c < 3; ++c) {
-        auto row = entries[3 * nodes[l] + c];
-        for (auto& e : row) e.first = 3 * local[e.first / 3] + e.first % 3;
-        std::sort(row.begin(), row.end());
-        for (size_t k = 0; k < row.size(); ++k) {
-          if (k > 0 && row[k].first == row[k - 1].first) sys.K.val.back() += row[k].second;
-          else sys.K.col.push_back(row[k].first), sys.K.val.push_back(row[k].second);
-        }
-        sys.K.rowptr.push_back(static_cast<int>(sys.K.col.size()));
-      }
+    sys.K = std::move(K[s]);
     sys.f.assign(sys.numDofs(), 0.0);
     systems.push_back(std::move(sys));
   }
   return systems;
+}
+
+bool AssembledFeti::setStiffness(const ContactProblem& p) {
+  const RowMatrix& K = *p.stiffness();
+  int same = 0;
+  if (K.getRowMap()->isSameAs(*rowMap_)) {
+    RankRows rows;
+    checkOnEveryRank(*comm_, [&] { rows = readRows(K); });
+    same = rows.pieces == pieces_;
+    std::vector<LocalCsr> pieceK;
+    if (same) pieceK = pieceMatrices(rows);
+    for (size_t s = 0; same && s < pieceK.size(); ++s) {
+      const LocalCsr& old = problem->subdomain(static_cast<int>(s)).K;
+      same = pieceK[s].rowptr == old.rowptr && pieceK[s].col == old.col;
+    }
+    int everywhere = 0;
+    Teuchos::reduceAll<int, int>(*comm_, Teuchos::REDUCE_MIN, same, Teuchos::outArg(everywhere));
+    same = everywhere;
+    if (same) problem->setStiffness(pieceK);
+  }
+  return same != 0;
 }
 
 // Every copy of a node goes to its owner, which tells every rank holding a
@@ -766,9 +816,17 @@ Contact::SolveStatus ContactSolver::solve() {
   const auto t0 = std::chrono::steady_clock::now();
   summary_ = SolveSummary();
   // What changed since the last solve decides what is built again.
-  bool rebuild = !feti_ || problem_->stiffnessVersion() != stiffnessVersion_ ||
-                 problem_->pairsVersion() != pairsVersion_;
-  if (!rebuild && problem_->loadVersion() != loadVersion_) rebuild = !feti_->setRightHandSides(*problem_);
+  bool rebuild = !feti_ || problem_->pairsVersion() != pairsVersion_;
+  bool refactored = false;
+  if (!rebuild && problem_->stiffnessVersion() != stiffnessVersion_) {
+    // Same rows and pattern: a numeric refactorization, the history goes on.
+    rebuild = !feti_->setStiffness(*problem_);
+    refactored = !rebuild;
+    if (refactored && steps_) steps_->stiffnessChanged();
+    stiffnessVersion_ = problem_->stiffnessVersion();
+  }
+  if (!rebuild && problem_->loadVersion() != loadVersion_)
+    rebuild = !feti_->setRightHandSides(*problem_);
   if (rebuild) {
     feti_.reset();
     feti_ = std::make_unique<AssembledFeti>(*problem_, params.sublist("FETI"), comm);
@@ -799,6 +857,7 @@ Contact::SolveStatus ContactSolver::solve() {
   }
   startAgain_ = false;
   summary_.rebuilt = rebuild;
+  summary_.refactored = refactored;
   summary_.setupSeconds = secondsSince(t0);
   const auto t1 = std::chrono::steady_clock::now();
   const Contact::FetiSolveResult r = steps_->solveNext();

@@ -38,8 +38,8 @@
 // dofs) make the next solve a load step of a history (docs/load_history.md):
 // nothing is factored again, the step starts from the previous solution,
 // and friction acts on the slip since the previous step. setStiffness with
-// a new K (same maps) factors the subdomains again and the history goes on
-// from the last step's displacement.
+// a new K of the same pattern (a nonlinear material's next tangent) is a
+// numeric refactorization of the subdomains; the history goes on.
 #pragma once
 
 #include <Teuchos_ParameterListAcceptorDefaultBase.hpp>
@@ -168,6 +168,7 @@ struct SolveSummary {
   int subdomains = 0;           // FETI subdomains (connected pieces of the ranks' elements)
   long long primalDofs = 0, dualDofs = 0;
   bool rebuilt = false;         // this solve built the subdomains and factored them
+  bool refactored = false;      // a new K of the same pattern: numeric refactorization only
   double setupSeconds = 0, solveSeconds = 0;
 };
 

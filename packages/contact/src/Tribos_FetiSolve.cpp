@@ -302,6 +302,14 @@ FetiSolveResult FetiLoadSteps::solveNext() {
 // (proportional loading: omega = 1) starts where its solution lies when
 // the contact state does not change; a reversal or a new load (omega <= 0)
 // starts from the previous step's multipliers, as does the second step.
+void FetiLoadSteps::stiffnessChanged() {
+  operators_ = Teuchos::null;
+  normPFP_ = 0;
+  // The multipliers stay a start; the extrapolation along the load path
+  // does not hold across a change of K.
+  lambdaBefore_ = hBefore_ = h_ = Teuchos::null;
+}
+
 RCP<const Vector> FetiLoadSteps::predictedMultipliers(const Feti::FetiDual& dual) const {
   if (lambdaBefore_.is_null() || hBefore_.is_null() || h_.is_null()) return lambda_;
   Vector now(dual.h(), Teuchos::Copy), before(*h_, Teuchos::Copy);

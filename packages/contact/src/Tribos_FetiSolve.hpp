@@ -102,6 +102,9 @@ class FetiLoadSteps {
   // from zero multipliers: its result is the one the uninterrupted history
   // gives, reached in other iterations. Collective.
   void resumeFrom(const Fem::NodalVector& uPrevious);
+  // The problem's K has new values (FetiProblem::setStiffness): F and its
+  // norm are formed again at the next step; the history goes on.
+  void stiffnessChanged();
   int completedSteps() const { return steps_; }
 
  private:

@@ -476,6 +476,21 @@ void FetiProblem::setRightHandSides(const std::vector<std::vector<double>>& subd
   for (auto& [dof, value] : dirichlet_) value = valueOf(dof);
 }
 
+void FetiProblem::setStiffness(const std::vector<LocalCsr>& K) {
+  TRIBOS_REQUIRE(K.size() == systems_.size(), "FetiProblem::setStiffness: " << K.size() << " matrices for "
+                                                                           << systems_.size() << " subdomains on rank "
+                                                                           << comm_->getRank());
+  for (size_t k = 0; k < K.size(); ++k) {
+    const LocalCsr& old = systems_[k].K;
+    TRIBOS_REQUIRE(K[k].rows == old.rows && K[k].rowptr == old.rowptr && K[k].col == old.col,
+                   "FetiProblem::setStiffness: subdomain " << systems_[k].id
+                                                           << "'s new K has another pattern than the one factored");
+  }
+  for (size_t k = 0; k < K.size(); ++k) systems_[k].K.val = K[k].val;
+  Kplus_->refactor();
+  preconditioner_.reset();
+}
+
 void FetiProblem::setTangentialOffset(const Vector& previousPrimal) {
   Vector Bu(dualMap());
   B()->apply(previousPrimal, Bu);

@@ -169,6 +169,11 @@ class FetiProblem {
   // factors and B stay. Throws Error for a missing value or a wrong size.
   void setRightHandSides(const std::vector<std::vector<double>>& subdomainLoads,
                          const std::map<long long, double>& dirichletValues);
+  // New values of the subdomains' K on the same patterns (K[k]: local
+  // subdomain k), a nonlinear material's next tangent say: a numeric
+  // refactorization of K+ (ordering and symbolic analysis kept). B, R and
+  // the coarse space stay. Throws Error for another pattern.
+  void setStiffness(const std::vector<LocalCsr>& K);
   // c on the tangential contact rows: (B u)_T of a previous primal
   // displacement u, so that friction acts on the slip since u (B_T u = c_T
   // is stick); a zero u restores the static problem.

@@ -102,6 +102,25 @@ SubdomainPseudoInverse::SubdomainPseudoInverse(const std::vector<Fem::SubdomainS
   factorSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+void SubdomainPseudoInverse::refactor() {
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::FETI::refactor K_reg"));
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<double> block;
+  for (size_t k = 0; k < systems_.size(); ++k) {
+    const auto& sys = systems_[k];
+    // The same regularization at the same fixing dofs (R depends on the
+    // coordinates alone), with the new values' scale.
+    LocalCsr Kreg = sys.K;
+    const double rho = Kreg.maxAbsDiagonal();
+    for (int i : fixingDofs(sys.R, sys.numDofs()))
+      for (int a = Kreg.rowptr[i]; a < Kreg.rowptr[i + 1]; ++a)
+        if (Kreg.col[a] == i) Kreg.val[a] += rho;
+    Kreg_[k]->refactor(Kreg);
+    if (hasDenseBlock(k)) formDenseBlock(k, block);
+  }
+  factorSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 double SubdomainPseudoInverse::denseBlockMemoryMb() const {
   double mb = 0;
   for (const auto& Z : KplusBB_) mb += Z.size() * 8.0 / 1048576.0;

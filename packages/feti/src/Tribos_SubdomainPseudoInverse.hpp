@@ -51,6 +51,10 @@ class SubdomainPseudoInverse {
     const size_t at = static_cast<size_t>(i) + static_cast<size_t>(j) * (2 * nb - j - 1) / 2;  // packed lower
     return singleBlocks_ ? static_cast<double>(KplusBBf_[k][at]) : KplusBB_[k][at];
   }
+  // The subdomains' K have new values on the same patterns: a numeric
+  // refactorization of each (the local solver keeps its ordering and
+  // symbolic analysis where it can) and the dense blocks formed again.
+  void refactor();
   double factorSeconds() const { return factorSeconds_; }
   double memoryMb() const;
   // The dense blocks alone: the bytes one application of F reads from them.
