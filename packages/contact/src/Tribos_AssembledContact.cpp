@@ -779,6 +779,13 @@ ContactSolver::ContactSolver(const RCP<ContactProblem>& problem, const RCP<Teuch
 void ContactSolver::setParameterList(const RCP<Teuchos::ParameterList>& params) {
   const RCP<Teuchos::ParameterList> p = params.is_null() ? Teuchos::parameterList("Tribos") : params;
   parameters_.setParameters(p);
+  // The application's K holds no boundary conditions: Dirichlet conditions
+  // are rows of B, which is Total FETI.
+  const std::string formulation = p->sublist("FETI").get<std::string>("Formulation");
+  TRIBOS_REQUIRE(formulation == "TFETI", "Assembled::ContactSolver: FETI/Formulation = "
+                                             << formulation
+                                             << " is not offered here: an application's K is solved by TFETI "
+                                                "(Dirichlet conditions as rows of B)");
   setMyParamList(p);
   feti_.reset();  // the FETI list may have changed
   startAgain_ = true;

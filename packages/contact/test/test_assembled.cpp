@@ -386,6 +386,13 @@ TEUCHOS_UNIT_TEST(Assembled, Refusals) {
     TEST_ASSERT(contains(error, "translation") || contains(error, "rigid"));
   }
   {
+    // A choice this path cannot take is refused when the list is set.
+    auto p = tightParameters();
+    p->sublist("FETI").set("Formulation", "FETI-1");
+    Assembled::ContactSolver solver;
+    TEST_ASSERT(contains(errorOf([&] { solver.setParameterList(p); }), "TFETI"));
+  }
+  {
     Assembled::ContactProblem problem(app.K, app.owned, app.coords);
     problem.setDirichlet(clamp);
     problem.setLoad(rcp(new Vector(app.overlapNodes)));
