@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "Tribos_ComponentsValidator.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Validators.hpp"
 #include "Tribos_Vec3.hpp"
@@ -49,21 +50,6 @@ RCP<Teuchos::StringValidator> choice(const Array<std::string>& names) {
   return rcp(new Teuchos::StringValidator(names));
 }
 
-// "xyz", "z", "xz": which displacement components a Dirichlet condition fixes.
-class ComponentsValidator : public Teuchos::ParameterEntryValidator {
- public:
-  void validate(const Teuchos::ParameterEntry& entry, const std::string& name, const std::string& list) const override {
-    const std::string v = Teuchos::any_cast<std::string>(entry.getAny());
-    bool ok = !v.empty();
-    for (char c : v) ok = ok && (c == 'x' || c == 'y' || c == 'z');
-    TRIBOS_REQUIRE(ok, "parameter \"" << list << "/" << name << "\" = \"" << v
-                                      << "\": valid values are non-empty combinations of x, y, z (e.g. \"xyz\", \"z\")");
-  }
-  const std::string getXMLTypeName() const override { return "ComponentsValidator"; }
-  void printDoc(const std::string& doc, std::ostream& out) const override { out << "# " << doc << "\n"; }
-  ValidStringsList validStringValues() const override { return Teuchos::null; }
-};
-
 // Faces are the box's (xmin, ..., zmax) or, with Mesh/File, the physical
 // surfaces of the file: no validator, validate() and checkMeshFaces() check
 // the names against the mesh the run has.
@@ -76,7 +62,7 @@ const char* const kCurveDoc =
 ParameterList makeDirichletItem() {
   ParameterList p("Dirichlet item");
   p.set("Face", "xmin", kFaceDoc);
-  p.set("Components", "xyz", "fixed components", rcp(new ComponentsValidator));
+  p.set("Components", "xyz", "fixed components", componentsValidator());
   p.set("Value", Array<double>(3, 0.0), "prescribed displacement (x, y, z)");
   p.set("Curve", "", kCurveDoc);
   return p;

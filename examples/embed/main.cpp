@@ -18,10 +18,12 @@
 // the result (equilibrium, Dirichlet values, non-penetration,
 // complementarity, friction law; node by node) within the result check;
 // the displacement equals Tribos' own solve of the same block from its mesh
-// generator to 1e-6; the contact has a stick and a slip zone.
+// generator to 1e-6; the contact has a stick and a slip zone; the solver's
+// valid parameters written as Teuchos XML read back with their validators.
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultSerialComm.hpp>
 #include <Teuchos_ParameterList.hpp>
+#include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Tpetra_Core.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Vector.hpp>
@@ -33,6 +35,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <vector>
 
 using namespace Tribos;
@@ -170,7 +173,7 @@ std::vector<Feti::ContactCondition> bottomContact(const Grid& g) {
   return conditions;
 }
 
-// Every choice in one list (ContactSolver::getValidParameters() documents
+// Every choice in one list (ContactSolver::validParameters() documents
 // it): the FETI problem's (defaults: TFETI, CHOLMOD), the outer algorithm,
 // Algorithm 2 to a tight tolerance (so that two solves of the same problem
 // with rows in another order agree to 1e-6), and the friction.
@@ -181,6 +184,26 @@ RCP<Teuchos::ParameterList> parameters() {
   p->sublist("Algorithm 2").set("Relative Tolerance", 1e-9);
   p->sublist("Friction").set("Law", "Coulomb").set("Coefficient", 0.3);
   return p;
+}
+
+// The solver's valid parameters (every choice, documented, with its
+// validator) written as Teuchos XML, as a Trilinos application keeps them,
+// and read back: the defaults pass the validators read back, and a
+// friction law Tribos does not have does not.
+bool validParametersThroughXml(const Teuchos::ParameterListAcceptor& solver) {
+  std::ostringstream xml;
+  Teuchos::writeParameterListToXmlOStream(*solver.getValidParameters(), xml);
+  const auto back = Teuchos::getParametersFromXmlString(xml.str());
+  Teuchos::ParameterList defaults(*solver.getValidParameters());
+  defaults.validateParameters(*back);  // throws for a default refused
+  Teuchos::ParameterList unknownLaw;
+  unknownLaw.sublist("Friction").set("Law", "Stribeck");
+  try {
+    unknownLaw.validateParameters(*back);
+  } catch (const std::exception&) {
+    return true;
+  }
+  return false;
 }
 
 // The same block from Tribos' own mesh generator, solved by the same
@@ -231,6 +254,7 @@ int main(int argc, char** argv) {
     const auto params = parameters();
     Contact::ContactSolver solver;
     solver.setParameters(params);  // validated before any work, defaults filled in
+    const bool xmlReadBack = validParametersThroughXml(solver);
 
     // This rank's subdomains: both on one rank, one each on two.
     std::vector<Feti::TpetraSubdomain> mine;
@@ -277,9 +301,10 @@ int main(int argc, char** argv) {
                 << kkt.nonpenetration << " complementarity " << kkt.complementarity << " friction_law "
                 << kkt.frictionLaw << " limit " << r.verdict.limit << "\n"
                 << "converged " << (converged ? "true" : "false") << " (" << r.verdict.stopReason << ")\n"
-                << "max |u - u_tribos_mesh| / max |u| = " << rel << "\n";
+                << "max |u - u_tribos_mesh| / max |u| = " << rel << "\n"
+                << "valid parameters written as XML and read back: " << (xmlReadBack ? "true" : "false") << "\n";
     }
-    const bool ok = converged && kktHolds && rel <= 1e-6 && r.counts.slip > 0 && r.counts.stick > 0;
+    const bool ok = converged && kktHolds && rel <= 1e-6 && r.counts.slip > 0 && r.counts.stick > 0 && xmlReadBack;
     if (root && !ok) std::cerr << "embed: FAILED\n";
     return ok ? 0 : 1;
   } catch (const std::exception& e) {

@@ -21,21 +21,6 @@ namespace Contact {
 
 using Feti::ContactConstraint;
 
-const char* discretizationName(ContactDiscretization d) {
-  return d == ContactDiscretization::Mortar ? "Mortar" : "Node To Segment";
-}
-
-RCP<const Teuchos::StringToIntegralParameterEntryValidator<ContactDiscretization>> discretizationValidator() {
-  using Teuchos::tuple;
-  static const auto validator = rcp(new Teuchos::StringToIntegralParameterEntryValidator<ContactDiscretization>(
-      tuple<std::string>("Node To Segment", "Mortar"),
-      tuple<std::string>("each slave node projected on the closest master facet",
-                         "dual mortar: segments of slave and master facets, consistent weights (passes the patch test)"),
-      tuple<ContactDiscretization>(ContactDiscretization::NodeToSegment, ContactDiscretization::Mortar),
-      "Discretization"));
-  return validator;
-}
-
 namespace {
 
 // A point is on a facet when its parametric coordinates are inside up to

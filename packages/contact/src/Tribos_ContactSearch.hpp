@@ -38,8 +38,6 @@
 // gap is linear in x, so its weighted gap int psi_s g dA is D_s g(x_s).
 #pragma once
 
-#include <Teuchos_StandardParameterEntryValidators.hpp>
-
 #include <array>
 #include <limits>
 #include <map>
@@ -47,19 +45,17 @@
 #include <vector>
 
 #include "Tribos_ContactConstraint.hpp"
+#include "Tribos_ContactDiscretization.hpp"
 #include "Tribos_Discretization.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
 namespace Contact {
 
-// How a pair's rows are formed: "Node To Segment" (closest-point
-// projection of each slave node) or "Mortar" (dual mortar segments).
-enum class ContactDiscretization { NodeToSegment, Mortar };
-
-const char* discretizationName(ContactDiscretization d);
-// Accepts the two names (Contact/Pairs/NAME/Discretization) and maps them to the enum.
-RCP<const Teuchos::StringToIntegralParameterEntryValidator<ContactDiscretization>> discretizationValidator();
+// How a pair's rows are formed, ContactDiscretization: "Node To Segment"
+// (closest-point projection of each slave node) or "Mortar" (dual mortar
+// segments); discretizationName(), discretizationValidator()
+// (Tribos_ContactDiscretization.hpp).
 
 struct ContactPair {
   std::string name;            // for messages (the input's sublist name)

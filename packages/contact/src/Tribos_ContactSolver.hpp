@@ -9,7 +9,8 @@
 //   const auto& r = solver.getResult();    // u, contact forces, KKT residuals, verdict
 //
 // It runs Contact::solveFeti (Tribos_FetiSolve.hpp) with the friction that
-// the list's "Friction" sublist states. The list (getValidParameters()):
+// the list's "Friction" sublist states. The list (validParameters(), and
+// getValidParameters() of the object):
 //   "FETI"        the FetiProblem's parameters (FetiProblem::getValidParameters();
 //                 the problem is built with this sublist, the solver reads its
 //                 "Projected CG"),
@@ -21,12 +22,22 @@
 //                 contact pair; a sublist "Pair <k>" (k = the pair number of the
 //                 contact conditions) overrides any of them for pair k.
 // An entry that is not in this list, a value of the wrong type or out of
-// range, an unknown law are refused by setParameters (Tribos::Error naming
-// the parameter), before any work.
+// range, an unknown law, an outer algorithm that does not solve the FETI
+// dual (NSGS) or a value an outer algorithm refuses are refused by
+// setParameters; an outer algorithm that does not solve the law of the
+// problem's contact pairs, Tresca and Coulomb pairs in one problem, or a
+// dense Semismooth Newton on a dual larger than its Dense Limit by
+// setProblem (or by setParameters once a problem is set): a Tribos::Error
+// naming the parameter, the reason and the valid choices, before any work.
+// It is a Teuchos::ParameterListAcceptor, so that code written for any
+// Trilinos solver can set, read and document its parameters; the valid list
+// writes as a Teuchos XML file and reads back with its validators
+// (Tribos_ValidatorXml.hpp).
 #pragma once
 
 #include <Teuchos_FancyOStream.hpp>
 #include <Teuchos_ParameterList.hpp>
+#include <Teuchos_ParameterListAcceptor.hpp>
 
 #include "Tribos_FetiContact.hpp"
 #include "Tribos_FetiProblem.hpp"
@@ -42,19 +53,37 @@ namespace Contact {
 // (getResult().verdict.stopReason says why).
 enum class SolveStatus { Converged, Unconverged };
 
-class ContactSolver {
+class ContactSolver : public Teuchos::ParameterListAcceptor {
  public:
   ContactSolver() = default;
   ContactSolver(const RCP<const Feti::FetiProblem>& problem, const RCP<Teuchos::ParameterList>& params);
 
-  // Validates params against getValidParameters() and fills in the
-  // defaults (in the caller's list, as Belos does); throws Tribos::Error
-  // naming the parameter. Null: every default.
+  // Validates params against validParameters() and fills in the defaults
+  // (in the caller's list, as Belos does); throws Tribos::Error naming the
+  // parameter (the solver keeps the parameters it had). Null: every
+  // default. With a problem set, also what setProblem checks (collective
+  // then, as setProblem).
   void setParameters(const RCP<Teuchos::ParameterList>& params);
   RCP<const Teuchos::ParameterList> getCurrentParameters() const { return params_; }
-  // The list with defaults and documentation (FETI, the solve, Friction).
-  static RCP<const Teuchos::ParameterList> getValidParameters();
+  // The list with defaults and documentation (FETI, the solve, Friction);
+  // the object's getValidParameters() returns it.
+  static RCP<const Teuchos::ParameterList> validParameters();
 
+  // Teuchos::ParameterListAcceptor: setParameterList is setParameters;
+  // unsetParameterList returns the list and leaves the solver without one
+  // (solve() then takes every default).
+  void setParameterList(const RCP<Teuchos::ParameterList>& params) override { setParameters(params); }
+  RCP<Teuchos::ParameterList> getNonconstParameterList() override { return params_; }
+  RCP<Teuchos::ParameterList> unsetParameterList() override;
+  RCP<const Teuchos::ParameterList> getParameterList() const override { return params_; }
+  RCP<const Teuchos::ParameterList> getValidParameters() const override { return validParameters(); }
+
+  // Refuses (Tribos::Error, the solver keeps the problem it had) a problem
+  // with contact that the parameters set cannot solve: an outer algorithm
+  // that does not solve the law of its contact pairs, pairs of Tresca and of
+  // Coulomb friction, a Semismooth Newton with Linear Solver = Dense LU on a
+  // dual of more rows than its Dense Limit. Collective over the problem's
+  // communicator (the pairs of every rank).
   void setProblem(const RCP<const Feti::FetiProblem>& problem);
   const RCP<const Feti::FetiProblem>& getProblem() const { return problem_; }
   // Where the outer algorithm reports its iterations (none by default).
@@ -86,7 +115,7 @@ class ContactSolver {
 };
 
 // The friction of the contact pairs that a "Friction" list states
-// (ContactSolver::getValidParameters()'s "Friction"): without "Pair <k>"
+// (ContactSolver::validParameters()'s "Friction"): without "Pair <k>"
 // sublists one entry, the list's own law, coefficient and slip bound, for
 // every pair; with them one entry per pair up to the largest k, the
 // sublist's values where it names them and the list's own elsewhere.

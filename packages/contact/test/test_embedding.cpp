@@ -15,6 +15,12 @@
 //    width, outside the kernel of K, missing for an Operator; f on another
 //    map; an unknown friction law or entry; contact conditions with a zero
 //    normal or a node given twice; a solve without a problem.
+//  - Choices the solve would refuse are refused first, naming them: NSGS
+//    and a value an outer algorithm refuses by setParameters; an algorithm
+//    that does not solve the law of the problem's pairs, Tresca and Coulomb
+//    pairs together, a dense Newton beyond its Dense Limit by setProblem.
+//  - The solver set up through Teuchos::ParameterListAcceptor solves as
+//    through its own methods.
 #include <Teuchos_DefaultSerialComm.hpp>
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
@@ -28,6 +34,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "Tribos.hpp"
@@ -572,14 +579,14 @@ TEUCHOS_UNIT_TEST(Embedding, FrictionOfPairs) {
   TEST_ASSERT(f[2].law == FrictionLaw::Coulomb && f[2].coefficient == 0.5);
 }
 
-// Every choice that getValidParameters() offers for "Outer Algorithm" (an
+// Every choice that validParameters() offers for "Outer Algorithm" (an
 // alias too) solves a problem of a law it documents: a choice no law solves
 // would pass setParameters and fail in solve(). A law it does not solve is
 // refused naming the algorithm.
 TEUCHOS_UNIT_TEST(Embedding, EveryOfferedOuterAlgorithmSolves) {
   const auto comm = Tpetra::getDefaultComm();
   const Grid g;
-  const auto choices = Contact::ContactSolver::getValidParameters()->getEntry("Outer Algorithm").validator()->validStringValues();
+  const auto choices = Contact::ContactSolver::validParameters()->getEntry("Outer Algorithm").validator()->validStringValues();
   for (const std::string& algorithm : *choices) {
     int solved = 0;
     for (const char* law : {"Tresca", "Coulomb"}) {
@@ -597,10 +604,134 @@ TEUCHOS_UNIT_TEST(Embedding, EveryOfferedOuterAlgorithmSolves) {
   }
 }
 
+// The block's FetiProblem: the contact conditions of pair `pair`, or none.
+RCP<const Feti::FetiProblem> problem(const Grid& g, const RCP<const Comm>& comm, bool contact, int pair = 0) {
+  std::vector<Feti::TpetraSubdomain> subdomains;
+  for (const auto& d : mine(g, *comm)) subdomains.push_back(tpetraSubdomain(d, Stiffness::Crs));
+  Feti::FetiConstraints constraints = glueAndClamp(g);
+  if (contact) {
+    auto conditions = bottom(g);
+    for (auto& c : conditions) c.pair = pair;
+    Feti::addContactConditions(constraints, conditions, *comm);
+  }
+  return Feti::createFetiProblem(subdomains, std::move(constraints), Teuchos::ParameterList(), comm);
+}
+
+// A choice that the valid list offers but the solve would refuse is
+// refused before any work, naming it, the reason and the valid choices:
+// NSGS (it reads W's entries: FCLIB problems only) and a value an outer
+// algorithm refuses by setParameters; an algorithm that does not solve the
+// law of the problem's pairs by setProblem, or by setParameters once a
+// problem is set; the solver keeps what it had.
+TEUCHOS_UNIT_TEST(Embedding, ChoicesTheSolveRefusesAreRefusedFirst) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Grid g;
+  {
+    Contact::ContactSolver solver;
+    auto p = parameters();
+    p->set("Outer Algorithm", "NSGS");
+    const std::string e = errorOf([&] { solver.setParameters(p); });
+    out << e << "\n";
+    TEST_ASSERT(contains(e, "Outer Algorithm = \"NSGS\" does not solve the FETI dual") && contains(e, "FCLIB"));
+    TEST_ASSERT(contains(e, "valid: Auto, Algorithm1") && contains(e, "Algorithm2"));
+    TEST_ASSERT(solver.getCurrentParameters().is_null());
+    TEST_EQUALITY(p->sublist("Friction").get<std::string>("Law"), "Coulomb");  // the caller's list kept whole
+  }
+  {
+    Contact::ContactSolver solver;
+    auto p = parameters();
+    p->sublist("Algorithm 2").set("Residual Balancing", 0.5);  // in the valid range [0, 1e6]
+    const std::string e = errorOf([&] { solver.setParameters(p); });
+    out << e << "\n";
+    TEST_ASSERT(contains(e, "ContactSolver: Algorithm 2: Residual Balancing"));
+  }
+  // Algorithm1 (Tresca, frictionless) for Coulomb friction, and Algorithm2
+  // for frictionless contact: refused by setProblem.
+  for (const auto& [algorithm, law, refused, valid] :
+       {std::tuple<std::string, std::string, std::string, std::string>{"Algorithm1", "Coulomb", "Coulomb friction",
+                                                                        "Algorithm2"},
+        {"Tresca", "Coulomb", "Coulomb friction", "MSA+Algorithm1"},
+        {"Algorithm2", "Frictionless", "frictionless contact", "Algorithm1"},
+        {"Semismooth Newton", "Tresca", "Tresca friction", "Algorithm1"}}) {
+    Contact::ContactSolver solver;
+    auto p = parameters();
+    p->set("Outer Algorithm", algorithm);
+    p->sublist("Friction").set("Law", law).set("Slip Bound Traction", 0.1 * kPressure);
+    solver.setParameters(p);  // no problem yet: nothing to refuse
+    const auto withContact = problem(g, comm, true);
+    const std::string e = errorOf([&] { solver.setProblem(withContact); });
+    out << e << "\n";
+    TEST_ASSERT(contains(e, "Outer Algorithm = \"" + algorithm + "\" does not solve " + refused));
+    TEST_ASSERT(contains(e, "valid for it: Auto") && contains(e, valid));
+    TEST_ASSERT(solver.getProblem().is_null());
+    // A problem without contact has no outer algorithm to refuse; the
+    // contact problem is still refused, and the solver keeps the other.
+    const auto withoutContact = problem(g, comm, false);
+    TEST_NOTHROW(solver.setProblem(withoutContact));
+    TEST_ASSERT(contains(errorOf([&] { solver.setProblem(withContact); }), "does not solve"));
+    TEST_ASSERT(solver.getProblem().get() == withoutContact.get());
+    // The same choice given after the problem: refused by setParameters.
+    Contact::ContactSolver later;
+    later.setProblem(withContact);
+    const std::string e2 = errorOf([&] { later.setParameters(p); });
+    TEST_ASSERT(contains(e2, "Outer Algorithm = \"" + algorithm + "\" does not solve " + refused));
+    TEST_ASSERT(later.getCurrentParameters().is_null());
+  }
+  // Tresca and Coulomb pairs in one problem: the pair 0 Tresca, the list's
+  // own law Coulomb for every other pair. Refused for the conditions of
+  // pair 1, taken for those of pair 0 (all Tresca).
+  {
+    auto p = parameters();
+    p->set("Outer Algorithm", "Auto");
+    p->sublist("Friction").sublist("Pair 0").set("Law", "Tresca").set("Slip Bound Traction", 0.1 * kPressure);
+    Contact::ContactSolver solver;
+    solver.setParameters(p);
+    const std::string e = errorOf([&] { solver.setProblem(problem(g, comm, true, 1)); });
+    out << e << "\n";
+    TEST_ASSERT(contains(e, "ContactSolver: Friction: contact pairs with Tresca and with Coulomb friction"));
+    TEST_NOTHROW(solver.setProblem(problem(g, comm, true, 0)));
+  }
+  // Semismooth Newton's dense LU on a dual larger than its Dense Limit.
+  {
+    auto p = parameters();
+    p->set("Outer Algorithm", "Semismooth Newton");
+    p->sublist("Semismooth Newton").set("Linear Solver", "Dense LU").set("Dense Limit", 10);
+    Contact::ContactSolver solver;
+    solver.setParameters(p);
+    const std::string e = errorOf([&] { solver.setProblem(problem(g, comm, true)); });
+    out << e << "\n";
+    TEST_ASSERT(contains(e, "Dense Limit = 10"));
+    p->sublist("Semismooth Newton").set("Linear Solver", "Auto");
+    solver.setParameters(p);
+    TEST_NOTHROW(solver.setProblem(problem(g, comm, true)));
+  }
+}
+
+// ContactSolver set up and run through Teuchos::ParameterListAcceptor, as
+// code written for any Trilinos solver would: the same result as through
+// its own methods.
+TEUCHOS_UNIT_TEST(Embedding, SolveThroughParameterListAcceptor) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Grid g;
+  auto solver = rcp(new Contact::ContactSolver);
+  const RCP<Teuchos::ParameterListAcceptor> acceptor = solver;
+  auto p = rcp(new Teuchos::ParameterList(*acceptor->getValidParameters()));  // every default, documented
+  p->set("Outer Algorithm", "Algorithm2");
+  p->sublist("Algorithm 2").set("Relative Tolerance", 1e-9);
+  p->sublist("Friction").set("Law", "Coulomb").set("Coefficient", kFriction);
+  acceptor->setParameterList(p);
+  solver->setProblem(problem(g, comm, true));
+  TEST_ASSERT(solver->solve() == Contact::SolveStatus::Converged);
+  Contact::SolveStatus status;
+  const auto reference = newPath(g, comm, Stiffness::Crs, status);
+  TEST_ASSERT(difference(solver->getResult().u, reference.u, *comm) <= 1e-12);
+  TEST_EQUALITY(solver->getResult().counts.slip, reference.counts.slip);
+}
+
 // The valid list, validators included, written as a Teuchos XML file and
 // read back.
 TEUCHOS_UNIT_TEST(Embedding, ValidParametersWrittenAsXml) {
-  const auto valid = Contact::ContactSolver::getValidParameters();
+  const auto valid = Contact::ContactSolver::validParameters();
   const std::string xml = errorOf([&] {
     std::ostringstream os;
     Teuchos::writeParameterListToXmlOStream(*valid, os);

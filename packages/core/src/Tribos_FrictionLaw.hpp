@@ -9,7 +9,6 @@
 
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
-#include <Teuchos_ValidatorXMLConverterDB.hpp>
 
 #include <istream>
 #include <ostream>
@@ -17,6 +16,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_Types.hpp"
+#include "Tribos_ValidatorXml.hpp"
 
 namespace Tribos {
 
@@ -47,12 +47,12 @@ inline std::istream& operator>>(std::istream& in, FrictionLaw& law) {
 }
 
 // Accepts the three names, documents them and maps them to the enum. A list
-// holding it can be written by Teuchos::writeParameterListToXmlFile (its
-// converter is registered with it).
+// holding it writes as a Teuchos XML file and reads back with it
+// (registerValidatorConverters(), Tribos_ValidatorXml.hpp).
 inline RCP<const Teuchos::StringToIntegralParameterEntryValidator<FrictionLaw>> frictionLawValidator() {
   using Teuchos::tuple;
   static const auto validator = [] {
-    TEUCHOS_ADD_STRINGTOINTEGRALVALIDATOR_CONVERTER(FrictionLaw);
+    registerValidatorConverters();
     return rcp(new Teuchos::StringToIntegralParameterEntryValidator<FrictionLaw>(
         tuple<std::string>("Frictionless", "Tresca", "Coulomb"),
         tuple<std::string>("no tangential force", "a given slip bound (a traction times the nodal area)",
