@@ -39,9 +39,24 @@ ContactProblem::ContactProblem(const RCP<const RowMatrix>& K, const RCP<const Ma
   TRIBOS_REQUIRE(!coordinates.is_null(), "Assembled::ContactProblem: the coordinates are null");
 }
 
+ContactProblem::ContactProblem(ElementMatrices elements, const RCP<const Map>& ownedMap,
+                               const RCP<const MultiVector>& coordinates)
+    : elements_(rcp(new ElementMatrices(std::move(elements)))), ownedMap_(ownedMap), coordinates_(coordinates) {
+  TRIBOS_REQUIRE(!ownedMap.is_null(), "Assembled::ContactProblem: ownedMap is null");
+  TRIBOS_REQUIRE(!coordinates.is_null(), "Assembled::ContactProblem: the coordinates are null");
+}
+
 void ContactProblem::setStiffness(const RCP<const RowMatrix>& K) {
   TRIBOS_REQUIRE(!K.is_null(), "Assembled::ContactProblem::setStiffness: K is null");
+  TRIBOS_REQUIRE(elements_.is_null(), "Assembled::ContactProblem::setStiffness: the problem was given element "
+                                      "matrices; give new ones (setElementMatrices)");
   K_ = K;
+  ++stiffnessVersion_;
+}
+
+void ContactProblem::setElementMatrices(ElementMatrices elements) {
+  TRIBOS_REQUIRE(K_.is_null(), "Assembled::ContactProblem::setElementMatrices: the problem was given K; give a new K");
+  elements_ = rcp(new ElementMatrices(std::move(elements)));
   ++stiffnessVersion_;
 }
 
@@ -115,6 +130,22 @@ struct Pieces {
   void join(int a, int b) { parent[root(a)] = root(b); }
 };
 
+// Rows of (column, value) entries, columns made ascending and repeated ones
+// summed, as a LocalCsr.
+LocalCsr compressRows(std::vector<std::vector<std::pair<int, double>>> rows) {
+  LocalCsr K;
+  K.rows = K.cols = static_cast<int>(rows.size());
+  for (auto& row : rows) {
+    std::sort(row.begin(), row.end());
+    for (size_t k = 0; k < row.size(); ++k) {
+      if (k > 0 && row[k].first == row[k - 1].first) K.val.back() += row[k].second;
+      else K.col.push_back(row[k].first), K.val.push_back(row[k].second);
+    }
+    K.rowptr.push_back(static_cast<int>(K.col.size()));
+  }
+  return K;
+}
+
 }  // namespace
 
 // A message with "node <k>" in a numbering of Tribos' own, with the
@@ -184,10 +215,15 @@ class AssembledFeti {
   // The rank's rows of K (entries per row dof, in row-node dofs) and its
   // connected pieces (row-node indices, ascending ids); checks them.
   struct RankRows {
-    std::vector<std::vector<std::pair<int, double>>> entries;
+    std::vector<std::vector<std::pair<int, double>>> entries;  // K given: its rows
     std::vector<std::vector<int>> pieces;
+    const ElementMatrices* elements = nullptr;  // elements given: them,
+    std::vector<std::vector<int>> pieceElements;  // and each piece's
   };
   RankRows readRows(const RowMatrix& K) const;
+  RankRows readElements(const ElementMatrices& E) const;
+  RankRows readRows(const ContactProblem& p) const;
+  std::vector<GO> elementNodes(const ElementMatrices& E) const;
   std::vector<LocalCsr> pieceMatrices(const RankRows& rows) const;
   std::vector<Fem::SubdomainSystem> subdomains(const ContactProblem& p);
   // FETI's K+ and the Cholesky factorization assume K = K' on every rank's
@@ -207,12 +243,20 @@ int AssembledFeti::rowNode(GO node) const {
 }
 
 void AssembledFeti::numberNodes(const ContactProblem& p) {
-  const RowMatrix& K = *p.stiffness();
   ownedMap_ = p.ownedMap();
-  rowMap_ = K.getRowMap();
-  TRIBOS_REQUIRE(!rowMap_.is_null(), "Assembled::ContactProblem: K has no row map");
   ownedNodes_ = nodesOfDofMap(*ownedMap_, "ownedMap", rank_);
-  rowNodes_ = nodesOfDofMap(*rowMap_, "K's row map", rank_);
+  if (!p.elements().is_null()) {
+    rowNodes_ = elementNodes(*p.elements());
+    std::vector<GO> dofs;
+    for (GO n : rowNodes_)
+      for (int c = 0; c < 3; ++c) dofs.push_back(3 * n + c);
+    rowMap_ = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                          Teuchos::ArrayView<const GO>(dofs), 0, comm_));
+  } else {
+    rowMap_ = p.stiffness()->getRowMap();
+    TRIBOS_REQUIRE(!rowMap_.is_null(), "Assembled::ContactProblem: K has no row map");
+    rowNodes_ = nodesOfDofMap(*rowMap_, "K's row map", rank_);
+  }
   // The ranks' owned node counts give the ids.
   const int mine = static_cast<int>(ownedNodes_.size());
   std::vector<int> counts(size_);
@@ -305,6 +349,108 @@ void AssembledFeti::requireSymmetric(std::vector<std::vector<std::pair<int, doub
 
 // The rank's rows of K cut into its connected pieces, each a subdomain in
 // the ids of its nodes.
+// The nodes of the rank's elements, ascending; checks the sizes.
+std::vector<GO> AssembledFeti::elementNodes(const ElementMatrices& E) const {
+  const int m = E.nodesPerElement;
+  TRIBOS_REQUIRE(m >= 1 && E.nodes.size() % m == 0,
+                 "Assembled::ContactProblem: rank " << rank_ << "'s element matrices: " << E.nodes.size()
+                                                    << " node ids, not a multiple of nodesPerElement = " << m);
+  const size_t width = static_cast<size_t>(3 * m) * (3 * m);
+  TRIBOS_REQUIRE(E.values.size() == E.numElements() * width,
+                 "Assembled::ContactProblem: rank " << rank_ << "'s element matrices: " << E.values.size()
+                                                    << " values for " << E.numElements() << " elements of " << m
+                                                    << " nodes, expected " << E.numElements() * width);
+  TRIBOS_REQUIRE(E.subdomainSize >= 0 && E.subdomainSize <= 1000,
+                 "Assembled::ContactProblem: ElementMatrices::subdomainSize = " << E.subdomainSize
+                                                                                << " (0: Auto, or 1 to 1000)");
+  std::set<GO> nodes;
+  for (GO n : E.nodes) {
+    TRIBOS_REQUIRE(n >= 0, "Assembled::ContactProblem: rank " << rank_ << " has an element with the node id " << n);
+    nodes.insert(n);
+  }
+  return {nodes.begin(), nodes.end()};
+}
+
+AssembledFeti::RankRows AssembledFeti::readRows(const ContactProblem& p) const {
+  return p.elements().is_null() ? readRows(*p.stiffness()) : readElements(*p.elements());
+}
+
+// The rank's elements split into subdomains: each connected part of them
+// (elements sharing nodes) apart, cut by METIS into parts of about
+// (H + 1)^3 nodes.
+AssembledFeti::RankRows AssembledFeti::readElements(const ElementMatrices& E) const {
+  const int m = E.nodesPerElement, w = 3 * m;
+  const size_t ne = E.numElements();
+  RankRows out;
+  out.elements = &E;
+  std::vector<int> local(E.nodes.size());
+  Pieces parts(static_cast<int>(rowNodes_.size()));
+  for (size_t e = 0; e < ne; ++e) {
+    const double* K = &E.values[e * w * w];
+    double largest = 0;
+    for (int i = 0; i < w; ++i) largest = std::max(largest, std::abs(K[i * w + i]));
+    for (int i = 0; i < w; ++i)
+      for (int j = 0; j < w; ++j) {
+        TRIBOS_REQUIRE(std::isfinite(K[i * w + j]), "Assembled::ContactProblem: rank "
+                                                        << rank_ << "'s element " << e << " has the entry ("
+                                                        << i << ", " << j << ") = " << K[i * w + j]);
+        TRIBOS_REQUIRE(std::abs(K[i * w + j] - K[j * w + i]) <= 1e-10 * largest,
+                       "Assembled::ContactProblem: rank " << rank_ << "'s element " << e
+                                                          << " matrix is not symmetric: (" << i << ", " << j
+                                                          << ") = " << K[i * w + j] << " but (" << j << ", " << i
+                                                          << ") = " << K[j * w + i]);
+      }
+    for (int a = 0; a < m; ++a) {
+      local[e * m + a] = rowNode(E.nodes[e * m + a]);
+      if (a > 0) parts.join(local[e * m], local[e * m + a]);
+    }
+  }
+  // Connected parts in the order of their smallest node id.
+  std::map<int, int> smallest;  // root -> smallest id
+  for (size_t e = 0; e < ne; ++e)
+    for (int a = 0; a < m; ++a) {
+      const int r = parts.root(local[e * m + a]), id = rowIds_[local[e * m + a]];
+      const auto it = smallest.insert({r, id});
+      if (!it.second) it.first->second = std::min(it.first->second, id);
+    }
+  std::vector<std::pair<int, int>> order;  // (smallest id, root)
+  for (const auto& [r, id] : smallest) order.push_back({id, r});
+  std::sort(order.begin(), order.end());
+  const int H = E.subdomainSize > 0 ? E.subdomainSize : 4;
+  const double nodesPerSubdomain = std::pow(H + 1.0, 3);
+  for (const auto& [id, root] : order) {
+    std::vector<int> elements;
+    std::map<int, int> partNode;  // row node -> node of the part's mesh
+    for (size_t e = 0; e < ne; ++e)
+      if (parts.root(local[e * m]) == root) elements.push_back(static_cast<int>(e));
+    Mesh::Mesh mesh;
+    mesh.type = m == 4 ? Mesh::CellType::Tet4 : Mesh::CellType::Hex8;
+    for (int e : elements)
+      for (int a = 0; a < m; ++a) {
+        const auto it = partNode.insert({local[e * m + a], static_cast<int>(partNode.size())});
+        mesh.connectivity.push_back(it.first->second);
+      }
+    int count = static_cast<int>(std::lround(partNode.size() / nodesPerSubdomain));
+    count = std::max(1, std::min(count, static_cast<int>(elements.size())));
+    if (m != 4 && m != 8) count = 1;
+    mesh.coords.assign(partNode.size(), {0, 0, 0});
+    const std::vector<int> cut = count > 1 ? Mesh::partitionMetis(mesh, count) : std::vector<int>(elements.size(), 0);
+    std::vector<std::vector<int>> pieceElements(count);
+    for (size_t k = 0; k < elements.size(); ++k) pieceElements[cut[k]].push_back(elements[k]);
+    for (auto& list : pieceElements) {
+      if (list.empty()) continue;
+      std::set<int> nodes;
+      for (int e : list)
+        for (int a = 0; a < m; ++a) nodes.insert(local[e * m + a]);
+      std::vector<int> piece(nodes.begin(), nodes.end());
+      std::sort(piece.begin(), piece.end(), [&](int x, int y) { return rowIds_[x] < rowIds_[y]; });
+      out.pieces.push_back(std::move(piece));
+      out.pieceElements.push_back(std::move(list));
+    }
+  }
+  return out;
+}
+
 AssembledFeti::RankRows AssembledFeti::readRows(const RowMatrix& K) const {
   TRIBOS_REQUIRE(K.isFillComplete() || K.getColMap() != Teuchos::null,
                  "Assembled::ContactProblem: K has no column map (fill it, as Tpetra's FECrsMatrix does between "
@@ -361,22 +507,36 @@ AssembledFeti::RankRows AssembledFeti::readRows(const RowMatrix& K) const {
 std::vector<LocalCsr> AssembledFeti::pieceMatrices(const RankRows& rows) const {
   std::vector<LocalCsr> out;
   std::vector<int> local(rowNodes_.size(), -1);
+  if (rows.elements) {
+    // The sum of each piece's element matrices.
+    const ElementMatrices& E = *rows.elements;
+    const int m = E.nodesPerElement, w = 3 * m;
+    for (size_t s = 0; s < rows.pieces.size(); ++s) {
+      const auto& nodes = rows.pieces[s];
+      for (size_t l = 0; l < nodes.size(); ++l) local[nodes[l]] = static_cast<int>(l);
+      std::vector<std::vector<std::pair<int, double>>> entries(3 * nodes.size());
+      for (int e : rows.pieceElements[s]) {
+        std::vector<int> dofs(w);
+        for (int a = 0; a < m; ++a)
+          for (int c = 0; c < 3; ++c) dofs[3 * a + c] = 3 * local[rowNode(E.nodes[e * m + a])] + c;
+        const double* K = &E.values[static_cast<size_t>(e) * w * w];
+        for (int i = 0; i < w; ++i)
+          for (int j = 0; j < w; ++j)
+            if (K[i * w + j] != 0.0) entries[dofs[i]].push_back({dofs[j], K[i * w + j]});
+      }
+      out.push_back(compressRows(std::move(entries)));
+    }
+    return out;
+  }
   for (const auto& nodes : rows.pieces) {
     for (size_t l = 0; l < nodes.size(); ++l) local[nodes[l]] = static_cast<int>(l);
-    LocalCsr K;
-    K.rows = K.cols = 3 * static_cast<int>(nodes.size());
+    std::vector<std::vector<std::pair<int, double>>> entries;
     for (int a : nodes)
       for (int c = 0; c < 3; ++c) {
-        auto row = rows.entries[3 * a + c];
-        for (auto& e : row) e.first = 3 * local[e.first / 3] + e.first % 3;
-        std::sort(row.begin(), row.end());
-        for (size_t k = 0; k < row.size(); ++k) {
-          if (k > 0 && row[k].first == row[k - 1].first) K.val.back() += row[k].second;
-          else K.col.push_back(row[k].first), K.val.push_back(row[k].second);
-        }
-        K.rowptr.push_back(static_cast<int>(K.col.size()));
+        entries.push_back(rows.entries[3 * a + c]);
+        for (auto& e : entries.back()) e.first = 3 * local[e.first / 3] + e.first % 3;
       }
-    out.push_back(std::move(K));
+    out.push_back(compressRows(std::move(entries)));
   }
   return out;
 }
@@ -384,7 +544,7 @@ std::vector<LocalCsr> AssembledFeti::pieceMatrices(const RankRows& rows) const {
 // The rank's rows of K cut into its connected pieces, each a subdomain in
 // the ids of its nodes.
 std::vector<Fem::SubdomainSystem> AssembledFeti::subdomains(const ContactProblem& p) {
-  RankRows rows = readRows(*p.stiffness());
+  RankRows rows = readRows(p);
   pieces_ = rows.pieces;
   const int mine = static_cast<int>(pieces_.size());
   std::vector<int> counts(size_);
@@ -411,24 +571,25 @@ std::vector<Fem::SubdomainSystem> AssembledFeti::subdomains(const ContactProblem
 }
 
 bool AssembledFeti::setStiffness(const ContactProblem& p) {
-  const RowMatrix& K = *p.stiffness();
-  int same = 0;
-  if (K.getRowMap()->isSameAs(*rowMap_)) {
-    RankRows rows;
-    checkOnEveryRank(*comm_, [&] { rows = readRows(K); });
+  // The same rows (K's row map, or the elements' nodes), pieces and pattern.
+  int same = p.elements().is_null() ? p.stiffness()->getRowMap()->isSameAs(*rowMap_) : 1;
+  if (!same) return false;  // isSameAs agrees on every rank
+  std::vector<LocalCsr> pieceK;
+  checkOnEveryRank(*comm_, [&] {
+    if (!p.elements().is_null()) same = elementNodes(*p.elements()) == rowNodes_;
+    if (!same) return;
+    const RankRows rows = readRows(p);
     same = rows.pieces == pieces_;
-    std::vector<LocalCsr> pieceK;
     if (same) pieceK = pieceMatrices(rows);
     for (size_t s = 0; same && s < pieceK.size(); ++s) {
       const LocalCsr& old = problem->subdomain(static_cast<int>(s)).K;
       same = pieceK[s].rowptr == old.rowptr && pieceK[s].col == old.col;
     }
-    int everywhere = 0;
-    Teuchos::reduceAll<int, int>(*comm_, Teuchos::REDUCE_MIN, same, Teuchos::outArg(everywhere));
-    same = everywhere;
-    if (same) problem->setStiffness(pieceK);
-  }
-  return same != 0;
+  });
+  int everywhere = 0;
+  Teuchos::reduceAll<int, int>(*comm_, Teuchos::REDUCE_MIN, same, Teuchos::outArg(everywhere));
+  if (everywhere) problem->setStiffness(pieceK);
+  return everywhere != 0;
 }
 
 // Every copy of a node goes to its owner, which tells every rank holding a
@@ -521,7 +682,16 @@ std::vector<std::vector<double>> AssembledFeti::subdomainLoads(const RCP<const V
   for (size_t s = 0; s < pieces_.size(); ++s) loads[s].assign(3 * pieces_[s].size(), 0.0);
   if (f.is_null()) return loads;
   const bool owned = f->getMap()->isSameAs(*ownedMap_);
-  const bool overlap = !owned && f->getMap()->isSameAs(*rowMap_);
+  // The rank's rows in any order (an application's owned+shared map lists
+  // its owned dofs first, the elements' nodes come ascending).
+  int sameRows = 0, local = 0;
+  if (!owned) {
+    const Map& map = *f->getMap();
+    local = map.getNodeNumElements() == rowMap_->getNodeNumElements();
+    for (GO dof : rowMap_->getNodeElementList()) local = local && map.isNodeGlobalElement(dof);
+    Teuchos::reduceAll<int, int>(*comm_, Teuchos::REDUCE_MIN, local, Teuchos::outArg(sameRows));
+  }
+  const bool overlap = sameRows != 0;
   checkOnEveryRank(*comm_, [&] {
     TRIBOS_REQUIRE(owned || overlap, "Assembled::ContactProblem: the load is on a map that is neither ownedMap nor K's "
                                      "row map (" << f->getMap()->getNodeNumElements() << " entries on rank " << rank_
@@ -529,14 +699,23 @@ std::vector<std::vector<double>> AssembledFeti::subdomainLoads(const RCP<const V
   });
   Vector onRows(rowMap_);
   if (owned) onRows.doImport(*f, Import(ownedMap_, rowMap_), Tpetra::INSERT);
-  else onRows.update(1.0, *f, 0.0);
+  else {
+    const auto x = f->getData();
+    const Map& map = *f->getMap();
+    for (LO i = 0; i < static_cast<LO>(rowMap_->getNodeNumElements()); ++i)
+      onRows.replaceLocalValue(i, x[map.getLocalElement(rowMap_->getGlobalElement(i))]);
+  }
   const auto v = onRows.getData();
+  // A node's load goes to one copy: its first (owned), or this rank's first
+  // (the rank's contributions).
+  std::vector<char> given(rowNodes_.size(), 0);
   checkOnEveryRank(*comm_, [&] {
     for (size_t s = 0; s < pieces_.size(); ++s)
       for (size_t l = 0; l < pieces_[s].size(); ++l) {
         const int a = pieces_[s][l];
         const int id = rowIds_[a];
         if (owned && copies_.at(id).front().subdomain != firstSubdomain_ + static_cast<int>(s)) continue;
+        if (given[a]++) continue;
         for (int c = 0; c < 3; ++c) {
           const double x = v[rowMap_->getLocalElement(3 * rowNodes_[a] + c)];
           TRIBOS_REQUIRE(std::isfinite(x), "Assembled::ContactProblem: the load at dof " << 3 * rowNodes_[a] + c

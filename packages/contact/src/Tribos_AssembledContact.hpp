@@ -92,6 +92,24 @@ struct ContactPair {
   double searchDistance = std::numeric_limits<double>::infinity();
 };
 
+// The stiffness as element matrices, for an application that hands its
+// elements rather than an overlap matrix: element e has nodesPerElement
+// global node ids (nodes[e m .. e m + m - 1]) and a symmetric matrix of
+// (3m)^2 values, row-major, its dof 3a + c the component c of its a-th node.
+// Each rank gives its own elements. Tribos splits a rank's elements into
+// subdomains of about (subdomainSize + 1)^3 nodes (METIS on the elements
+// sharing faces, each connected part of the rank's elements apart; 0: Auto,
+// 4, the size the driver's Auto takes), as many smaller subdomains make the
+// contact solve faster than one per rank. Tet4 (4) and Hex8 (8) elements are
+// split; other element types give one subdomain per connected part.
+struct ElementMatrices {
+  int nodesPerElement = 8;
+  std::vector<GO> nodes;
+  std::vector<double> values;
+  int subdomainSize = 0;
+  size_t numElements() const { return nodesPerElement > 0 ? nodes.size() / nodesPerElement : 0; }
+};
+
 // The problem, as the application holds it (Belos::LinearProblem's role).
 // Every set* and add* is local to the rank; the solver reads them all,
 // collectively, at its next solve().
@@ -99,9 +117,15 @@ class ContactProblem {
  public:
   ContactProblem(const RCP<const RowMatrix>& K, const RCP<const Map>& ownedMap,
                  const RCP<const MultiVector>& coordinates);
-  // A new stiffness on the same maps (a nonlinear material's next tangent,
-  // say): the next solve builds the subdomains again.
+  // The same with the rank's element matrices instead of K (their nodes are
+  // the rank's rows: the load on K's row map means on theirs).
+  ContactProblem(ElementMatrices elements, const RCP<const Map>& ownedMap,
+                 const RCP<const MultiVector>& coordinates);
+  // A new stiffness (a nonlinear material's next tangent, say): of the same
+  // pattern, a numeric refactorization at the next solve; otherwise the
+  // subdomains are built again.
   void setStiffness(const RCP<const RowMatrix>& K);
+  void setElementMatrices(ElementMatrices elements);
   // The load: a Vector on ownedMap (assembled nodal forces) or on K's row
   // map (the rank's own elements' contributions, summed over the ranks by
   // Tribos). Null: zero.
@@ -117,7 +141,8 @@ class ContactProblem {
   // each with its own facets.
   int addContactPair(ContactPair pair);
 
-  const RCP<const RowMatrix>& stiffness() const { return K_; }
+  const RCP<const RowMatrix>& stiffness() const { return K_; }  // null when given as elements
+  const RCP<const ElementMatrices>& elements() const { return elements_; }
   const RCP<const Map>& ownedMap() const { return ownedMap_; }
   const RCP<const MultiVector>& coordinates() const { return coordinates_; }
   const RCP<const Vector>& load() const { return f_; }
@@ -130,6 +155,7 @@ class ContactProblem {
 
  private:
   RCP<const RowMatrix> K_;
+  RCP<const ElementMatrices> elements_;
   RCP<const Map> ownedMap_;
   RCP<const MultiVector> coordinates_;
   RCP<const Vector> f_;

@@ -57,7 +57,6 @@ struct Box {
 // The application: its boxes assembled into one FECrsMatrix.
 struct App {
   std::vector<Box> boxes;
-  double E = kE;
   RCP<const Comm> comm = Tpetra::getDefaultComm();
   RCP<const Map> owned, overlap, overlapNodes;
   RCP<FEGraph> graph;
@@ -132,7 +131,7 @@ struct App {
     graph->endAssembly();
     K = rcp(new FEMatrix(graph));
     Fem::Material mat;
-    mat.E = E, mat.nu = kNu;
+    mat.E = E_, mat.nu = kNu;
     K->beginAssembly();
     forMyCells([&](const Box& B, int i, int j, int k) {
       const auto Ke = Fem::elementStiffness(Mesh::CellType::Hex8, cellPoints(B, i, j, k), mat);
@@ -145,6 +144,23 @@ struct App {
     });
     if (closeAssembly) K->endAssembly();
   }
+
+  // The rank's cells as element matrices (instead of K).
+  Assembled::ElementMatrices elementMatrices(int subdomainSize) const {
+    Assembled::ElementMatrices E;
+    E.nodesPerElement = 8;
+    E.subdomainSize = subdomainSize;
+    Fem::Material mat;
+    mat.E = E_, mat.nu = kNu;
+    forMyCells([&](const Box& B, int i, int j, int k) {
+      const auto nodes = cellNodes(B, i, j, k);
+      E.nodes.insert(E.nodes.end(), nodes.begin(), nodes.end());
+      const auto Ke = Fem::elementStiffness(Mesh::CellType::Hex8, cellPoints(B, i, j, k), mat);
+      E.values.insert(E.values.end(), Ke.begin(), Ke.end());
+    });
+    return E;
+  }
+  double E_ = kE;
 
   // The facets of this rank's cells on face (axis, side) of box b, outward
   // (counter-clockwise seen from outside).
@@ -267,7 +283,7 @@ TEUCHOS_UNIT_TEST(Assembled, PatchTestOnRigidPlane) {
   // history: a numeric refactorization, the history goes on.
   App stiffer;
   stiffer.boxes = app.boxes;
-  stiffer.E = 2 * kE;
+  stiffer.E_ = 2 * kE;
   stiffer.assemble();
   problem.setStiffness(stiffer.K);
   TEST_ASSERT(solver.solve() == Contact::SolveStatus::Converged);
@@ -316,6 +332,56 @@ TEUCHOS_UNIT_TEST(Assembled, MortarPatchTestBetweenTwoBodies) {
   for (size_t l = 0; l < state->getLocalLength(); ++l)
     if (status[l] >= 0) TEST_FLOATING_EQUALITY(traction[l], kPressure, 1e-8);
   TEST_COMPARE(solver.getSummary().subdomains, >=, 2);
+}
+
+// The element path: the rank's cells as element matrices, split by METIS
+// into subdomains of about 8 nodes (several per rank): the two patch tests
+// again, and a stiffer material as new element matrices of the same
+// pattern (a numeric refactorization).
+TEUCHOS_UNIT_TEST(Assembled, ElementMatricesSplitIntoSubdomains) {
+  App app;
+  Box lower, upper;
+  lower.size = {1, 1, 0.5};
+  lower.cells = {4, 3, 2};
+  upper.origin = {0, 0, 0.5};
+  upper.size = {1, 1, 0.5};
+  upper.cells = {3, 2, 2};
+  upper.firstNode = 100000;
+  app.boxes = {lower, upper};
+  app.assemble();
+  Assembled::ContactProblem problem(app.elementMatrices(1), app.owned, app.coords);
+  problem.setLoad(app.topPressure(app.boxes[1], kPressure));
+  std::vector<std::pair<GO, double>> fixed;
+  for (const Box& b : app.boxes)
+    for (int c = 0; c < 2; ++c) {
+      const auto p = app.plane(b, c, 0.0);
+      fixed.insert(fixed.end(), p.begin(), p.end());
+    }
+  problem.setDirichlet(fixed);
+  Assembled::ContactPair ground, interface;
+  ground.slave = app.face(app.boxes[0], 2, 0);
+  problem.addContactPair(ground);
+  interface.slave = app.face(app.boxes[1], 2, 0);
+  interface.master = app.face(app.boxes[0], 2, 1);
+  problem.addContactPair(interface);
+  Assembled::ContactSolver solver(Teuchos::rcpFromRef(problem), tightParameters());
+  TEST_ASSERT(solver.solve() == Contact::SolveStatus::Converged);
+  TEST_COMPARE(exactError(app, *solver.getDisplacement(), kPressure / kE), <, 1e-8);
+  TEST_COMPARE(solver.getSummary().subdomains, >=, 4 * app.comm->getSize());
+  const auto state = solver.getContactState();
+  const auto traction = state->getData(Assembled::NormalTraction), status = state->getData(Assembled::Status);
+  for (size_t l = 0; l < state->getLocalLength(); ++l)
+    if (status[l] >= 0) TEST_FLOATING_EQUALITY(traction[l], kPressure, 1e-8);
+
+  App stiffer;
+  stiffer.boxes = app.boxes;
+  stiffer.E_ = 2 * kE;
+  problem.setElementMatrices(stiffer.elementMatrices(1));
+  problem.setLoad(app.topPressure(app.boxes[1], 2 * kPressure));
+  TEST_ASSERT(solver.solve() == Contact::SolveStatus::Converged);
+  TEST_ASSERT(solver.getSummary().refactored);
+  TEST_ASSERT(!solver.getSummary().rebuilt);
+  TEST_COMPARE(exactError(app, *solver.getDisplacement(), kPressure / kE), <, 1e-8);
 }
 
 TEUCHOS_UNIT_TEST(Assembled, ReactionsBalanceTheLoad) {
