@@ -20,6 +20,7 @@
 #include <string>
 
 #include "Tribos_Assembly.hpp"
+#include "Tribos_ContactConditions.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_FetiSolve.hpp"
 #include "Tribos_Loads.hpp"
@@ -249,6 +250,60 @@ TEUCHOS_UNIT_TEST(ApplicationInterface, NegativeFrictionRefused) {
   }
   out << message << "\n";
   TEST_ASSERT(message.find("Friction/Law = \"Colomb\" is not a friction law") != std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+// Contact conditions on a symmetry plane: the brick with u_y = 0 on y = 0
+// (through contact nodes of the bottom face), its contact given as one
+// ContactCondition per node after the Dirichlet conditions. The friction
+// direction across the plane gets no row, as on the mesh path, and the two
+// paths give the same displacement.
+TEUCHOS_UNIT_TEST(ApplicationInterface, ContactConditionsOnSymmetryPlane) {
+  const auto comm = Tpetra::getDefaultComm();
+  Brick b;
+  Fem::DirichletCondition symmetry;
+  symmetry.face = "ymin";
+  symmetry.fix = {false, true, false};
+  b.loads.dirichlet.push_back(symmetry);
+  const auto disc = b.disc(*comm);
+  auto meshProblem = rcp(new Feti::FetiProblem(disc, b.mat, b.loads, Contact::faceContactConstraints(disc, b.contact, comm),
+                                               Teuchos::ParameterList(), comm));
+  const auto viaMesh = Contact::solveFeti(meshProblem, kCoulomb, tight());
+  // The application: gluing and Dirichlet rows, then its conditions.
+  Handover h;
+  for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s)
+    h.systems.push_back(Fem::assembleSubdomain(disc, s, b.mat, b.loads));
+  const auto whole = Mesh::generateBox(b.spec);
+  h.constraints.dirichlet = Fem::constrainedDofs(whole, b.loads.dirichlet);
+  h.constraints.rows = Feti::meshConstraintRows(disc, h.constraints.dirichlet, {}, "Orthonormal", false);
+  const auto area = Fem::faceNodalAreas(whole, "zmin");
+  std::vector<Feti::ContactCondition> conditions;
+  int onPlane = 0;
+  for (int node : whole.faceNodes("zmin")) {
+    const int n = disc.partNode(node);
+    if (n < 0 || disc.nodeOwner()[n] != disc.myRank) continue;
+    Feti::ContactCondition c;
+    c.node = node;
+    c.subdomain = disc.copies(n).front().subdomain;
+    c.localNode = disc.copies(n).front().localNode;
+    c.normal = {0, 0, -1};
+    c.area = area[node];
+    onPlane += h.constraints.dirichlet.count(3LL * node + 1) > 0;
+    conditions.push_back(c);
+  }
+  Feti::addContactConditions(h.constraints, conditions, *comm);
+  int planeNodes = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, onPlane, Teuchos::outArg(planeNodes));
+  TEST_COMPARE(planeNodes, >, 0);
+  const auto viaApp = solveApplication(h, comm);
+  TEST_ASSERT(viaMesh.verdict.converged);
+  TEST_ASSERT(viaApp.verdict.converged);
+  const double d = Test::maxRelDiff(viaApp.u.gathered(), viaMesh.u.gathered());
+  out << "conditions vs mesh path, symmetry plane through contact nodes: " << d << "\n";
+  TEST_COMPARE(d, <=, 1e-7);
 }
 
 }  // namespace

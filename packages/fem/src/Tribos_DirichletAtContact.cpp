@@ -38,7 +38,8 @@ PrescribedRelativeMotion prescribedRelativeMotion(const std::map<long long, doub
     }
   }
   std::ostringstream os;
-  os << "contact node " << node << " at (" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+  os << "contact node " << node;
+  if (std::isfinite(x[0])) os << " at (" << x[0] << ", " << x[1] << ", " << x[2] << ")";  // NaN: not known
   m.where = os.str();
   return m;
 }

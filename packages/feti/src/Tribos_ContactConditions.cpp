@@ -1,10 +1,13 @@
 #include "Tribos_ContactConditions.hpp"
 
 #include <cmath>
+#include <limits>
+#include <map>
 #include <set>
 #include <string>
 
 #include "Tribos_AgreeOnError.hpp"
+#include "Tribos_ConstraintRows.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Vec3.hpp"
 
@@ -43,24 +46,6 @@ ContactConstraint constraintOf(const ContactCondition& c, const std::string& nam
   return cc;
 }
 
-// The Normal, Tangent1 and Tangent2 rows of one constraint.
-void appendRows(const ContactCondition& c, const ContactConstraint& cc, std::vector<DualRow>& rows) {
-  DualRow r{DualRow::Normal};
-  r.node = c.node;
-  r.copies = {{c.subdomain, c.localNode, 1.0}};
-  for (const auto& m : c.master) r.copies.push_back({m.subdomain, m.localNode, -m.N});
-  r.dir = cc.normal;
-  r.c = cc.gap;
-  rows.push_back(r);
-  r.c = 0.0;
-  r.kind = DualRow::Tangent1;
-  r.dir = cc.t1;
-  rows.push_back(r);
-  r.kind = DualRow::Tangent2;
-  r.dir = cc.t2;
-  rows.push_back(r);
-}
-
 }  // namespace
 
 void addContactConditions(FetiConstraints& constraints, const std::vector<ContactCondition>& conditions,
@@ -74,7 +59,18 @@ void addContactConditions(FetiConstraints& constraints, const std::vector<Contac
       const std::string name = "contact condition " + std::to_string(i) + " (node " + std::to_string(c.node) + ")";
       TRIBOS_REQUIRE(seen.insert(c.node).second, name << ": the node has a contact condition already");
       contact.push_back(constraintOf(c, name));
-      appendRows(c, contact.back(), rows);
+      // The rows on the copies the condition names, leaving out the
+      // directions that the Dirichlet conditions fix there (a symmetry
+      // plane through a contact node), as for a mesh's contact nodes.
+      std::map<int, Mesh::NodeCopy> copyOf{{c.node, {c.subdomain, c.localNode}}};
+      for (const auto& m : c.master) copyOf[m.node] = {m.subdomain, m.localNode};
+      const double unknown = std::numeric_limits<double>::quiet_NaN();
+      try {
+        contactRows(contact.back(), [&](int node) { return copyOf.at(node); }, constraints.dirichlet,
+                    {unknown, unknown, unknown}, false, rows);
+      } catch (const Error& e) {
+        throw Error(name + ": " + e.what());
+      }
     }
   });
   constraints.rows.insert(constraints.rows.end(), rows.begin(), rows.end());

@@ -42,8 +42,12 @@ struct ContactCondition {
 // (CollectiveError on every rank, naming the condition and its node) a
 // normal that is zero or not finite, a gap, area or weight that is not
 // finite, a negative area or pair, master weights that do not sum to 1, and
-// a node given twice. FetiProblem checks the copies and that no Dirichlet
-// row fixes a direction of the rows. Collective.
+// a node given twice. The Dirichlet conditions already in
+// constraints.dirichlet are read as a mesh's are (Feti::contactRows): a
+// friction direction they fix at the slave node (a symmetry plane through
+// it) and a direction they fix at the slave and every master node get no
+// row; give them before the contact conditions. FetiProblem checks the
+// copies. Collective.
 void addContactConditions(FetiConstraints& constraints, const std::vector<ContactCondition>& conditions,
                           const Comm& comm);
 
