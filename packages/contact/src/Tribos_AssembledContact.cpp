@@ -968,6 +968,7 @@ void ContactSolver::setParameterList(const RCP<Teuchos::ParameterList>& params) 
   setMyParamList(p);
   feti_.reset();  // the FETI list may have changed
   startAgain_ = true;
+  refuseWhatTheSolveWould();
 }
 
 RCP<const Teuchos::ParameterList> ContactSolver::getValidParameters() const {
@@ -979,6 +980,33 @@ void ContactSolver::setProblem(const RCP<ContactProblem>& problem) {
   feti_.reset();
   startAgain_ = true;
   solved_ = false;
+  refuseWhatTheSolveWould();
+}
+
+Contact::PairFriction ContactSolver::pairFriction() const {
+  // "Pair <k>" where the list names it, the list's own entries elsewhere.
+  Contact::PairFriction friction = parameters_.getFriction();
+  if (friction.size() > 1 && friction.size() < problem_->contactPairs().size()) {
+    Teuchos::ParameterList own = getMyParamList()->sublist("Friction");
+    for (auto it = own.begin(); it != own.end();) {
+      const std::string name = own.name(it++);
+      if (own.isSublist(name)) own.remove(name);
+    }
+    friction.resize(problem_->contactPairs().size(), Contact::readPairFriction(own).front());
+  }
+  return friction;
+}
+
+void ContactSolver::refuseWhatTheSolveWould() const {
+  if (problem_.is_null() || getMyParamList().is_null() || problem_->contactPairs().empty()) return;
+  const Contact::PairFriction friction = pairFriction();
+  FrictionLaw law = FrictionLaw::Frictionless;
+  try {
+    law = Contact::runLaw(friction);
+  } catch (const Error& e) {
+    throw Error(std::string("Assembled::ContactSolver: Friction: ") + e.what());
+  }
+  Contact::requireOuterAlgorithmSolves(getMyParamList()->get<std::string>("Outer Algorithm"), law);
 }
 
 void ContactSolver::resetHistory() {
@@ -997,6 +1025,7 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 Contact::SolveStatus ContactSolver::solve() {
   TRIBOS_REQUIRE(!problem_.is_null(), "Assembled::ContactSolver::solve: no problem; call setProblem() first");
   if (getMyParamList().is_null()) setParameterList(Teuchos::null);
+  refuseWhatTheSolveWould();  // pairs added since setProblem
   const auto comm = problem_->ownedMap()->getComm();
   Teuchos::ParameterList& params = *getMyNonconstParamList();
   const auto t0 = std::chrono::steady_clock::now();
@@ -1020,17 +1049,7 @@ Contact::SolveStatus ContactSolver::solve() {
     pairsVersion_ = problem_->pairsVersion();
   }
   loadVersion_ = problem_->loadVersion();
-  // The friction of every pair: "Pair <k>" where the list names it, the
-  // list's own entries elsewhere.
-  Contact::PairFriction friction = parameters_.getFriction();
-  if (friction.size() > 1 && friction.size() < problem_->contactPairs().size()) {
-    Teuchos::ParameterList own = params.sublist("Friction");
-    for (auto it = own.begin(); it != own.end();) {
-      const std::string name = own.name(it++);
-      if (own.isSublist(name)) own.remove(name);
-    }
-    friction.resize(problem_->contactPairs().size(), Contact::readPairFriction(own).front());
-  }
+  const Contact::PairFriction friction = pairFriction();
   if (startAgain_ || rebuild) {
     stepsBefore_ = startAgain_ || !steps_ ? 0 : stepsBefore_ + steps_->completedSteps();
     steps_ = std::make_unique<Contact::FetiLoadSteps>(feti_->problem, friction, params, out_);

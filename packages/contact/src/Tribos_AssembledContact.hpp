@@ -210,7 +210,9 @@ class ContactSolver : public Teuchos::ParameterListAcceptorDefaultBase {
   ~ContactSolver() override;
 
   // Validates and fills in the defaults; throws Tribos::Error naming the
-  // entry. A new list starts the history again at the next solve.
+  // entry, or an outer algorithm that does not solve the law of the
+  // problem's pairs (also refused by setProblem). A new list starts the
+  // history again at the next solve.
   void setParameterList(const RCP<Teuchos::ParameterList>& params) override;
   RCP<const Teuchos::ParameterList> getValidParameters() const override;
   void setProblem(const RCP<ContactProblem>& problem);
@@ -238,6 +240,12 @@ class ContactSolver : public Teuchos::ParameterListAcceptorDefaultBase {
   const SolveSummary& getSummary() const;
 
  private:
+  // The friction of each of the problem's pairs from "Friction".
+  Contact::PairFriction pairFriction() const;
+  // Refuses, when both are set, an outer algorithm that does not solve the
+  // law of the problem's pairs (Tresca and Coulomb pairs together too).
+  void refuseWhatTheSolveWould() const;
+
   RCP<ContactProblem> problem_;
   RCP<Teuchos::FancyOStream> out_;
   Contact::ContactSolver parameters_;  // validation and the friction of the pairs

@@ -164,13 +164,11 @@ void refuseForProblem(const Teuchos::ParameterList& p, const PairFriction& liste
     throw CollectiveError(std::string("ContactSolver: Friction: ") + e.what());
   }
   const std::string requested = p.get<std::string>("Outer Algorithm");
-  const std::string lawName = frictionLawName(law);
-  if (requested != kAutoOuterAlgorithm &&
-      !Friction::frictionSolvers().accepts(Friction::frictionSolvers().canonical(requested), lawName))
-    throw CollectiveError("ContactSolver: Outer Algorithm = \"" + requested + "\" does not solve " +
-                          (law == FrictionLaw::Frictionless ? "frictionless contact" : lawName + " friction") +
-                          ", the law of this problem's contact pairs (Friction/Law); valid for it: " +
-                          joinNames(outerAlgorithmsSolving(lawName)));
+  try {
+    requireOuterAlgorithmSolves(requested, law);
+  } catch (const Error& e) {
+    throw CollectiveError(e.what());
+  }
   try {
     Friction::FrictionSolverFactory()
         .create(outerAlgorithmFor(requested, friction), p)
@@ -181,6 +179,16 @@ void refuseForProblem(const Teuchos::ParameterList& p, const PairFriction& liste
 }
 
 }  // namespace
+
+void requireOuterAlgorithmSolves(const std::string& requested, FrictionLaw law) {
+  const std::string lawName = frictionLawName(law);
+  if (requested != kAutoOuterAlgorithm &&
+      !Friction::frictionSolvers().accepts(Friction::frictionSolvers().canonical(requested), lawName))
+    throw Error("ContactSolver: Outer Algorithm = \"" + requested + "\" does not solve " +
+                (law == FrictionLaw::Frictionless ? "frictionless contact" : lawName + " friction") +
+                ", the law of this problem's contact pairs (Friction/Law); valid for it: " +
+                joinNames(outerAlgorithmsSolving(lawName)));
+}
 
 PairFriction readPairFriction(Teuchos::ParameterList& friction) {
   Teuchos::ParameterList own(kFriction);

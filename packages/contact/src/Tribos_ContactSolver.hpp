@@ -122,6 +122,11 @@ class ContactSolver : public Teuchos::ParameterListAcceptor {
 // Validates the list and fills in its defaults; throws Tribos::Error naming
 // the entry for anything that is not valid there.
 PairFriction readPairFriction(Teuchos::ParameterList& friction);
+// Refuses (Tribos::Error naming the algorithm and the valid ones) an outer
+// algorithm ("Outer Algorithm", Auto passes) that does not solve the law
+// the contact pairs make together (runLaw).
+void requireOuterAlgorithmSolves(const std::string& outerAlgorithm, FrictionLaw law);
+
 
 }  // namespace Contact
 }  // namespace Tribos

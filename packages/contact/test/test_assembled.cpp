@@ -457,6 +457,17 @@ TEUCHOS_UNIT_TEST(Assembled, Refusals) {
     p->sublist("FETI").set("Formulation", "FETI-1");
     Assembled::ContactSolver solver;
     TEST_ASSERT(contains(errorOf([&] { solver.setParameterList(p); }), "TFETI"));
+    // An outer algorithm that does not solve the pairs' law: refused once
+    // both the list and a problem with pairs are set.
+    Assembled::ContactProblem problem(app.K, app.owned, app.coords);
+    Assembled::ContactPair pair;
+    pair.slave = app.face(app.boxes[0], 2, 0);
+    problem.addContactPair(pair);
+    auto coulomb = tightParameters();
+    coulomb->set("Outer Algorithm", "Algorithm1");
+    coulomb->sublist("Friction").set("Law", "Coulomb").set("Coefficient", 0.3);
+    solver.setParameterList(coulomb);
+    TEST_ASSERT(contains(errorOf([&] { solver.setProblem(Teuchos::rcpFromRef(problem)); }), "does not solve Coulomb"));
   }
   {
     Assembled::ContactProblem problem(app.K, app.owned, app.coords);
