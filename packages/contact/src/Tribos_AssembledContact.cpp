@@ -130,22 +130,6 @@ struct Pieces {
   void join(int a, int b) { parent[root(a)] = root(b); }
 };
 
-// Rows of (column, value) entries, columns made ascending and repeated ones
-// summed, as a LocalCsr.
-LocalCsr compressRows(std::vector<std::vector<std::pair<int, double>>> rows) {
-  LocalCsr K;
-  K.rows = K.cols = static_cast<int>(rows.size());
-  for (auto& row : rows) {
-    std::sort(row.begin(), row.end());
-    for (size_t k = 0; k < row.size(); ++k) {
-      if (k > 0 && row[k].first == row[k - 1].first) K.val.back() += row[k].second;
-      else K.col.push_back(row[k].first), K.val.push_back(row[k].second);
-    }
-    K.rowptr.push_back(static_cast<int>(K.col.size()));
-  }
-  return K;
-}
-
 }  // namespace
 
 // A message with "node <k>" in a numbering of Tribos' own, with the
@@ -524,7 +508,7 @@ std::vector<LocalCsr> AssembledFeti::pieceMatrices(const RankRows& rows) const {
           for (int j = 0; j < w; ++j)
             if (K[i * w + j] != 0.0) entries[dofs[i]].push_back({dofs[j], K[i * w + j]});
       }
-      out.push_back(compressRows(std::move(entries)));
+      out.push_back(LocalCsr::fromRows(std::move(entries)));
     }
     return out;
   }
@@ -536,7 +520,7 @@ std::vector<LocalCsr> AssembledFeti::pieceMatrices(const RankRows& rows) const {
         entries.push_back(rows.entries[3 * a + c]);
         for (auto& e : entries.back()) e.first = 3 * local[e.first / 3] + e.first % 3;
       }
-    out.push_back(compressRows(std::move(entries)));
+    out.push_back(LocalCsr::fromRows(std::move(entries)));
   }
   return out;
 }

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <string>
+#include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "Tribos_Error.hpp"
@@ -69,6 +71,22 @@ struct LocalCsr {
     return m;
   }
   CsrView view() const { return {rows, cols, rowptr.data(), col.data(), val.data()}; }
+
+  // A square matrix from its rows of (column, value) entries in any order:
+  // columns ascending, a column given twice summed (as an assembly sums).
+  static LocalCsr fromRows(std::vector<std::vector<std::pair<int, double>>> entries) {
+    LocalCsr A;
+    A.rows = A.cols = static_cast<int>(entries.size());
+    for (auto& row : entries) {
+      std::sort(row.begin(), row.end());
+      for (std::size_t k = 0; k < row.size(); ++k) {
+        if (k > 0 && row[k].first == row[k - 1].first) A.val.back() += row[k].second;
+        else A.col.push_back(row[k].first), A.val.push_back(row[k].second);
+      }
+      A.rowptr.push_back(static_cast<int>(A.col.size()));
+    }
+    return A;
+  }
 
  private:
   static void requireLength(const std::vector<double>& x, int length, const char* product, const char* what) {

@@ -21,21 +21,6 @@ namespace {
 using RowMatrix = Tpetra::RowMatrix<SC, LO, GO, Node>;
 using Entries = std::vector<std::vector<std::pair<int, double>>>;  // per row: (column, value)
 
-// Columns ascending, repeated columns summed.
-LocalCsr compress(Entries rows) {
-  LocalCsr A;
-  A.rows = A.cols = static_cast<int>(rows.size());
-  for (auto& row : rows) {
-    std::sort(row.begin(), row.end());
-    for (size_t k = 0; k < row.size(); ++k) {
-      if (k > 0 && row[k].first == row[k - 1].first) A.val.back() += row[k].second;
-      else A.col.push_back(row[k].first), A.val.push_back(row[k].second);
-    }
-    A.rowptr.push_back(static_cast<int>(A.col.size()));
-  }
-  return A;
-}
-
 // The rows of a RowMatrix, its column indices taken to local row indices
 // (the subdomain's dofs) through the global numbers.
 LocalCsr copyRows(const RowMatrix& K, const std::string& name) {
@@ -57,7 +42,7 @@ LocalCsr copyRows(const RowMatrix& K, const std::string& name) {
       entries[i].push_back({j, value(k)});
     }
   }
-  return compress(std::move(entries));
+  return LocalCsr::fromRows(std::move(entries));
 }
 
 // The matrix of an operator, column block after column block: K applied to
@@ -77,7 +62,7 @@ LocalCsr probe(const Operator& K, int n) {
         if (y[i] != 0.0) entries[i].push_back({first + k, y[i]});
     }
   }
-  return compress(std::move(entries));
+  return LocalCsr::fromRows(std::move(entries));
 }
 
 void requireOnMap(const MultiVector& v, const Map& map, const std::string& what, const std::string& name) {
@@ -130,7 +115,7 @@ void requireSymmetric(const LocalCsr& K, const std::string& name) {
   Entries transposed(K.rows);
   for (int i = 0; i < K.rows; ++i)
     for (int k = K.rowptr[i]; k < K.rowptr[i + 1]; ++k) transposed[K.col[k]].push_back({i, K.val[k]});
-  const LocalCsr Kt = compress(std::move(transposed));
+  const LocalCsr Kt = LocalCsr::fromRows(std::move(transposed));
   for (int i = 0; i < K.rows; ++i) {
     // Both rows are sorted by column: walk them together.
     int a = K.rowptr[i], b = Kt.rowptr[i];
