@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,21 @@ struct ContactNodeResults {
   std::vector<ContactNodeForce> bonded;
   // The forces as the result check takes them (contact and bonded nodes).
   std::vector<ContactNodeForce> forces() const;
+
+  // What an engineer reads of contact node k, each computed here only:
+  // the normal and the tangential traction, the node's force over its area
+  // (ContactConstraint::area: int N_s dA of the slave surface, the dual
+  // mortar integral D_s), 0 where the area is not positive;
+  double normalTraction(size_t k) const;
+  std::array<double, 3> tangentialTraction(size_t k) const;
+  // the slip increment, the relative tangential displacement of the step
+  // (w - w_prev projected on the tangent plane: slip less the tangential
+  // part of previousRelative; the slip itself for a single step);
+  std::array<double, 3> slipIncrement(size_t k) const;
+  // the energy friction dissipates at the node in the step, -phi_T . s with
+  // s the slip increment: the friction force opposes the slip, so the
+  // product is g |s| >= 0 where the node slips and 0 where it sticks.
+  double frictionDissipation(size_t k) const;
 };
 
 // The shared part of every method's result. Collective quantities (counts,
@@ -57,7 +73,20 @@ struct SolveResult {
   int iterations = 0;           // the method's own iterations (CG, outer, Newton)
   long long n_A = 0;            // applications of the dual operator F (0 for primal methods)
   double solveSeconds = 0;
+  // The force the supports exert on the bodies at the Dirichlet dofs, zero
+  // elsewhere (supportReactions), on u's layout; empty where the method
+  // computes none.
+  Fem::NodalVector reaction;
 };
+
+// The reaction of the supports: K u - f - phi at every Dirichlet dof (phi:
+// the contact and bonded forces on the nodes, contactForces), 0 elsewhere:
+// what the equilibrium K u = f + phi + r leaves to the Dirichlet conditions,
+// the multiplier of their rows in Total FETI. Off the contact nodes it is
+// K u - f. Ku, f on one layout, which holds the slave and master nodes of
+// the rank's contact nodes; dirichlet as resultKKT takes it. Collective.
+Fem::NodalVector supportReactions(const Fem::NodalVector& Ku, const Fem::NodalVector& f,
+                                  const ContactNodeResults& contact, const std::map<long long, double>& dirichlet);
 
 // counts over all ranks of the contact nodes in `nodes` (each held by one rank).
 ContactCounts countContacts(const ContactNodeResults& nodes, const Comm& comm);
@@ -70,6 +99,19 @@ struct PairForce {
 };
 // Per pair 0..numPairs-1 (ContactConstraint::pair), summed over all ranks.
 std::vector<PairForce> pairForces(const ContactNodeResults& nodes, int numPairs, const Comm& comm);
+
+// How the slave side of a pair moved against its partner in a step:
+// the relative tangential displacement of the pair, the mean of its slave
+// nodes' slip weighted by their areas (nodes of no positive area left out),
+// and the energy its friction dissipated in the step (the sum of the nodes'
+// frictionDissipation).
+struct PairMotion {
+  std::array<double, 3> relativeTangentialDisplacement{0, 0, 0};
+  double area = 0;         // the sum of the weights: the pair's slave area
+  double dissipation = 0;
+};
+// Per pair 0..numPairs-1, over all ranks. Collective.
+std::vector<PairMotion> pairMotions(const ContactNodeResults& nodes, int numPairs, const Comm& comm);
 
 }  // namespace Contact
 }  // namespace Tribos
