@@ -156,14 +156,15 @@ MeshSize meshCounts(const Mesh::BoxSpec& spec, const MeshSize* meshSize) {
 double outputBytesPerStep(const Teuchos::ParameterList& params, const MeshSize* meshSize) {
   const Mesh::BoxSpec spec = Input::boxSpec(params);
   const MeshSize m = meshCounts(spec, meshSize);
-  // HDF5's metadata, then the datasets: geometry and displacement (3 doubles
-  // per node), topology (8-byte indices: 4 per tetrahedron, 8 per
-  // hexahedron, 8 for a mesh file), 4 cell fields.
+  // HDF5's metadata, then the datasets: geometry, displacement and reaction
+  // (3 doubles per node), topology (8-byte indices: 4 per tetrahedron, 8 per
+  // hexahedron, 8 for a mesh file), the cell fields (13 numbers: von Mises,
+  // the stress tensor, the principal stresses, subdomain, rank, body).
   const double nodesPerCell = meshSize || spec.type == Mesh::CellType::Hex8 ? 8.0 : 4.0;
-  double bytes = 16e3 + 48.0 * m.nodes + (8.0 * nodesPerCell + 32.0) * m.cells;
-  // The contact point set: about 33 numbers per contact node, the nodes of
+  double bytes = 16e3 + 72.0 * m.nodes + (8.0 * nodesPerCell + 104.0) * m.cells;
+  // The contact point set: about 42 numbers per contact node, the nodes of
   // a face or two of the bodies.
-  if (params.sublist("Contact").get<bool>("Enabled")) bytes += 264.0 * 2.0 * std::pow(m.nodes, 2.0 / 3.0);
+  if (params.sublist("Contact").get<bool>("Enabled")) bytes += 336.0 * 2.0 * std::pow(m.nodes, 2.0 / 3.0);
   // The step's part of the index, its row of the steps table, its history rows.
   return bytes + 6e3;
 }

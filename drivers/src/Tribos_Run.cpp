@@ -6,13 +6,16 @@
 #include <sys/statvfs.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -56,34 +59,120 @@ int requestedSubdomains(const Mesh::DecompositionSpec& d) {
   return d.partitioner == "METIS" ? d.subdomains : d.grid[0] * d.grid[1] * d.grid[2];
 }
 
-// Von Mises stress, subdomain and rank of every local cell.
+// The principal stresses of a symmetric stress tensor s (xx, yy, zz, yz,
+// xz, xy), largest first: its eigenvalues, in closed form (the
+// trigonometric solution of the characteristic cubic).
+std::array<double, 3> principalStresses(const std::array<double, 6>& s) {
+  const double mean = (s[0] + s[1] + s[2]) / 3;
+  const double off = s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
+  const double dev = (s[0] - mean) * (s[0] - mean) + (s[1] - mean) * (s[1] - mean) + (s[2] - mean) * (s[2] - mean);
+  std::array<double, 3> e;
+  if (!(off > 1e-30 * dev)) {  // diagonal (a hydrostatic state included)
+    e = {s[0], s[1], s[2]};
+  } else {
+    const double p = std::sqrt((dev + 2 * off) / 6);
+    // B = (s - mean I) / p; r = det(B) / 2 in [-1, 1].
+    const double b00 = (s[0] - mean) / p, b11 = (s[1] - mean) / p, b22 = (s[2] - mean) / p;
+    const double b12 = s[3] / p, b02 = s[4] / p, b01 = s[5] / p;
+    const double det = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02);
+    const double phi = std::acos(std::clamp(det / 2, -1.0, 1.0)) / 3;
+    const double pi = std::acos(-1.0);
+    e[0] = mean + 2 * p * std::cos(phi);
+    e[2] = mean + 2 * p * std::cos(phi + 2 * pi / 3);
+    e[1] = 3 * mean - e[0] - e[2];
+  }
+  std::sort(e.begin(), e.end(), std::greater<double>());
+  return e;
+}
+
+// Every local cell's stress tensor (at its centre: constant in a
+// tetrahedron) with its von Mises stress and principal stresses derived
+// from it, and its subdomain, rank and body.
 std::vector<IO::Field> cellFields(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
                                   const Fem::NodalVector& u) {
-  IO::Field vm{"von_mises", 1, {}}, sub{"subdomain", 1, {}}, rank{"rank", 1, {}}, body{"body", 1, {}};
+  IO::Field vm{"von_mises", 1, {}}, stress{"stress", 6, {}}, principal{"principal_stress", 3, {}},
+      sub{"subdomain", 1, {}}, rank{"rank", 1, {}}, body{"body", 1, {}};
   const Mesh::Mesh& part = disc.part;
   const int npc = part.nodesPerCell();
+  std::vector<double> ue(3 * npc);
   for (int c = 0; c < part.numCells(); ++c) {
-    std::vector<double> ue(3 * npc);
     for (int a = 0; a < npc; ++a)
       for (int d = 0; d < 3; ++d) ue[3 * a + d] = u.at(disc.meshNode(part.cell(c)[a]))[d];
-    vm.values.push_back(
-        Fem::vonMises(Fem::cellStress(part.type, Fem::cellCoordinates(part, c), ue, mat.ofCell(part, c))));
+    const auto sigma = Fem::cellStress(part.type, Fem::cellCoordinates(part, c), ue, mat.ofCell(part, c));
+    vm.values.push_back(Fem::vonMises(sigma));
+    stress.values.insert(stress.values.end(), sigma.begin(), sigma.end());
+    const auto e = principalStresses(sigma);
+    principal.values.insert(principal.values.end(), e.begin(), e.end());
     sub.values.push_back(disc.cellPart[c]);
     rank.values.push_back(disc.myRank);
     body.values.push_back(part.bodyOf(c));
   }
-  return {vm, sub, rank, body};
+  return {vm, stress, principal, sub, rank, body};
 }
+
+// What friction leaves at each contact node over a load history, carried
+// from step to step (and read back from its last step file by a restart):
+// the energy friction has dissipated there since the start of the history,
+// and the slip amplitude, the largest |slip| so far (the slip, w_T, is 0 at
+// the start: the unloaded body).
+class FrictionMemory {
+ public:
+  struct Node {
+    double dissipatedEnergy = 0, slipAmplitude = 0;
+  };
+  // Adds the step whose contact nodes (this rank's) are r.
+  void advance(const Contact::ContactNodeResults& r) {
+    for (size_t k = 0; k < r.nodes.size(); ++k) {
+      Node& m = nodes_[r.nodes[k]];
+      m.dissipatedEnergy += r.frictionDissipation(k);
+      const double* s = &r.slip[3 * k];
+      m.slipAmplitude = std::max(m.slipAmplitude, std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]));
+    }
+  }
+  // What a restart read back for mesh node n.
+  void set(int node, const Node& m) { nodes_[node] = m; }
+  Node at(int node) const {
+    const auto it = nodes_.find(node);
+    return it == nodes_.end() ? Node() : it->second;
+  }
+  // The energy dissipated so far per pair 0..numPairs-1 at the contact nodes r
+  // (this rank's), summed over the ranks. Collective.
+  std::vector<double> pairEnergies(const Contact::ContactNodeResults& r, int numPairs, const Comm& comm) const {
+    std::vector<double> local(static_cast<size_t>(numPairs), 0.0), global(local.size(), 0.0);
+    for (size_t k = 0; k < r.nodes.size(); ++k) {
+      const int pair = r.constraint[k].pair;
+      if (pair >= 0 && pair < numPairs) local[pair] += at(r.nodes[k]).dissipatedEnergy;
+    }
+    if (numPairs > 0) Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, numPairs, local.data(), global.data());
+    return global;
+  }
+
+ private:
+  std::map<int, Node> nodes_;  // mesh node -> its memory
+};
 
 // Contact nodes with their forces, slip and status, as a ParaView point set.
 // The rows in /nodes and the coordinates of the nodes (slave and master
 // nodes may lie in other ranks' parts) are asked of their owners. Collective.
-IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::ContactNodeResults& r, const Comm& comm) {
+IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::ContactNodeResults& r,
+                             const FrictionMemory& memory, const Comm& comm) {
   IO::PointSet ps;
   ps.name = "contact";
   IO::Field normal{"normal_force", 1, r.normalForce}, tangential{"tangential_force", 3, r.tangentialForce},
       slip{"slip", 3, r.slip}, status{"status", 1, {}}, gap{"gap", 1, r.gap}, direction{"normal", 3, {}},
       pair{"pair", 1, {}}, node{"node", 1, {}};
+  IO::Field normalTraction{"normal_traction", 1, {}}, tangentialTraction{"tangential_traction", 3, {}},
+      slipIncrement{"slip_increment", 3, {}}, slipAmplitude{"slip_amplitude", 1, {}},
+      dissipatedEnergy{"dissipated_energy", 1, {}};
+  for (size_t k = 0; k < r.nodes.size(); ++k) {
+    normalTraction.values.push_back(r.normalTraction(k));
+    const auto t = r.tangentialTraction(k), s = r.slipIncrement(k);
+    tangentialTraction.values.insert(tangentialTraction.values.end(), t.begin(), t.end());
+    slipIncrement.values.insert(slipIncrement.values.end(), s.begin(), s.end());
+    const auto m = memory.at(r.nodes[k]);
+    slipAmplitude.values.push_back(m.slipAmplitude);
+    dissipatedEnergy.values.push_back(m.dissipatedEnergy);
+  }
   // As many master columns as the widest partner on any rank: a facet's 4
   // nodes for node-to-segment, all the nodes a mortar row couples.
   int widthHere = 4, width = 4;
@@ -116,7 +205,9 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
       masterWeight.values.push_back(i < c.master.size() ? c.master[i].second : 0.0);
     }
   }
-  ps.fields = {normal, tangential, slip, status, gap, direction, pair, node, masterNode, masterWeight};
+  ps.fields = {normal,        normalTraction, tangential,       tangentialTraction, slip,
+               slipIncrement, slipAmplitude,  dissipatedEnergy, status,             gap,
+               direction,     pair,           node,             masterNode,         masterWeight};
   return ps;
 }
 
@@ -318,8 +409,8 @@ struct StepOutput {
 // step with its data file's digest, appended) and .json (the summary of the
 // steps so far, written last: a set without it is incomplete).
 void writeStep(const Teuchos::ParameterList& params, const IO::OutputDirectory& outputDir, IO::StepSeries& series,
-               int step, double time, const Discretized& d, const StepSolution& sol, StepOutput& output,
-               RunReport& report, const RCP<const Comm>& comm) {
+               int step, double time, const Discretized& d, const StepSolution& sol, const FrictionMemory& memory,
+               StepOutput& output, RunReport& report, const RCP<const Comm>& comm) {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewCounter("Tribos::output"));
   Progress::stage("writing results");
   const auto& disc = d.disc;
@@ -331,14 +422,19 @@ void writeStep(const Teuchos::ParameterList& params, const IO::OutputDirectory& 
   report.stepsFile = names.steps;
   IO::StepResult result;
   if (params.sublist("Contact").get<bool>("Enabled"))
-    result.pointSets.push_back(contactPointSet(disc, sol.result.contact, *comm));
+    result.pointSets.push_back(contactPointSet(disc, sol.result.contact, memory, *comm));
   result.attributes.numbers = {{"converged", report.converged ? 1.0 : 0.0},
                                {"solver_converged", report.solverConverged ? 1.0 : 0.0}};
   result.attributes.text = {{"problem", report.problem}, {"stop_reason", report.stopReason}};
+  IO::Field reaction{"reaction", 3, {}};
   for (int n : disc.ownedNodes()) {
     const double* un = sol.result.u.at(disc.meshNode(n));
     result.uOwned.insert(result.uOwned.end(), un, un + 3);
+    if (sol.result.reaction.empty()) continue;
+    const double* rn = sol.result.reaction.at(disc.meshNode(n));
+    reaction.values.insert(reaction.values.end(), rn, rn + 3);
   }
+  if (!sol.result.reaction.empty()) result.nodeFields.push_back(reaction);
   result.cellFields = cellFields(disc, d.materials, sol.result.u);
   const bool first = !output.committed;
   series.writeStep(step, time, disc, result, [&](const IO::StepFile& file) {
@@ -514,9 +610,53 @@ std::vector<std::string> pairNames(const Teuchos::ParameterList& params) {
   return names;
 }
 
-// The summary row of a checked load step (report holds its verdict).
+// The input's Dirichlet conditions as the reactions are reported: each
+// dof of the supports counted once, for the first condition (in the order
+// of Boundary Conditions/Dirichlet) that fixes it, so that the resultants
+// of all conditions sum to the whole reaction. Built once for the run.
+class SupportGroups {
+ public:
+  SupportGroups(const Teuchos::ParameterList& params, const Mesh::Discretization& disc,
+                const std::vector<Fem::DirichletCondition>& conditions)
+      : disc_(disc) {
+    const auto& items = params.sublist("Boundary Conditions").sublist("Dirichlet");
+    for (auto it = items.begin(); it != items.end(); ++it) names_.push_back(items.name(it));
+    TRIBOS_REQUIRE(names_.size() == conditions.size(), "SupportGroups: " << names_.size() << " names for "
+                                                                         << conditions.size() << " conditions");
+    condition_.assign(3 * static_cast<size_t>(disc.part.numNodes()), -1);
+    for (size_t i = 0; i < conditions.size(); ++i) {
+      faces_.push_back(conditions[i].face);
+      for (int n : disc.part.faceNodes(conditions[i].face))
+        for (int c = 0; c < 3; ++c)
+          if (conditions[i].fix[c] && condition_[3 * n + c] < 0) condition_[3 * n + c] = static_cast<int>(i);
+    }
+  }
+  // The resultant of reaction (on a layout holding the rank's owned nodes)
+  // over each condition, summed over the ranks. Collective.
+  std::vector<ReactionReport> resultants(const Fem::NodalVector& reaction, const Comm& comm) const {
+    const size_t count = names_.size();
+    std::vector<double> local(3 * count, 0.0), global(local.size(), 0.0);
+    if (!reaction.empty())
+      for (int n : disc_.ownedNodes())
+        for (int c = 0; c < 3; ++c)
+          if (condition_[3 * n + c] >= 0) local[3 * condition_[3 * n + c] + c] += reaction.at(disc_.meshNode(n))[c];
+    if (count > 0) Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(3 * count), local.data(), global.data());
+    std::vector<ReactionReport> out(count);
+    for (size_t i = 0; i < count; ++i) out[i] = {names_[i], faces_[i], {global[3 * i], global[3 * i + 1], global[3 * i + 2]}};
+    return out;
+  }
+
+ private:
+  const Mesh::Discretization& disc_;
+  std::vector<std::string> names_, faces_;
+  std::vector<int> condition_;  // 3 per part node: the condition its dof is reported under, -1 for none
+};
+
+// The summary row of a checked load step (report holds its verdict; memory
+// has the step added).
 StepReport stepReport(const Teuchos::ParameterList& params, int step, double time, const StepSolution& sol,
-                      const RunReport& report, const Comm& comm) {
+                      const SupportGroups& supports, const FrictionMemory& memory, const RunReport& report,
+                      const Comm& comm) {
   StepReport s;
   s.step = step;
   s.time = time;
@@ -527,9 +667,13 @@ StepReport stepReport(const Teuchos::ParameterList& params, int step, double tim
     const auto& c = sol.result.counts;
     s.contact = ContactCountReport{c.nodes, c.active, c.stick, c.slip};
     const auto names = pairNames(params);
-    const auto forces = Contact::pairForces(sol.result.contact, static_cast<int>(names.size()), comm);
-    for (size_t p = 0; p < names.size(); ++p) s.pairs.push_back({names[p], forces[p]});
+    const int numPairs = static_cast<int>(names.size());
+    const auto forces = Contact::pairForces(sol.result.contact, numPairs, comm);
+    const auto motions = Contact::pairMotions(sol.result.contact, numPairs, comm);
+    const auto energies = memory.pairEnergies(sol.result.contact, numPairs, comm);
+    for (size_t p = 0; p < names.size(); ++p) s.pairs.push_back({names[p], forces[p], motions[p], energies[p]});
   }
+  s.reactions = supports.resultants(sol.result.reaction, comm);
   s.converged = report.converged;
   s.stopReason = report.stopReason;
   s.solveSeconds = maxOver(sol.result.solveSeconds, comm);
@@ -586,7 +730,10 @@ struct Restart {
   std::vector<IO::Summary> stepRows;  // the rows of steps 1..completed
   std::string stepLines;              // the same, as the table's text
   IO::IterationHistory history;       // the history's rows of those steps
+  long long iterationsTotal = 0, n_A_total = 0;  // the work of those steps (their rows' sums)
   std::vector<double> uOwned;         // the last one's displacement, 3 per owned node (after the mesh)
+  // The last one's friction memory at this rank's contact nodes (after the mesh).
+  std::vector<std::pair<int, FrictionMemory::Node>> contactMemory;
 };
 
 // The whole text of a file, or an error naming it.
@@ -776,6 +923,8 @@ Restart readRestart(const Teuchos::ParameterList& params, const RunOptions& opti
       refuse(restart.stepsFile, "its row " + step + " does not name the file " + file + " with its SHA-256 digest");
     restart.stepRows.push_back(row);
     restart.stepLines += lines[i] + "\n";
+    restart.iterationsTotal += std::strtoll(row.json("iterations").c_str(), nullptr, 10);
+    restart.n_A_total += std::strtoll(row.json("n_A").c_str(), nullptr, 10);
   }
   if (restart.stepRows.back().json("converged") != "true")
     refuse(restart.stepsFile, "its last step " + std::to_string(restart.completed) + " did not converge (" +
@@ -819,14 +968,55 @@ void verifyStepFiles(const Restart& restart, const IO::StepSeries& series, const
   if (!error.empty()) throw CollectiveError("--restart " + dir.path() + ": " + error);
 }
 
-// The displacement of the last step the restart continues from, each rank
-// reading the rows of the nodes it owns from its step file (rows in the
-// rank-contiguous numbering, Discretization::nodeIndex), after checking
-// every step file (verifyStepFiles) and that the last one holds this mesh:
-// as many nodes, each at the place this run has it. A refusal is the same
-// CollectiveError on every rank.
+// The friction memory of the contact nodes `nodes` (this rank's, mesh
+// nodes) in the step file `file`: the rows of /points/contact whose `node`
+// (the node's row in /nodes) is theirs, read whole by every rank (a
+// surface's nodes). Collective; throws Tribos::Error naming the file.
+std::vector<std::pair<int, FrictionMemory::Node>> readFrictionMemory(const std::string& file,
+                                                                    const std::vector<int>& nodes,
+                                                                    const Mesh::Discretization& disc,
+                                                                    const Comm& comm) {
+  // The rows of this rank's contact nodes, asked of their owners (collective).
+  const auto rows = disc.askOwners(nodes, 1, [&](int n, double* out) { out[0] = static_cast<double>(disc.nodeIndex()[n]); },
+                                   comm);
+  std::map<long long, FrictionMemory::Node> byRow;
+  std::string error;
+  try {
+    const long long count = IO::readDatasetRows(file, "/points/contact/node", 0, 0).rows;
+    const auto node = IO::readDatasetRows(file, "/points/contact/node", 0, count);
+    const auto energy = IO::readDatasetRows(file, "/points/contact/dissipated_energy", 0, count);
+    const auto amplitude = IO::readDatasetRows(file, "/points/contact/slip_amplitude", 0, count);
+    if (node.columns != 1 || energy.columns != 1 || amplitude.columns != 1 || energy.rows != count ||
+        amplitude.rows != count)
+      throw Error(file + ": /points/contact/node, dissipated_energy and slip_amplitude are not one value per contact node");
+    for (long long i = 0; i < count; ++i) byRow[std::llround(node.values[i])] = {energy.values[i], amplitude.values[i]};
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  // A node of the constraints that the file has no row of took no part in
+  // the solve (the file is the one its step wrote: verifyStepFiles).
+  std::vector<std::pair<int, FrictionMemory::Node>> out;
+  for (size_t i = 0; i < nodes.size() && error.empty(); ++i) {
+    const auto it = byRow.find(std::llround(rows[i]));
+    if (it == byRow.end()) continue;
+    if (!std::isfinite(it->second.dissipatedEnergy) || !std::isfinite(it->second.slipAmplitude))
+      error = file + ": /points/contact/dissipated_energy or slip_amplitude holds values that are not finite";
+    else out.emplace_back(nodes[i], it->second);
+  }
+  if (!error.empty()) throw Error(error);
+  return out;
+}
+
+// The state of the last step the restart continues from, after checking
+// every step file (verifyStepFiles) and that the last one holds this mesh
+// (as many nodes, each at the place this run has it): its displacement,
+// each rank reading the rows of the nodes it owns from its step file (rows
+// in the rank-contiguous numbering, Discretization::nodeIndex), and the
+// friction memory of the rank's contact nodes (`constraints`, glued ones
+// aside). A refusal is the same CollectiveError on every rank.
 void readRestartState(Restart& restart, const IO::StepSeries& series, const IO::OutputDirectory& dir,
-                      const Mesh::Discretization& disc, const Comm& comm) {
+                      const Mesh::Discretization& disc, const std::vector<Feti::ContactConstraint>& constraints,
+                      const Comm& comm) {
   verifyStepFiles(restart, series, dir, comm);
   std::string error;
   const std::string file = dir.path() + "/" + series.dataFileName(restart.completed);
@@ -860,6 +1050,21 @@ void readRestartState(Restart& restart, const IO::StepSeries& series, const IO::
     if (u.columns != 3 || u.rows != disc.numMeshNodes()) throw Error(file + ": /nodes/displacement is not one row of 3 per node");
     restart.uOwned = u.values;
     if (!allFinite(restart.uOwned)) throw Error(file + ": /nodes/displacement holds values that are not finite");
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  error = agreeOnError(comm, error);
+  if (!error.empty()) throw CollectiveError("--restart " + dir.path() + ": " + error);
+  // Every rank of a contact run asks (askOwners is collective), with or
+  // without contact nodes of its own.
+  int contactHere = !constraints.empty(), contact = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, contactHere, Teuchos::outArg(contact));
+  if (!contact) return;
+  std::vector<int> nodes;
+  for (const auto& c : constraints)
+    if (!c.glued) nodes.push_back(c.node);
+  try {
+    restart.contactMemory = readFrictionMemory(file, nodes, disc, comm);
   } catch (const Error& e) {
     error = e.what();
   }
@@ -949,17 +1154,22 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     series = std::make_unique<IO::StepSeries>(*outputDir, params.sublist("Output").get<std::string>("Base Name"),
                                               numSteps, comm);
   StepOutput output;
+  FrictionMemory friction;  // the contact nodes' dissipated energy and slip amplitude so far
+  const SupportGroups supports(params, d.disc, d.loads.dirichlet);
   int first = 0;  // the first step this run solves
   if (restart) {
     // The steps done stay as they are: their files, table rows and history
     // rows; the method continues from the last one's displacement.
-    readRestartState(*restart, *series, *outputDir, d.disc, *comm);
+    readRestartState(*restart, *series, *outputDir, d.disc, d.constraints, *comm);
     first = restart->completed;
     series->continueAfter(std::vector<double>(times.begin(), times.begin() + first));
     method->resumeFrom(std::move(restart->uOwned));
     output.history = std::move(restart->history);
     output.stepLines = std::move(restart->stepLines);
     report.stepsCompleted = first;
+    report.iterationsTotal = restart->iterationsTotal;
+    report.n_A_total = restart->n_A_total;
+    for (const auto& [node, m] : restart->contactMemory) friction.set(node, m);
   }
   double setupSeconds = meshSeconds, solveSeconds = 0;
   // The loads and their curves, read once: a step costs the same whatever
@@ -981,7 +1191,10 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
       os << "load step " << k + 1 << " of " << numSteps << " (t = " << times[k] << "): " << report.stopReason;
       report.stopReason = os.str();
     }
-    report.lastStep = stepReport(params, k + 1, times[k], sol, report, *comm);
+    friction.advance(sol.result.contact);
+    report.lastStep = stepReport(params, k + 1, times[k], sol, supports, friction, report, *comm);
+    report.iterationsTotal += report.lastStep->iterations;
+    report.n_A_total += report.lastStep->n_A;
     report.stepsCompleted = k + 1;
     // Setup: from the start to a solver ready to iterate; solve: its iterations.
     setupSeconds += sol.setupSeconds;
@@ -991,7 +1204,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     report.maxAbsDisplacement = sol.result.u.normInf();
     report.memoryEstimateMb = maxOver(memory.total() / (1024.0 * 1024.0), *comm);
     report.peakRssMb = maxOver(IO::peakRssMb(), *comm);
-    if (series) writeStep(params, *outputDir, *series, k + 1, times[k], d, sol, output, report, comm);
+    if (series) writeStep(params, *outputDir, *series, k + 1, times[k], d, sol, friction, output, report, comm);
     else {
       report.unwrittenSteps.push_back(stepRow(*report.lastStep));
       output.history.rows.clear();

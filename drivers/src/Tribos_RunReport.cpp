@@ -52,6 +52,34 @@ void setFeti(const FetiReport& f, IO::Summary& s) {
   s.set("coarse_factor_mb", f.coarseFactorMb);
 }
 
+std::vector<double> vector3(const std::array<double, 3>& v) { return {v.begin(), v.end()}; }
+
+// The reactions of the supports per Dirichlet condition and the figures of
+// each contact pair of a step.
+void setReactionsAndPairs(const StepReport& r, IO::Summary& s) {
+  if (!r.reactions.empty()) {
+    std::vector<IO::Summary> reactions;
+    for (const auto& reaction : r.reactions) {
+      IO::Summary c;
+      c.set("name", reaction.name).set("face", reaction.face).set("force", vector3(reaction.force));
+      reactions.push_back(c);
+    }
+    s.set("reactions", reactions);
+  }
+  if (!r.pairs.empty()) {
+    std::vector<IO::Summary> pairs;
+    for (const auto& pair : r.pairs) {
+      IO::Summary p;
+      p.set("name", pair.name).set("normal_force", pair.force.normal);
+      p.set("tangential_force", vector3(pair.force.tangential));
+      p.set("relative_tangential_displacement", vector3(pair.motion.relativeTangentialDisplacement));
+      p.set("dissipation", pair.motion.dissipation).set("dissipated_energy", pair.dissipatedEnergy);
+      pairs.push_back(p);
+    }
+    s.set("pairs", pairs);
+  }
+}
+
 IO::Summary stepSummary(const StepReport& r) {
   IO::Summary s;
   s.set("step", r.step).set("time", r.time).set("iterations", r.iterations).set("n_A", r.n_A);
@@ -62,16 +90,7 @@ IO::Summary stepSummary(const StepReport& r) {
     c.set("slip", r.contact->slip);
     s.set("contact", c);
   }
-  if (!r.pairs.empty()) {
-    std::vector<IO::Summary> pairs;
-    for (const auto& [name, force] : r.pairs) {
-      IO::Summary p;
-      p.set("name", name).set("normal_force", force.normal);
-      p.set("tangential_force", std::vector<double>(force.tangential.begin(), force.tangential.end()));
-      pairs.push_back(p);
-    }
-    s.set("pairs", pairs);
-  }
+  setReactionsAndPairs(r, s);
   s.set("converged", r.converged).set("stop_reason", r.stopReason).set("time_solve_s", r.solveSeconds);
   return s;
 }
@@ -105,6 +124,8 @@ IO::Summary RunReport::toSummary() const {
   s.set("dual_dofs", dualDofs);
   s.set("n_A", n_A);
   s.set("outer_iterations", outerIterations);
+  s.set("n_A_total", n_A_total);
+  s.set("outer_iterations_total", iterationsTotal);
   if (relativeResidual) s.set("relative_residual", *relativeResidual);
   if (!frictionLaw.empty()) s.set("friction_law", frictionLaw);
   if (outer) setOuter(*outer, s);
@@ -121,6 +142,8 @@ IO::Summary RunReport::toSummary() const {
   s.set("solver_converged", solverConverged);
   s.set("converged", converged);
   s.set("stop_reason", stopReason);
+  // The last step's reactions of the supports and contact pairs.
+  if (lastStep) setReactionsAndPairs(*lastStep, s);
   s.set("load_steps", numSteps);
   s.set("steps_completed", stepsCompleted);
   if (!stepsFile.empty()) s.set("steps_file", stepsFile);

@@ -5,6 +5,7 @@
 // history can report each step alike.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,16 +48,38 @@ struct SemismoothReport {
   double assemblySeconds = 0, reductionSeconds = 0, newtonSeconds = 0, preconditionerSeconds = 0;
 };
 
+// The resultant of the reaction of the supports (Contact::supportReactions)
+// over one Dirichlet condition of the input: the force the support exerts
+// on the body there.
+struct ReactionReport {
+  std::string name, face;  // Boundary Conditions/Dirichlet/NAME and its Face
+  std::array<double, 3> force{0, 0, 0};
+};
+
+// A contact pair in a step: the resultant of its contact forces on the
+// slave side, how far the slave side moved against the master
+// (Contact::PairMotion: the relative tangential displacement, the
+// dissipation of the step) and the energy its friction dissipated over the
+// history up to this step.
+struct PairReport {
+  std::string name;
+  Contact::PairForce force;
+  Contact::PairMotion motion;
+  double dissipatedEnergy = 0;
+};
+
 // One load step: its pseudo-time, the solve's work, the KKT residuals of its
-// result and the verdict, the contact nodes by status and the resultant of
-// each pair's contact forces (the load-displacement curves of a history).
+// result and the verdict, the contact nodes by status, the reactions of the
+// supports and each pair's resultant and motion (the load-displacement
+// curves of a history).
 struct StepReport {
   int step = 1;
   double time = 1;
   long long iterations = 0, n_A = 0;
   Contact::ResultKKT kkt;
   std::optional<ContactCountReport> contact;
-  std::vector<std::pair<std::string, Contact::PairForce>> pairs;  // pair name, resultant
+  std::vector<ReactionReport> reactions;  // per Dirichlet condition of the input, in its order
+  std::vector<PairReport> pairs;          // per contact pair, in the order of their numbers
   bool converged = false;
   std::string stopReason;
   double solveSeconds = 0;
@@ -93,6 +116,9 @@ struct RunReport {
   // at step 10^5.
   int stepsCompleted = 0;
   std::optional<StepReport> lastStep;
+  // The work of the whole history (every step's, those a restart continues
+  // included): the method's iterations and the applications of F.
+  long long iterationsTotal = 0, n_A_total = 0;
   std::string stepsFile;  // the steps table, a file name beside the summary
   // A run that writes no result set has no steps table: its summary, written
   // once at the end (--summary, stdout), holds the step rows.

@@ -39,6 +39,20 @@ IO::HistoryRow finalRow(long long iterations, double relativeResidual, long long
   return row;
 }
 
+// The reaction of the supports (Contact::supportReactions) from K and f
+// assembled anew on this rank's subdomains: for the methods whose own
+// matrices do not hold the supports (the monolithic system, FETI-1's
+// subdomains with their Dirichlet dofs eliminated, the semismooth* method's
+// reduced system). r.u's layout holds the nodes of the rank's part.
+// Collective.
+Fem::NodalVector reactionOfAssembly(const Discretized& d, const Fem::LoadCase& loads, const Contact::SolveResult& r) {
+  std::vector<Fem::SubdomainSystem> systems;
+  for (int s = d.disc.firstLocalSubdomain(); s < d.disc.endLocalSubdomain(); ++s)
+    systems.push_back(Fem::assembleSubdomain(d.disc, s, d.materials, loads));
+  return Contact::supportReactions(Fem::assembledProduct(systems, r.u), Fem::assembledLoad(systems, r.u.layoutPtr()),
+                                   r.contact, Fem::constrainedDofs(d.disc, loads.dirichlet));
+}
+
 // The members every method keeps: what its maker was given.
 class MethodBase : public SolveMethod {
  public:
@@ -88,8 +102,9 @@ class MonolithicMethod : public MethodBase {
     std::vector<Fem::SubdomainSystem> systems;
     for (int s = d.disc.firstLocalSubdomain(); s < d.disc.endLocalSubdomain(); ++s)
       systems.push_back(Fem::assembleSubdomain(d.disc, s, d.materials, loads));
-    r.kkt = Contact::resultKKT(r.u, Fem::assembledProduct(systems, r.u), Fem::assembledLoad(systems, r.u.layoutPtr()),
-                               dirichlet, FrictionLaw::Frictionless, {});
+    const Fem::NodalVector Ku = Fem::assembledProduct(systems, r.u), f = Fem::assembledLoad(systems, r.u.layoutPtr());
+    r.kkt = Contact::resultKKT(r.u, Ku, f, dirichlet, FrictionLaw::Frictionless, {});
+    r.reaction = Contact::supportReactions(Ku, f, r.contact, dirichlet);
     r.verdict = Contact::resultVerdict(r.kkt, r.solverConverged, r.solverReason, r.tolerance, resultCheckFactor());
     return sol;
   }
@@ -125,6 +140,13 @@ class FetiMethod : public MethodBase {
     }
     const auto r = steps_ ? steps_->solve(loads) : Contact::solveFeti(problem_, friction, solverParams, out);
     sol.result = r;
+    // TFETI's subdomain matrices are the bodies' K; FETI-1 replaced the
+    // Dirichlet rows in them (a single step: assembled once more).
+    sol.result.reaction =
+        solverParams.sublist("FETI").get<std::string>("Formulation") == "FETI-1"
+            ? reactionOfAssembly(d, loads, sol.result)
+            : Contact::supportReactions(problem_->assembledProduct(r.u), problem_->assembledLoad(), r.contact,
+                                        problem_->dirichlet());
     const auto& problem = problem_;
     report.n_A = r.n_A;
     if (!problem->hasContact()) {
@@ -232,6 +254,11 @@ class SemismoothMethod : public MethodBase {
         resultCheckFactor(), comm_, options_.verbose ? &std::cout : nullptr);
     StepSolution sol;
     sol.result = r;
+    // Each contact node's area, the share of the contact face that the slip
+    // bounds use (int N_s dA), for its tractions.
+    const auto area = Fem::faceNodalAreas(*d.whole, plane.face);
+    for (auto& c : sol.result.contact.constraint) c.area = area.at(c.node);
+    sol.result.reaction = reactionOfAssembly(d, loads, sol.result);
     SemismoothReport newton;
     newton.newtonIterations = r.iterations;
     newton.residuals = r.residuals;
