@@ -1,32 +1,52 @@
 #!/usr/bin/python3
 """Contact-face maps of a Tribos result, as PNG files beside it.
 
-usage: scripts/plot_contact.py DIR [--base NAME] [--out DIR] [--pressure-unit UNIT] [--length-unit UNIT] [--zoom]
+usage: scripts/plot_contact.py DIR [--base NAME] [--step N | --time T] [--out DIR] [--pressure-unit UNIT]
+                               [--length-unit UNIT] [--zoom]
 
-DIR is the output directory of a run (`tribos ... --output DIR`); the result
-is DIR/NAME.h5 with DIR/NAME.parameters.xml (NAME: the only *.h5 of DIR, or
---base). Written, for each contact surface of the result (the slave side of
-each contact pair: against a rigid plane or against another body):
+DIR is the output directory of a run (`tribos ... --output DIR`). The result
+drawn is a data file of DIR with the run's parameters file beside it
+(BASE.parameters.xml, which gives each pair's friction law):
 
-  NAME_contact_pressure.png  normal pressure p = normal force / nodal area [Pa]
-  NAME_contact_status.png    no contact / stick / slip per node, the slip (relative
-                             tangential displacement) as arrows
+  - a run of one step: BASE.h5 (BASE: the only result of DIR, or --base);
+  - a run in load steps (BASE.json with its steps table, BASE.step0001.h5,
+    ...): the step --step N (1-based) or the step at time --time T, by
+    default the last step the summary counts; --base BASE.stepNNNN names a
+    step file directly. The series' parameters file BASE.parameters.xml
+    serves every step.
+
+A result whose parameters file is missing is drawn without the friction
+map (a warning says so): its law is unknown. Written (to --out, created if
+needed; default DIR), for each contact surface of the result (the slave
+side of each contact pair: against a rigid plane or against another body):
+
+  NAME_contact_pressure.png  normal pressure [Pa]: the written normal_traction
+                             (the node's normal force over its area, the
+                             integral of its shape function over the slave
+                             surface; older results: the force over the
+                             nodal area below)
+  NAME_contact_status.png    no contact / stick / slip per node, and as arrows
+                             the slip of the step at the slipping nodes
+                             (slip_increment: the relative tangential
+                             displacement of the step; older results: slip),
+                             scaled so that the longest is 8 % of the map
   NAME_contact_ratio.png     Coulomb: |t_T| / (F t_N) (1 on the slip zone)
 
-A result with several contact pairs gets one set per pair, named
+NAME is the data file's name without .h5 (BASE, or BASE.stepNNNN). A result
+with several contact pairs gets one set per pair, named
 NAME_contact_PAIR_pressure.png etc. (PAIR: the name of Contact/Pairs/PAIR);
 a result with one contact surface keeps the names above.
 
-The nodal area of a contact node is its share of the slave surface: the
-boundary facets of the slave body on that surface, each facet's area split
-equally among its nodes (what the solver's slip bounds use). A planar
-surface is found as every boundary facet of the slave body in the plane of
-the pair's points (so facets at nodes that a Dirichlet condition takes out of
-the contact set count too); a curved one (a sphere) as the boundary facets
-whose nodes are all nodes of the pair. The surface is drawn projected on the
-plane normal to the pair's mean contact normal: in the model's coordinates
-when that normal is along an axis, else along two orthonormal in-plane
-directions.
+The nodal area of a contact node (the maps' drawing, and the pressure of
+results that have no normal_traction) is its share of the slave surface:
+the boundary facets of the slave body on that surface, each facet's area
+split equally among its nodes. A planar surface is found as every boundary
+facet of the slave body in the plane of the pair's points (so facets at
+nodes that a Dirichlet condition takes out of the contact set count too); a
+curved one (a sphere) as the boundary facets whose nodes are all nodes of
+the pair. The surface is drawn projected on the plane normal to the pair's
+mean contact normal: in the model's coordinates when that normal is along
+an axis, else along two orthonormal in-plane directions.
 
 Pressure is force over area in the units of the input: Pa for SI inputs;
 --pressure-unit and --length-unit name others (MPa and mm for a mm-N-MPa
@@ -48,6 +68,9 @@ import matplotlib
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.tri as mtri  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tribos_summary  # noqa: E402
 
 # Faces of a cell by local node index, in Tribos' (VTK) ordering.
 HEX_FACES = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
@@ -95,16 +118,84 @@ def read_pairs(root):
     return out
 
 
-def read_result(directory, base):
-    if base is None:
-        found = sorted(glob.glob(os.path.join(directory, "*.h5")))
-        if len(found) != 1:
-            fail("%s holds %d result files (*.h5); name one with --base" % (directory, len(found)))
-        base = os.path.splitext(os.path.basename(found[0]))[0]
+STEP_FILE = re.compile(r"^(.*)\.step(\d{4,})$")
+
+
+def summaries(directory):
+    """The results of DIR that have a summary with an index beside it (BASE names)."""
+    return [os.path.basename(f)[:-len(".json")] for f in sorted(glob.glob(os.path.join(directory, "*.json")))
+            if os.path.exists(f[:-len(".json")] + ".xmf")]
+
+
+def series_step(directory, series, step=None, time=None):
+    """The data file name (without .h5) of a step of the series `series` of
+    DIR: step N, the step at time T, or the last step its summary counts."""
+    path = os.path.join(directory, series + ".json")
+    try:
+        rows = tribos_summary.load(path)["steps"]
+    except (OSError, ValueError, KeyError) as e:
+        fail("cannot read the summary %s with its steps: %s" % (path, e))
+    if not rows:
+        fail("the summary %s counts no complete step" % path)
+    if step is not None:
+        if not 1 <= step <= len(rows):
+            fail("--step %d: the result %s has steps 1 to %d" % (step, series, len(rows)))
+        row = rows[step - 1]
+    elif time is not None:
+        times = [float(r["time"]) for r in rows]
+        found = [k for k, t in enumerate(times) if abs(t - time) <= 1e-9 * max(abs(t), abs(time), 1e-300)]
+        if not found:
+            fail("--time %g: the result %s has no step at that time (its steps run from t = %g to t = %g)"
+                 % (time, series, times[0], times[-1]))
+        row = rows[found[0]]
+    else:
+        row = rows[-1]
+    name = row.get("file")
+    if not isinstance(name, str) or not name.endswith(".h5"):
+        # A summary without step files (Output/Write Results = false) or an older one.
+        fail("the summary %s names no data file of step %s" % (path, row.get("step")))
+    return name[:-len(".h5")]
+
+
+def result_names(directory, base, step=None, time=None):
+    """(data file name without .h5, the name of its series or result: the
+    Base Name of its parameters file)."""
+    if base is not None:
+        m = STEP_FILE.match(base)
+        if m and os.path.exists(os.path.join(directory, base + ".h5")):
+            if step is not None or time is not None:
+                fail("--base %s names one step; --step and --time choose a step of %s" % (base, m.group(1)))
+            return base, m.group(1)
+        if not os.path.exists(os.path.join(directory, base + ".h5")) and os.path.exists(
+                os.path.join(directory, base + ".json")):
+            return series_step(directory, base, step, time), base
+        if step is not None or time is not None:
+            fail("--step and --time choose a step of a run in load steps; %s is a result of one step" % base)
+        return base, base
+    found = summaries(directory)
+    if len(found) == 1:
+        return result_names(directory, found[0], step, time)
+    if len(found) > 1:
+        fail("%s holds %d results (%s); name one with --base" % (directory, len(found), ", ".join(found)))
+    # No summary: the only data file.
+    files = sorted(glob.glob(os.path.join(directory, "*.h5")))
+    if len(files) != 1:
+        fail("%s holds %d result files (*.h5) and no summary; name one with --base" % (directory, len(files)))
+    name = os.path.splitext(os.path.basename(files[0]))[0]
+    m = STEP_FILE.match(name)
+    return name, m.group(1) if m else name
+
+
+def read_result(directory, base, step=None, time=None):
+    base, series = result_names(directory, base, step, time)
     h5 = os.path.join(directory, base + ".h5")
     if not os.path.exists(h5):
         fail("no result %s" % h5)
-    with h5py.File(h5, "r") as f:
+    try:
+        f = h5py.File(h5, "r")
+    except OSError as e:
+        fail("cannot read %s: %s" % (h5, e))
+    with f:
         if "points/contact/geometry" not in f:
             fail("%s has no contact points (a problem without contact)" % h5)
         c = f["points/contact"]
@@ -123,11 +214,21 @@ def read_result(directory, base):
             "pair": c["pair"][...].ravel().astype(int) if "pair" in c else np.zeros(n, dtype=int),
             "node": c["node"][...].ravel().astype(int) if "node" in c else None,
             "normal": c["normal"][...].reshape(n, 3) if "normal" in c else None,
+            # Written since the driver reports tractions and the slip of each step.
+            "normal_traction": c["normal_traction"][...].ravel() if "normal_traction" in c else None,
+            "slip_increment": c["slip_increment"][...].reshape(n, 3) if "slip_increment" in c else None,
         }
     r["pairs"] = [{"name": "contact", "law": "Frictionless", "F": 0.0, "slave": "", "master": ""}]
-    params = os.path.join(directory, base + ".parameters.xml")
+    params = os.path.join(directory, series + ".parameters.xml")
     if os.path.exists(params):
-        r["pairs"] = read_pairs(ET.parse(params).getroot())
+        try:
+            r["pairs"] = read_pairs(ET.parse(params).getroot())
+        except ET.ParseError as e:
+            fail("cannot read the parameters %s: %s" % (params, e))
+    else:
+        r["pairs"][0]["law"] = "unknown"
+        print("plot_contact.py: warning: no parameters file %s beside the result: its friction law is unknown, "
+              "the friction map is not drawn" % params, file=sys.stderr)
     # The friction of the single-surface case, as scripts read it.
     r["law"], r["F"] = r["pairs"][0]["law"], r["pairs"][0]["F"]
     return base, r
@@ -140,7 +241,8 @@ def pair_views(r):
     for p in np.unique(r["pair"]):
         sel = r["pair"] == p
         v = dict(r)
-        for key in ("x", "normal_force", "tangential_force", "slip", "status", "pair", "node", "normal"):
+        for key in ("x", "normal_force", "tangential_force", "slip", "status", "pair", "node", "normal",
+                    "normal_traction", "slip_increment"):
             if r[key] is not None:
                 v[key] = r[key][sel]
         info = r["pairs"][p] if 0 <= p < len(r["pairs"]) else {"name": "pair%d" % p, "law": r["law"], "F": r["F"],
@@ -300,7 +402,10 @@ def plot_pair(base, r, out, n_views, unit="Pa", zoom=False, length="m"):
     _, area, facets = contact_areas(r)
     if not facets:
         return None
-    pressure = np.where(area > 0, r["normal_force"] / np.maximum(area, 1e-300), 0.0)
+    if r.get("normal_traction") is not None:
+        pressure = r["normal_traction"]
+    else:
+        pressure = np.where(area > 0, r["normal_force"] / np.maximum(area, 1e-300), 0.0)
     e1, e2, l1, l2 = plane_frame(x, contact_normal(r), length)
     labels = (l1, l2)
     u, v = x @ e1, x @ e2
@@ -325,20 +430,22 @@ def plot_pair(base, r, out, n_views, unit="Pa", zoom=False, length="m"):
     fig.colorbar(m, ax=ax, label="normal pressure [%s]" % unit)
     written.append(save(fig, out, output_name(base, r, n_views, "pressure")))
 
-    fig, ax = figure(head + "Contact status (arrows: slip)", u, v, labels, limits)
+    fig, ax = figure(head + "Contact status (arrows: slip of the step at the slipping nodes)", u, v, labels, limits)
     colours = {0: ("lightgrey", "no contact"), 1: ("tab:blue", "stick"), 2: ("tab:orange", "slip")}
     # Dots as large as the node spacing allows: few nodes, large dots.
     size = float(np.clip(3000.0 / max(shown.sum(), 1), 2, 50))
     for s, (c, label) in colours.items():
         sel = r["status"] == s
         ax.scatter(u[sel], v[sel], c=c, s=size, label="%s (%d)" % (label, sel.sum()), zorder=2)
-    su, sv = r["slip"] @ e1, r["slip"] @ e2
-    longest = float(np.hypot(su, sv)[shown].max(initial=0))
+    step_slip = r["slip_increment"] if r.get("slip_increment") is not None else r["slip"]
+    su, sv = step_slip @ e1, step_slip @ e2
+    arrows = shown & (r["status"] == 2)
+    longest = float(np.hypot(su, sv)[arrows].max(initial=0))
     if longest > 0:
-        # The largest slip drawn as 8 % of the drawn extent.
+        # The largest slip of a slipping node drawn as 8 % of the drawn extent.
         scale = longest / (0.08 * max(limits[1] - limits[0], limits[3] - limits[2]))
-        q = ax.quiver(u[shown], v[shown], su[shown], sv[shown], color="black", zorder=3, width=0.003, angles="xy",
-                      scale_units="xy", scale=scale)
+        q = ax.quiver(u[arrows], v[arrows], su[arrows], sv[arrows], color="black", zorder=3, width=0.003,
+                      angles="xy", scale_units="xy", scale=scale)
         # The scale arrow below the map, clear of the title (two lines for a pair).
         ax.quiverkey(q, 0.0, -0.14, longest, "largest %.2e %s" % (longest, length), labelpos="E", coordinates="axes",
                      fontproperties={"size": 8})
@@ -386,16 +493,27 @@ def save(fig, out, name):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("directory")
-    ap.add_argument("--base", help="result name (default: the only *.h5 of the directory)")
-    ap.add_argument("--out", help="where the PNGs go (default: the result's directory)")
+    ap.add_argument("--base", help="result name: BASE of a result or of a run in load steps, or BASE.stepNNNN "
+                                   "(default: the only result of the directory)")
+    which = ap.add_mutually_exclusive_group()
+    which.add_argument("--step", type=int, help="the load step drawn, 1-based (default: the last)")
+    which.add_argument("--time", type=float, help="the load step drawn, by its time")
+    ap.add_argument("--out", help="where the PNGs go, created if needed (default: the result's directory)")
     ap.add_argument("--pressure-unit", default="Pa", help="unit of force / area of the input (default Pa)")
     ap.add_argument("--length-unit", default="m", help="unit of length of the input (default m)")
     ap.add_argument("--zoom", action="store_true", help="draw only the neighbourhood of the nodes in contact")
     a = ap.parse_args()
     if not os.path.isdir(a.directory):
         fail("%s is not a directory" % a.directory)
-    base, r = read_result(a.directory, a.base)
-    for path in plot(a.directory, base, r, a.out or a.directory, a.pressure_unit, a.zoom, a.length_unit):
+    base, r = read_result(a.directory, a.base, a.step, a.time)
+    out = a.out or a.directory
+    try:
+        os.makedirs(out, exist_ok=True)
+    except OSError as e:
+        fail("cannot create --out %s: %s" % (out, e.strerror or e))
+    if not os.access(out, os.W_OK):
+        fail("--out %s is not writable" % out)
+    for path in plot(a.directory, base, r, out, a.pressure_unit, a.zoom, a.length_unit):
         print(path)
 
 

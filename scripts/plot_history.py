@@ -1,34 +1,45 @@
 #!/usr/bin/python3
-"""Load history of a Tribos run in load steps: load-displacement curves and
-stick/slip counts over the steps, as PNG files beside the result.
+"""Load history of a Tribos run in load steps: the friction loop of each
+contact pair and the stick/slip counts over the steps, as PNG files beside
+the result.
 
-usage: scripts/plot_history.py DIR [--base NAME] [--output DIR]
+usage: scripts/plot_history.py DIR [--base NAME] [--output DIR] [--force-unit UNIT] [--length-unit UNIT]
 
 DIR is the output directory of a run (`tribos ... --output DIR`): the summary
 BASE.json with its steps (tribos_summary.py: one object per completed step
 in the steps table BASE.steps.jsonl: "time",
 "contact" {"nodes", "active", "stick", "slip"}, "pairs" [{"name",
-"normal_force", "tangential_force"}], ...), the index BASE.xmf and the data
-files it names (BASE.step0001.h5 ... for a run of several steps, BASE.h5 for
-one step; docs/load_history_output.md). BASE: the only summary of DIR with
-an index beside it, or --base. Written (to --output, default DIR):
+"normal_force", "tangential_force", "relative_tangential_displacement",
+"dissipation", "dissipated_energy"}], ...; docs/load_history_output.md).
+BASE: the only summary of DIR with an index beside it, or --base. Written
+(to --output, default DIR):
 
-  BASE_load_displacement.png  per contact pair, the pair's tangential force
-                              against the mean tangential displacement of its
-                              slave nodes, one point per step joined in step
-                              order: the hysteresis loop of a load cycle
+  BASE_load_displacement.png  per contact pair, the pair's friction resultant
+                              (tangential_force: the friction force on its
+                              slave side) against its relative tangential
+                              displacement (relative_tangential_displacement:
+                              the area-weighted mean slip of its slave nodes),
+                              one point per step joined in step order: the
+                              fretting loop of a load cycle, whose area is the
+                              energy friction dissipates (the legend gives the
+                              pair's dissipated_energy at the last step)
   BASE_stick_slip.png         the numbers of contact, stick and slip nodes
                               against the step's time
 
 Both quantities are vectors in the contact plane; a curve draws their
-components along one direction, the pair's tangential force of largest
-magnitude over the steps (its mean tangential displacement if the force is
-zero throughout), so that a load reversed changes sign. The tangential
-displacement of a slave node is its displacement (/nodes/displacement, the
-row the contact point set's field `node` gives) less its part along the
-node's contact normal (field `normal`); a result without those fields uses
-the field `slip`. Only the steps the summary lists are drawn: those are
-complete (the index may list one more while a step is being written).
+components along one direction d, the line of the tangential load: the
+direction of the pair's largest friction resultant over the steps (its
+largest relative displacement if the friction is zero throughout), turned
+so that its largest component is positive; a reversed load changes sign.
+Forces are in the input's force unit (--force-unit, default N), lengths in
+its length unit (--length-unit, default m). A summary written before the
+pairs had their relative tangential displacement draws the mean tangential
+displacement of the slave nodes instead, from the step files the index names
+(their displacement, /nodes/displacement at the row the contact point set's
+field `node` gives, less its part along the node's contact normal `normal`;
+the field `slip` where those are missing). Only the steps the summary lists
+are drawn: those are complete (the index may list one more while a step is
+being written).
 """
 import argparse
 import glob
@@ -148,28 +159,43 @@ def read_contact(path):
 
 def load_history(directory, base=None):
     """Everything drawn: per step its time and contact counts; per pair its
-    name and, per step, the tangential force (3) and the mean tangential
-    displacement of its slave nodes (3)."""
+    name and, per step, the friction resultant (3), the relative tangential
+    displacement (3) and the dissipated energy so far (NaN where the summary
+    has none)."""
     summary = summary_file(directory, base)
     base = os.path.basename(summary)[:-len(".json")]
     steps = read_steps(summary)
-    files = data_files(os.path.join(directory, base + ".xmf"))
-    if len(files) < len(steps):
-        fail("the summary %s lists %d steps but the index %s.xmf only %d" % (summary, len(steps), base, len(files)))
-    contact = [read_contact(path) for _, path in files[:len(steps)]]
-    n_pairs = max([len(s.get("pairs", [])) for s in steps] + [int(c["pair"].max()) + 1 for c in contact if c["pair"].size])
+    n_pairs = max([len(s.get("pairs", [])) for s in steps] + [0])
+    given = n_pairs > 0 and all(len(s.get("pairs", [])) == n_pairs and
+                                all("relative_tangential_displacement" in p for p in s["pairs"]) for s in steps)
+    contact = None
+    if not given:
+        # An older summary: the slave nodes' displacement from the step files.
+        files = data_files(os.path.join(directory, base + ".xmf"))
+        if len(files) < len(steps):
+            fail("the summary %s lists %d steps but the index %s.xmf only %d" % (summary, len(steps), base, len(files)))
+        contact = [read_contact(path) for _, path in files[:len(steps)]]
+        n_pairs = max([n_pairs] + [int(c["pair"].max()) + 1 for c in contact if c["pair"].size])
     pairs = []
     for p in range(n_pairs):
-        names = [s["pairs"][p].get("name") for s in steps if len(s.get("pairs", [])) > p]
+        rows = [s["pairs"][p] if len(s.get("pairs", [])) > p else {} for s in steps]
+        names = [r["name"] for r in rows if "name" in r]
         force, displacement = [], []
-        for s, c in zip(steps, contact):
-            sel = c["pair"] == p
-            displacement.append(c["tangential"][sel].mean(axis=0) if sel.any() else np.full(3, np.nan))
+        for k, row in enumerate(rows):
+            sel = None if contact is None else contact[k]["pair"] == p
+            if given:
+                displacement.append(np.asarray(row["relative_tangential_displacement"], dtype=float))
+            else:
+                displacement.append(contact[k]["tangential"][sel].mean(axis=0) if sel.any() else np.full(3, np.nan))
             # The pair's total as the summary gives it; else the nodal forces summed.
-            given = s["pairs"][p].get("tangential_force") if len(s.get("pairs", [])) > p else None
-            force.append(np.asarray(given, dtype=float) if given is not None else c["tangential_force"][sel].sum(axis=0))
+            if row.get("tangential_force") is not None:
+                force.append(np.asarray(row["tangential_force"], dtype=float))
+            else:
+                force.append(contact[k]["tangential_force"][sel].sum(axis=0))
+        energy = np.array([float(r["dissipated_energy"]) if r.get("dissipated_energy") is not None else np.nan
+                           for r in rows])
         pairs.append({"name": names[0] if names else "pair %d" % p, "force": np.array(force),
-                      "displacement": np.array(displacement)})
+                      "displacement": np.array(displacement), "dissipated_energy": energy, "relative": given})
     counts = {key: np.array([s["contact"].get(key, np.nan) for s in steps], dtype=float)
               for key in ("nodes", "active", "stick", "slip")}
     return {"base": base, "time": np.array([s["time"] for s in steps], dtype=float), "pairs": pairs,
@@ -189,19 +215,31 @@ def curve(pair):
     return direction, displacement @ direction, force @ direction
 
 
-def plot_load_displacement(h, out):
+def axis_labels(h, force_unit="N", length_unit="m"):
+    """The labels of the loop's axes (x, y), with their units."""
+    relative = all(p.get("relative", False) for p in h["pairs"])
+    x = ("relative tangential displacement of the pair along d [%s]" if relative
+         else "mean tangential displacement of the slave nodes along d [%s]") % length_unit
+    return x, "friction resultant of the pair along d [%s]" % force_unit
+
+
+def plot_load_displacement(h, out, force_unit="N", length_unit="m"):
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     for pair in h["pairs"]:
         d, x, y = curve(pair)
-        ax.plot(x, y, "o-", markersize=3,
-                label="%s (along %s)" % (pair["name"], ", ".join("%.2g" % v for v in d)))
+        label = "%s (d = %s)" % (pair["name"], ", ".join("%.2g" % (v if abs(v) > 1e-9 else 0.0) for v in d))
+        energy = pair.get("dissipated_energy")
+        if energy is not None and len(energy) and np.isfinite(energy[-1]):
+            label += ", dissipated %.3g %s %s" % (energy[-1], force_unit, length_unit)
+        ax.plot(x, y, "o-", markersize=3, label=label)
         if len(x) > 1:  # the way round the loop
             ax.annotate("", xy=(x[1], y[1]), xytext=(x[0], y[0]), arrowprops={"arrowstyle": "->"})
-    ax.set_xlabel("mean tangential displacement of the slave nodes")
-    ax.set_ylabel("tangential force of the pair")
+    xlabel, ylabel = axis_labels(h, force_unit, length_unit)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
     ax.axhline(0, color="0.8", linewidth=0.8)
     ax.axvline(0, color="0.8", linewidth=0.8)
-    ax.set_title("%s: load-displacement, %d steps" % (h["base"], len(h["time"])))
+    ax.set_title("%s: friction loops, %d steps" % (h["base"], len(h["time"])))
     ax.legend(fontsize="small")
     return save(fig, out, h["base"] + "_load_displacement.png")
 
@@ -236,12 +274,14 @@ def main():
     parser.add_argument("directory", metavar="DIR")
     parser.add_argument("--base", help="the Base Name of the result (default: the only one in DIR)")
     parser.add_argument("--output", help="directory of the PNG files (default: DIR)")
+    parser.add_argument("--force-unit", default="N", help="the unit of force of the input (default N)")
+    parser.add_argument("--length-unit", default="m", help="the unit of length of the input (default m)")
     args = parser.parse_args()
     out = args.output or args.directory
     if not os.path.isdir(out):
         fail("--output %s is not a directory" % out)
     h = load_history(args.directory, args.base)
-    plot_load_displacement(h, out)
+    plot_load_displacement(h, out, args.force_unit, args.length_unit)
     plot_stick_slip(h, out)
 
 

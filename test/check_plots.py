@@ -7,7 +7,7 @@
 Runs the command, draws the maps, and checks that
   - the three PNGs (per contact pair NAME with --pair) exist, are images of
     the expected size and are not blank;
-  - the nodal areas the pressure is drawn with partition the contact face
+  - the nodal areas of the surface drawn partition the contact face
     (they sum to its area A; per pair: the slave surface of that pair) and
     the pressure is positive where the written status says contact;
   - the pictures follow the data: the result with the normal forces of one
@@ -111,10 +111,13 @@ def main():
     with h5py.File(os.path.join(other, "solution.h5"), "r+") as f:
         x = f["points/contact/geometry"][...]
         half = x[:, 0] > np.median(x[:, 0])
-        fn = f["points/contact/normal_force"]
-        data = fn[...]
-        data[half.reshape(data.shape[0], -1)[:, 0]] = 0.0
-        fn[...] = data
+        # The pressure drawn is the written normal traction (normal_force
+        # over the node's area): both changed alike.
+        for name in ("normal_force", "normal_traction"):
+            fn = f["points/contact/" + name]
+            data = fn[...]
+            data[half.reshape(data.shape[0], -1)[:, 0]] = 0.0
+            fn[...] = data
         st = f["points/contact/status"]
         s = st[...]
         s[s > 0] = 3 - s[s > 0]  # stick <-> slip
