@@ -165,7 +165,7 @@ class AssembledFeti {
   bool setStiffness(const ContactProblem& p);
 
   RCP<Vector> displacement(const Fem::NodalVector& u) const;
-  RCP<Vector> reaction(const Fem::NodalVector& u) const;
+  RCP<Vector> reaction(const Fem::NodalVector& u, const Contact::ContactNodeResults& contact) const;
   RCP<MultiVector> contactState(const Contact::ContactNodeResults& c) const;
 
   // A message of Tribos' own numbering, with the application's node ids.
@@ -894,14 +894,9 @@ RCP<Vector> AssembledFeti::displacement(const Fem::NodalVector& u) const {
   return out;
 }
 
-RCP<Vector> AssembledFeti::reaction(const Fem::NodalVector& u) const {
-  const Fem::NodalVector Ku = problem->assembledProduct(u), f = problem->assembledLoad();
-  Fem::NodalVector r(u.layoutPtr());
-  const auto& nodes = u.layout().nodes();
-  for (int i = 0; i < u.layout().numOwned(); ++i)
-    for (int c = 0; c < 3; ++c)
-      if (dirichlet_.count(3LL * nodes[i] + c)) r.values()[3 * i + c] = Ku.values()[3 * i + c] - f.values()[3 * i + c];
-  return displacement(r);
+RCP<Vector> AssembledFeti::reaction(const Fem::NodalVector& u, const Contact::ContactNodeResults& contact) const {
+  return displacement(
+      Contact::supportReactions(problem->assembledProduct(u), problem->assembledLoad(), contact, problem->dirichlet()));
 }
 
 RCP<MultiVector> AssembledFeti::contactState(const Contact::ContactNodeResults& c) const {
@@ -911,13 +906,13 @@ RCP<MultiVector> AssembledFeti::contactState(const Contact::ContactNodeResults& 
   auto source = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(ids), 0, comm_));
   MultiVector v(source, NumContactColumns);
   for (size_t k = 0; k < c.nodes.size(); ++k) {
-    const double area = c.constraint[k].area;
-    const double perArea = area > 0 ? 1.0 / area : 0.0;
     const LO i = static_cast<LO>(k);
-    v.replaceLocalValue(i, NormalTraction, c.normalForce[k] * perArea);
+    v.replaceLocalValue(i, NormalTraction, c.normalTraction(k));
+    const auto tangential = c.tangentialTraction(k), increment = c.slipIncrement(k);
     for (int d = 0; d < 3; ++d) {
-      v.replaceLocalValue(i, TangentialTractionX + d, c.tangentialForce[3 * k + d] * perArea);
+      v.replaceLocalValue(i, TangentialTractionX + d, tangential[d]);
       v.replaceLocalValue(i, SlipX + d, c.slip[3 * k + d]);
+      v.replaceLocalValue(i, SlipIncrementX + d, increment[d]);
     }
     v.replaceLocalValue(i, Gap, c.gap[k]);
     v.replaceLocalValue(i, Status, k < c.status.size() ? c.status[k] : 0);
@@ -1052,7 +1047,7 @@ Contact::SolveStatus ContactSolver::solve() {
   const Contact::FetiSolveResult r = steps_->solveNext();
   summary_.solveSeconds = secondsSince(t1);
   u_ = feti_->displacement(r.u);
-  reaction_ = feti_->reaction(r.u);
+  reaction_ = feti_->reaction(r.u, r.contact);
   contact_ = feti_->contactState(r.contact);
   summary_.converged = r.verdict.converged;
   summary_.reason = feti_->withApplicationNodes(r.verdict.converged ? r.solverReason : r.verdict.stopReason);

@@ -168,15 +168,18 @@ class ContactProblem {
 // node map: the contact traction (force per area of the node's share of the
 // slave surface: the multiplier of dual mortar), its tangential part in
 // global coordinates, the slip (the relative tangential displacement since
-// the unloaded state), the normal gap and the status (-1: not a slave node,
-// 0: open, 1: stick, 2: slip). Forces act on the slave node.
+// the unloaded state) and the slip of the step (since the previous solve of
+// the history), the normal gap and the status (-1: not a slave node, 0:
+// open, 1: stick, 2: slip). Forces act on the slave node; the same
+// quantities as the driver writes (Tribos_SolveResult.hpp).
 enum ContactColumn {
   NormalTraction = 0,
   TangentialTractionX = 1, TangentialTractionY = 2, TangentialTractionZ = 3,
   SlipX = 4, SlipY = 5, SlipZ = 6,
-  Gap = 7,
-  Status = 8,
-  NumContactColumns = 9
+  SlipIncrementX = 7, SlipIncrementY = 8, SlipIncrementZ = 9,
+  Gap = 10,
+  Status = 11,
+  NumContactColumns = 12
 };
 
 // What a solve reports besides the fields (the same on every rank).
@@ -229,8 +232,8 @@ class ContactSolver : public Teuchos::ParameterListAcceptorDefaultBase {
   void resetHistory();
 
   // On the problem's ownedMap: the displacement, and the reaction at the
-  // Dirichlet dofs, K u - f (the force the supports exert on the body;
-  // zero elsewhere).
+  // Dirichlet dofs, K u - f - (contact forces) (the force the supports
+  // exert on the body, Contact::supportReactions; zero elsewhere).
   RCP<const Vector> getDisplacement() const;
   RCP<const Vector> getReaction() const;
   // On getNodeMap(), the columns of ContactColumn.

@@ -278,6 +278,16 @@ TEUCHOS_UNIT_TEST(Assembled, PatchTestOnRigidPlane) {
   Vector half(*solver.getDisplacement(), Teuchos::Copy);
   half.scale(0.5);
   TEST_COMPARE(exactError(app, half, scale), <, 1e-8);
+  // The slip of the step is half the slip (frictionless, the load doubled).
+  {
+    const auto twice = solver.getContactState();
+    const auto st = twice->getData(Assembled::Status);
+    for (int d = 0; d < 3; ++d) {
+      const auto slip = twice->getData(Assembled::SlipX + d), step = twice->getData(Assembled::SlipIncrementX + d);
+      for (size_t l = 0; l < twice->getLocalLength(); ++l)
+        if (st[l] >= 0) TEST_COMPARE(std::abs(step[l] - 0.5 * slip[l]), <=, 1e-8 * scale);
+    }
+  }
 
   // A stiffer material (a new K of the same pattern) in the middle of the
   // history: a numeric refactorization, the history goes on.
