@@ -69,7 +69,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -113,8 +112,8 @@ struct Block {
   }
 };
 
-// A face of a block: the cells' sides on the plane axis = 0 (side 0) or
-// axis = size (side 1).
+// A face of a block: the cells' sides on its first (side 0) or last (side
+// 1) plane across the axis.
 struct Face {
   int block, axis, side;
 };
