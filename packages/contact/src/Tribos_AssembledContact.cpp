@@ -963,16 +963,18 @@ void ContactSolver::setProblem(const RCP<ContactProblem>& problem) {
 }
 
 Contact::PairFriction ContactSolver::pairFriction() const {
-  // "Pair <k>" where the list names it, the list's own entries elsewhere.
+  // "Pair <k>" where the list names it, the list's own entries elsewhere
+  // (a list of one entry without "Pair <k>" applies to every pair; one
+  // with "Pair 0" alone must still give the other pairs the list's own).
   Contact::PairFriction friction = parameters_.getFriction();
-  if (friction.size() > 1 && friction.size() < problem_->contactPairs().size()) {
-    Teuchos::ParameterList own = getMyParamList()->sublist("Friction");
-    for (auto it = own.begin(); it != own.end();) {
-      const std::string name = own.name(it++);
-      if (own.isSublist(name)) own.remove(name);
-    }
-    friction.resize(problem_->contactPairs().size(), Contact::readPairFriction(own).front());
+  Teuchos::ParameterList own = getMyParamList()->sublist("Friction");
+  bool perPair = false;
+  for (auto it = own.begin(); it != own.end();) {
+    const std::string name = own.name(it++);
+    if (own.isSublist(name)) own.remove(name), perPair = true;
   }
+  if (perPair && friction.size() < problem_->contactPairs().size())
+    friction.resize(problem_->contactPairs().size(), Contact::readPairFriction(own).front());
   return friction;
 }
 

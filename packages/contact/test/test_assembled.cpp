@@ -387,6 +387,55 @@ TEUCHOS_UNIT_TEST(Assembled, ElementMatricesSplitIntoSubdomains) {
   requireUniformState(app, solver, 2 * kPressure, out, success);
 }
 
+// "Friction"/"Pair 0" alone: pair 1 takes the list's own friction. Two
+// blocks on the plane z = 0 (pair 0: Coefficient 0.2 by its sublist; pair
+// 1: the list's 0.4), pressed by p and dragged along x by their top faces
+// (u_x = delta there) until the whole bottom slips: at every slipping node
+// the tangential traction is the pair's coefficient times the normal one.
+TEUCHOS_UNIT_TEST(Assembled, PairSublistLeavesOtherPairsTheListsFriction) {
+  App app;
+  Box A, B;
+  A.cells = B.cells = {2, 2, 2};
+  B.origin = {3, 0, 0};
+  B.firstNode = 100000;
+  app.boxes = {A, B};
+  app.assemble();
+  Assembled::ContactProblem problem(app.K, app.owned, app.coords);
+  auto f = app.topPressure(app.boxes[0], kPressure);
+  f->update(1.0, *app.topPressure(app.boxes[1], kPressure), 1.0);
+  problem.setLoad(f);
+  const double delta = 0.05;
+  std::vector<std::pair<GO, double>> fixed;
+  for (const Box& b : app.boxes) {
+    for (const auto& [dof, value] : app.plane(b, 2, 1.0)) fixed.push_back({dof - 2, delta});  // u_x on the top
+    const auto y = app.plane(b, 1, 0.0);
+    fixed.insert(fixed.end(), y.begin(), y.end());
+    Assembled::ContactPair bottom;
+    bottom.slave = app.face(b, 2, 0);
+    problem.addContactPair(bottom);
+  }
+  problem.setDirichlet(fixed);
+  auto p = tightParameters();
+  p->sublist("Friction").set("Law", "Coulomb").set("Coefficient", 0.4);
+  p->sublist("Friction").sublist("Pair 0").set("Coefficient", 0.2);
+  Assembled::ContactSolver solver(Teuchos::rcpFromRef(problem), p);
+  TEST_ASSERT(solver.solve() == Contact::SolveStatus::Converged);
+  const auto state = solver.getContactState();
+  const auto n = state->getData(Assembled::NormalTraction), st = state->getData(Assembled::Status);
+  int slipping[2] = {0, 0}, all[2];
+  for (size_t l = 0; l < state->getLocalLength(); ++l) {
+    if (st[l] != 2 || n[l] <= 0) continue;
+    const int pair = state->getMap()->getGlobalElement(static_cast<LO>(l)) >= 100000 ? 1 : 0;
+    double t = 0;
+    for (int d = 0; d < 3; ++d) t += std::pow(state->getData(Assembled::TangentialTractionX + d)[l], 2);
+    TEST_FLOATING_EQUALITY(std::sqrt(t) / n[l], pair == 0 ? 0.2 : 0.4, 1e-6);
+    ++slipping[pair];
+  }
+  Teuchos::reduceAll(*app.comm, Teuchos::REDUCE_SUM, 2, slipping, all);
+  TEST_EQUALITY(all[0], 9);
+  TEST_COMPARE(all[1], >=, 3);  // the larger coefficient holds some nodes
+}
+
 TEUCHOS_UNIT_TEST(Assembled, ReactionsBalanceTheLoad) {
   App app;
   Box B;
