@@ -174,7 +174,14 @@ std::vector<Point2> clipPolygon(const std::vector<Point2>& subject, const std::v
       const double sp = side(p), sq = side(q);
       if (sp >= -kOn) out.push_back(p);
       if ((sp >= -kOn) != (sq >= -kOn)) {
-        const double t = sp / (sp - sq);
+        // Where the edge crosses the boundary, within the edge: two
+        // vertices within kOn of the boundary on its outer side, one
+        // counted in and one out, give a t far outside [0, 1], and without
+        // the clamp a point far outside the facet (a master facet that
+        // coincides with the slave facet up to round-off, as where two
+        // meshes match on a part of the interface, got weights of +-19
+        // instead of 1, and a gap from them).
+        const double t = std::clamp(sp / (sp - sq), 0.0, 1.0);
         out.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])});
       }
     }

@@ -11,6 +11,7 @@
 #include "Tribos_ContactSearch.hpp"
 #include "Tribos_Loads.hpp"
 #include "Tribos_Mesh.hpp"
+#include "Tribos_MeshFile.hpp"
 #include "Tribos_Mortar.hpp"
 
 namespace {
@@ -70,6 +71,32 @@ TEUCHOS_UNIT_TEST(Mortar, ClipsKnownPolygons) {
   TEST_COMPARE(area(Contact::clipPolygon({{1, -1}, {2, -1}, {2, 1}, {1, 1}}, square)), <, 1e-14);
   // The whole triangle inside the square stays itself.
   TEST_FLOATING_EQUALITY(area(Contact::clipPolygon(triangle, square)), 0.5, 1e-14);
+}
+
+// A master facet that coincides with the slave facet, seen through the
+// round-off of two projections: its vertices lie within 1e-13 of the
+// reference triangle's edges, on either side. The clipped polygon is the
+// triangle: every vertex within round-off of it, area 1/2. (Cutting each
+// edge at 0 instead of at the tolerance put a vertex at (10.5, -9.5) for a
+// facet of a Gmsh mesh, with mortar weights of +-19 instead of 1.)
+TEUCHOS_UNIT_TEST(Mortar, ClipsCoincidentPolygonsWithinRoundOff) {
+  const std::vector<Point2> triangle = {{0, 0}, {1, 0}, {0, 1}};
+  const double e[] = {-1.1e-13, -0.9e-13, -3e-14, 0.0, 4e-14, 0.9e-13, 1.1e-13};
+  double worstOutside = 0, worstArea = 0;
+  for (double a : e)
+    for (double b : e)
+      for (double c : e)
+        for (bool clockwise : {false, true}) {
+          std::vector<Point2> subject = {{a, b}, {1 + b, c}, {c, 1 - a}};
+          if (clockwise) std::swap(subject[1], subject[2]);
+          const auto clipped = Contact::clipPolygon(subject, triangle);
+          worstArea = std::max(worstArea, std::abs(area(clipped) - 0.5));
+          for (const Point2& p : clipped)
+            worstOutside = std::max({worstOutside, -p[0], -p[1], p[0] + p[1] - 1});
+        }
+  out << "largest distance outside " << worstOutside << ", largest area error " << worstArea << "\n";
+  TEST_COMPARE(worstOutside, <, 1e-12);
+  TEST_COMPARE(worstArea, <, 1e-12);
 }
 
 // The quadrature of polygons: exact for degree 5 on a fan of triangles.
@@ -167,6 +194,35 @@ TEUCHOS_UNIT_TEST(Mortar, FlatNonMatchingFaces) {
       for (int m : mesh.faceNodes("lower_top")) worstMaster = std::max(worstMaster, std::abs(toMaster[m] - masterArea[m]));
       TEST_COMPARE(worstMaster, <, 1e-14);
     }
+}
+
+// A Gmsh mesh whose two plates match on parts of their interface (the
+// shipped lap joint: both plates are cut by the same washer and hole
+// curves, so many slave facets coincide with master facets up to
+// round-off). Every slave node whose facets lie inside the overlap, away
+// from the faceted hole and the master's edge, is fully covered: sum_m
+// M_sm = D_s, and its row carries linear fields over exactly.
+TEUCHOS_UNIT_TEST(Mortar, MatchingFacetsOfAGmshMesh) {
+  const Mesh::Mesh mesh = Mesh::readMeshFile(std::string(TRIBOS_INPUT_DIR) + "/lap_joint.msh");
+  const auto coupling = Contact::mortarCoupling(mesh, "upper_bottom", "lower_top");
+  int inside = 0;
+  double worstCovered = 0, worstLinear = 0;
+  for (const auto& node : coupling) {
+    const auto& xs = mesh.coords[node.node];
+    // The overlap is 20 < x < 40 outside the hole r < 3 around (30, 0);
+    // the facets are at most 1.7 mm.
+    if (xs[0] > 40 - 3.5 || std::hypot(xs[0] - 30, xs[1]) < 3 + 1.8) continue;
+    ++inside;
+    worstCovered = std::max(worstCovered, std::abs(node.covered() - node.area) / node.area);
+    double linear = 0;
+    for (const auto& [m, value] : node.M) linear += value * (1 + 0.2 * mesh.coords[m][0] - 0.3 * mesh.coords[m][1]);
+    worstLinear = std::max(worstLinear, std::abs(linear / node.covered() - (1 + 0.2 * xs[0] - 0.3 * xs[1])));
+  }
+  out << inside << " slave nodes inside: largest |sum_m M_sm - D_s| / D_s " << worstCovered
+      << ", largest error of a linear field " << worstLinear << "\n";
+  TEST_COMPARE(inside, >, 100);
+  TEST_COMPARE(worstCovered, <, 1e-10);
+  TEST_COMPARE(worstLinear, <, 1e-10);
 }
 
 // The search's rows: Mortar gives each slave node weights summing to one,
