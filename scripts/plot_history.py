@@ -14,9 +14,13 @@ in the steps table BASE.steps.jsonl: "time",
 BASE: the only summary of DIR with an index beside it, or --base. Written
 (to --output, default DIR):
 
-  BASE_load_displacement.png  per contact pair, the pair's friction resultant
-                              (tangential_force: the friction force on its
-                              slave side) against its relative tangential
+  BASE_load_displacement.png  per contact pair, the tangential force the
+                              pair transmits (the friction force on its master
+                              side: -tangential_force, the resultant on the
+                              slave side; it points along the slave side's
+                              motion, so that the loop rises to the right as
+                              a load-displacement curve does) against its
+                              relative tangential
                               displacement (relative_tangential_displacement:
                               the area-weighted mean slip of its slave nodes),
                               one point per step joined in step order: the
@@ -203,7 +207,7 @@ def load_history(directory, base=None):
 
 
 def curve(pair):
-    """The loop of one pair along its direction: (direction, displacement, force)."""
+    """The loop of one pair along its direction: (direction, displacement, transmitted force)."""
     force, displacement = pair["force"], pair["displacement"]
     magnitude = np.linalg.norm(force, axis=1)
     source = force if np.nanmax(magnitude, initial=0) > 0 else np.nan_to_num(displacement)
@@ -212,7 +216,7 @@ def curve(pair):
     direction = source[k] / norm if norm > 0 else np.array([1.0, 0.0, 0.0])
     if direction[np.argmax(np.abs(direction))] < 0:  # the same direction for a loop and its mirror image
         direction = -direction
-    return direction, displacement @ direction, force @ direction
+    return direction, displacement @ direction, -(force @ direction)
 
 
 def axis_labels(h, force_unit="N", length_unit="m"):
@@ -220,7 +224,7 @@ def axis_labels(h, force_unit="N", length_unit="m"):
     relative = all(p.get("relative", False) for p in h["pairs"])
     x = ("relative tangential displacement of the pair along d [%s]" if relative
          else "mean tangential displacement of the slave nodes along d [%s]") % length_unit
-    return x, "friction resultant of the pair along d [%s]" % force_unit
+    return x, "force the pair transmits along d [%s]" % force_unit
 
 
 def plot_load_displacement(h, out, force_unit="N", length_unit="m"):

@@ -9,8 +9,8 @@ inserted after NPFLAG.) docs/load_history_output.md defines each quantity.
 The sliding block in a load history (TEST_DATA/load_history/sliding_block.xml,
 1 rank; exact at every step: the bottom at u_x = b, the shear stress tau,
 the pressure p = 1e7 on the unit contact face, Coulomb F = 0.3, G = 5e8):
-  - every cell's stress tensor (xx, yy, zz, yz, xz, xy) is (0, 0, -p, 0,
-    tau, 0), its von Mises stress sqrt(p^2 + 3 tau^2), its principal
+  - every cell's stress tensor (xx, xy, xz, yy, yz, zz: XDMF's Tensor6, as
+    the index declares it) is (0, 0, tau, 0, 0, -p), its von Mises stress sqrt(p^2 + 3 tau^2), its principal
     stresses -p/2 + r, 0, -p/2 - r with r = sqrt(p^2/4 + tau^2);
   - the reactions of the supports: "press" (0, 0, -p), "drag" (tau, 0, 0),
     "symmetry y" 0; the reaction field sums to them; with the contact force
@@ -34,8 +34,8 @@ the pressure p = 1e7 on the unit contact face, Coulomb F = 0.3, G = 5e8):
     its file (its digest recorded anew) ends at 3e4 - 1.8e4 = 1.2e4: the
     running total is the one read back;
   - scripts/plot_history.py draws the pair's loop from the summary: the
-    relative tangential displacement b and the friction resultant -tau
-    along x, axes with units; scripts/plot_contact.py draws a step named
+    relative tangential displacement b and the force the pair transmits,
+    tau, along x, axes with units; scripts/plot_contact.py draws a step named
     by --base BASE.stepNNNN, --step or --time (the Coulomb map included:
     the series' parameters are found), creates --out, refuses a step that
     is not there in one line.
@@ -49,7 +49,7 @@ traction 1e7 and no tangential traction; the lower block's ground contact
 balances the pressure, the symmetry planes take nothing.
 The block pressed by a prescribed displacement, by the semismooth* method
 (TEST_DATA/block_displacement.xml, 1 rank): the normal traction 1e7 at every
-contact node, the stress (0, 0, -1e7, 0, 0, 0), the reaction of the top
+contact node, the stress zz = -1e7 (the others 0), the reaction of the top
 (0, 0, -1e7).
 """
 import argparse
@@ -59,6 +59,7 @@ import os
 import shutil
 import subprocess
 import sys
+import xml.etree.ElementTree as ET
 
 import h5py
 import numpy as np
@@ -117,6 +118,14 @@ def read(path):
     return out
 
 
+def attribute_types(xmf):
+    """Every attribute name of an XDMF index with the set of its AttributeTypes."""
+    types = {}
+    for a in ET.parse(xmf).iter("Attribute"):
+        types.setdefault(a.get("Name"), set()).add(a.get("AttributeType"))
+    return types
+
+
 def worst(a, b):
     return float(np.max(np.abs(np.asarray(a, dtype=float) - np.asarray(b, dtype=float)), initial=0.0))
 
@@ -151,7 +160,7 @@ def check_sliding_block(d, what):
         amplitude = max(amplitude, abs(b))
         r = read(step_file(d, k + 1))
         # The uniform stress state and what is derived from it.
-        exact = np.array([0, 0, -P, 0, tau, 0])
+        exact = np.array([0, 0, tau, 0, 0, -P])
         radius = np.sqrt(P * P / 4 + tau * tau)
         e_stress = max(e_stress, worst(r["stress"], exact[None, :]),
                        worst(r["von_mises"], np.sqrt(P * P + 3 * tau * tau)),
@@ -194,6 +203,11 @@ def check_sliding_block(d, what):
     check(worst(slip_sum, last["slip"]) <= length_tol,
           "%s: the slip increments sum over the steps to the slip (%.3g)" % (what, worst(slip_sum, last["slip"])))
     check(e_amplitude <= length_tol, "%s: the slip amplitude is max |b| so far (%.3g)" % (what, e_amplitude))
+    types = attribute_types(os.path.join(d, BASE + ".xmf"))
+    check(types.get("stress") == {"Tensor6"} and types.get("master_node") == {"Matrix"} and
+          types.get("displacement") == {"Vector"} and types.get("von_mises") == {"Scalar"},
+          "%s: the index declares stress a Tensor6, master_node a Matrix, displacement a Vector, von_mises a "
+          "Scalar (%s)" % (what, {k: sorted(v) for k, v in types.items()}))
     check(e_share <= energy_tol, "%s: every node's dissipated energy is its area's share of the pair's (%.3g)"
           % (what, e_share))
     check(e_motion <= length_tol, "%s: the pair's relative tangential displacement is (b, 0, 0) (%.3g)"
@@ -281,11 +295,11 @@ def check_plots(d, work):
     import plot_history
     h = plot_history.load_history(d)
     direction, x, y = plot_history.curve(h["pairs"][0])
-    check(worst(direction, [1, 0, 0]) <= 1e-8 and worst(x, B) <= 1e-8 * DELTA and worst(y, -TAU) <= 1e-8 * P,
-          "plot_history: the loop of the pair along x is (b, -tau) at every step, from the summary")
+    check(worst(direction, [1, 0, 0]) <= 1e-8 and worst(x, B) <= 1e-8 * DELTA and worst(y, TAU) <= 1e-8 * P,
+          "plot_history: the loop of the pair along x is (b, tau) at every step, from the summary")
     xlabel, ylabel = plot_history.axis_labels(h, "N", "m")
     check("relative tangential displacement" in xlabel and xlabel.endswith("[m]") and
-          "friction resultant" in ylabel and ylabel.endswith("[N]"),
+          "force the pair transmits" in ylabel and ylabel.endswith("[N]"),
           "plot_history: the axes say what they draw and their units (%s; %s)" % (xlabel, ylabel))
     maps = os.path.join(work, "maps")
     shutil.rmtree(maps, ignore_errors=True)
@@ -360,9 +374,9 @@ def check_semismooth(args, work):
     r, s = read(os.path.join(d, BASE + ".h5")), summary(d)
     check(worst(r["normal_traction"], P) <= 1e-8 * P,
           "semismooth*: every contact node's normal traction is 1e7 (%.3g)" % worst(r["normal_traction"], P))
-    check(worst(r["stress"], np.array([0, 0, -P, 0, 0, 0])[None, :]) <= 1e-8 * P and
+    check(worst(r["stress"], np.array([0, 0, 0, 0, 0, -P])[None, :]) <= 1e-8 * P and
           worst(r["principal"], np.array([0, 0, -P])[None, :]) <= 1e-8 * P and worst(r["von_mises"], P) <= 1e-8 * P,
-          "semismooth*: the stress of the uniaxial state (0, 0, -1e7, 0, 0, 0), von Mises 1e7")
+          "semismooth*: the stress of the uniaxial state (zz = -1e7), von Mises 1e7")
     rea = reactions(s)
     check(worst(rea["press"], [0, 0, -P]) <= 1e-8 * P and
           worst(rea["symmetry x"], 0) <= 1e-8 * P and worst(rea["symmetry y"], 0) <= 1e-8 * P,

@@ -85,12 +85,17 @@ std::array<double, 3> principalStresses(const std::array<double, 6>& s) {
   return e;
 }
 
+// The Voigt components (xx, yy, zz, yz, xz, xy) in the order of XDMF's
+// Tensor6 (xx, xy, xz, yy, yz, zz), which ParaView reads as a symmetric tensor.
+constexpr int kTensor6FromVoigt[6] = {0, 5, 4, 1, 3, 2};
+
 // Every local cell's stress tensor (at its centre: constant in a
 // tetrahedron) with its von Mises stress and principal stresses derived
 // from it, and its subdomain, rank and body.
 std::vector<IO::Field> cellFields(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
                                   const Fem::NodalVector& u) {
-  IO::Field vm{"von_mises", 1, {}}, stress{"stress", 6, {}}, principal{"principal_stress", 3, {}},
+  IO::Field vm{"von_mises", 1, {}}, stress{"stress", 6, {}, IO::FieldShape::SymmetricTensor},
+      principal{"principal_stress", 3, {}, IO::FieldShape::Matrix},  // three numbers, not a vector
       sub{"subdomain", 1, {}}, rank{"rank", 1, {}}, body{"body", 1, {}};
   const Mesh::Mesh& part = disc.part;
   const int npc = part.nodesPerCell();
@@ -100,7 +105,7 @@ std::vector<IO::Field> cellFields(const Mesh::Discretization& disc, const Fem::B
       for (int d = 0; d < 3; ++d) ue[3 * a + d] = u.at(disc.meshNode(part.cell(c)[a]))[d];
     const auto sigma = Fem::cellStress(part.type, Fem::cellCoordinates(part, c), ue, mat.ofCell(part, c));
     vm.values.push_back(Fem::vonMises(sigma));
-    stress.values.insert(stress.values.end(), sigma.begin(), sigma.end());
+    for (int k : kTensor6FromVoigt) stress.values.push_back(sigma[k]);
     const auto e = principalStresses(sigma);
     principal.values.insert(principal.values.end(), e.begin(), e.end());
     sub.values.push_back(disc.cellPart[c]);
@@ -178,7 +183,8 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
   int widthHere = 4, width = 4;
   for (const auto& c : r.constraint) widthHere = std::max(widthHere, static_cast<int>(c.master.size()));
   Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, widthHere, Teuchos::outArg(width));
-  IO::Field masterNode{"master_node", width, {}}, masterWeight{"master_weight", width, {}};
+  IO::Field masterNode{"master_node", width, {}, IO::FieldShape::Matrix},
+      masterWeight{"master_weight", width, {}, IO::FieldShape::Matrix};
   for (int s : r.status) status.values.push_back(s);
   std::vector<int> asked(r.nodes);
   for (const auto& c : r.constraint)
@@ -1072,6 +1078,42 @@ void readRestartState(Restart& restart, const IO::StepSeries& series, const IO::
   if (!error.empty()) throw CollectiveError("--restart " + dir.path() + ": " + error);
 }
 
+// A step that took more applications of F than a healthy decomposition
+// needs (slowConvergence): counted in the summary, said on stderr at the
+// first one, with the parameter to change. The dual problem's conditioning
+// depends on the decomposition in ways its sizes do not predict
+// (docs/scaling.md measures 3x between neighbouring sizes of one mesh).
+void noteSlowStep(int step, RunReport& report, const Comm& comm) {
+  if (!slowConvergence(report.lastStep->n_A, report.dualDofs)) return;
+  if (report.slow) {
+    ++report.slow->steps;
+    return;
+  }
+  SlowConvergenceReport slow;
+  slow.firstStep = step;
+  slow.n_A = report.lastStep->n_A;
+  slow.dualDofs = report.dualDofs;
+  slow.steps = 1;
+  std::ostringstream advice;
+  advice << "the dual problem converged slowly: on " << report.subdomains << " subdomains (";
+  if (report.subdomainSize > 0) {
+    advice << "Mesh/Subdomain Size = " << report.subdomainSize << ") another size can be several times faster: try ";
+    std::vector<int> others;
+    for (int H : {4, 5, 6, 8})
+      if (H != report.subdomainSize) others.push_back(H);
+    advice << others[0] << ", " << others[1] << " or " << others[2];
+  } else {
+    advice << "the input's Subdomain Grid or Subdomains) another decomposition can be several times faster: try "
+              "Mesh/Subdomain Size = Auto, 5, 6 or 8";
+  }
+  advice << " (docs/scaling.md); a tolerance tighter than the default costs iterations too";
+  slow.advice = advice.str();
+  if (comm.getRank() == 0)
+    std::cerr << "tribos: warning: load step " << step << ": " << slow.n_A << " applications of F for a dual problem of "
+              << slow.dualDofs << " unknowns: " << slow.advice << std::endl;
+  report.slow = slow;
+}
+
 }  // namespace
 
 void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& options, int numRanks) {
@@ -1195,6 +1237,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     report.lastStep = stepReport(params, k + 1, times[k], sol, supports, friction, report, *comm);
     report.iterationsTotal += report.lastStep->iterations;
     report.n_A_total += report.lastStep->n_A;
+    noteSlowStep(k + 1, report, *comm);
     report.stepsCompleted = k + 1;
     // Setup: from the start to a solver ready to iterate; solve: its iterations.
     setupSeconds += sol.setupSeconds;

@@ -1,5 +1,7 @@
 #include "Tribos_RunReport.hpp"
 
+#include <algorithm>
+
 #include "Tribos_BlasKernels.hpp"
 
 namespace Tribos {
@@ -103,6 +105,10 @@ IO::Summary stepRow(const StepReport& step, const std::string& file, const std::
   return stepSummary(step).set("file", file).set("sha256", sha256);
 }
 
+bool slowConvergence(long long n_A, long long dualDofs) {
+  return n_A > std::max(SlowConvergenceReport::kSlowConvergenceFloor, dualDofs / 2);
+}
+
 IO::Summary RunReport::toSummary() const {
   IO::Summary s;
   s.set("problem", problem);
@@ -148,6 +154,12 @@ IO::Summary RunReport::toSummary() const {
   s.set("steps_completed", stepsCompleted);
   if (!stepsFile.empty()) s.set("steps_file", stepsFile);
   else s.set("steps", unwrittenSteps);
+  if (slow) {
+    IO::Summary w;
+    w.set("first_step", slow->firstStep).set("n_A", slow->n_A).set("dual_dofs", slow->dualDofs);
+    w.set("steps", slow->steps).set("advice", slow->advice);
+    s.set("slow_convergence", w);
+  }
   if (!verifyNote.empty()) s.set("verify_note", verifyNote);
   if (verifyRelativeDifference) s.set("verify_rel_diff_u", *verifyRelativeDifference);
   // Cost.

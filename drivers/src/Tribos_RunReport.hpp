@@ -85,6 +85,22 @@ struct StepReport {
   double solveSeconds = 0;
 };
 
+// Steps whose dual solve took more applications of F than a healthy
+// decomposition needs: more than half as many as the dual problem has
+// unknowns (CG on a well-conditioned dual needs far fewer; a direct method
+// would need no more), and at least kSlowConvergenceFloor. The first such
+// step, how many there were, and what to try instead.
+struct SlowConvergenceReport {
+  static constexpr long long kSlowConvergenceFloor = 1000;
+  int firstStep = 0;
+  long long n_A = 0, dualDofs = 0;  // the first such step's
+  int steps = 0;                    // steps of this run so slow
+  std::string advice;
+};
+// Whether a step of n_A applications of F on a dual of dualDofs unknowns is
+// slow in that sense.
+bool slowConvergence(long long n_A, long long dualDofs);
+
 struct RunReport {
   // Read: the problem and where it came from.
   std::string problem, input;
@@ -109,6 +125,7 @@ struct RunReport {
   std::string stopReason;
   std::optional<double> verifyRelativeDifference;  // --verify
   std::string verifyNote;
+  std::optional<SlowConvergenceReport> slow;
   // The load steps: how many are complete (those of the run a restart
   // continues included) and the last one; the fields above are its. Each
   // step's row (stepRow) goes to the steps table as the step is written:

@@ -21,6 +21,12 @@
 namespace Tribos {
 namespace IO {
 
+const char* xdmfAttributeType(FieldShape shape, int components) {
+  if (shape == FieldShape::SymmetricTensor) return "Tensor6";
+  if (shape == FieldShape::Matrix) return "Matrix";
+  return components == 1 ? "Scalar" : components == 3 ? "Vector" : "Matrix";
+}
+
 namespace {
 
 // Offset of this rank's block and the global total of per-rank counts.
@@ -367,7 +373,7 @@ void xdmfDataItem(std::ostream& os, int pad, const std::string& h5, const std::s
 void xdmfAttribute(std::ostream& os, int pad, const std::string& h5, const std::string& group,
                    const ResultLayout::FieldLayout& f, long long n, const char* center) {
   os << std::string(pad, ' ') << "<Attribute Name=\"" << xmlEscaped(f.name) << "\" AttributeType=\""
-     << (f.components == 1 ? "Scalar" : "Vector") << "\" Center=\"" << center << "\">\n";
+     << xdmfAttributeType(f.shape, f.components) << "\" Center=\"" << center << "\">\n";
   xdmfDataItem(os, pad + 2, h5, group + "/" + f.name, n, f.components, "Float");
   os << std::string(pad, ' ') << "</Attribute>\n";
 }
@@ -403,7 +409,7 @@ const char* kXdmfTail = "  </Domain>\n</Xdmf>\n";
 
 std::vector<ResultLayout::FieldLayout> fieldLayouts(const std::vector<Field>& fields) {
   std::vector<ResultLayout::FieldLayout> layouts;
-  for (const Field& f : fields) layouts.push_back({f.name, f.components});
+  for (const Field& f : fields) layouts.push_back({f.name, f.components, f.shape});
   return layouts;
 }
 
@@ -416,11 +422,11 @@ std::string layoutSignature(const std::string& h5Name, const std::vector<Field>&
   std::ostringstream s;
   s.precision(17);
   s << h5Name << '\n';
-  for (const Field& f : nodeFields) s << "node " << f.name << ' ' << f.components << '\n';
-  for (const Field& f : cellFields) s << "cell " << f.name << ' ' << f.components << '\n';
+  for (const Field& f : nodeFields) s << "node " << f.name << ' ' << f.components << ' ' << int(f.shape) << '\n';
+  for (const Field& f : cellFields) s << "cell " << f.name << ' ' << f.components << ' ' << int(f.shape) << '\n';
   for (const PointSet& ps : pointSets) {
     s << "points " << ps.name << '\n';
-    for (const Field& f : ps.fields) s << "  " << f.name << ' ' << f.components << '\n';
+    for (const Field& f : ps.fields) s << "  " << f.name << ' ' << f.components << ' ' << int(f.shape) << '\n';
   }
   for (const auto& a : attributes.text) s << "text " << a.first << '=' << a.second << '\n';
   for (const auto& a : attributes.numbers) s << "number " << a.first << '=' << a.second << '\n';

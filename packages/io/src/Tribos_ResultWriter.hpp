@@ -18,10 +18,19 @@
 namespace Tribos {
 namespace IO {
 
+// What the components of a field are, as the XDMF index names them for
+// ParaView: FromComponents (1 Scalar, 3 Vector, other counts Matrix),
+// SymmetricTensor (6 components in XDMF's Tensor6 order xx, xy, xz, yy, yz,
+// zz; ParaView shows the full tensor) or Matrix (columns of a table, e.g.
+// the partners of a contact node, whatever their count).
+enum class FieldShape { FromComponents, SymmetricTensor, Matrix };
+const char* xdmfAttributeType(FieldShape shape, int components);
+
 struct Field {
   std::string name;
   int components = 1;
   std::vector<double> values;  // owned nodes (in ownedNodes() order) or local cells, times components
+  FieldShape shape = FieldShape::FromComponents;
 };
 
 // A set of points with their own fields (e.g. contact nodes), written as a
@@ -48,6 +57,7 @@ struct ResultLayout {
   struct FieldLayout {
     std::string name;
     int components = 1;
+    FieldShape shape = FieldShape::FromComponents;
   };
   struct PointSetLayout {
     std::string name;
