@@ -277,14 +277,18 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("directory", metavar="DIR")
     parser.add_argument("--base", help="the Base Name of the result (default: the only one in DIR)")
-    parser.add_argument("--output", help="directory of the PNG files (default: DIR)")
+    parser.add_argument("--output", help="directory of the PNG files, created if needed (default: DIR)")
     parser.add_argument("--force-unit", default="N", help="the unit of force of the input (default N)")
     parser.add_argument("--length-unit", default="m", help="the unit of length of the input (default m)")
     args = parser.parse_args()
     out = args.output or args.directory
-    if not os.path.isdir(out):
-        fail("--output %s is not a directory" % out)
     h = load_history(args.directory, args.base)
+    try:
+        os.makedirs(out, exist_ok=True)  # as plot_contact.py --out
+    except OSError as e:
+        fail("cannot create --output %s: %s" % (out, e.strerror or e))
+    if not os.access(out, os.W_OK):
+        fail("--output %s is not writable" % out)
     plot_load_displacement(h, out, args.force_unit, args.length_unit)
     plot_stick_slip(h, out)
 

@@ -171,12 +171,14 @@ RCP<const ParameterList> validParameters() {
            "Grid); Grid (or 0): the Subdomain Grid (Subdomains for METIS) as given; H, a positive integer: subdomains of "
            "about H cells per edge (the box: along each axis the divisor of the cell count nearest to cells / H, "
            "Structured or METIS; a mesh file: METIS parts of about (H+1)^3 nodes, at least one per rank and per "
-           "body); Auto: H = 4 while that gives at most 12000 subdomains, else 6, lowered until every rank has a "
+           "body); Auto: the box: H = 4 while that gives at most 12000 subdomains, else 6; a mesh file: 8 up to "
+           "6000 nodes per rank, 6 up to 25000, the box's rule beyond; lowered until every rank has a "
            "subdomain. "
            "Small subdomains make the dense blocks of the explicit dual operator cheap (their memory grows like "
-           "the size, their setup per dof like its cube) and the coarse problem (6 per subdomain) large; "
-           "docs/scaling.md measures 4 as the fastest at every count measured, up to 10125 subdomains (Tet4 "
-           "bricks to 2 million dofs on 2 ranks)");
+           "the size, their setup per dof like its cube) and the coarse problem (6 per subdomain) large, large "
+           "ones make the dual problem small: docs/scaling.md measures 4 as the fastest on the brick at every "
+           "count measured, up to 10125 subdomains (Tet4 bricks to 2 million dofs on 2 ranks), and larger METIS "
+           "parts as the fastest on mesh files of up to 18700 nodes per rank");
   mesh.set("Subdomains", 1, "number of subdomains (METIS)", range<int>(1, 1000000));
   ParameterList& mat = pl->sublist("Material", false, "isotropic linear elastic material");
   mat.set("Young's Modulus", 2.1e11, "E > 0");
@@ -1147,7 +1149,9 @@ Mesh::DecompositionSpec decompositionSpec(const ParameterList& params, int numRa
     dec.subdomains = 0;
     if (!meshSize) return dec;
     auto countOf = [&](int H) { return std::max(1.0, std::round(meshSize->nodes / std::pow(H + 1.0, 3))); };
-    dec.size = sizing.kind == SubdomainSizing::Fixed ? sizing.H : automaticSubdomainSize(countOf, numRanks);
+    dec.size = sizing.kind == SubdomainSizing::Fixed
+                   ? sizing.H
+                   : automaticMeshFileSubdomainSize(meshSize->nodes, countOf, numRanks);
     const double least = std::max(double(numRanks), double(meshSize->bodies));
     dec.subdomains = static_cast<int>(std::min(std::max(countOf(dec.size), least), meshSize->cells));
     return dec;

@@ -1078,13 +1078,13 @@ void readRestartState(Restart& restart, const IO::StepSeries& series, const IO::
   if (!error.empty()) throw CollectiveError("--restart " + dir.path() + ": " + error);
 }
 
-// A step that took more applications of F than a healthy decomposition
+// A step that took far more work than a well-conditioned dual problem
 // needs (slowConvergence): counted in the summary, said on stderr at the
 // first one, with the parameter to change. The dual problem's conditioning
 // depends on the decomposition in ways its sizes do not predict
 // (docs/scaling.md measures 3x between neighbouring sizes of one mesh).
 void noteSlowStep(int step, RunReport& report, const Comm& comm) {
-  if (!slowConvergence(report.lastStep->n_A, report.dualDofs)) return;
+  if (!slowConvergence(report.lastStep->iterations, report.lastStep->n_A, report.dualDofs)) return;
   if (report.slow) {
     ++report.slow->steps;
     return;
@@ -1092,6 +1092,7 @@ void noteSlowStep(int step, RunReport& report, const Comm& comm) {
   SlowConvergenceReport slow;
   slow.firstStep = step;
   slow.n_A = report.lastStep->n_A;
+  slow.iterations = report.lastStep->iterations;
   slow.dualDofs = report.dualDofs;
   slow.steps = 1;
   std::ostringstream advice;
@@ -1109,8 +1110,9 @@ void noteSlowStep(int step, RunReport& report, const Comm& comm) {
   advice << " (docs/scaling.md); a tolerance tighter than the default costs iterations too";
   slow.advice = advice.str();
   if (comm.getRank() == 0)
-    std::cerr << "tribos: warning: load step " << step << ": " << slow.n_A << " applications of F for a dual problem of "
-              << slow.dualDofs << " unknowns: " << slow.advice << std::endl;
+    std::cerr << "tribos: warning: load step " << step << ": " << slow.iterations << " iterations and " << slow.n_A
+              << " applications of F for a dual problem of " << slow.dualDofs << " unknowns: " << slow.advice
+              << std::endl;
   report.slow = slow;
 }
 

@@ -105,8 +105,9 @@ IO::Summary stepRow(const StepReport& step, const std::string& file, const std::
   return stepSummary(step).set("file", file).set("sha256", sha256);
 }
 
-bool slowConvergence(long long n_A, long long dualDofs) {
-  return n_A > std::max(SlowConvergenceReport::kSlowConvergenceFloor, dualDofs / 2);
+bool slowConvergence(long long iterations, long long n_A, long long dualDofs) {
+  return iterations > SlowConvergenceReport::kSlowIterations ||
+         n_A > std::max(SlowConvergenceReport::kSlowApplications, 2 * dualDofs);
 }
 
 IO::Summary RunReport::toSummary() const {
@@ -156,7 +157,8 @@ IO::Summary RunReport::toSummary() const {
   else s.set("steps", unwrittenSteps);
   if (slow) {
     IO::Summary w;
-    w.set("first_step", slow->firstStep).set("n_A", slow->n_A).set("dual_dofs", slow->dualDofs);
+    w.set("first_step", slow->firstStep).set("n_A", slow->n_A).set("iterations", slow->iterations);
+    w.set("dual_dofs", slow->dualDofs);
     w.set("steps", slow->steps).set("advice", slow->advice);
     s.set("slow_convergence", w);
   }

@@ -85,21 +85,24 @@ struct StepReport {
   double solveSeconds = 0;
 };
 
-// Steps whose dual solve took more applications of F than a healthy
-// decomposition needs: more than half as many as the dual problem has
-// unknowns (CG on a well-conditioned dual needs far fewer; a direct method
-// would need no more), and at least kSlowConvergenceFloor. The first such
+// Steps whose dual solve took far more work than a well-conditioned dual
+// problem needs, whatever its size: more than kSlowIterations outer
+// iterations (Algorithm 2 takes 30-120 on the shipped examples, the Newton
+// method 10-40; 470-750 where the dual problem was ill-conditioned, and
+// where the Newton method stopped short and Algorithm 2 finished), or more
+// applications of F than twice the dual unknowns and kSlowApplications
+// (more than CG would need on any SPD matrix of that size). The first such
 // step, how many there were, and what to try instead.
 struct SlowConvergenceReport {
-  static constexpr long long kSlowConvergenceFloor = 1000;
+  static constexpr long long kSlowIterations = 300, kSlowApplications = 2000;
   int firstStep = 0;
-  long long n_A = 0, dualDofs = 0;  // the first such step's
-  int steps = 0;                    // steps of this run so slow
+  long long n_A = 0, iterations = 0, dualDofs = 0;  // the first such step's
+  int steps = 0;                                    // steps of this run so slow
   std::string advice;
 };
-// Whether a step of n_A applications of F on a dual of dualDofs unknowns is
-// slow in that sense.
-bool slowConvergence(long long n_A, long long dualDofs);
+// Whether a step of that many outer iterations and applications of F on a
+// dual of dualDofs unknowns is slow in that sense.
+bool slowConvergence(long long iterations, long long n_A, long long dualDofs);
 
 struct RunReport {
   // Read: the problem and where it came from.

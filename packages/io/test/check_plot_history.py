@@ -107,15 +107,16 @@ def check_values(directory, steps):
     check(h["base"] == "cycle", "the result found is cycle")
     check(np.array_equal(h["time"], times), "the times of every step, in order")
     check([p["name"] for p in h["pairs"]] == ["top", "side"], "the pairs top and side, in the solver's order")
-    expected = {"top": ([1, 0, 0], deltas, forces),  # normal +z: u = (delta, 0, delta/4) less its z part
-                "side": ([0, 0, 1], deltas / 4, forces / 2)}  # normal +x: its z part
+    # The force a pair transmits is minus the friction force on its slave side.
+    expected = {"top": ([1, 0, 0], deltas, -forces),  # normal +z: u = (delta, 0, delta/4) less its z part
+                "side": ([0, 0, 1], deltas / 4, -forces / 2)}  # normal +x: its z part
     for pair in h["pairs"]:
         direction, x, y = plot_history.curve(pair)
         d, ex, ey = expected[pair["name"]]
         check(np.allclose(direction, d, rtol=0, atol=1e-15), "%s: the direction %s" % (pair["name"], direction))
         check(np.allclose(x, ex, rtol=1e-12, atol=1e-18),
               "%s: the mean tangential displacement of the slave nodes per step" % pair["name"])
-        check(np.array_equal(y, ey), "%s: the tangential force of the pair per step" % pair["name"])
+        check(np.array_equal(y, ey), "%s: the force the pair transmits per step" % pair["name"])
     check(np.array_equal(h["counts"]["stick"], stick) and np.array_equal(h["counts"]["slip"], slip),
           "the stick and slip counts per step")
     return h
