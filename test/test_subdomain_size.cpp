@@ -3,7 +3,7 @@
 // int in the XML file) and the refused ones; the grid of boxes a size gives
 // the brick; the measured Auto rule (H = 4 while that gives at most 12000
 // subdomains, 6 beyond, lowered until every rank has a subdomain; for a mesh
-// file 8 up to 6000 nodes per rank, 6 up to 25 000, the box's rule beyond);
+// file 6 up to 25 000 nodes per rank, the box's rule beyond);
 // and the METIS count of a mesh file, (H+1)^3 nodes per subdomain, at least
 // one per rank and per body and at most one per cell, unknown until the file
 // is read.
@@ -122,9 +122,9 @@ TEUCHOS_UNIT_TEST(SubdomainSize, MeshFileCountFromItsNodes) {
     int ranks, H, subdomains, bodies = 1;
   };
   const std::vector<Case> cases = {
-      {"Auto", 7683, 43064, 2, 8, 11},    // few nodes per rank: parts of 9^3 nodes
-      {"Auto", 7683, 43064, 1, 6, 22},    // 7683 on one rank: parts of 7^3
-      {"Auto", 37326, 2e5, 2, 6, 109},    // 18 663 per rank: parts of 7^3
+      {"Auto", 7683, 43064, 2, 6, 22},    // few nodes per rank: parts of 7^3 nodes
+      {"Auto", 37326, 2e5, 2, 6, 109},    // 18 663 per rank: still 7^3
+      {"Auto", 37326, 2e5, 1, 4, 299},    // 37 326 on one rank: the box's rule
       {"Auto", 60000, 3e5, 2, 4, 480},    // beyond 25 000 per rank: the box's rule
       {"Auto", 125000, 7e5, 2, 4, 1000},  // 1000 parts of 5^3 nodes
       {"Auto", 1.5e6, 8e6, 2, 4, 12000},  // 12000 parts of 4: still 4

@@ -118,17 +118,17 @@ int automaticSubdomainSize(const Count& subdomainsOfSize, int numRanks) {
 // file"): measured on nine geometries of 2300 to 37 000 nodes on 2 ranks
 // (lap joints, Hertz, Cattaneo-Mindlin, two blocks; histories and single
 // steps), parts larger than the box's are faster while a rank holds few
-// nodes, where the iterations cost more than the setup: H = 8 up to
-// kAutoLargePartsNodes nodes per rank, H = 6 up to kAutoMediumPartsNodes
-// (the largest measured: 18 700), the box's rule beyond, where the setup
-// of the dense blocks dominates as on the brick. Then H is lowered until
-// every rank has a part.
-constexpr double kAutoLargePartsNodes = 6000, kAutoMediumPartsNodes = 25000;
+// nodes, where the iterations cost more than the setup: H = 6 (within 1.31x
+// of the best of 4, 5, 6, 8 on every one; 8 left some bodies one part and
+// cost up to 2x) up to kAutoLargePartsNodes nodes per rank (the largest
+// measured: 18 700), the box's rule beyond, where the setup of the dense
+// blocks dominates as on the brick. Then H is lowered until every rank
+// has a part.
+constexpr double kAutoLargePartsNodes = 25000;
 template <class Count>
 int automaticMeshFileSubdomainSize(double nodes, const Count& subdomainsOfSize, int numRanks) {
-  const double perRank = nodes / numRanks;
-  if (perRank > kAutoMediumPartsNodes) return automaticSubdomainSize(subdomainsOfSize, numRanks);
-  int H = perRank <= kAutoLargePartsNodes ? 8 : 6;
+  if (nodes / numRanks > kAutoLargePartsNodes) return automaticSubdomainSize(subdomainsOfSize, numRanks);
+  int H = 6;
   while (H > 1 && subdomainsOfSize(H) < numRanks) --H;
   return H;
 }
