@@ -669,6 +669,7 @@ StepReport stepReport(const Teuchos::ParameterList& params, int step, double tim
   s.iterations = sol.result.iterations;
   s.n_A = sol.result.n_A;
   s.kkt = sol.result.kkt;
+  if (report.outer) s.outerAlgorithm = report.outer->name, s.handover = report.outer->handover;
   if (params.sublist("Contact").get<bool>("Enabled")) {
     const auto& c = sol.result.counts;
     s.contact = ContactCountReport{c.nodes, c.active, c.stick, c.slip};
@@ -1117,6 +1118,14 @@ void noteSlowStep(int step, RunReport& report, const Comm& comm) {
   report.slow = slow;
 }
 
+// A step that Auto's Newton solve handed to Algorithm 2: counted in the
+// summary with the first step's reason (each step's row says its own).
+void noteHandover(int step, RunReport& report) {
+  if (!report.lastStep || report.lastStep->handover.empty()) return;
+  if (!report.handover) report.handover = HandoverReport{step, 0, report.lastStep->handover};
+  ++report.handover->steps;
+}
+
 }  // namespace
 
 void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& options, int numRanks) {
@@ -1241,6 +1250,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     report.iterationsTotal += report.lastStep->iterations;
     report.n_A_total += report.lastStep->n_A;
     noteSlowStep(k + 1, report, *comm);
+    noteHandover(k + 1, report);
     report.stepsCompleted = k + 1;
     // Setup: from the start to a solver ready to iterate; solve: its iterations.
     setupSeconds += sol.setupSeconds;

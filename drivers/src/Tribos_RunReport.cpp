@@ -24,6 +24,7 @@ IO::Summary kktSummary(const RunReport& r) {
 
 void setOuter(const OuterAlgorithmReport& o, IO::Summary& s) {
   s.set("outer_algorithm", o.name);
+  if (!o.handover.empty()) s.set("handover", o.handover);
   s.set("result_check_rounds", o.resultCheckRounds);
   s.set("msa_iterations", o.msaIterations);
   s.set("inner_iterations", o.innerIterations);
@@ -93,6 +94,8 @@ IO::Summary stepSummary(const StepReport& r) {
     s.set("contact", c);
   }
   setReactionsAndPairs(r, s);
+  if (!r.outerAlgorithm.empty()) s.set("outer_algorithm", r.outerAlgorithm);
+  if (!r.handover.empty()) s.set("handover", r.handover);
   s.set("converged", r.converged).set("stop_reason", r.stopReason).set("time_solve_s", r.solveSeconds);
   return s;
 }
@@ -161,6 +164,11 @@ IO::Summary RunReport::toSummary() const {
     w.set("dual_dofs", slow->dualDofs);
     w.set("steps", slow->steps).set("advice", slow->advice);
     s.set("slow_convergence", w);
+  }
+  if (handover) {
+    IO::Summary h;
+    h.set("first_step", handover->firstStep).set("steps", handover->steps).set("reason", handover->reason);
+    s.set("newton_handover", h);
   }
   if (!verifyNote.empty()) s.set("verify_note", verifyNote);
   if (verifyRelativeDifference) s.set("verify_rel_diff_u", *verifyRelativeDifference);

@@ -35,6 +35,7 @@ struct FetiReport {
 // The outer contact algorithm of a FETI run.
 struct OuterAlgorithmReport {
   std::string name;
+  std::string handover;  // why Auto's Newton solve handed over to Algorithm2 (empty: it did not)
   int resultCheckRounds = 1;
   long long msaIterations = 0, innerIterations = 0, n_A_qpp = 0, n_A_qpq = 0;
   double slipBoundChange = 0;
@@ -80,6 +81,7 @@ struct StepReport {
   std::optional<ContactCountReport> contact;
   std::vector<ReactionReport> reactions;  // per Dirichlet condition of the input, in its order
   std::vector<PairReport> pairs;          // per contact pair, in the order of their numbers
+  std::string outerAlgorithm, handover;  // contact: the method that solved the step; OuterAlgorithmReport's
   bool converged = false;
   std::string stopReason;
   double solveSeconds = 0;
@@ -100,6 +102,13 @@ struct SlowConvergenceReport {
   int steps = 0;                                    // steps of this run so slow
   std::string advice;
 };
+// Steps where Auto's Newton solve stopped short and Algorithm 2 solved the
+// step: the first, why, and how many.
+struct HandoverReport {
+  int firstStep = 0, steps = 0;
+  std::string reason;
+};
+
 // Whether a step of that many outer iterations and applications of F on a
 // dual of dualDofs unknowns is slow in that sense.
 bool slowConvergence(long long iterations, long long n_A, long long dualDofs);
@@ -129,6 +138,7 @@ struct RunReport {
   std::optional<double> verifyRelativeDifference;  // --verify
   std::string verifyNote;
   std::optional<SlowConvergenceReport> slow;
+  std::optional<HandoverReport> handover;
   // The load steps: how many are complete (those of the run a restart
   // continues included) and the last one; the fields above are its. Each
   // step's row (stepRow) goes to the steps table as the step is written:

@@ -207,6 +207,7 @@ class FetiMethod : public MethodBase {
     const auto& st = r.status;
     OuterAlgorithmReport outer;
     outer.name = r.outerAlgorithm;
+    outer.handover = r.handover;
     outer.resultCheckRounds = r.rounds;
     outer.msaIterations = st.msa_iterations;
     outer.innerIterations = st.inner_iterations;

@@ -174,6 +174,7 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
     if (f.law == FrictionLaw::Tresca) cd_.slipBound[k] = f.slipBoundTraction * lc.nodalArea[k];
     if (f.law == FrictionLaw::Coulomb) cd_.frictionCoefficient[k] = f.coefficient;
   }
+  cd_.heldWithoutContact = dual->coarse().equalityRowsHoldKernel();
   // F from the dense blocks, for the methods that need it densely.
   cd_.denseA = [dual] {
     std::vector<double> D;

@@ -168,7 +168,7 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     if (normPFP) *normPFP = cp.norm();
     const std::string requestedAlgorithm = p.get<std::string>("Outer Algorithm");
     r.outerAlgorithm =
-        outerAlgorithmFor(requestedAlgorithm, friction, dual->coarse().equalityRowsHoldKernel());
+        outerAlgorithmFor(requestedAlgorithm, friction);
     const std::string runLawName = frictionLawName(runLaw(friction));
     TRIBOS_REQUIRE(Friction::frictionSolvers().accepts(r.outerAlgorithm, runLawName),
                    "Outer Algorithm = " << r.outerAlgorithm << " does not solve " << runLawName << " friction ("
@@ -193,7 +193,8 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
     }
     solveInRounds(cp, friction, params, out, start, from, r, warmOut, false);
     if (autoNewton && !(r.solverConverged && r.verdict.converged)) {
-      if (!out.is_null()) *out << "Semismooth Newton: " << r.solverReason << "; Algorithm2 follows\n";
+      r.handover = r.solverConverged ? "its result missed the check: " + r.verdict.stopReason : r.solverReason;
+      if (!out.is_null()) *out << "Semismooth Newton: " << r.handover << "; Algorithm2 follows\n";
       r.outerAlgorithm = "Algorithm2";
       solveInRounds(cp, friction, p, out, start, from, r, warmOut, true);
     }
@@ -209,10 +210,9 @@ FetiSolveResult solveDual(const RCP<const Feti::FetiDual>& dual, const PairFrict
 
 }  // namespace
 
-std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction, bool heldByDirichlet) {
+std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction) {
   if (requested != kAutoOuterAlgorithm) return Friction::frictionSolvers().canonical(requested);
-  if (runLaw(friction) != FrictionLaw::Coulomb) return "Algorithm1";
-  return heldByDirichlet ? "Semismooth Newton" : "Algorithm2";
+  return runLaw(friction) == FrictionLaw::Coulomb ? "Semismooth Newton" : "Algorithm1";
 }
 
 RCP<const Teuchos::ParameterList> fetiSolveParameters() {
@@ -224,10 +224,10 @@ RCP<const Teuchos::ParameterList> fetiSolveParameters() {
     for (const auto& list : {Friction::dualSolverNames(), Friction::dualSolverAliases()})
       names.insert(names.end(), list.begin(), list.end());
     pl->set("Outer Algorithm", kAutoOuterAlgorithm,
-            "contact problems: Auto (Coulomb friction: in a load history where Dirichlet conditions hold every body "
-            "Semismooth Newton, matrix-free, at Algorithm 2's Relative Tolerance, followed by Algorithm2 if it stops short, "
-            "otherwise Algorithm2; "
-            "Algorithm1 for Tresca friction and frictionless contact); " + Friction::dualSolverDocumentation(),
+            "contact problems: Auto (Coulomb friction: Semismooth Newton, matrix-free, at Algorithm 2's Relative "
+            "Tolerance, whether Dirichlet conditions or the contact hold the bodies, followed by Algorithm2 if it "
+            "stops short (the summary's newton_handover says why); Algorithm1 for Tresca friction and frictionless "
+            "contact); " + Friction::dualSolverDocumentation(),
             rcp(new Teuchos::StringValidator(Teuchos::Array<std::string>(names.begin(), names.end()))));
     pl->set("Result Check Factor", 100.0,
             "converged means every KKT residual of the written result (docs/friction.md) is at most this factor "

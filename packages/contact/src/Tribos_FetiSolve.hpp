@@ -32,6 +32,7 @@ struct FetiSolveResult : SolveResult {
   RCP<Vector> primal;           // the subdomain displacements (FETI's primal vector)
   int rounds = 1;               // contact: solves until the result met the check (Result Check Rounds)
   std::string outerAlgorithm;            // empty without contact
+  std::string handover;                  // why Auto's Newton solve handed over to Algorithm2 (empty: it did not)
   Friction::FrictionStatus status;       // contact: the outer algorithm's status
   double relativeResidual = 0;           // projected CG
   // The dual operator and the coarse problem, for performance reports: all
@@ -46,17 +47,17 @@ struct FetiSolveResult : SolveResult {
 
 // The outer algorithm of a contact run: `requested`, or for "Auto" (the
 // default) the one that suits the run's law (runLaw), so that a user who
-// names a law need not name an algorithm too: for Coulomb friction where the
-// Dirichlet conditions hold every body (heldByDirichlet: the equality rows of
-// the dual hold every rigid motion) the matrix-free Semismooth Newton, which
-// takes from 0.28 to 0.74 of Algorithm 2's applications of F from rest on
-// the seed brick up to a million dofs, and a fraction of them in a load
-// step that starts near its solution (docs/semismooth.md); Algorithm2 on a
-// body that its contact alone holds (where the matrix-free Newton stalls);
-// Algorithm1 for Tresca friction and frictionless contact. A Newton solve
-// chosen by Auto that stops without converging, or whose result misses its
-// check, is followed by Algorithm2 (solveFeti).
-std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction, bool heldByDirichlet = false);
+// names a law need not name an algorithm too: for Coulomb friction the
+// matrix-free Semismooth Newton, which takes from 0.28 to 0.74 of Algorithm
+// 2's applications of F from rest on the seed brick up to a million dofs, a
+// fraction of them in a load step that starts near its solution, and from
+// 0.2 to 0.5 of them where the contact alone holds a body (two blocks, a lap
+// joint, a sphere loaded by forces; docs/semismooth.md); Algorithm1 for
+// Tresca friction and frictionless contact. A Newton solve chosen by Auto
+// that stops without converging, or whose result misses its check, is
+// followed by Algorithm2 (solveFeti), and the result says why
+// (FetiSolveResult::handover).
+std::string outerAlgorithmFor(const std::string& requested, const PairFriction& friction);
 constexpr const char* kAutoOuterAlgorithm = "Auto";
 
 // The parameters solveFeti reads, with defaults and documentation:

@@ -41,6 +41,11 @@ struct ContactDual {
   std::vector<SC> normalOffset;         // local
   std::vector<SC> slipBound;            // Tresca g_k, local
   std::vector<SC> frictionCoefficient;  // Coulomb F_k, local
+  // Whether the rows of no contact alone determine the multiplier of G x = 0
+  // (FETI: the Dirichlet conditions hold every body). false: some rigid
+  // motion is held only by contact rows (a body held by its contact), and
+  // which of them hold it depends on the contact state.
+  bool heldWithoutContact = true;
   // The right-hand side that relative tolerances refer to; null: b. A contact
   // problem gives b without the initial gaps, which a solution with no
   // active contact never feels: a large gap must not loosen the solve. The

@@ -140,8 +140,9 @@ class NewtonSolve {
       int rows[3];
       for (int i = 0, m = rowsOf(c, rows); i < m; ++i) isContactRow_[rows[i]] = 1;
     }
-    const bool faceProjection = params.get<std::string>("Equality Constraint") == "Face Projection";
-    if (faceProjection && !G_.is_null()) face_ = G_->face();
+    const std::string equality = params.get<std::string>("Equality Constraint");
+    const bool faceProjection = equality == "Face Projection";
+    if ((faceProjection || (equality == "Auto" && !dual.heldWithoutContact)) && !G_.is_null()) face_ = G_->face();
     TRIBOS_REQUIRE(!faceProjection || G_.is_null() || !face_.is_null(),
                    "Semismooth Newton: Equality Constraint = Face Projection needs an equality constraint that "
                    "forms G Pi G' (FETI's coarse space); this one does not");

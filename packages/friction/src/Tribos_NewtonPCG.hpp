@@ -32,7 +32,10 @@
 //
 // Equality Constraint = Face Projection holds G x = 0 instead by making mu
 // an unknown of each step, whose direction stays in ker G (projected CG
-// with the projector onto ker(G Pi), QP::FaceConstraint).
+// with the projector onto ker(G Pi), QP::FaceConstraint). Auto takes it
+// where contact rows alone hold some rigid motion (ContactDual::
+// heldWithoutContact false): there mu and the contact state decide each
+// other, and a mu that lags the step costs Newton steps.
 //
 // Stops when ||(Phi(x), G x)|| <= tol ||r b||, r = rho Factor / ||A||, the
 // measure of the dense variant with one r for every row.

@@ -309,14 +309,18 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             "docs/semismooth.md)",
             rcp(new Teuchos::StringValidator(
                 Teuchos::tuple<std::string>("Slip Curvature", "None", "Lumped", "Dirichlet"))));
-    pl->set("Equality Constraint", "Augmented Lagrangian",
+    pl->set("Equality Constraint", "Auto",
             "Projected CG: how the Newton steps hold G x = 0. Augmented Lagrangian: H = A + rho G'G and mu "
             "updated after each step (Penalty, Penalty Balancing, Maximum Penalty, Multiplier Update Ratio); "
             "Face Projection: mu is an unknown of each step, whose direction is kept in ker G by projected CG "
             "with the projector onto ker(G Pi), Pi the free directions (G Pi G' factored per step; needs an "
-            "equality constraint that forms it, as FETI's coarse space does). Face Projection takes fewer and "
-            "steadier Newton steps, the augmented Lagrangian fewer applications of A (docs/semismooth.md)",
-            rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Augmented Lagrangian", "Face Projection"))));
+            "equality constraint that forms it, as FETI's coarse space does). Auto: Face Projection where the "
+            "contact alone holds some rigid motion (its multiplier and the contact state decide each other, and "
+            "the augmented Lagrangian's lagging multiplier takes 1.1-2x the applications of A), the augmented "
+            "Lagrangian otherwise (fewer applications of A where the rows of no contact fix the multiplier; "
+            "docs/semismooth.md)",
+            rcp(new Teuchos::StringValidator(
+                Teuchos::tuple<std::string>("Auto", "Augmented Lagrangian", "Face Projection"))));
     pl->set("Penalty", 1.0,
             "Projected CG: the augmented Lagrangian's rho of G x = 0, as a multiple of ||A||", range<double>(1e-6, 1e6));
     pl->set("Penalty Balancing", 5.0,
