@@ -199,8 +199,9 @@ class NewtonSolve {
   bool beginStep(int it, const Vector& x, const std::function<void(Vector&)>& exactVelocity, Iteration& iter,
                  FrictionStatus& st);
   // Along d_ (v_ along dv) by the line search, reported (cg: the step's CG
-  // iterations); x and v_ move there. Returns the step length.
-  double takeStep(Vector& x, const Vector& dv, int cg, Iteration& iter);
+  // iterations, eta its forcing term); x and v_ move there. Returns the step
+  // length.
+  double takeStep(Vector& x, const Vector& dv, int cg, double eta, Iteration& iter);
   // The end of the iteration: x into the feasible set, the counts.
   void finish(Vector& x, const Iteration& iter, FrictionStatus& st) const;
   // The Eisenstat-Walker forcing term of the next step from ||Phi|| now and
@@ -257,8 +258,14 @@ class NewtonSolve {
   // history and the forcing terms' ratio start again.
   void solveFunction(const RCP<AlartCurnier>& ac, Iteration& iter);
   double normGx(const Vector& x) const { return G_.is_null() ? 0.0 : al_.normGx(x); }
-  // The Newton system at (x, v): steps_, d0 into d_ (local), returns ||Phi||.
-  void linearize(const Vector& x, const Vector& v);
+  // The Newton system at (x, v): steps_, d0 into d_ (local). Returns
+  // whether some contact on some rank changed its fixed and free
+  // directions since the last call (collective).
+  bool linearize(const Vector& x, const Vector& v);
+  std::vector<int> stateOf_;  // per contact: numFixed and numCurved of the last linearization (-1: none)
+  // The forcing term of a step at (x, v): iter.eta, raised to Changing Set
+  // Forcing Term when the contact state just changed.
+  double stepForcingTerm(const Vector& x, const Vector& v, const Iteration& iter);
   // y <- Pi y (free directions only).
   void project(Vector& y) const;
   // y <- y + K p.
@@ -291,8 +298,15 @@ double NewtonSolve::phiNorm(const Vector& x, const Vector& v, const AlartCurnier
   return std::sqrt(global);
 }
 
-void NewtonSolve::linearize(const Vector& x, const Vector& v) {
+double NewtonSolve::stepForcingTerm(const Vector& x, const Vector& v, const Iteration& iter) {
+  const bool changed = linearize(x, v);
+  return changed ? std::max(iter.eta, params_.get<double>("Changing Set Forcing Term")) : iter.eta;
+}
+
+bool NewtonSolve::linearize(const Vector& x, const Vector& v) {
   const auto xv = x.getData(), vv = v.getData();
+  int changed = 0;
+  stateOf_.resize(steps_.size(), -1);
   auto d0 = d_.getDataNonConst();
   for (size_t i = 0; i < d0.size(); ++i) d0[i] = 0;
   AlartCurnier::Blocks B;
@@ -300,9 +314,15 @@ void NewtonSolve::linearize(const Vector& x, const Vector& v) {
   for (size_t k = 0; k < contacts.size(); ++k) {
     AlartCurnier::blocks(contacts[k], xv.getRawPtr(), vv.getRawPtr(), r_, r_, B);
     contactStep(contacts[k], B, steps_[k]);
+    const int state = 4 * steps_[k].numFixed + steps_[k].numCurved;
+    changed += state != stateOf_[k];
+    stateOf_[k] = state;
     int rows[3];
     for (int i = 0, m = rowsOf(contacts[k], rows); i < m; ++i) d0[rows[i]] = steps_[k].d0[i];
   }
+  int any = 0;
+  Teuchos::reduceAll(*map_->getComm(), Teuchos::REDUCE_MAX, changed > 0 ? 1 : 0, Teuchos::outArg(any));
+  return any != 0;
 }
 
 void NewtonSolve::project(Vector& y) const {
@@ -580,12 +600,12 @@ void NewtonSolve::solveFunction(const RCP<AlartCurnier>& ac, Iteration& iter) {
     *out_ << (slipBoundsFrozen() ? "  the slip bounds are frozen\n" : "  the slip bounds follow the normal multipliers again\n");
 }
 
-double NewtonSolve::takeStep(Vector& x, const Vector& dv, int cg, Iteration& iter) {
+double NewtonSolve::takeStep(Vector& x, const Vector& dv, int cg, double eta, Iteration& iter) {
   bool accepted = false;
   const double t = lineSearch(x, iter.nPhi, d_, dv, accepted);
   if (!accepted) ++iter.lineSearchFailures;
   if (!out_.is_null())
-    *out_ << "  step: " << cg << " CG iterations (eta " << iter.eta << "), step length " << t
+    *out_ << "  step: " << cg << " CG iterations (eta " << eta << "), step length " << t
           << (accepted ? "" : " (no Armijo step)") << "\n";
   x.assign(xt_);
   v_.assign(vt_);
@@ -623,7 +643,7 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
     //   Pi (A + K) Pi y + Pi G'dmu = r,  G Pi y = -G (x + d0),
     // y = y_p + z with the particular y_p = -Pi T(x + d0) and z in
     // ker(G Pi) by projected CG; then G'dmu = T(r - Pi (A + K) Pi y).
-    linearize(x, v_);
+    const double eta = stepForcingTerm(x, v_, iter);
     if (!face_->setFixedDirections(fixedDirections())) {
       st.reason = "Semismooth Newton: the free directions of a Newton step do not hold every rigid motion "
                   "(G Pi G' is singular)";
@@ -645,7 +665,7 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
     // CG on P_F Pi (A + K) Pi z = P_F (r - Pi (A + K) Pi y_p) from z = 0.
     faceProject(s);
     const int cg = conjugateGradients(
-        s, iter.eta * rhs.norm2(), maxPCG, Az,
+        s, eta * rhs.norm2(), maxPCG, Az,
         [&](const Vector& p, Vector& Ap, Vector& q) {
           applyA(p, Ap);
           freeSystem(p, Ap, q);
@@ -664,7 +684,7 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
     dv.update(1.0, Ad, 1.0, wd, 0.0);
     static const auto lsTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: line search");
     Teuchos::TimeMonitor lsTime(*lsTimer);
-    const double t = takeStep(x, dv, cg, iter);
+    const double t = takeStep(x, dv, cg, eta, iter);
     w_.update(t, wd, 1.0);
     ++iter.sinceExact;
     st.outer_iterations = it + 1;
@@ -692,7 +712,7 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
   velocityAt(v_);
   for (int it = 0; beginStep(it, x, velocityAt, iter, st); ++it) {
     // The step: d = d0 + y.
-    linearize(x, v_);
+    const double eta = stepForcingTerm(x, v_, iter);
     Vector Hd0(map_), rhs(map_);
     const bool anyFixed = d_.normInf() > 0;
     if (anyFixed) applyH(d_, Hd0);
@@ -702,7 +722,7 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
     // CG on Pi (H + K) Pi y = rhs from y = 0.
     Vector res(rhs, Teuchos::Copy);
     const int cg = conjugateGradients(
-        res, iter.eta * rhs.norm2(), maxPCG, Hd_,
+        res, eta * rhs.norm2(), maxPCG, Hd_,
         [&](const Vector& p, Vector& Hp, Vector& q) {
           applyH(p, Hp);
           freeSystem(p, Hp, q);
@@ -714,7 +734,7 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
     st.inner_iterations += cg;
     Hd_.update(1.0, Hd0, 1.0);
     d_.update(1.0, y_, 1.0);
-    takeStep(x, Hd_, cg, iter);
+    takeStep(x, Hd_, cg, eta, iter);
     // The multiplier of G x = 0: mu <- mu + rho G x moves b - G'mu by
     // -rho G'G x, so v by +rho G'G x. After every Newton step (Multiplier
     // Update Ratio = 0), or once the steps have solved the problem of the

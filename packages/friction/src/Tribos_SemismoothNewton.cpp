@@ -343,6 +343,11 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             "Projected CG: the largest relative residual eta_k of a Newton system (Eisenstat-Walker forcing "
             "terms below it)",
             range<double>(1e-12, 0.99));
+    pl->set("Changing Set Forcing Term", 0.1,
+            "Projected CG: the smallest eta_k of a Newton system whose fixed and free directions differ from "
+            "the previous step's at some contact: such a step is a guess of the contact state, and solving it "
+            "tighter than the state is known buys nothing (0: Eisenstat-Walker alone; docs/semismooth.md)",
+            range<double>(0.0, 0.99));
     pl->set("Exact Velocity Steps", 10,
             "Projected CG: v = H x - (b - G'mu) is computed from x (one application of A) after this many Newton "
             "steps that carried it as v + t H d, and before the stopping test is believed",
