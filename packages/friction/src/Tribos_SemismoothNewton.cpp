@@ -316,7 +316,7 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             "with the projector onto ker(G Pi), Pi the free directions (G Pi G' factored per step; needs an "
             "equality constraint that forms it, as FETI's coarse space does). Auto: Face Projection where the "
             "contact alone holds some rigid motion (its multiplier and the contact state decide each other, and "
-            "the augmented Lagrangian's lagging multiplier takes 1.1-2x the applications of A), the augmented "
+            "the augmented Lagrangian's lagging multiplier takes 1.05-1.4x the applications of A), the augmented "
             "Lagrangian otherwise (fewer applications of A where the rows of no contact fix the multiplier; "
             "docs/semismooth.md)",
             rcp(new Teuchos::StringValidator(
