@@ -115,8 +115,10 @@ ParameterList pairItem(const ParameterList& contact) {
   p.set("Slip Bound Traction", contact.get<double>("Slip Bound Traction"), "Tresca slip bound per area",
         range<double>(0.0, 1e300));
   p.set("Search Distance", 0.0,
-        "slave nodes farther than this from their closest point on the master (or from the plane) take no part; "
-        "0: no limit",
+        "slave nodes farther than this from their closest point on the master (or from the plane) take no part "
+        "(a warning names them); 0: Auto, 5 % of the diagonal of the slave surface's bounding box and at least 4 "
+        "times the largest prescribed displacement, the nodes it leaves out proved to stay out of contact after "
+        "every step (a step where they might not is not converged); 1e300: every slave node (docs/contact.md)",
         range<double>(0.0, 1e300));
   p.set("Discretization", "Mortar",
         "Mortar (dual mortar segments: consistent nodal forces, passes the contact patch test; docs/contact.md) or "
@@ -1244,6 +1246,19 @@ PlaneContact planeContact(const ParameterList& params) {
   return pc;
 }
 
+// The largest component of a prescribed displacement at any step (the load
+// scale of Contact::automaticSearchDistance).
+double largestPrescribedDisplacement(const ParameterList& params) {
+  double largest = 0;
+  const auto& dirichlet = params.sublist("Boundary Conditions").sublist("Dirichlet");
+  for (auto it = dirichlet.begin(); it != dirichlet.end(); ++it) {
+    const auto& item = dirichlet.sublist(dirichlet.name(it));
+    atEveryStep(params, item.get<std::string>("Curve"), maxAbs(item.get<Array<double>>("Value")),
+                [&](double scale, const std::string&) { largest = std::max(largest, scale); });
+  }
+  return largest;
+}
+
 std::vector<Contact::ContactPair> contactPairs(const ParameterList& params, const Mesh::Mesh& mesh) {
   const auto& contact = params.sublist("Contact");
   if (!contact.get<bool>("Enabled")) return {};
@@ -1264,7 +1279,9 @@ std::vector<Contact::ContactPair> contactPairs(const ParameterList& params, cons
     for (int d = 0; d < 3; ++d) pair.planePoint[d] = x[d], pair.planeNormal[d] = n[d] / length;
     pair.discretization = Contact::discretizationValidator()->getIntegralValue(p.get<std::string>("Discretization"));
     const double reach = p.get<double>("Search Distance");
-    if (reach > 0) pair.searchDistance = reach;
+    pair.automaticSearch = reach == 0;
+    pair.searchDistance = reach > 0 ? reach
+                                    : Contact::automaticSearchDistance(mesh, pair.slave, largestPrescribedDisplacement(params));
     out.push_back(pair);
   }
   return out;

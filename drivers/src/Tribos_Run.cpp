@@ -512,9 +512,39 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
 //    the whole mesh): a pair the mesh cannot make (no partner for any slave
 //    node, a node in two pairs), prescribed sliding against friction.
 // Slave nodes left out are warned of. Returns the constraints on rank 0.
+// Rank 0's search figures (the left-out nodes and the counts of each pair)
+// on every rank: each checks the left-out nodes it holds, and the summary
+// is the same on every rank.
+void broadcastSearch(Contact::ContactSearch& search, const Comm& comm) {
+  std::vector<double> flat;
+  if (comm.getRank() == 0) {
+    flat.push_back(static_cast<double>(search.leftOut.size()));
+    for (const auto& n : search.leftOut) flat.insert(flat.end(), {double(n.node), double(n.pair), n.gap});
+    flat.push_back(static_cast<double>(search.pairs.size()));
+    for (const auto& p : search.pairs)
+      flat.insert(flat.end(), {p.searchDistance, double(p.automatic), double(p.slaveNodes), double(p.rows),
+                               double(p.leftOut), double(p.nodeToSegment)});
+  }
+  int size = static_cast<int>(flat.size());
+  Teuchos::broadcast(comm, 0, &size);
+  flat.resize(size);
+  if (size > 0) Teuchos::broadcast(comm, 0, size, flat.data());
+  if (comm.getRank() == 0 || size == 0) return;
+  size_t k = 0;
+  search.leftOut.resize(static_cast<size_t>(flat[k++]));
+  for (auto& n : search.leftOut) n = {static_cast<int>(flat[k]), static_cast<int>(flat[k + 1]), flat[k + 2]}, k += 3;
+  search.pairs.resize(static_cast<size_t>(flat[k++]));
+  for (auto& p : search.pairs) {
+    p.searchDistance = flat[k], p.automatic = flat[k + 1] != 0, p.slaveNodes = static_cast<long long>(flat[k + 2]);
+    p.rows = static_cast<long long>(flat[k + 3]), p.leftOut = static_cast<long long>(flat[k + 4]);
+    p.nodeToSegment = static_cast<long long>(flat[k + 5]);
+    k += 6;
+  }
+}
+
 std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList& params, const Mesh::Mesh* whole,
-                                                    const Fem::LoadCase& loads, Input::Method method, const Comm& comm) {
-  std::vector<std::string> notes;
+                                                    const Fem::LoadCase& loads, Input::Method method, const Comm& comm,
+                                                    Contact::ContactSearch& search) {
   std::vector<Feti::ContactConstraint> constraints;
   checkOnEveryRank(comm, [&] {
     if (comm.getRank() == 0) {
@@ -528,7 +558,7 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
         Progress::stage("contact search");
         const auto pairs = Input::contactPairs(params, *whole);
         try {
-          constraints = Contact::contactConstraints(*whole, pairs, &notes);
+          constraints = Contact::contactConstraints(*whole, pairs, search);
         } catch (const Error& e) {
           throw Error(std::string("Contact: ") + e.what());
         }
@@ -541,7 +571,8 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
       }
     }
   });
-  for (const auto& n : notes) std::cerr << "tribos: warning: " << n << std::endl;
+  for (const auto& n : search.notes) std::cerr << "tribos: warning: " << n << std::endl;
+  if (method == Input::Method::FetiContact) broadcastSearch(search, comm);
   return constraints;
 }
 
@@ -564,6 +595,8 @@ std::unique_ptr<Mesh::Mesh> readStep(const Teuchos::ParameterList& params, const
 // Step "mesh": the box generated (rank 0), the whole mesh checked against the
 // problem (validateOnRoot), cut into the ranks' parts with their contact
 // constraints, and the materials of this rank's part.
+std::vector<std::string> pairNames(const Teuchos::ParameterList& params);
+
 Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& options, std::unique_ptr<Mesh::Mesh> whole,
                      const Mesh::DecompositionSpec& decomposition, const Comm& comm, RunReport& report) {
   Progress::stage("mesh and decomposition");
@@ -581,7 +614,8 @@ Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& opt
   const auto spec = fromFile ? (comm.getRank() == 0 ? Mesh::boundingBox(*whole) : Mesh::BoxSpec())
                              : Input::boxSpec(params);
   auto loads = Input::loadCase(params);
-  auto rootConstraints = validateOnRoot(params, whole.get(), loads, method, comm);
+  Contact::ContactSearch search;
+  auto rootConstraints = validateOnRoot(params, whole.get(), loads, method, comm, search);
   auto disc = Mesh::Discretization::scatter(*whole, spec, decomposition, comm);
   auto constraints = method == Input::Method::FetiContact
                          ? Feti::scatterContactConstraints(rootConstraints, disc, comm)
@@ -592,7 +626,11 @@ Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& opt
   else if (options.exportFclib.empty() || comm.getRank() != 0)
     whole = std::make_unique<Mesh::Mesh>();
   auto materials = Input::materials(params, disc.part);
-  Discretized d{std::move(whole), std::move(disc), std::move(materials), std::move(loads), std::move(constraints)};
+  Discretized d{std::move(whole), std::move(disc), std::move(materials), std::move(loads), std::move(constraints),
+                 std::move(search)};
+  const auto names = pairNames(params);
+  for (size_t k = 0; k < d.search.pairs.size() && k < names.size(); ++k) d.search.pairs[k].name = names[k];
+  report.contactSearch = d.search.pairs;
   report.algorithm = solveMethodName(method);
   report.ranks = comm.getSize();
   report.subdomains = d.disc.numSubdomains();
@@ -687,6 +725,58 @@ StepReport stepReport(const Teuchos::ParameterList& params, int step, double tim
   return s;
 }
 
+// The nodes an automatic search distance left out (Contact::ContactSearch)
+// must have stayed out of contact: a lower bound of each one's gap after
+// the step (Contact::leftOutMargin, with the largest displacement of its
+// pair's master surface) must stay positive. Returns "" when it does, else
+// why the step is not converged, naming the pair, the node and the
+// distance to set. Collective (the left-out list is every rank's).
+std::string leftOutCheck(const Teuchos::ParameterList& params, const Discretized& d, const Fem::NodalVector& u,
+                         const Comm& comm) {
+  const auto& leftOut = d.search.leftOut;
+  if (leftOut.empty()) return "";
+  const auto& items = params.sublist("Contact").sublist("Pairs");
+  std::vector<std::string> master;
+  std::vector<Vec3> normal;
+  for (auto it = items.begin(); it != items.end(); ++it) {
+    const auto& item = items.sublist(items.name(it));
+    master.push_back(item.get<std::string>("Master Surface"));
+    const auto& m = item.get<Teuchos::Array<double>>("Plane Normal");
+    normal.push_back(normalized(Vec3{m[0], m[1], m[2]}));
+  }
+  // The largest displacement of each master surface, over the ranks.
+  std::vector<double> motion(master.size(), 0.0), motionAll(master.size(), 0.0);
+  for (size_t k = 0; k < master.size(); ++k)
+    if (!master[k].empty())
+      for (int n : d.disc.part.faceNodes(master[k])) {
+        const double* v = u.at(d.disc.meshNode(n));
+        motion[k] = std::max(motion[k], norm(Vec3{v[0], v[1], v[2]}));
+      }
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, static_cast<int>(motion.size()), motion.data(), motionAll.data());
+  double worst = std::numeric_limits<double>::infinity();
+  int worstIndex = -1;
+  for (size_t i = 0; i < leftOut.size(); ++i) {
+    const auto& n = leftOut[i];
+    if (u.layout().index(n.node) < 0) continue;
+    const double* v = u.at(n.node);
+    const double margin = Contact::leftOutMargin(n, Vec3{v[0], v[1], v[2]}, master[n.pair].empty(),
+                                                 normal[n.pair], motionAll[n.pair]);
+    if (margin < worst) worst = margin, worstIndex = static_cast<int>(i);
+  }
+  const double worstAll = -maxOver(-worst, comm);
+  if (worstAll > 0) return "";
+  int which = worst == worstAll ? worstIndex : -1, whichAll = -1;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, which, Teuchos::outArg(whichAll));
+  const auto& n = leftOut[whichAll];
+  const auto& pair = d.search.pairs[n.pair];
+  std::ostringstream os;
+  os << "contact pair '" << pair.name << "': slave node " << n.node << ", left out by the automatic search distance "
+     << pair.searchDistance << " (its gap " << n.gap << "), may have come into contact: the displacements may have "
+     << "closed its gap (margin " << worstAll << "); set Contact/Pairs/" << pair.name << "/Search Distance larger than "
+     << n.gap << " (docs/contact.md)";
+  return os.str();
+}
+
 // Step "check": the result must be representable, and `converged` is a
 // promise about it: the solver stopped on its own test AND every KKT residual
 // of the result (Contact::resultKKT) is within Result Check Factor times the
@@ -711,6 +801,13 @@ void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, 
   report.solverConverged = r.solverConverged;
   report.converged = r.verdict.converged;
   report.stopReason = r.verdict.stopReason;
+  if (method == Input::Method::FetiContact) {
+    const std::string leftOut = leftOutCheck(params, d, r.u, *comm);
+    if (!leftOut.empty()) {
+      report.converged = false;
+      report.stopReason = leftOut;
+    }
+  }
   if (!options.verify) return;
   if (method == Input::Method::FetiContact || method == Input::Method::Semismooth) {
     report.verifyNote = "--verify compares with the monolithic linear solve; it does not apply to contact problems";

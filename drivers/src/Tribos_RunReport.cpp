@@ -165,6 +165,17 @@ IO::Summary RunReport::toSummary() const {
     w.set("steps", slow->steps).set("advice", slow->advice);
     s.set("slow_convergence", w);
   }
+  if (!contactSearch.empty()) {
+    std::vector<IO::Summary> pairs;
+    for (const auto& p : contactSearch) {
+      IO::Summary c;
+      c.set("name", p.name).set("search_distance", p.searchDistance).set("automatic", p.automatic);
+      c.set("slave_nodes", p.slaveNodes).set("rows", p.rows).set("left_out", p.leftOut);
+      c.set("node_to_segment", p.nodeToSegment);
+      pairs.push_back(c);
+    }
+    s.set("contact_search", pairs);
+  }
   if (handover) {
     IO::Summary h;
     h.set("first_step", handover->firstStep).set("steps", handover->steps).set("reason", handover->reason);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "Tribos_ContactSearch.hpp"
 #include "Tribos_ResultKKT.hpp"
 #include "Tribos_SolveResult.hpp"
 #include "Tribos_Summary.hpp"
@@ -139,6 +140,7 @@ struct RunReport {
   std::string verifyNote;
   std::optional<SlowConvergenceReport> slow;
   std::optional<HandoverReport> handover;
+  std::vector<Contact::PairSearch> contactSearch;  // per contact pair: its search distance and counts
   // The load steps: how many are complete (those of the run a restart
   // continues included) and the last one; the fields above are its. Each
   // step's row (stepRow) goes to the steps table as the step is written:

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "Tribos_ContactConstraint.hpp"
+#include "Tribos_ContactSearch.hpp"
 #include "Tribos_Discretization.hpp"
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_History.hpp"
@@ -43,6 +44,7 @@ struct Discretized {
   Fem::BodyMaterials materials;
   Fem::LoadCase loads;
   std::vector<Feti::ContactConstraint> constraints;
+  Contact::ContactSearch search;  // the pairs' search figures and left-out nodes (every rank)
 };
 
 // What a method leaves for the result check and the files.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -281,10 +282,50 @@ void noteFallback(const ContactPair& pair, const std::vector<int>& fallback, siz
   notes.push_back(os.str());
 }
 
+// The left-out nodes of a pair with their reference gaps: the distance to
+// the closest point on a master facet (nodes whose projection lands on no
+// facet cannot take a row, in any search, and are not listed), or to the
+// plane.
+void listLeftOut(const Mesh::Mesh& mesh, const ContactPair& pair, int index, const std::vector<int>& leftOut,
+                 std::vector<LeftOutNode>& list) {
+  if (pair.master.empty()) {
+    for (int s : leftOut) list.push_back({s, index, dot(minus(mesh.coords[s], pair.planePoint), pair.planeNormal)});
+    return;
+  }
+  const MasterSurface surface(mesh, pair.master);
+  ContactPair unlimited = pair;
+  unlimited.searchDistance = std::numeric_limits<double>::infinity();
+  for (int s : leftOut) {
+    Projection best;
+    if (closestPoint(mesh, surface, unlimited, s, best)) list.push_back({s, index, best.distance});
+  }
+}
+
 }  // namespace
 
 std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const std::vector<ContactPair>& pairs,
                                                   std::vector<std::string>* notes) {
+  ContactSearch found;
+  auto out = contactConstraints(mesh, pairs, found);
+  if (notes) notes->insert(notes->end(), found.notes.begin(), found.notes.end());
+  return out;
+}
+
+double automaticSearchDistance(const Mesh::Mesh& mesh, const std::string& slave, double largestPrescribedDisplacement) {
+  const std::vector<int> nodes = mesh.faceNodes(slave);
+  if (nodes.empty()) return kAutoSearchDisplacements * largestPrescribedDisplacement;
+  Vec3 lo = mesh.coords[nodes[0]], hi = lo;
+  for (int n : nodes)
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], mesh.coords[n][d]), hi[d] = std::max(hi[d], mesh.coords[n][d]);
+  return std::max(kAutoSearchShare * norm(minus(hi, lo)), kAutoSearchDisplacements * largestPrescribedDisplacement);
+}
+
+double leftOutMargin(const LeftOutNode& node, const Vec3& u, bool plane, const Vec3& planeNormal, double masterMotion) {
+  return plane ? node.gap + dot(u, planeNormal) : node.gap - norm(u) - masterMotion;
+}
+
+std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const std::vector<ContactPair>& pairs,
+                                                  ContactSearch& found) {
   static const auto timer = Teuchos::TimeMonitor::getNewCounter("Tribos::contact search");
   Teuchos::TimeMonitor timing(*timer);
   std::vector<ContactConstraint> out;
@@ -317,10 +358,17 @@ std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const 
       slaveOnMasterMortar(mesh, pair, static_cast<int>(k), slaveNodes, out, leftOut, fallback);
     else
       slaveOnMaster(mesh, pair, static_cast<int>(k), slaveNodes, out, leftOut);
-    if (notes) {
-      noteLeftOut(pair, leftOut, slaveNodes.size(), *notes);
-      noteFallback(pair, fallback, slaveNodes.size(), *notes);
+    // An automatic distance leaves nodes out by rule, and the rim nodes a
+    // mortar pair gives node-to-segment rows are counted, not warned of:
+    // the result check proves the left-out nodes stayed out.
+    if (pair.automaticSearch) listLeftOut(mesh, pair, static_cast<int>(k), leftOut, found.leftOut);
+    else {
+      noteLeftOut(pair, leftOut, slaveNodes.size(), found.notes);
+      noteFallback(pair, fallback, slaveNodes.size(), found.notes);
     }
+    found.pairs.push_back({pair.name, pair.searchDistance, pair.automaticSearch, static_cast<long long>(slaveNodes.size()),
+                           static_cast<long long>(out.size() - first), static_cast<long long>(leftOut.size()),
+                           static_cast<long long>(fallback.size())});
     TRIBOS_REQUIRE(out.size() > first, name << ": none of the " << slaveNodes.size() << " nodes of '" << pair.slave
                                             << "' finds a partner on "
                                             << (pair.master.empty() ? std::string("the rigid plane")

@@ -48,6 +48,7 @@
 #include "Tribos_ContactDiscretization.hpp"
 #include "Tribos_Discretization.hpp"
 #include "Tribos_Types.hpp"
+#include "Tribos_Vec3.hpp"
 
 namespace Tribos {
 namespace Contact {
@@ -67,7 +68,55 @@ struct ContactPair {
   std::array<double, 3> planeNormal{0, 0, 1};  // unit, out of the obstacle towards the body
   // Slave nodes farther than this from their projection get no constraint.
   double searchDistance = std::numeric_limits<double>::infinity();
+  // searchDistance is automaticSearchDistance()'s: the nodes it leaves out
+  // are listed (ContactSearch::leftOut) for the result check, not warned of.
+  bool automaticSearch = false;
 };
+
+// The search distance of a pair whose input leaves it to the geometry and
+// the loads (Search Distance = 0): kAutoSearchShare of the diagonal of the
+// slave surface's bounding box, and at least kAutoSearchDisplacements times
+// the largest prescribed displacement of the history. In small-strain
+// elasticity a surface moves by a small part of its size, so a slave node
+// farther than that from the master cannot reach it; the result check
+// proves it for every left-out node after every step (leftOutMargin), and a
+// step where it cannot is not converged. Nodes far from the contact (the
+// rim of a Hertz sphere, 10 contact radii away) then take no row, which
+// makes F smaller and cheaper to apply.
+constexpr double kAutoSearchShare = 0.05, kAutoSearchDisplacements = 4.0;
+double automaticSearchDistance(const Mesh::Mesh& mesh, const std::string& slave, double largestPrescribedDisplacement);
+
+// A slave node of a pair with an automatic search distance that the search
+// left out: its distance to the master surface (to its closest point on a
+// facet) or to the rigid plane in the reference configuration.
+struct LeftOutNode {
+  int node = -1, pair = -1;
+  double gap = 0;
+};
+
+// What the search found besides the constraints: the warnings (`notes`),
+// the left-out nodes of pairs with an automatic search distance, and per
+// pair its distance and counts (slave nodes, rows, left out, mortar nodes
+// that took a node-to-segment row because the master covers less than half
+// of their area).
+struct PairSearch {
+  std::string name;
+  double searchDistance = 0;
+  bool automatic = false;
+  long long slaveNodes = 0, rows = 0, leftOut = 0, nodeToSegment = 0;
+};
+struct ContactSearch {
+  std::vector<std::string> notes;
+  std::vector<LeftOutNode> leftOut;
+  std::vector<PairSearch> pairs;
+};
+
+// A lower bound of the gap of a left-out node after a step: gap - |u_s| -
+// masterMotion (the largest displacement of the master surface's nodes),
+// or for a rigid plane with normal m the gap itself, gap + u_s . m (both as
+// the linearized gaps of the rows would measure it). Positive: the node
+// stayed out of contact.
+double leftOutMargin(const LeftOutNode& node, const Vec3& u, bool plane, const Vec3& planeNormal, double masterMotion);
 
 // The constraints of all pairs, ordered by pair, then slave node. A slave
 // node in two pairs, a pair whose slave and master surface coincide, a
@@ -78,6 +127,9 @@ struct ContactPair {
 // that fall back to node-to-segment.
 std::vector<Feti::ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const std::vector<ContactPair>& pairs,
                                                         std::vector<std::string>* notes = nullptr);
+// The same, with the left-out nodes and the counts of each pair (`found`).
+std::vector<Feti::ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const std::vector<ContactPair>& pairs,
+                                                        ContactSearch& found);
 
 // Refuses (Tribos::Error naming the body, the free motions and the pairs on
 // it) a body that can move rigidly while every other body stays: a motion
