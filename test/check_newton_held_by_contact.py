@@ -7,7 +7,8 @@ Outer Algorithm = Auto chooses, checked from the driver's files:
 The two blocks of input/two_blocks_fretting.xml: nothing but friction holds
 either block along x (the symmetry plane holds y, the contact z), and the
 shear on the upper block goes out, back and out again while the pressure is
-held. On 1, 2 and 3 ranks:
+held (its first six steps: pressed, sheared out, the reversal and back).
+On 1, 2 and 3 ranks:
 
   - Auto solves every load step by the semismooth Newton method (no step
     handed over to Algorithm 2), and every KKT residual of every written
@@ -30,7 +31,8 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from check_load_history import check, displacements, failures, pair_forces, relative, run  # noqa: E402
 
-TIGHT = ["Solver/Algorithm 2/Relative Tolerance=1e-9"]
+TIGHT = ["Solver/Algorithm 2/Relative Tolerance=1e-9",
+         "Load Steps/Times={0.5, 1, 1.5, 2, 2.5, 3}"]  # pressed, sheared out, the reversal and back
 ALGORITHM2 = ["Solver/Outer Algorithm=Algorithm2"] + TIGHT
 AUTO = ["Solver/Outer Algorithm=Auto"] + TIGHT
 KKT = ("equilibrium", "dirichlet", "nonpenetration", "complementarity", "friction_law")

@@ -1,6 +1,7 @@
 #include "Tribos_RunReport.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "Tribos_BlasKernels.hpp"
 
@@ -169,7 +170,8 @@ IO::Summary RunReport::toSummary() const {
     std::vector<IO::Summary> pairs;
     for (const auto& p : contactSearch) {
       IO::Summary c;
-      c.set("name", p.name).set("search_distance", p.searchDistance).set("automatic", p.automatic);
+      c.set("name", p.name).set("automatic", p.automatic);
+      if (std::isfinite(p.searchDistance)) c.set("search_distance", p.searchDistance);  // none: no limit
       c.set("slave_nodes", p.slaveNodes).set("rows", p.rows).set("left_out", p.leftOut);
       c.set("node_to_segment", p.nodeToSegment);
       pairs.push_back(c);

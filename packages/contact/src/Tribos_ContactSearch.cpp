@@ -352,21 +352,36 @@ std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const 
     }
     const size_t first = out.size();
     std::vector<int> leftOut, fallback;
-    if (pair.master.empty())
-      slaveOnPlane(mesh, pair, static_cast<int>(k), slaveNodes, out, leftOut);
-    else if (pair.discretization == ContactDiscretization::Mortar)
-      slaveOnMasterMortar(mesh, pair, static_cast<int>(k), slaveNodes, out, leftOut, fallback);
-    else
-      slaveOnMaster(mesh, pair, static_cast<int>(k), slaveNodes, out, leftOut);
+    auto search = [&](const ContactPair& p) {
+      if (p.master.empty())
+        slaveOnPlane(mesh, p, static_cast<int>(k), slaveNodes, out, leftOut);
+      else if (p.discretization == ContactDiscretization::Mortar)
+        slaveOnMasterMortar(mesh, p, static_cast<int>(k), slaveNodes, out, leftOut, fallback);
+      else
+        slaveOnMaster(mesh, p, static_cast<int>(k), slaveNodes, out, leftOut);
+    };
+    search(pair);
+    // An automatic distance that leaves every node out says nothing of the
+    // pair: search without a limit, so that the pair is what the input
+    // made it (a pair within one body, say, is refused as such).
+    ContactPair unlimited = pair;
+    if (pair.automaticSearch && out.size() == first) {
+      unlimited.searchDistance = std::numeric_limits<double>::infinity();
+      unlimited.automaticSearch = false;
+      leftOut.clear(), fallback.clear();
+      search(unlimited);
+    }
+    const ContactPair& searched = unlimited;  // the pair as searched
     // An automatic distance leaves nodes out by rule, and the rim nodes a
     // mortar pair gives node-to-segment rows are counted, not warned of:
     // the result check proves the left-out nodes stayed out.
-    if (pair.automaticSearch) listLeftOut(mesh, pair, static_cast<int>(k), leftOut, found.leftOut);
+    if (searched.automaticSearch) listLeftOut(mesh, searched, static_cast<int>(k), leftOut, found.leftOut);
     else {
-      noteLeftOut(pair, leftOut, slaveNodes.size(), found.notes);
-      noteFallback(pair, fallback, slaveNodes.size(), found.notes);
+      noteLeftOut(searched, leftOut, slaveNodes.size(), found.notes);
+      noteFallback(searched, fallback, slaveNodes.size(), found.notes);
     }
-    found.pairs.push_back({pair.name, pair.searchDistance, pair.automaticSearch, static_cast<long long>(slaveNodes.size()),
+    found.pairs.push_back({pair.name, searched.searchDistance, searched.automaticSearch,
+                           static_cast<long long>(slaveNodes.size()),
                            static_cast<long long>(out.size() - first), static_cast<long long>(leftOut.size()),
                            static_cast<long long>(fallback.size())});
     TRIBOS_REQUIRE(out.size() > first, name << ": none of the " << slaveNodes.size() << " nodes of '" << pair.slave
