@@ -72,6 +72,18 @@ def run(args, name, np_, sets, expect=0, input_file=None):
     return out, s, p
 
 
+def driver_arguments():
+    """The arguments of a driver check: --work DIR --input FILE -- LAUNCHER...
+    (the work directory made)."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--input", required=True)
+    ap.add_argument("launcher", nargs="+")
+    args = ap.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    return args
+
+
 def displacements(out):
     """The displacement of every step, the nodes sorted by their coordinates
     (the files of runs on other rank counts order the nodes by rank)."""

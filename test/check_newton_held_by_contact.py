@@ -22,14 +22,13 @@ On 1, 2 and 3 ranks:
     (newton_handover: the first step, the reason, the count; the step's
     row: handover).
 """
-import argparse
 import os
 import sys
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from check_load_history import check, displacements, failures, pair_forces, relative, run  # noqa: E402
+from check_load_history import check, driver_arguments, displacements, failures, pair_forces, relative, run  # noqa: E402
 
 TIGHT = ["Solver/Algorithm 2/Relative Tolerance=1e-9",
          "Load Steps/Times={0.5, 1, 1.5, 2, 2.5, 3}"]  # pressed, sheared out, the reversal and back
@@ -39,12 +38,7 @@ KKT = ("equilibrium", "dirichlet", "nonpenetration", "complementarity", "frictio
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--input", required=True)
-    ap.add_argument("launcher", nargs="+")
-    args = ap.parse_args()
-    os.makedirs(args.work, exist_ok=True)
+    args = driver_arguments()
 
     ref_out, ref, _ = run(args, "algorithm2", 2, ALGORITHM2, input_file=args.input)
     if not ref:

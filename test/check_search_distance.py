@@ -17,12 +17,11 @@ the clamp (gap above 5 % of the face's diagonal). On 1, 2 and 3 ranks:
     converged (exit 2), and its reason names the pair, a left-out node and
     the parameter to set; with every node taking part it converges.
 """
-import argparse
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from check_load_history import check, displacements, failures, relative, run  # noqa: E402
+from check_load_history import check, driver_arguments, displacements, failures, relative, run  # noqa: E402
 
 TIGHT = ["Solver/Algorithm 1/SMALBE/Relative Tolerance=1e-10"]
 EVERY_NODE = ["Contact/Pairs/ground/Search Distance=1e300"]
@@ -31,12 +30,7 @@ THROUGH = ["Contact/Pairs/ground/Plane Point={0, 0, 0}", "Contact/Pairs/ground/P
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--input", required=True)
-    ap.add_argument("launcher", nargs="+")
-    args = ap.parse_args()
-    os.makedirs(args.work, exist_ok=True)
+    args = driver_arguments()
 
     ref_out, ref, _ = run(args, "every_node", 2, EVERY_NODE + TIGHT, input_file=args.input)
     for np_ in (1, 2, 3):
