@@ -25,14 +25,13 @@ dense variant too), on 1, 2 and 3 ranks:
 The agreement limit 1e-6 is relative to the largest nodal value; the
 solvers are asked for 1e-10 (Newton) and 1e-9 (Algorithm 2).
 """
-import argparse
 import os
 import sys
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from check_load_history import HISTORY, check, displacements, failures, pair_forces, relative, run  # noqa: E402
+from check_load_history import HISTORY, check, driver_arguments, displacements, failures, pair_forces, relative, run  # noqa: E402
 
 NEWTON = ["Solver/Outer Algorithm=Semismooth Newton", "Solver/Semismooth Newton/Relative Tolerance=1e-10"]
 MATRIX_FREE = NEWTON + ["Solver/Semismooth Newton/Linear Solver=Projected CG"]
@@ -42,12 +41,7 @@ LEVEL = ["Mesh/Level=4"]
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--input", required=True)
-    ap.add_argument("launcher", nargs="+")
-    args = ap.parse_args()
-    os.makedirs(args.work, exist_ok=True)
+    args = driver_arguments()
 
     ref_out, ref, _ = run(args, "algorithm2", 2, LEVEL + ALGORITHM2)
     dense_out, dense, _ = run(args, "dense", 2, LEVEL + DENSE)

@@ -23,6 +23,7 @@
 #include "Tribos_AgreeOnError.hpp"
 #include "Tribos_ArrayScan.hpp"
 #include "Tribos_Assembly.hpp"
+#include "Tribos_ByteBuffer.hpp"
 #include "Tribos_CleanupOnSignal.hpp"
 #include "Tribos_ConstraintRows.hpp"
 #include "Tribos_Error.hpp"
@@ -516,29 +517,24 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
 // on every rank: each checks the left-out nodes it holds, and the summary
 // is the same on every rank.
 void broadcastSearch(Contact::ContactSearch& search, const Comm& comm) {
-  std::vector<double> flat;
+  ByteBuffer buffer;
   if (comm.getRank() == 0) {
-    flat.push_back(static_cast<double>(search.leftOut.size()));
-    for (const auto& n : search.leftOut) flat.insert(flat.end(), {double(n.node), double(n.pair), n.gap});
-    flat.push_back(static_cast<double>(search.pairs.size()));
-    for (const auto& p : search.pairs)
-      flat.insert(flat.end(), {p.searchDistance, double(p.automatic), double(p.slaveNodes), double(p.rows),
-                               double(p.leftOut), double(p.nodeToSegment)});
+    buffer.put(search.leftOut);
+    buffer.put(static_cast<long long>(search.pairs.size()));
+    for (const auto& p : search.pairs) {
+      buffer.put(p.name), buffer.put(p.master), buffer.put(p.planeNormal), buffer.put(p.searchDistance);
+      buffer.put(p.automatic), buffer.put(p.slaveNodes), buffer.put(p.rows), buffer.put(p.leftOut);
+      buffer.put(p.nodeToSegment);
+    }
   }
-  int size = static_cast<int>(flat.size());
-  Teuchos::broadcast(comm, 0, &size);
-  flat.resize(size);
-  if (size > 0) Teuchos::broadcast(comm, 0, size, flat.data());
-  if (comm.getRank() == 0 || size == 0) return;
-  size_t k = 0;
-  search.leftOut.resize(static_cast<size_t>(flat[k++]));
-  for (auto& n : search.leftOut) n = {static_cast<int>(flat[k]), static_cast<int>(flat[k + 1]), flat[k + 2]}, k += 3;
-  search.pairs.resize(static_cast<size_t>(flat[k++]));
+  broadcastBuffer(buffer, 0, comm);
+  if (comm.getRank() == 0) return;
+  buffer.read(search.leftOut);
+  search.pairs.resize(static_cast<size_t>(buffer.get<long long>()));
   for (auto& p : search.pairs) {
-    p.searchDistance = flat[k], p.automatic = flat[k + 1] != 0, p.slaveNodes = static_cast<long long>(flat[k + 2]);
-    p.rows = static_cast<long long>(flat[k + 3]), p.leftOut = static_cast<long long>(flat[k + 4]);
-    p.nodeToSegment = static_cast<long long>(flat[k + 5]);
-    k += 6;
+    buffer.read(p.name), buffer.read(p.master), buffer.read(p.planeNormal), buffer.read(p.searchDistance);
+    buffer.read(p.automatic), buffer.read(p.slaveNodes), buffer.read(p.rows), buffer.read(p.leftOut);
+    buffer.read(p.nodeToSegment);
   }
 }
 
@@ -595,8 +591,6 @@ std::unique_ptr<Mesh::Mesh> readStep(const Teuchos::ParameterList& params, const
 // Step "mesh": the box generated (rank 0), the whole mesh checked against the
 // problem (validateOnRoot), cut into the ranks' parts with their contact
 // constraints, and the materials of this rank's part.
-std::vector<std::string> pairNames(const Teuchos::ParameterList& params);
-
 Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& options, std::unique_ptr<Mesh::Mesh> whole,
                      const Mesh::DecompositionSpec& decomposition, const Comm& comm, RunReport& report) {
   Progress::stage("mesh and decomposition");
@@ -628,8 +622,6 @@ Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& opt
   auto materials = Input::materials(params, disc.part);
   Discretized d{std::move(whole), std::move(disc), std::move(materials), std::move(loads), std::move(constraints),
                  std::move(search)};
-  const auto names = pairNames(params);
-  for (size_t k = 0; k < d.search.pairs.size() && k < names.size(); ++k) d.search.pairs[k].name = names[k];
   report.contactSearch = d.search.pairs;
   report.algorithm = solveMethodName(method);
   report.ranks = comm.getSize();
@@ -731,24 +723,15 @@ StepReport stepReport(const Teuchos::ParameterList& params, int step, double tim
 // pair's master surface) must stay positive. Returns "" when it does, else
 // why the step is not converged, naming the pair, the node and the
 // distance to set. Collective (the left-out list is every rank's).
-std::string leftOutCheck(const Teuchos::ParameterList& params, const Discretized& d, const Fem::NodalVector& u,
-                         const Comm& comm) {
+std::string leftOutCheck(const Discretized& d, const Fem::NodalVector& u, const Comm& comm) {
   const auto& leftOut = d.search.leftOut;
   if (leftOut.empty()) return "";
-  const auto& items = params.sublist("Contact").sublist("Pairs");
-  std::vector<std::string> master;
-  std::vector<Vec3> normal;
-  for (auto it = items.begin(); it != items.end(); ++it) {
-    const auto& item = items.sublist(items.name(it));
-    master.push_back(item.get<std::string>("Master Surface"));
-    const auto& m = item.get<Teuchos::Array<double>>("Plane Normal");
-    normal.push_back(normalized(Vec3{m[0], m[1], m[2]}));
-  }
+  const auto& pairs = d.search.pairs;
   // The largest displacement of each master surface, over the ranks.
-  std::vector<double> motion(master.size(), 0.0), motionAll(master.size(), 0.0);
-  for (size_t k = 0; k < master.size(); ++k)
-    if (!master[k].empty())
-      for (int n : d.disc.part.faceNodes(master[k])) {
+  std::vector<double> motion(pairs.size(), 0.0), motionAll(pairs.size(), 0.0);
+  for (size_t k = 0; k < pairs.size(); ++k)
+    if (!pairs[k].master.empty())
+      for (int n : d.disc.part.faceNodes(pairs[k].master)) {
         const double* v = u.at(d.disc.meshNode(n));
         motion[k] = std::max(motion[k], norm(Vec3{v[0], v[1], v[2]}));
       }
@@ -759,8 +742,8 @@ std::string leftOutCheck(const Teuchos::ParameterList& params, const Discretized
     const auto& n = leftOut[i];
     if (u.layout().index(n.node) < 0) continue;
     const double* v = u.at(n.node);
-    const double margin = Contact::leftOutMargin(n, Vec3{v[0], v[1], v[2]}, master[n.pair].empty(),
-                                                 normal[n.pair], motionAll[n.pair]);
+    const double margin = Contact::leftOutMargin(n, Vec3{v[0], v[1], v[2]}, pairs[n.pair].master.empty(),
+                                                 pairs[n.pair].planeNormal, motionAll[n.pair]);
     if (margin < worst) worst = margin, worstIndex = static_cast<int>(i);
   }
   const double worstAll = -maxOver(-worst, comm);
@@ -768,7 +751,7 @@ std::string leftOutCheck(const Teuchos::ParameterList& params, const Discretized
   int which = worst == worstAll ? worstIndex : -1, whichAll = -1;
   Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, which, Teuchos::outArg(whichAll));
   const auto& n = leftOut[whichAll];
-  const auto& pair = d.search.pairs[n.pair];
+  const auto& pair = pairs[n.pair];
   std::ostringstream os;
   os << "contact pair '" << pair.name << "': slave node " << n.node << ", left out by the automatic search distance "
      << pair.searchDistance << " (its gap " << n.gap << "), may have come into contact: the displacements may have "
@@ -802,7 +785,7 @@ void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, 
   report.converged = r.verdict.converged;
   report.stopReason = r.verdict.stopReason;
   if (method == Input::Method::FetiContact) {
-    const std::string leftOut = leftOutCheck(params, d, r.u, *comm);
+    const std::string leftOut = leftOutCheck(d, r.u, *comm);
     if (!leftOut.empty()) {
       report.converged = false;
       report.stopReason = leftOut;

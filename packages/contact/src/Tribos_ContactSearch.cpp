@@ -364,14 +364,13 @@ std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const 
     // An automatic distance that leaves every node out says nothing of the
     // pair: search without a limit, so that the pair is what the input
     // made it (a pair within one body, say, is refused as such).
-    ContactPair unlimited = pair;
+    ContactPair searched = pair;  // the pair as searched
     if (pair.automaticSearch && out.size() == first) {
-      unlimited.searchDistance = std::numeric_limits<double>::infinity();
-      unlimited.automaticSearch = false;
+      searched.searchDistance = std::numeric_limits<double>::infinity();
+      searched.automaticSearch = false;
       leftOut.clear(), fallback.clear();
-      search(unlimited);
+      search(searched);
     }
-    const ContactPair& searched = unlimited;  // the pair as searched
     // An automatic distance leaves nodes out by rule, and the rim nodes a
     // mortar pair gives node-to-segment rows are counted, not warned of:
     // the result check proves the left-out nodes stayed out.
@@ -380,7 +379,7 @@ std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const 
       noteLeftOut(searched, leftOut, slaveNodes.size(), found.notes);
       noteFallback(searched, fallback, slaveNodes.size(), found.notes);
     }
-    found.pairs.push_back({pair.name, searched.searchDistance, searched.automaticSearch,
+    found.pairs.push_back({pair.name, pair.master, pair.planeNormal, searched.searchDistance, searched.automaticSearch,
                            static_cast<long long>(slaveNodes.size()),
                            static_cast<long long>(out.size() - first), static_cast<long long>(leftOut.size()),
                            static_cast<long long>(fallback.size())});

@@ -101,6 +101,8 @@ struct LeftOutNode {
 // of their area).
 struct PairSearch {
   std::string name;
+  std::string master;                 // the master surface, empty: the rigid plane of planeNormal
+  Vec3 planeNormal{0, 0, 1};
   double searchDistance = 0;
   bool automatic = false;
   long long slaveNodes = 0, rows = 0, leftOut = 0, nodeToSegment = 0;
