@@ -243,6 +243,12 @@ void slaveOnMasterMortar(const Mesh::Mesh& mesh, const ContactPair& pair, int in
   }
 }
 
+// The distance of slave node s from the pair's rigid plane (negative
+// behind it).
+double planeGap(const Mesh::Mesh& mesh, const ContactPair& pair, int s) {
+  return dot(minus(mesh.coords[s], pair.planePoint), pair.planeNormal);
+}
+
 // A rigid plane: node rows with the node's area int N_s dA, for both
 // discretizations (the plane's gap is linear in x, so the weighted gap of
 // mortar, int psi_s g dA, is D_s g(x_s), and D_s = int N_s dA).
@@ -251,7 +257,7 @@ void slaveOnPlane(const Mesh::Mesh& mesh, const ContactPair& pair, int index, co
   const Vec3& m = pair.planeNormal;
   const std::vector<double> area = Fem::faceNodalAreas(mesh, pair.slave);
   for (int s : slaveNodes) {
-    const double gap = dot(minus(mesh.coords[s], pair.planePoint), m);
+    const double gap = planeGap(mesh, pair, s);
     if (std::abs(gap) > pair.searchDistance) {
       leftOut.push_back(s);
       continue;
@@ -289,7 +295,7 @@ void noteFallback(const ContactPair& pair, const std::vector<int>& fallback, siz
 void listLeftOut(const Mesh::Mesh& mesh, const ContactPair& pair, int index, const std::vector<int>& leftOut,
                  std::vector<LeftOutNode>& list) {
   if (pair.master.empty()) {
-    for (int s : leftOut) list.push_back({s, index, dot(minus(mesh.coords[s], pair.planePoint), pair.planeNormal)});
+    for (int s : leftOut) list.push_back({s, index, planeGap(mesh, pair, s)});
     return;
   }
   const MasterSurface surface(mesh, pair.master);
