@@ -473,6 +473,9 @@ struct Content {
     const long long nOwned = static_cast<long long>(disc.ownedNodes().size());
     const long long nCells = static_cast<long long>(mesh.numCells());
     const auto nodeBlock = blockOffset(nOwned, comm), cellBlock = blockOffset(nCells, comm);
+    // XDMF numbers the mid-edge nodes of its Tetrahedron_10 and Hexahedron_20
+    // otherwise than Gmsh does.
+    Mesh::requireFirstOrder(mesh.type, "result files");
     layout.cellType = mesh.type;
     layout.nodesPerCell = npc;
     layout.nodes = nodeBlock.second;

@@ -128,6 +128,7 @@ std::string worstCellPlace(const Mesh& mesh, const BodyShape& s) {
 }  // namespace
 
 double cellThickness(const Mesh& mesh, int cell) {
+  requireFirstOrder(mesh.type, "the check of cell shapes");  // straight-sided faces and volumes only
   const double largest = largestFaceArea(mesh, cell);
   if (!(largest > 0)) return 0;
   return (mesh.type == CellType::Tet4 ? 3 : 1) * cellVolume(mesh, cell) / largest;
@@ -143,6 +144,7 @@ double cellDiameter(const Mesh& mesh, int cell) {
 }
 
 std::vector<BodyShape> bodyShapes(const Mesh& mesh) {
+  requireFirstOrder(mesh.type, "the check of body shapes");  // straight-sided faces and volumes only
   std::vector<BodyShape> shapes(mesh.numBodies());
   std::vector<Point> lo(shapes.size(), Point{HUGE_VAL, HUGE_VAL, HUGE_VAL});
   std::vector<Point> hi(shapes.size(), Point{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL});

@@ -7,9 +7,18 @@
 #include <string>
 
 #include "Tribos_Error.hpp"
+#include "detail/Tribos_MeshFacets.hpp"
 
 namespace Tribos {
 namespace Mesh {
+
+namespace {
+
+// The nodes two cells share when they share a face: METIS's ncommon, so that
+// the dual graph joins cells through faces only.
+idx_t facetNodes(CellType type) { return static_cast<idx_t>(detail::cellFaces(type).front().size()); }
+
+}  // namespace
 
 std::vector<int> partitionMetis(const Mesh& mesh, int numSubdomains) {
   const int ne = mesh.numCells();
@@ -20,7 +29,7 @@ std::vector<int> partitionMetis(const Mesh& mesh, int numSubdomains) {
   const int npc = mesh.nodesPerCell();
   std::vector<idx_t> eptr(ne + 1), eind(mesh.connectivity.begin(), mesh.connectivity.end());
   for (int e = 0; e <= ne; ++e) eptr[e] = static_cast<idx_t>(e) * npc;
-  idx_t nn = mesh.numNodes(), nev = ne, ncommon = mesh.type == CellType::Tet4 ? 3 : 4;
+  idx_t nn = mesh.numNodes(), nev = ne, ncommon = facetNodes(mesh.type);
   idx_t nparts = numSubdomains, objval = 0;
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
@@ -78,7 +87,7 @@ void requireConnectedBodies(const Mesh& mesh) {
   const int npc = mesh.nodesPerCell();
   std::vector<idx_t> eptr(ne + 1), eind(mesh.connectivity.begin(), mesh.connectivity.end());
   for (int e = 0; e <= ne; ++e) eptr[e] = static_cast<idx_t>(e) * npc;
-  idx_t nev = ne, nn = mesh.numNodes(), ncommon = mesh.type == CellType::Tet4 ? 3 : 4, numflag = 0;
+  idx_t nev = ne, nn = mesh.numNodes(), ncommon = facetNodes(mesh.type), numflag = 0;
   idx_t *xadj = nullptr, *adjncy = nullptr;
   const int status = METIS_MeshToDual(&nev, &nn, eptr.data(), eind.data(), &ncommon, &numflag, &xadj, &adjncy);
   TRIBOS_REQUIRE(status == METIS_OK, "METIS_MeshToDual failed with status " << status);

@@ -10,14 +10,36 @@
 namespace Tribos {
 namespace Mesh {
 
-int nodesPerCell(CellType type) { return type == CellType::Tet4 ? 4 : 8; }
+namespace {
 
-std::string cellTypeName(CellType type) { return type == CellType::Tet4 ? "Tet4" : "Hex8"; }
+constexpr CellType kCellTypes[] = {CellType::Tet4, CellType::Hex8, CellType::Tet10, CellType::Hex20};
+
+}  // namespace
+
+std::string cellTypeName(CellType type) {
+  switch (type) {
+    case CellType::Tet4: return "Tet4";
+    case CellType::Hex8: return "Hex8";
+    case CellType::Tet10: return "Tet10";
+    case CellType::Hex20: return "Hex20";
+  }
+  throw Error("cell type " + std::to_string(static_cast<int>(type)) + " unknown");
+}
 
 CellType cellTypeFromName(const std::string& name) {
-  if (name == "Tet4") return CellType::Tet4;
-  if (name == "Hex8") return CellType::Hex8;
-  throw Error("element \"" + name + "\" unknown; valid: Tet4, Hex8");
+  std::string valid;
+  for (CellType t : kCellTypes) {
+    if (name == cellTypeName(t)) return t;
+    valid += (valid.empty() ? "" : ", ") + cellTypeName(t);
+  }
+  throw Error("element \"" + name + "\" unknown; valid: " + valid);
+}
+
+bool isSecondOrder(CellType type) { return type == CellType::Tet10 || type == CellType::Hex20; }
+
+void requireFirstOrder(CellType type, const std::string& where) {
+  TRIBOS_REQUIRE(!isSecondOrder(type), cellTypeName(type) << " cells are not supported in " << where
+                                                          << " (only Tet4 and Hex8 cells are)");
 }
 
 namespace {
@@ -144,6 +166,7 @@ void collectBoundaryFaces(Mesh& mesh, const BoxSpec& spec) {
 }  // namespace
 
 void requireUsableBox(const BoxSpec& spec, const std::string& what) {
+  requireFirstOrder(spec.type, "box meshes");
   // The corners hold the box's extreme coordinates; every other node lies between them.
   const long long nx = spec.cells[0], ny = spec.cells[1], nz = spec.cells[2];
   std::vector<std::array<double, 3>> corners;
@@ -172,6 +195,7 @@ Mesh generateBox(const BoxSpec& spec) {
 namespace detail {
 
 Mesh boxMesh(const BoxSpec& spec) {
+  requireFirstOrder(spec.type, "box meshes");  // Kuhn tetrahedra or trilinear hexahedra only
   const int nx = spec.cells[0], ny = spec.cells[1], nz = spec.cells[2];
   Mesh mesh;
   mesh.type = spec.type;

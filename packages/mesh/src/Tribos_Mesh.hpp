@@ -13,13 +13,33 @@
 namespace Tribos {
 namespace Mesh {
 
-enum class CellType { Tet4, Hex8 };
+// Tet4 and Hex8 are the cells of every mesh a run reads or generates. Tet10
+// and Hex20 (second order, Gmsh's node ordering: corners, then one node per
+// edge; docs/quadratic_elements.md) exist at the element level only
+// (Tribos_Elasticity.hpp): no reader or box produces them yet, and the steps
+// of a run that do not know them refuse them by name.
+enum class CellType { Tet4, Hex8, Tet10, Hex20 };
 
-int nodesPerCell(CellType type);
-std::string cellTypeName(CellType type);
-CellType cellTypeFromName(const std::string& name);  // "Tet4" | "Hex8"
+constexpr int nodesPerCell(CellType type) {
+  switch (type) {
+    case CellType::Tet4: return 4;
+    case CellType::Hex8: return 8;
+    case CellType::Tet10: return 10;
+    case CellType::Hex20: return 20;
+  }
+  return 0;  // not a CellType
+}
+std::string cellTypeName(CellType type);             // "Tet4", "Hex8", "Tet10", "Hex20"
+CellType cellTypeFromName(const std::string& name);  // the inverse; throws naming the valid names
+// Whether the cell has mid-edge nodes (Tet10, Hex20).
+bool isSecondOrder(CellType type);
+// Throws Tribos::Error naming the cell type and `where` when it is second
+// order: for the steps written for Tet4 and Hex8 cells only.
+void requireFirstOrder(CellType type, const std::string& where);
 
-// A boundary facet: a triangle (Tet4) or quadrilateral (Hex8) of one cell.
+// A boundary facet: a triangle (Tet4) or quadrilateral (Hex8) of one cell; a
+// 6-node triangle (Tet10) or 8-node quadrilateral (Hex20) lists its corners
+// first, then its mid-edge nodes (docs/quadratic_elements.md).
 struct Facet {
   std::vector<int> nodes;  // global node ids, counter-clockwise seen from outside
   int cell = -1;
@@ -77,12 +97,13 @@ class Mesh {
   void checkBodies() const;
 
  private:
-  static int nodesPerCellOf(CellType t) { return t == CellType::Tet4 ? 4 : 8; }
+  static int nodesPerCellOf(CellType t) { return ::Tribos::Mesh::nodesPerCell(t); }
 };
 
 // Box [x0,x1]x[y0,y1]x[z0,z1] with nx,ny,nz hexahedral cells; for Tet4 each
 // hexahedron is split into 6 tetrahedra around its main diagonal (Kuhn split),
-// which is conforming because every hexahedron is split the same way.
+// which is conforming because every hexahedron is split the same way. Boxes
+// of second-order cells are refused (requireUsableBox).
 // Faces: xmin, xmax, ymin, ymax, zmin, zmax.
 Mesh generateBox(const BoxSpec& spec);
 
@@ -104,7 +125,8 @@ constexpr int kMaxCellsPerAxis = 1 << 20;
 constexpr double kMaxCoordinate = 1e50;
 constexpr double kMinExtent = 1e-50;
 
-// Refuses a box (its ranges) whose coordinates are not usable as above,
+// Refuses a box of second-order cells, and a box (its ranges) whose
+// coordinates are not usable as above,
 // naming `what` (e.g. the parameters that give the ranges) and the corner
 // node by its number in generateBox's numbering, and a box whose cells or
 // whole shape double precision cannot solve (Tribos_BodyShape.hpp).

@@ -1,6 +1,7 @@
 #include "Tribos_MeshBroadcast.hpp"
 
 #include "Tribos_Error.hpp"
+#include "detail/Tribos_MeshFacets.hpp"
 
 namespace Tribos {
 namespace Mesh {
@@ -25,7 +26,7 @@ std::map<std::string, std::vector<int>> unpackNamedLists(ByteBuffer& b) {
 }  // namespace
 
 void packMesh(const Mesh& mesh, ByteBuffer& b) {
-  b.put(static_cast<int>(mesh.type == CellType::Tet4 ? 0 : 1));
+  b.put(static_cast<int>(mesh.type));
   b.put(mesh.coords);
   b.put(mesh.connectivity);
   b.put(static_cast<long long>(mesh.faces.size()));
@@ -47,10 +48,10 @@ void packMesh(const Mesh& mesh, ByteBuffer& b) {
 
 Mesh unpackMesh(ByteBuffer& b) {
   Mesh mesh;
-  mesh.type = b.get<int>() == 0 ? CellType::Tet4 : CellType::Hex8;
+  mesh.type = static_cast<CellType>(b.get<int>());
   mesh.coords = b.getVector<std::array<double, 3>>();
   mesh.connectivity = b.getVector<int>();
-  const size_t perFacet = (mesh.type == CellType::Tet4 ? 3 : 4) + 1;
+  const size_t perFacet = detail::cellFaces(mesh.type).front().size() + 1;
   const long long faces = b.get<long long>();
   for (long long k = 0; k < faces; ++k) {
     auto& face = mesh.faces[b.getString()];

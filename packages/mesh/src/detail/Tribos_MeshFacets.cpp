@@ -30,7 +30,23 @@ const std::vector<std::vector<int>>& cellFaces(CellType type) {
   static const std::vector<std::vector<int>> tet = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
   static const std::vector<std::vector<int>> hex = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                                     {1, 2, 6, 5}, {2, 3, 7, 6}, {0, 4, 7, 3}};
-  return type == CellType::Tet4 ? tet : hex;
+  // The same faces with their mid-edge nodes after the corners, edge by edge
+  // around the face (Gmsh's 6-node triangle and 8-node quadrilateral). Tet10
+  // edges: 4 = 0-1, 5 = 1-2, 6 = 2-0, 7 = 3-0, 8 = 3-2, 9 = 3-1; Hex20 edges:
+  // 8 = 0-1, 9 = 0-3, 10 = 0-4, 11 = 1-2, 12 = 1-5, 13 = 2-3, 14 = 2-6,
+  // 15 = 3-7, 16 = 4-5, 17 = 4-7, 18 = 5-6, 19 = 6-7.
+  static const std::vector<std::vector<int>> tet10 = {
+      {0, 2, 1, 6, 5, 4}, {0, 1, 3, 4, 9, 7}, {1, 2, 3, 5, 8, 9}, {0, 3, 2, 7, 8, 6}};
+  static const std::vector<std::vector<int>> hex20 = {
+      {0, 3, 2, 1, 9, 13, 11, 8},   {4, 5, 6, 7, 16, 18, 19, 17}, {0, 1, 5, 4, 8, 12, 16, 10},
+      {1, 2, 6, 5, 11, 14, 18, 12}, {2, 3, 7, 6, 13, 15, 19, 14}, {0, 4, 7, 3, 10, 17, 15, 9}};
+  switch (type) {
+    case CellType::Tet4: return tet;
+    case CellType::Hex8: return hex;
+    case CellType::Tet10: return tet10;
+    case CellType::Hex20: return hex20;
+  }
+  throw Error("cellFaces: cell type " + std::to_string(static_cast<int>(type)) + " unknown");
 }
 
 Facet outwardFacet(const Mesh& mesh, int cell, int local) {
@@ -41,6 +57,8 @@ Facet outwardFacet(const Mesh& mesh, int cell, int local) {
 }
 
 bool positiveCell(const Mesh& mesh, int c) {
+  // Corner volumes do not bound the Jacobian of a cell with mid-edge nodes.
+  requireFirstOrder(mesh.type, "the check of positive cell volumes");
   const int* n = mesh.cell(c);
   const auto& x = mesh.coords;
   double h = 0;

@@ -24,7 +24,8 @@ double triple(const Point& o, const Point& a, const Point& b, const Point& c);
 // The box of generateBox, unchecked.
 Mesh boxMesh(const BoxSpec& spec);
 
-// Local faces of the reference cells, counter-clockwise seen from outside.
+// Local faces of the reference cells, counter-clockwise seen from outside;
+// for Tet10 and Hex20 the corners, then the mid-edge nodes around the face.
 const std::vector<std::vector<int>>& cellFaces(CellType type);
 
 // The face `local` of cell `cell` as a facet, in cellFaces' (outward) order.
@@ -33,7 +34,7 @@ Facet outwardFacet(const Mesh& mesh, int cell, int local);
 // Whether a cell has positive volume everywhere: the tetrahedron's volume,
 // the hexahedron's Jacobian at each of its corners (the trilinear map is
 // one-to-one when all eight are positive), relative to the cell's size so
-// that round-off flat cells count as degenerate.
+// that round-off flat cells count as degenerate. Refuses Tet10 and Hex20.
 bool positiveCell(const Mesh& mesh, int c);
 
 // Refuses a mesh with inverted or degenerate cells, naming the first five by
