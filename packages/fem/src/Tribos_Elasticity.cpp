@@ -1,6 +1,7 @@
 #include "Tribos_Elasticity.hpp"
 
 #include <cmath>
+#include <sstream>
 
 #include "Tribos_Error.hpp"
 #include "Tribos_Vec3.hpp"
@@ -57,26 +58,12 @@ void addBtDB(const std::vector<double>& B, const std::array<double, 36>& D, doub
     }
 }
 
-const double kGauss = 1.0 / std::sqrt(3.0);
-const int kHexSign[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                            {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-
-void hexShape(const Point& xi, double N[8], double dNdxi[8][3]) {
-  for (int a = 0; a < 8; ++a) {
-    const double s[3] = {1 + kHexSign[a][0] * xi[0], 1 + kHexSign[a][1] * xi[1], 1 + kHexSign[a][2] * xi[2]};
-    N[a] = s[0] * s[1] * s[2] / 8;
-    dNdxi[a][0] = kHexSign[a][0] * s[1] * s[2] / 8;
-    dNdxi[a][1] = kHexSign[a][1] * s[0] * s[2] / 8;
-    dNdxi[a][2] = kHexSign[a][2] * s[0] * s[1] / 8;
-  }
-}
-
-// Inverts the 3x3 matrix J in place; returns det J.
+// det J of J[i][j] = dx_j / dxi_i, and J^-1 in place when det J > 0.
 double invert3(double J[3][3]) {
   const double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
                      J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
                      J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-  TRIBOS_REQUIRE(det > 0, "degenerate or inverted cell (det J = " << det << ")");
+  if (!(det > 0)) return det;
   double inv[3][3];
   inv[0][0] = (J[1][1] * J[2][2] - J[1][2] * J[2][1]) / det;
   inv[0][1] = (J[0][2] * J[2][1] - J[0][1] * J[2][2]) / det;
@@ -92,32 +79,70 @@ double invert3(double J[3][3]) {
   return det;
 }
 
-std::vector<Point> hexGaussPoints() {
-  std::vector<Point> pts;
-  for (int k = 0; k < 2; ++k)
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) pts.push_back({(2 * i - 1) * kGauss, (2 * j - 1) * kGauss, (2 * k - 1) * kGauss});
-  return pts;
+// The Jacobian of the isoparametric map x(xi) = sum_a N_a(xi) X_a,
+// J[i][j] = dx_j / dxi_i, from the reference gradients at one point.
+void isoparametricJacobian(const double dNdxi[][3], const std::vector<Point>& X, int npc, double J[3][3]) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) J[i][j] = 0;
+  for (int a = 0; a < npc; ++a)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) J[i][j] += dNdxi[a][i] * X[a][j];
+}
+
+std::string pointText(const Point& xi) {
+  std::ostringstream os;
+  os << "(" << xi[0] << ", " << xi[1] << ", " << xi[2] << ")";
+  return os.str();
+}
+
+void requireNodes(Mesh::CellType type, const std::vector<Point>& X) {
+  TRIBOS_REQUIRE(static_cast<int>(X.size()) == Mesh::nodesPerCell(type),
+                 Mesh::cellTypeName(type) << " cell given " << X.size() << " nodes");
+}
+
+// Voigt stress D B ue from the gradients dN (npc x 3) at one point.
+std::array<double, 6> stressAt(const std::vector<double>& dN, int npc, const std::vector<double>& ue,
+                               const std::array<double, 36>& D) {
+  const auto B = strainDisplacement(dN, npc);
+  std::array<double, 6> eps{}, sigma{};
+  for (int r = 0; r < 6; ++r)
+    for (int j = 0; j < 3 * npc; ++j) eps[r] += B[r * 3 * npc + j] * ue[j];
+  for (int r = 0; r < 6; ++r)
+    for (int k = 0; k < 6; ++k) sigma[r] += D[6 * r + k] * eps[k];
+  return sigma;
+}
+
+// A second-order cell's map must not fold anywhere. Its quadrature points do
+// not see a fold at a corner (a mid-edge node moved along its edge by more
+// than a quarter of the edge from the middle), so det J is checked at the
+// nodes as well.
+void requirePositiveJacobianAtNodes(Mesh::CellType type, const std::vector<Point>& X) {
+  const int npc = Mesh::nodesPerCell(type);
+  const std::vector<Point> nodes = referenceNodes(type);
+  double N[kMaxNodesPerCell], dNdxi[kMaxNodesPerCell][3], J[3][3];
+  for (int a = 0; a < npc; ++a) {
+    referenceShape(type, nodes[a], N, dNdxi);
+    isoparametricJacobian(dNdxi, X, npc, J);
+    const double det = invert3(J);
+    TRIBOS_REQUIRE(det > 0, "inverted or degenerate " << Mesh::cellTypeName(type) << " cell: det J = " << det
+                                                      << " <= 0 at its node " << a << " " << pointText(X[a])
+                                                      << "; its map from the reference cell folds there (a "
+                                                         "mid-edge node too far from the middle of its edge?)");
+  }
 }
 
 }  // namespace
 
 double shapeGradients(Mesh::CellType type, const std::vector<Point>& X, const Point& xi, std::vector<double>& dN) {
+  requireNodes(type, X);
   const int npc = Mesh::nodesPerCell(type);
   dN.assign(3 * npc, 0.0);
-  double dNdxi[8][3], N[8];
-  if (type == Mesh::CellType::Tet4) {
-    const double ref[4][3] = {{-1, -1, -1}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    for (int a = 0; a < 4; ++a)
-      for (int d = 0; d < 3; ++d) dNdxi[a][d] = ref[a][d];
-  } else {
-    hexShape(xi, N, dNdxi);
-  }
-  double J[3][3] = {};  // J[i][j] = d x_j / d xi_i
-  for (int a = 0; a < npc; ++a)
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) J[i][j] += dNdxi[a][i] * X[a][j];
+  double N[kMaxNodesPerCell], dNdxi[kMaxNodesPerCell][3], J[3][3];
+  referenceShape(type, xi, N, dNdxi);
+  isoparametricJacobian(dNdxi, X, npc, J);
   const double det = invert3(J);  // J now holds d xi / d x (transposed layout)
+  TRIBOS_REQUIRE(det > 0, "inverted or degenerate " << Mesh::cellTypeName(type) << " cell: det J = " << det
+                                                    << " <= 0 at the reference point " << pointText(xi));
   for (int a = 0; a < npc; ++a)
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) dN[3 * a + j] += J[j][i] * dNdxi[a][i];
@@ -125,28 +150,9 @@ double shapeGradients(Mesh::CellType type, const std::vector<Point>& X, const Po
 }
 
 std::vector<double> shapeFunctions(Mesh::CellType type, const Point& xi) {
-  if (type == Mesh::CellType::Tet4) return {1 - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2]};
-  double N[8], dNdxi[8][3];
-  hexShape(xi, N, dNdxi);
-  return std::vector<double>(N, N + 8);
-}
-
-std::vector<QuadraturePoint> accurateQuadrature(Mesh::CellType type) {
-  if (type == Mesh::CellType::Tet4) {
-    // Keast's 5-point rule (degree 3) on the unit tetrahedron of volume 1/6.
-    const double a = 0.5, b = 1.0 / 6.0;
-    return {{{0.25, 0.25, 0.25}, -2.0 / 15.0},
-            {{a, b, b}, 3.0 / 40.0},
-            {{b, a, b}, 3.0 / 40.0},
-            {{b, b, a}, 3.0 / 40.0},
-            {{b, b, b}, 3.0 / 40.0}};
-  }
-  const double g[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, w[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
-  std::vector<QuadraturePoint> q;
-  for (int k = 0; k < 3; ++k)
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) q.push_back({{g[i], g[j], g[k]}, w[i] * w[j] * w[k]});
-  return q;
+  double N[kMaxNodesPerCell], dNdxi[kMaxNodesPerCell][3];
+  referenceShape(type, xi, N, dNdxi);
+  return std::vector<double>(N, N + Mesh::nodesPerCell(type));
 }
 
 std::vector<double> elementStiffness(Mesh::CellType type, const std::vector<Point>& X, const Material& mat) {
@@ -158,9 +164,11 @@ std::vector<double> elementStiffness(Mesh::CellType type, const std::vector<Poin
     addBtDB(strainDisplacement(dN, npc), D, det / 6.0, n, Ke);
     return Ke;
   }
-  for (const Point& xi : hexGaussPoints()) {
-    const double det = shapeGradients(type, X, xi, dN);
-    addBtDB(strainDisplacement(dN, npc), D, det, n, Ke);
+  requireNodes(type, X);
+  if (Mesh::isSecondOrder(type)) requirePositiveJacobianAtNodes(type, X);
+  for (const QuadraturePoint& q : cellQuadrature(type)) {
+    const double det = shapeGradients(type, X, q.xi, dN);
+    addBtDB(strainDisplacement(dN, npc), D, q.weight * det, n, Ke);
   }
   return Ke;
 }
@@ -168,16 +176,22 @@ std::vector<double> elementStiffness(Mesh::CellType type, const std::vector<Poin
 std::array<double, 6> cellStress(Mesh::CellType type, const std::vector<Point>& X, const std::vector<double>& ue,
                                  const Material& mat) {
   const int npc = Mesh::nodesPerCell(type);
-  std::vector<double> dN;
-  shapeGradients(type, X, {0, 0, 0}, dN);
-  const auto B = strainDisplacement(dN, npc);
   const auto D = mat.D();
-  std::array<double, 6> eps{}, sigma{};
-  for (int r = 0; r < 6; ++r)
-    for (int j = 0; j < 3 * npc; ++j) eps[r] += B[r * 3 * npc + j] * ue[j];
-  for (int r = 0; r < 6; ++r)
-    for (int k = 0; k < 6; ++k) sigma[r] += D[6 * r + k] * eps[k];
-  return sigma;
+  std::vector<double> dN;
+  if (!Mesh::isSecondOrder(type)) {
+    shapeGradients(type, X, {0, 0, 0}, dN);
+    return stressAt(dN, npc, ue, D);
+  }
+  std::array<double, 6> integral{};
+  double volume = 0;
+  for (const QuadraturePoint& q : cellQuadrature(type)) {
+    const double w = q.weight * shapeGradients(type, X, q.xi, dN);
+    const auto sigma = stressAt(dN, npc, ue, D);
+    for (int r = 0; r < 6; ++r) integral[r] += w * sigma[r];
+    volume += w;
+  }
+  for (double& v : integral) v /= volume;
+  return integral;
 }
 
 double vonMises(const std::array<double, 6>& s) {
@@ -186,24 +200,25 @@ double vonMises(const std::array<double, 6>& s) {
 }
 
 std::vector<double> facetNodalAreas(const std::vector<Point>& X) {
-  if (X.size() == 3) {
+  const int nodes = static_cast<int>(X.size());
+  if (nodes == 3) {
     const double area = 0.5 * norm(cross(minus(X[1], X[0]), minus(X[2], X[0])));
     return {area / 3, area / 3, area / 3};
   }
-  TRIBOS_REQUIRE(X.size() == 4, "facet with " << X.size() << " nodes");
-  // Bilinear quadrilateral, 2x2 Gauss: weight of node a = sum_q N_a(q) |dX/ds x dX/dt|.
-  std::vector<double> w(4, 0.0);
-  const int sgn[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-  for (int q = 0; q < 4; ++q) {
-    const double s = sgn[q][0] * kGauss, t = sgn[q][1] * kGauss;
+  TRIBOS_REQUIRE(nodes == 4 || nodes == 6 || nodes == 8, "facet with " << nodes << " nodes (3, 4, 6 or 8 expected)");
+  // Weight of node a = sum_q w_q N_a(q) |dX/ds x dX/dt|(q).
+  std::vector<double> w(nodes, 0.0);
+  double N[kMaxNodesPerFacet], dNds[kMaxNodesPerFacet][2];
+  for (const FacetQuadraturePoint& q : facetQuadrature(nodes)) {
+    facetShape(nodes, q.s, q.t, N, dNds);
     Point xs{}, xt{};
-    for (int a = 0; a < 4; ++a)
+    for (int a = 0; a < nodes; ++a)
       for (int d = 0; d < 3; ++d) {
-        xs[d] += sgn[a][0] * (1 + sgn[a][1] * t) / 4 * X[a][d];
-        xt[d] += sgn[a][1] * (1 + sgn[a][0] * s) / 4 * X[a][d];
+        xs[d] += dNds[a][0] * X[a][d];
+        xt[d] += dNds[a][1] * X[a][d];
       }
     const double J = norm(cross(xs, xt));
-    for (int a = 0; a < 4; ++a) w[a] += (1 + sgn[a][0] * s) * (1 + sgn[a][1] * t) / 4 * J;
+    for (int a = 0; a < nodes; ++a) w[a] += N[a] * J * q.weight;
   }
   return w;
 }
@@ -225,12 +240,12 @@ std::vector<double> cellVolumeForces(Mesh::CellType type, const std::vector<Poin
       for (int d = 0; d < 3; ++d) f[3 * a + d] = vol / 4 * b[d];
     return f;
   }
-  double N[8], dNdxi[8][3];
-  for (const Point& xi : hexGaussPoints()) {
-    const double det = shapeGradients(type, X, xi, dN);
-    hexShape(xi, N, dNdxi);
-    for (int a = 0; a < 8; ++a)
-      for (int d = 0; d < 3; ++d) f[3 * a + d] += det * N[a] * b[d];
+  double N[kMaxNodesPerCell], dNdxi[kMaxNodesPerCell][3];
+  for (const QuadraturePoint& q : cellQuadrature(type)) {
+    const double w = q.weight * shapeGradients(type, X, q.xi, dN);
+    referenceShape(type, q.xi, N, dNdxi);
+    for (int a = 0; a < npc; ++a)
+      for (int d = 0; d < 3; ++d) f[3 * a + d] += w * N[a] * b[d];
   }
   return f;
 }

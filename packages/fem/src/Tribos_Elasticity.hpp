@@ -1,6 +1,8 @@
 // Tribos_Elasticity.hpp: 3D isotropic linear elasticity on P1 tetrahedra and
-// Q1 hexahedra (2x2x2 Gauss): element stiffness, loads and stresses.
-// DOF layout everywhere: dof = 3 * node + component.
+// Q1 hexahedra (2x2x2 Gauss), and at the element level on the second-order
+// Tet10 and Hex20 cells (Tribos_ShapeFunctions.hpp, docs/quadratic_elements.md):
+// element stiffness, loads and stresses. DOF layout everywhere:
+// dof = 3 * node + component.
 #pragma once
 
 #include <array>
@@ -8,11 +10,10 @@
 #include <vector>
 
 #include "Tribos_Mesh.hpp"
+#include "Tribos_ShapeFunctions.hpp"
 
 namespace Tribos {
 namespace Fem {
-
-using Point = std::array<double, 3>;
 
 struct Material {
   double E = 1.0;    // Young's modulus
@@ -38,36 +39,47 @@ class BodyMaterials {
   std::vector<Material> perBody_;
 };
 
-// Element stiffness (row-major, 3*npc x 3*npc) of a cell with the given nodes.
+// Element stiffness (row-major, 3*npc x 3*npc) of a cell with the given nodes:
+// Tet4 exactly (constant strain), the others with cellQuadrature(type).
+// Throws Tribos::Error when det J <= 0 at a quadrature point or, for Tet10
+// and Hex20, at a node of the cell: the isoparametric map of a cell whose
+// mid-edge node has moved along its edge by more than a quarter of the edge
+// from the middle folds at a corner, while every quadrature point may still
+// see det J > 0.
 std::vector<double> elementStiffness(Mesh::CellType type, const std::vector<Point>& X, const Material& mat);
 
 // Shape function gradients dN/dx (npc x 3, row-major) at reference point xi
-// (ignored for Tet4); returns det J.
+// (ignored for Tet4); returns det J, and throws Tribos::Error naming the cell
+// type and the point when det J <= 0 (an inverted or degenerate cell).
 double shapeGradients(Mesh::CellType type, const std::vector<Point>& X, const Point& xi, std::vector<double>& dN);
 
-// Shape function values at reference point xi (Tet4: barycentric on the unit
-// tetrahedron (0,0,0),(1,0,0),(0,1,0),(0,0,1); Hex8: trilinear on [-1,1]^3).
+// Shape function values at reference point xi (Tribos_ShapeFunctions.hpp:
+// Tet4, Tet10 on the unit tetrahedron (0,0,0),(1,0,0),(0,1,0),(0,0,1); Hex8,
+// Hex20 on [-1,1]^3).
 std::vector<double> shapeFunctions(Mesh::CellType type, const Point& xi);
 
-struct QuadraturePoint {
-  Point xi;
-  double weight;  // in reference coordinates
-};
-// A rule exact for polynomials of degree 3 (Tet4: 5 points; Hex8: 3x3x3 Gauss),
-// for error norms of quadratic manufactured solutions.
-std::vector<QuadraturePoint> accurateQuadrature(Mesh::CellType type);
-
-// Cauchy stress (Voigt) at the cell centre from the cell's nodal displacements.
+// Cauchy stress (Voigt) of a cell from its nodal displacements: Tet4 and Hex8
+// at the cell centre; Tet10 and Hex20 the average over the cell's volume,
+// int sigma dV / V, with cellQuadrature(type) (exact for the linear stress
+// of a straight-sided Tet10 and of a parallelepiped Hex20): their stress
+// varies within the cell, and a cell field holds one value, its mean.
 std::array<double, 6> cellStress(Mesh::CellType type, const std::vector<Point>& X, const std::vector<double>& ue,
                                  const Material& mat);
 double vonMises(const std::array<double, 6>& s);
 
-// Consistent nodal forces of a constant traction t on a facet (3 or 4 nodes).
+// Consistent nodal forces of a constant traction t (per unit area) on a
+// facet of 3, 4, 6 or 8 nodes (corners first, then mid-edge nodes:
+// Tribos_ShapeFunctions.hpp): facetNodalAreas x t.
 std::vector<double> facetTractionForces(const std::vector<Point>& X, const Point& t);
-// Nodal weights of the facet area (integral of each shape function), used to
-// turn a traction bound into nodal slip bounds.
+// Nodal weights of the facet area (integral of each shape function over the
+// facet, facetQuadrature), used to turn a traction bound into nodal slip
+// bounds. On a flat 6-node triangle whose edges are straight the corners
+// weigh 0 and the mid-edge nodes 1/3 of the area; on a flat 8-node
+// quadrilateral (a parallelogram) the corners -1/12 and the mid-edge nodes 1/3.
 std::vector<double> facetNodalAreas(const std::vector<Point>& X);
-// Consistent nodal forces of a constant volume force b on a cell.
+// Consistent nodal forces of a constant volume force b on a cell (Tet4
+// exactly, the others with cellQuadrature(type)); on a straight-sided Tet10
+// the corners get -1/20 and the mid-edge nodes 1/5 of the total.
 std::vector<double> cellVolumeForces(Mesh::CellType type, const std::vector<Point>& X, const Point& b);
 
 // The rigid motions at a point r (relative to a centre), written once for
