@@ -63,27 +63,68 @@ void DualPreconditioner::applyOne(const Vector& w, Vector& y) const {
   }
   const FetiProblem& prob = dual_.problem();
   const CrsMatrix& B = *prob.B();
-  B.apply(w, pw_, Teuchos::TRANS);
   if (kind_ == "Lumped Unscaled") {
-    prob.applyK(pw_, Kv_);
+    B.apply(w, pw_, Teuchos::TRANS);
+    prob.applyKBoundary(pw_, Kv_);
     B.apply(Kv_, tmp_);
     dual_.coarse().project(tmp_, y);
     return;
   }
-  auto BtB = [&](const Vector& x, Vector& out) {
-    B.apply(x, tmp_);
-    B.apply(tmp_, out, Teuchos::TRANS);
-  };
-  auto BBt = [&](const Vector& x, Vector& out) {  // pw_ is free once v_ = (B'B)^+ B'w
-    B.apply(x, pw_, Teuchos::TRANS);
-    B.apply(pw_, out);
-  };
-  gramSolve(BtB, pw_, v_);
-  if (kind_ == "Lumped") prob.applyK(v_, Kv_);
+  scaledTranspose(w, v_);
+  if (kind_ == "Lumped") prob.applyKBoundary(v_, Kv_);
   else prob.applySchur(v_, Kv_);
-  B.apply(Kv_, tmp_);
-  gramSolve(BBt, tmp_, scaled_);
+  scaled(Kv_, scaled_);
   dual_.coarse().project(scaled_, y);
+}
+
+void DualPreconditioner::scaleByJacobi(Vector& x) const {
+  if (jacobi_.empty()) {
+    const CrsMatrix& B = *dual_.problem().B();
+    jacobi_.assign(B.getNodeNumRows(), 0.0);
+    for (size_t i = 0; i < jacobi_.size(); ++i) {
+      CrsMatrix::local_inds_host_view_type columns;
+      CrsMatrix::values_host_view_type values;
+      B.getLocalRowView(static_cast<LO>(i), columns, values);
+      double norm2 = 0;
+      for (size_t k = 0; k < values.extent(0); ++k) norm2 += values(k) * values(k);
+      jacobi_[i] = norm2 > 0 ? 1.0 / norm2 : 0.0;
+    }
+  }
+  auto xv = x.getDataNonConst();
+  for (size_t i = 0; i < jacobi_.size(); ++i) xv[i] *= jacobi_[i];
+}
+
+void DualPreconditioner::scaledTranspose(const Vector& w, Vector& v) const {
+  const CrsMatrix& B = *dual_.problem().B();
+  if (dual_.problem().orthonormalEqualityRows()) {
+    scaled_.assign(w);
+    scaleByJacobi(scaled_);
+    B.apply(scaled_, v, Teuchos::TRANS);
+    return;
+  }
+  B.apply(w, pw_, Teuchos::TRANS);
+  gramSolve(
+      [&](const Vector& x, Vector& out) {
+        B.apply(x, tmp_);
+        B.apply(tmp_, out, Teuchos::TRANS);
+      },
+      pw_, v);
+}
+
+void DualPreconditioner::scaled(const Vector& u, Vector& y) const {
+  const CrsMatrix& B = *dual_.problem().B();
+  B.apply(u, tmp_);
+  if (dual_.problem().orthonormalEqualityRows()) {
+    y.assign(tmp_);
+    scaleByJacobi(y);
+    return;
+  }
+  gramSolve(
+      [&](const Vector& x, Vector& out) {
+        B.apply(x, pw_, Teuchos::TRANS);
+        B.apply(pw_, out);
+      },
+      tmp_, y);
 }
 
 }  // namespace Feti

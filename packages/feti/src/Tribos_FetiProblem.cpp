@@ -505,6 +505,41 @@ const Mesh::Discretization& FetiProblem::discretization() const {
   return *disc_;
 }
 
+namespace {
+
+// Whether the equality rows (gluing, Dirichlet) of every rank are unit
+// vectors, orthogonal to each other among a rank's rows: then BB' is the
+// identity on them (the Orthonormal gluing's Helmert and Dirichlet rows,
+// whose rows of one node all belong to the node's first copy's rank).
+// Collective.
+bool equalityRowsOrthonormal(const std::vector<DualRow>& rows, const Comm& comm) {
+  std::map<std::array<int, 3>, std::vector<std::pair<size_t, double>>> byDof;  // (subdomain, node, c) -> (row, entry)
+  int ok = 1;
+  for (size_t i = 0; i < rows.size() && ok; ++i) {
+    const DualRow& r = rows[i];
+    if (r.kind != DualRow::Gluing && r.kind != DualRow::Dirichlet) continue;
+    double norm2 = 0;
+    for (const auto& copy : r.copies)
+      for (int c = 0; c < 3; ++c) {
+        const double e = copy.weight * r.dir[c];
+        norm2 += e * e;
+        if (e != 0.0) byDof[{copy.subdomain, copy.localNode, c}].push_back({i, e});
+      }
+    ok = std::abs(norm2 - 1.0) <= 1e-12;
+  }
+  std::map<std::pair<size_t, size_t>, double> dot;  // the off-diagonal entries of BB' on these rows
+  for (const auto& [dof, entries] : byDof)
+    for (size_t a = 0; a < entries.size(); ++a)
+      for (size_t b = a + 1; b < entries.size(); ++b)
+        dot[{entries[a].first, entries[b].first}] += entries[a].second * entries[b].second;
+  for (const auto& [pair, value] : dot) ok = ok && std::abs(value) <= 1e-12;
+  int all = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MIN, ok, Teuchos::outArg(all));
+  return all != 0;
+}
+
+}  // namespace
+
 void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::ParameterList& p) {
   hasContact_ = contact;
   localSolverName_ = p.get<std::string>("Local Solver");
@@ -536,6 +571,7 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
   distributeRows(fc.rows, numbering.owner);
   keepOwnRows(fc, *comm_);
   dirichletRows_ = dirichletRowsOf(fc.rows, comm_->getRank());
+  orthonormalEquality_ = equalityRowsOrthonormal(fc.rows, *comm_);
   constraints_ = assembleConstraints(fc.rows, primalMap_, primalOffsets_, fc.contact);
   contactConstraints_ = std::move(fc.contact);
   nodalLayout_ = makeNodalLayout();
@@ -658,6 +694,24 @@ void FetiProblem::applyK(const Vector& p, Vector& z) const {
   for (const auto& sys : systems_) {
     sys.K.multiply(pv.getRawPtr() + offset, zv.getRawPtr() + offset);
     offset += sys.numDofs();
+  }
+}
+
+void FetiProblem::applyKBoundary(const Vector& p, Vector& z) const {
+  if (Kbb_.empty())
+    for (size_t k = 0; k < systems_.size(); ++k) Kbb_.push_back(systems_[k].K.principalSubmatrix(boundary_[k]));
+  auto pv = p.getData();
+  auto zv = z.getDataNonConst();
+  std::vector<double> pb, zb;
+  size_t offset = 0;
+  for (size_t k = 0; k < systems_.size(); ++k) {
+    const auto& b = boundary_[k];
+    pb.resize(b.size());
+    for (size_t i = 0; i < b.size(); ++i) pb[i] = pv[offset + b[i]];
+    Kbb_[k].multiply(pb, zb);
+    std::fill(zv.getRawPtr() + offset, zv.getRawPtr() + offset + systems_[k].numDofs(), 0.0);
+    for (size_t i = 0; i < b.size(); ++i) zv[offset + b[i]] = zb[i];
+    offset += systems_[k].numDofs();
   }
 }
 

@@ -126,6 +126,14 @@ class FetiProblem {
   void applyDualKplus(const Vector& p, Vector& z) const { Kplus_->applyOnBoundary(p, z); }
   // z = K p (block diagonal).
   void applyK(const Vector& p, Vector& z) const;
+  // z = K_bb p on the dofs B touches, per subdomain (zero elsewhere): all of
+  // K that B K B' reads, for the lumped preconditioner. On a subdomain with
+  // few dofs on its interface and contact surface K_bb is a small part of K.
+  // The blocks are extracted on first use.
+  void applyKBoundary(const Vector& p, Vector& z) const;
+  // Whether the equality rows (gluing, Dirichlet) are orthonormal (Gluing =
+  // Orthonormal): then BB' is the identity on them.
+  bool orthonormalEqualityRows() const { return orthonormalEquality_; }
   // z = S p: per subdomain the Schur complement on the dofs B touches,
   // S = K_bb - K_bi K_ii^-1 K_ib (zero on interior dofs), for the Dirichlet
   // preconditioner. The interior blocks are factored on first use.
@@ -230,6 +238,8 @@ class FetiProblem {
   // The Dirichlet preconditioner, factored on first use (only projected CG
   // with "Preconditioner" = Dirichlet needs it).
   mutable std::unique_ptr<DirichletPreconditioner> preconditioner_;
+  mutable std::vector<LocalCsr> Kbb_;  // applyKBoundary's blocks, one per subdomain
+  bool orthonormalEquality_ = false;
 };
 
 }  // namespace Feti

@@ -526,3 +526,40 @@ TEUCHOS_UNIT_TEST(FetiDual, RoundingDefect) {
   }
 }
 
+
+// The lumped preconditioner's shortcuts are exact where they are taken:
+// with the orthonormal gluing BB' = I on the gluing and Dirichlet rows
+// (so diag(BB')^-1 is (BB')^+), the chain gluing is recognized as not
+// orthonormal (its rows have norm sqrt 2), and B K B' = B K_bb B' (B
+// reads and writes only the dofs it touches).
+TEUCHOS_UNIT_TEST(DualPreconditioner, LumpedShortcutsExact) {
+  auto comm = Tpetra::getDefaultComm();
+  for (const std::string gluing : {"Orthonormal", "Non-redundant"}) {
+    const Case c{Mesh::CellType::Hex8, {9, 4, 4}, 6, gluing, "Structured", {3, 2, 1}};
+    auto disc = makeDisc(c, *comm);
+    Teuchos::ParameterList p;
+    p.set("Gluing", gluing);
+    auto problem = problemWith(disc, p, comm);
+    const bool orthonormal = gluing == "Orthonormal";
+    TEST_EQUALITY(problem->orthonormalEqualityRows(), orthonormal);
+    Vector x(problem->dualMap()), BBtx(problem->dualMap()), Btx(problem->primalMap());
+    fillDual(x, *comm);
+    problem->B()->apply(x, Btx, Teuchos::TRANS);
+    problem->B()->apply(Btx, BBtx);
+    BBtx.update(-1.0, x, 1.0);
+    out << gluing << ": |BB'x - x| / |x| = " << BBtx.norm2() / x.norm2() << "\n";
+    if (orthonormal) {
+      TEST_COMPARE(BBtx.norm2(), <=, 1e-14 * x.norm2());
+    } else {
+      TEST_COMPARE(BBtx.norm2(), >, 0.1 * x.norm2());
+    }
+    Vector Kfull(problem->primalMap()), Kbb(problem->primalMap()), BK(problem->dualMap()), BKbb(problem->dualMap());
+    problem->applyK(Btx, Kfull);
+    problem->applyKBoundary(Btx, Kbb);
+    problem->B()->apply(Kfull, BK);
+    problem->B()->apply(Kbb, BKbb);
+    BKbb.update(-1.0, BK, 1.0);
+    out << gluing << ": |B K_bb B'x - B K B'x| / |B K B'x| = " << BKbb.norm2() / BK.norm2() << "\n";
+    TEST_COMPARE(BKbb.norm2(), <=, 1e-13 * BK.norm2());
+  }
+}
