@@ -12,9 +12,11 @@ dense variant too), on 1, 2 and 3 ranks:
     residual of the written result within the result check, and its
     displacement and contact forces agree with those of the dense variant
     (Linear Solver = Dense LU) and of Algorithm 2, both solved tightly;
-  - with each preconditioner (Slip Curvature, the default; None; FETI's
-    Lumped and Dirichlet) and each way of holding G x = 0 (Augmented
-    Lagrangian, the default; Face Projection) it reaches the same solution;
+  - with each preconditioner (Auto, the default: Slip Curvature with the
+    augmented Lagrangian, FETI's Lumped with the face projection; each of
+    Slip Curvature, None, Lumped and Dirichlet) and each way of holding
+    G x = 0 (Augmented Lagrangian, the default here; Face Projection) it
+    reaches the same solution;
   - with the coarse problem split among 2 and 3 ranks (192 subdomains) it
     reaches the same solution;
   - at F = 0.6, where Newton steps that lag the slip bound cycle, the

@@ -55,6 +55,10 @@ struct FrictionStatus {
 struct WarmStart {
   RCP<const Vector> equalityMultiplier;
   SC rho = 0;
+  // The Newton method's Preconditioner = Auto took FETI's lumped
+  // preconditioner (its CG steps were long without it): the next solve
+  // starts with it.
+  bool lumped = false;
 };
 
 // The status of a solve repeated from its result (a next round): the counts

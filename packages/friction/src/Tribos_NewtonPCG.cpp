@@ -132,9 +132,6 @@ class NewtonSolve {
     ac_ = coulomb_;
     coulombLaw_ = dual.coulombOnSomeRank();  // the slip-bound freeze takes collective norms
     steps_.resize(ac_->contacts().size());
-    const std::string pc = params.get<std::string>("Preconditioner");
-    scaleCurvature_ = pc == "Slip Curvature";
-    if (pc != "None" && !scaleCurvature_ && dual.preconditioner) M_ = dual.preconditioner(pc);
     isContactRow_.assign(map_->getNodeNumElements(), 0);
     for (const Contact& c : ac_->contacts()) {
       int rows[3];
@@ -143,6 +140,11 @@ class NewtonSolve {
     const std::string equality = params.get<std::string>("Equality Constraint");
     const bool faceProjection = equality == "Face Projection";
     if ((faceProjection || (equality == "Auto" && !dual.heldWithoutContact)) && !G_.is_null()) face_ = G_->face();
+    const std::string pc = params.get<std::string>("Preconditioner");
+    autoPreconditioner_ = pc == "Auto" && dual.preconditioner;
+    scaleCurvature_ = pc == "Slip Curvature" || pc == "Auto";
+    if (autoPreconditioner_ && warm.lumped) takeLumped();
+    else if (pc != "None" && !scaleCurvature_ && dual.preconditioner) M_ = dual.preconditioner(pc);
     TRIBOS_REQUIRE(!faceProjection || G_.is_null() || !face_.is_null(),
                    "Semismooth Newton: Equality Constraint = Face Projection needs an equality constraint that "
                    "forms G Pi G' (FETI's coarse space); this one does not");
@@ -174,7 +176,30 @@ class NewtonSolve {
   mutable Vector Gx_;
   SC normA_ = 1, rho_ = 1, r_ = 1;
   long n_A_ = 0;
-  bool scaleCurvature_ = false;         // Preconditioner = Slip Curvature
+  bool scaleCurvature_ = false;         // Preconditioner = Slip Curvature (or Auto, until it takes Lumped)
+  bool autoPreconditioner_ = false;     // Preconditioner = Auto, and the dual problem has FETI's
+  long cgIterations_ = 0;               // CG iterations of this solve's Newton steps ...
+  int cgSolves_ = 0;                    // ... and their number
+  // Preconditioner = Auto: FETI's lumped preconditioner from here on.
+  void takeLumped() {
+    M_ = dual_.preconditioner("Lumped");
+    scaleCurvature_ = M_.is_null();
+  }
+  // Preconditioner = Auto after a Newton step whose CG took cg iterations:
+  // the slip curvature scaling leaves the CG steps long where FETI's
+  // operator itself is ill-conditioned (few large subdomains: the
+  // Cattaneo-Mindlin sphere, 40-60 iterations per step), and there the
+  // lumped preconditioner saves 2-4x the applications of A; where the steps
+  // are short (8-20: the brick, the lap joint) it costs more than it saves
+  // (docs/semismooth.md, "Preconditioning").
+  void noteCgSolve(int cg) {
+    cgIterations_ += cg;
+    ++cgSolves_;
+    if (autoPreconditioner_ && M_.is_null() && cgSolves_ >= kLumpedAfterSteps &&
+        cgIterations_ > params_.get<int>("Lumped Above CG Iterations") * static_cast<long>(cgSolves_))
+      takeLumped();
+  }
+  static constexpr int kLumpedAfterSteps = 2;
   bool coulombLaw_ = false;             // Coulomb contacts on some rank (slip bounds that depend on x)
   int coulombFrom_ = 0;                 // the step from which ac_ was coulomb_ last
   std::deque<double> recentPsi_;        // psi of the last steps (lineSearch)
@@ -674,6 +699,7 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
         [&](const Vector& w, Vector& z) { facePrecondition(w, z); });
     cgTime.reset();
     st.inner_iterations += cg;
+    noteCgSolve(cg);
     y_.update(1.0, yp, 1.0);   // y = y_p + z
     Az.update(1.0, Ayp, 1.0);  // A y
     freeSystem(y_, Az, s);
@@ -693,7 +719,7 @@ FrictionStatus NewtonSolve::runFace(Vector& x, WarmStart& final) {
   // mu = G w for G with orthonormal rows (w lies in range G').
   auto mu = rcp(new Vector(G_->rangeMap()));
   G_->apply(w_, *mu);
-  final = {mu, rho_};
+  final = {mu, rho_, autoPreconditioner_ && !M_.is_null()};
   return st;
 }
 
@@ -732,6 +758,7 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
     static const auto lsTimer = Teuchos::TimeMonitor::getNewCounter("Tribos::Newton: line search");
     Teuchos::TimeMonitor lsTime(*lsTimer);
     st.inner_iterations += cg;
+    noteCgSolve(cg);
     Hd_.update(1.0, Hd0, 1.0);
     d_.update(1.0, y_, 1.0);
     takeStep(x, Hd_, cg, eta, iter);
@@ -763,7 +790,7 @@ FrictionStatus NewtonSolve::runAugmented(Vector& x, WarmStart& final) {
     st.outer_iterations = it + 1;
   }
   finish(x, iter, st);
-  final = {rcp(new Vector(*al_.multiplier(), Teuchos::Copy)), rho_};
+  final = {rcp(new Vector(*al_.multiplier(), Teuchos::Copy)), rho_, autoPreconditioner_ && !M_.is_null()};
   return st;
 }
 

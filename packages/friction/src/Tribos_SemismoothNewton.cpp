@@ -300,15 +300,20 @@ RCP<const ParameterList> SemismoothNewton::validParameters() {
             "directions, Tribos_NewtonPCG.hpp), or Auto: Dense LU for an explicit matrix (FCLIB) and for a dual of "
             "at most Dense Limit rows, Projected CG above",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Auto", "Dense LU", "Projected CG"))));
-    pl->set("Preconditioner", "Slip Curvature",
+    pl->set("Preconditioner", "Auto",
             "Projected CG: Slip Curvature (||A|| (||A|| I + K)^-1 on the contact rows, K the curvature of the "
             "slipping contacts' disks, which grows without bound where the slip bound is small against the slip "
-            "and makes the Newton systems ill-conditioned), None, or the dual problem's preconditioner by name "
-            "(FETI: Lumped or Dirichlet; they approximate the inverse of the whole dual operator, not of its "
-            "restriction to the free directions of a Newton step, and cost more than they save there, "
-            "docs/semismooth.md)",
+            "and makes the Newton systems ill-conditioned), None, the dual problem's preconditioner by name "
+            "(FETI: Lumped or Dirichlet, approximate inverses of the projected dual operator P A P), or Auto: "
+            "Slip Curvature, and from the step where the Newton steps' CG solves have taken more than Lumped "
+            "Above CG Iterations on average (from the second step on) the dual problem's Lumped, which the next "
+            "solve of a history then starts with (docs/semismooth.md, \"Preconditioning\")",
             rcp(new Teuchos::StringValidator(
-                Teuchos::tuple<std::string>("Slip Curvature", "None", "Lumped", "Dirichlet"))));
+                Teuchos::tuple<std::string>("Auto", "Slip Curvature", "None", "Lumped", "Dirichlet"))));
+    pl->set("Lumped Above CG Iterations", 25,
+            "Preconditioner = Auto: the mean CG iterations per Newton step above which FETI's lumped "
+            "preconditioner replaces the slip curvature scaling",
+            range<int>(0, 1000000));
     pl->set("Equality Constraint", "Auto",
             "Projected CG: how the Newton steps hold G x = 0. Augmented Lagrangian: H = A + rho G'G and mu "
             "updated after each step (Penalty, Penalty Balancing, Maximum Penalty, Multiplier Update Ratio); "
