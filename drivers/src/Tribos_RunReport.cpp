@@ -26,6 +26,7 @@ IO::Summary kktSummary(const RunReport& r) {
 void setOuter(const OuterAlgorithmReport& o, IO::Summary& s) {
   s.set("outer_algorithm", o.name);
   if (!o.handover.empty()) s.set("handover", o.handover);
+  if (!o.preconditioner.empty()) s.set("newton_preconditioner", o.preconditioner);
   s.set("result_check_rounds", o.resultCheckRounds);
   s.set("msa_iterations", o.msaIterations);
   s.set("inner_iterations", o.innerIterations);
@@ -97,6 +98,7 @@ IO::Summary stepSummary(const StepReport& r) {
   setReactionsAndPairs(r, s);
   if (!r.outerAlgorithm.empty()) s.set("outer_algorithm", r.outerAlgorithm);
   if (!r.handover.empty()) s.set("handover", r.handover);
+  if (!r.preconditioner.empty()) s.set("newton_preconditioner", r.preconditioner);
   s.set("converged", r.converged).set("stop_reason", r.stopReason).set("time_solve_s", r.solveSeconds);
   return s;
 }

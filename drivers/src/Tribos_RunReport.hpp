@@ -37,6 +37,7 @@ struct FetiReport {
 struct OuterAlgorithmReport {
   std::string name;
   std::string handover;  // why Auto's Newton solve handed over to Algorithm2 (empty: it did not)
+  std::string preconditioner;  // the Newton method's CG preconditioner at the end (empty: another method)
   int resultCheckRounds = 1;
   long long msaIterations = 0, innerIterations = 0, n_A_qpp = 0, n_A_qpq = 0;
   double slipBoundChange = 0;
@@ -82,7 +83,7 @@ struct StepReport {
   std::optional<ContactCountReport> contact;
   std::vector<ReactionReport> reactions;  // per Dirichlet condition of the input, in its order
   std::vector<PairReport> pairs;          // per contact pair, in the order of their numbers
-  std::string outerAlgorithm, handover;  // contact: the method that solved the step; OuterAlgorithmReport's
+  std::string outerAlgorithm, handover, preconditioner;  // contact: the method that solved the step; OuterAlgorithmReport's
   bool converged = false;
   std::string stopReason;
   double solveSeconds = 0;

@@ -208,6 +208,7 @@ class FetiMethod : public MethodBase {
     OuterAlgorithmReport outer;
     outer.name = r.outerAlgorithm;
     outer.handover = r.handover;
+    outer.preconditioner = r.outerAlgorithm == "Semismooth Newton" ? st.preconditioner : "";
     outer.resultCheckRounds = r.rounds;
     outer.msaIterations = st.msa_iterations;
     outer.innerIterations = st.inner_iterations;

@@ -45,6 +45,10 @@ struct FrictionStatus {
   std::vector<SC> history;   // per outer step: relative change of g (Coulomb) or ||g^P|| (Tresca)
   std::vector<OuterStep> steps;  // one per entry of history, with every residual, n_A and time
   std::vector<SC> slipBound; // the slip bound of the returned solution (local)
+  // The matrix-free Newton method: the preconditioner of its CG solves at
+  // the end of the solve (Preconditioner = Auto: Slip Curvature, or Lumped
+  // once taken); empty for the other methods.
+  std::string preconditioner;
 };
 
 // The augmented Lagrangian's state at the end of a solve: the multiplier mu

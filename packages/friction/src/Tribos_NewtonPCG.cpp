@@ -144,7 +144,7 @@ class NewtonSolve {
     autoPreconditioner_ = pc == "Auto" && dual.preconditioner;
     scaleCurvature_ = pc == "Slip Curvature" || pc == "Auto";
     if (autoPreconditioner_ && warm.lumped) takeLumped();
-    else if (pc != "None" && !scaleCurvature_ && dual.preconditioner) M_ = dual.preconditioner(pc);
+    else if (pc != "None" && !scaleCurvature_ && dual.preconditioner) M_ = dual.preconditioner(pc), preconditionerName_ = pc;
     TRIBOS_REQUIRE(!faceProjection || G_.is_null() || !face_.is_null(),
                    "Semismooth Newton: Equality Constraint = Face Projection needs an equality constraint that "
                    "forms G Pi G' (FETI's coarse space); this one does not");
@@ -183,8 +183,10 @@ class NewtonSolve {
   // Preconditioner = Auto: FETI's lumped preconditioner from here on.
   void takeLumped() {
     M_ = dual_.preconditioner("Lumped");
+    preconditionerName_ = "Lumped";
     scaleCurvature_ = M_.is_null();
   }
+  std::string preconditionerName_;  // of M_
   // Preconditioner = Auto after a Newton step whose CG took cg iterations:
   // the slip curvature scaling leaves the CG steps long where FETI's
   // operator itself is ill-conditioned (few large subdomains: the
@@ -644,6 +646,7 @@ void NewtonSolve::finish(Vector& x, const Iteration& iter, FrictionStatus& st) c
   st.slipBound = dual_.frictionCoefficient.empty() ? dual_.slipBound : dual_.coulombSlipBound(x);
   st.n_A = n_A_;
   st.n_A_qpp = n_A_;
+  st.preconditioner = !M_.is_null() ? preconditionerName_ : scaleCurvature_ ? "Slip Curvature" : "None";
   if (iter.lineSearchFailures > 0)
     st.reason += " (" + std::to_string(iter.lineSearchFailures) + " line-search failures)";
 }
