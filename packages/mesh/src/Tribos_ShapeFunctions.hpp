@@ -1,6 +1,8 @@
 // Tribos_ShapeFunctions.hpp: the reference cells and facets of Tribos'
 // elements, their shape functions and the quadrature rules the element
-// integrals use (docs/quadratic_elements.md).
+// integrals use (docs/quadratic_elements.md). They live in the mesh package,
+// whose readers check det J of second-order cells with them; the fem
+// package's element kernels integrate with them (namespace Fem).
 //
 // Reference cells and node orderings (Gmsh's):
 //   Tet4, Tet10: the unit tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1);
