@@ -67,6 +67,15 @@ void addElement(LocalCsr& A, const int* ln, int npc, const std::vector<double>& 
 
 }  // namespace
 
+LocalCsr assembleCellMatrices(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const ElementMatrix& elementMatrix,
+                              size_t first, size_t end) {
+  const int npc = mesh.nodesPerCell();
+  LocalCsr A = dofPattern(static_cast<int>(sub.nodes.size()), sub.connectivity, npc);
+  for (size_t k = first; k < end; ++k)
+    addElement(A, &sub.connectivity[k * npc], npc, elementMatrix(sub.cells[k], cellCoordinates(mesh, sub.cells[k])));
+  return A;
+}
+
 std::vector<double> subdomainLoad(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const LoadCase& loads) {
   const int npc = mesh.nodesPerCell();
   std::vector<double> f(3 * sub.nodes.size(), 0.0);
@@ -100,14 +109,11 @@ SubdomainSystem assembleCells(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub
   SubdomainSystem sys;
   sys.id = sub.id;
   sys.nodes = sub.nodes;
-  const int npc = mesh.nodesPerCell(), nl = static_cast<int>(sub.nodes.size());
-  sys.K = dofPattern(nl, sub.connectivity, npc);
-  for (size_t k = first; k < end; ++k) {
-    const int* ln = &sub.connectivity[k * npc];
-    const auto X = cellCoordinates(mesh, sub.cells[k]);
-    const auto Ke = elementStiffness(mesh.type, X, mat.ofCell(mesh, sub.cells[k]));
-    addElement(sys.K, ln, npc, Ke);
-  }
+  const int nl = static_cast<int>(sub.nodes.size());
+  sys.K = assembleCellMatrices(
+      mesh, sub,
+      [&](int cell, const std::vector<Point>& X) { return elementStiffness(mesh.type, X, mat.ofCell(mesh, cell)); },
+      first, end);
   sys.f = subdomainLoad(mesh, sub, loads);
   sys.coords.resize(nl);
   for (int n = 0; n < nl; ++n) sys.coords[n] = mesh.coords[sub.nodes[n]];

@@ -1,6 +1,7 @@
 // Tribos_Assembly.hpp: subdomain stiffness K_s, load f_s and rigid-body kernel R_s.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "Tribos_Discretization.hpp"
@@ -44,6 +45,16 @@ std::vector<double> subdomainLoad(const Mesh::Discretization& disc, int s, const
 
 // Cell node coordinates.
 std::vector<Point> cellCoordinates(const Mesh::Mesh& mesh, int cell);
+
+// The element matrix (3 npc x 3 npc, row-major, dof 3 node + component) of a
+// cell of the mesh given its node coordinates.
+using ElementMatrix = std::function<std::vector<double>(int cell, const std::vector<Point>& X)>;
+// The sum of the element matrices of the cells [first, end) of sub.cells in
+// the subdomain's CSR layout: dof 3 local node + component, the dofs of
+// nodes sharing a cell coupled, columns ascending. assembleSubdomain's K and
+// the mass matrix (Tribos_Mass.hpp) share it, so their patterns are equal.
+LocalCsr assembleCellMatrices(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const ElementMatrix& elementMatrix,
+                              size_t first, size_t end);
 
 // K_s as a Tpetra::CrsMatrix on the given (typically serial) communicator.
 RCP<CrsMatrix> toTpetra(const LocalCsr& A, const RCP<const Comm>& comm);
