@@ -1030,6 +1030,28 @@ void checkMeshFaces(const Mesh::Mesh& mesh, const ParameterList& params) {
     TRIBOS_REQUIRE(found, "parameter \"Bodies/" << bodies.name(it) << "\": " << where << " has no body of that name; "
                                                 << "its bodies are: " << valid);
   }
+  // Contact (node-to-segment and mortar, the search's facets) knows the
+  // 3- and 4-node facets of first-order cells only.
+  const auto& contact = params.sublist("Contact");
+  if (contact.get<bool>("Enabled") && Mesh::isSecondOrder(mesh.type)) {
+    const auto& pairs = contact.sublist("Pairs");
+    std::ostringstream pair;
+    if (pairs.numParams() == 0) {
+      pair << "the rigid plane of \"Contact/Face\" = \"" << contact.get<std::string>("Face") << "\"";
+    } else {
+      const std::string name = pairs.name(pairs.begin());
+      const auto& p = pairs.sublist(name);
+      const std::string master = p.get<std::string>("Master Surface");
+      pair << (p.get<std::string>("Type") == "Glued" ? "glued pair" : "contact pair") << " \"Contact/Pairs/" << name
+           << "\" (slave surface '" << p.get<std::string>("Slave Surface") << "', "
+           << (master.empty() ? std::string("a rigid plane") : "master surface '" + master + "'") << ")";
+      if (pairs.numParams() > 1) pair << " and " << pairs.numParams() - 1 << " more pair(s)";
+    }
+    throw Error(pair.str() + ": " + where + " has " + Mesh::cellTypeName(mesh.type) + " cells, whose surfaces are " +
+                (mesh.type == Mesh::CellType::Tet10 ? "6-node triangles" : "8-node quadrilaterals") +
+                "; contact on second-order surfaces is not supported yet (mesh the contact bodies with -order 1, "
+                "Tet4 or Hex8)");
+  }
 }
 
 namespace {

@@ -157,10 +157,10 @@ double outputBytesPerStep(const Teuchos::ParameterList& params, const MeshSize* 
   const Mesh::BoxSpec spec = Input::boxSpec(params);
   const MeshSize m = meshCounts(spec, meshSize);
   // HDF5's metadata, then the datasets: geometry, displacement and reaction
-  // (3 doubles per node), topology (8-byte indices: 4 per tetrahedron, 8 per
-  // hexahedron, 8 for a mesh file), the cell fields (13 numbers: von Mises,
-  // the stress tensor, the principal stresses, subdomain, rank, body).
-  const double nodesPerCell = meshSize || spec.type == Mesh::CellType::Hex8 ? 8.0 : 4.0;
+  // (3 doubles per node), topology (8-byte indices: one per node of a cell),
+  // the cell fields (13 numbers: von Mises, the stress tensor, the principal
+  // stresses, subdomain, rank, body).
+  const double nodesPerCell = meshSize ? meshSize->nodesPerCell : spec.type == Mesh::CellType::Hex8 ? 8.0 : 4.0;
   double bytes = 16e3 + 72.0 * m.nodes + (8.0 * nodesPerCell + 104.0) * m.cells;
   // The contact point set: about 42 numbers per contact node, the nodes of
   // a face or two of the bodies.

@@ -581,9 +581,10 @@ std::unique_ptr<Mesh::Mesh> readStep(const Teuchos::ParameterList& params, const
   if (Input::meshFile(params).empty()) return nullptr;
   Progress::stage("reading the mesh");
   auto whole = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, options.maxMemory, comm));
-  double counts[3] = {double(whole->numNodes()), double(whole->numCells()), double(whole->numBodies())};
-  Teuchos::broadcast(comm, 0, 3, counts);
-  fileSize = {counts[0], counts[1], static_cast<int>(counts[2])};
+  double counts[4] = {double(whole->numNodes()), double(whole->numCells()), double(whole->numBodies()),
+                       double(whole->nodesPerCell())};
+  Teuchos::broadcast(comm, 0, 4, counts);
+  fileSize = {counts[0], counts[1], static_cast<int>(counts[2]), static_cast<int>(counts[3])};
   decomposition = decompositionFor(params, comm.getSize(), &fileSize);
   return whole;
 }

@@ -60,9 +60,7 @@ void addBtDB(const std::vector<double>& B, const std::array<double, 36>& D, doub
 
 // det J of J[i][j] = dx_j / dxi_i, and J^-1 in place when det J > 0.
 double invert3(double J[3][3]) {
-  const double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
-                     J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
-                     J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  const double det = determinant3(J);
   if (!(det > 0)) return det;
   double inv[3][3];
   inv[0][0] = (J[1][1] * J[2][2] - J[1][2] * J[2][1]) / det;
@@ -77,16 +75,6 @@ double invert3(double J[3][3]) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) J[i][j] = inv[i][j];
   return det;
-}
-
-// The Jacobian of the isoparametric map x(xi) = sum_a N_a(xi) X_a,
-// J[i][j] = dx_j / dxi_i, from the reference gradients at one point.
-void isoparametricJacobian(const double dNdxi[][3], const std::vector<Point>& X, int npc, double J[3][3]) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) J[i][j] = 0;
-  for (int a = 0; a < npc; ++a)
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) J[i][j] += dNdxi[a][i] * X[a][j];
 }
 
 std::string pointText(const Point& xi) {
@@ -122,7 +110,7 @@ void requirePositiveJacobianAtNodes(Mesh::CellType type, const std::vector<Point
   double N[kMaxNodesPerCell], dNdxi[kMaxNodesPerCell][3], J[3][3];
   for (int a = 0; a < npc; ++a) {
     referenceShape(type, nodes[a], N, dNdxi);
-    isoparametricJacobian(dNdxi, X, npc, J);
+    isoparametricJacobian(dNdxi, X.data(), npc, J);
     const double det = invert3(J);
     TRIBOS_REQUIRE(det > 0, "inverted or degenerate " << Mesh::cellTypeName(type) << " cell: det J = " << det
                                                       << " <= 0 at its node " << a << " " << pointText(X[a])
@@ -139,7 +127,7 @@ double shapeGradients(Mesh::CellType type, const std::vector<Point>& X, const Po
   dN.assign(3 * npc, 0.0);
   double N[kMaxNodesPerCell], dNdxi[kMaxNodesPerCell][3], J[3][3];
   referenceShape(type, xi, N, dNdxi);
-  isoparametricJacobian(dNdxi, X, npc, J);
+  isoparametricJacobian(dNdxi, X.data(), npc, J);
   const double det = invert3(J);  // J now holds d xi / d x (transposed layout)
   TRIBOS_REQUIRE(det > 0, "inverted or degenerate " << Mesh::cellTypeName(type) << " cell: det J = " << det
                                                     << " <= 0 at the reference point " << pointText(xi));

@@ -363,6 +363,17 @@ std::string xmlEscaped(const std::string& s) {
   return out;
 }
 
+// XDMF's name of a cell type.
+const char* xdmfTopologyType(Mesh::CellType type) {
+  switch (type) {
+    case Mesh::CellType::Tet4: return "Tetrahedron";
+    case Mesh::CellType::Hex8: return "Hexahedron";
+    case Mesh::CellType::Tet10: return "Tetrahedron_10";
+    case Mesh::CellType::Hex20: return "Hexahedron_20";
+  }
+  return "Hexahedron";
+}
+
 // The lines of an index, indented by `pad` spaces.
 void xdmfDataItem(std::ostream& os, int pad, const std::string& h5, const std::string& dataset, long long rows, int cols,
                   const char* numberType) {
@@ -383,7 +394,7 @@ void xdmfAttribute(std::ostream& os, int pad, const std::string& h5, const std::
 void xdmfGrids(std::ostream& x, int pad, const std::string& h5, const ResultLayout& n) {
   const std::string in(pad, ' ');
   x << in << "<Grid Name=\"body\" GridType=\"Uniform\">\n"
-    << in << "  <Topology TopologyType=\"" << (n.cellType == Mesh::CellType::Tet4 ? "Tetrahedron" : "Hexahedron")
+    << in << "  <Topology TopologyType=\"" << xdmfTopologyType(n.cellType)
     << "\" NumberOfElements=\"" << n.cells << "\">\n";
   xdmfDataItem(x, pad + 4, h5, "/mesh/topology", n.cells, n.nodesPerCell, "Int");
   x << in << "  </Topology>\n" << in << "  <Geometry GeometryType=\"XYZ\">\n";
@@ -464,8 +475,9 @@ struct Content {
     for (int n : disc.ownedNodes())
       for (int d = 0; d < 3; ++d) xyz.push_back(mesh.coords[n][d]);
     disp = uOwned;
+    const std::vector<int>& order = xdmfNodeOrder(mesh.type);
     for (int c = 0; c < mesh.numCells(); ++c)
-      for (int k = 0; k < npc; ++k) topo.push_back(disc.nodeIndex()[mesh.cell(c)[k]]);
+      for (int k = 0; k < npc; ++k) topo.push_back(disc.nodeIndex()[mesh.cell(c)[order[k]]]);
     pointXyz.resize(pointSets.size());
     for (size_t k = 0; k < pointSets.size(); ++k)
       for (const auto& p : pointSets[k].coords) pointXyz[k].insert(pointXyz[k].end(), p.begin(), p.end());
@@ -473,9 +485,6 @@ struct Content {
     const long long nOwned = static_cast<long long>(disc.ownedNodes().size());
     const long long nCells = static_cast<long long>(mesh.numCells());
     const auto nodeBlock = blockOffset(nOwned, comm), cellBlock = blockOffset(nCells, comm);
-    // XDMF numbers the mid-edge nodes of its Tetrahedron_10 and Hexahedron_20
-    // otherwise than Gmsh does.
-    Mesh::requireFirstOrder(mesh.type, "result files");
     layout.cellType = mesh.type;
     layout.nodesPerCell = npc;
     layout.nodes = nodeBlock.second;
@@ -639,6 +648,19 @@ void writeFileAtomically(const std::string& path, const std::string& text, const
   }
   error = rootError(*comm, error);
   if (!error.empty()) throw RunFailure(error);
+}
+
+const std::vector<int>& xdmfNodeOrder(Mesh::CellType type) {
+  static const std::vector<int> tet4 = {0, 1, 2, 3}, hex8 = {0, 1, 2, 3, 4, 5, 6, 7};
+  static const std::vector<int> tet10 = {0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
+  static const std::vector<int> hex20 = {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15};
+  switch (type) {
+    case Mesh::CellType::Tet4: return tet4;
+    case Mesh::CellType::Hex8: return hex8;
+    case Mesh::CellType::Tet10: return tet10;
+    case Mesh::CellType::Hex20: return hex20;
+  }
+  return hex8;
 }
 
 }  // namespace IO

@@ -49,10 +49,21 @@ struct ResultAttributes {
 
 // What one write put in its HDF5 file, as an XDMF grid describes it; the
 // same on every rank. The datasets are /mesh/geometry (nodes x 3),
-// /mesh/topology (cells x nodesPerCell, integers: rows of /mesh/geometry),
+// /mesh/topology (cells x nodesPerCell, integers: rows of /mesh/geometry, in
+// XDMF's node order, xdmfNodeOrder),
 // /nodes/NAME (nodes x components; displacement first), /cells/NAME
 // (cells x components), and per point set /points/SET/geometry (points x 3)
 // and /points/SET/NAME (points x components).
+// The node of Tribos' (Gmsh's) cell at each place of XDMF's: topology row k
+// holds cell node xdmfNodeOrder(type)[k]. XDMF's Tetrahedron_10 and
+// Hexahedron_20 are VTK's quadratic tetrahedron and hexahedron: the
+// tetrahedron's mid-edge nodes on the edges 0-1, 1-2, 2-0, 0-3, 1-3, 2-3
+// (Gmsh: ..., 3-0, 3-2, 3-1: 8 and 9 swap), the hexahedron's on the bottom
+// edges 0-1, 1-2, 2-3, 3-0, the top edges 4-5, 5-6, 6-7, 7-4, then the
+// vertical edges 0-4, 1-5, 2-6, 3-7 (Gmsh: 0-1, 0-3, 0-4, 1-2, 1-5, 2-3,
+// 2-6, 3-7, 4-5, 4-7, 5-6, 6-7). Tet4 and Hex8 keep their order.
+const std::vector<int>& xdmfNodeOrder(Mesh::CellType type);
+
 struct ResultLayout {
   struct FieldLayout {
     std::string name;

@@ -21,12 +21,14 @@ Point minus(const Point& a, const Point& b) { return {a[0] - b[0], a[1] - b[1], 
 double norm(const Point& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
 // The area of a triangle, or of a quadrilateral's vector area (half the
-// cross product of its diagonals).
+// cross product of its diagonals), of the face's corners: a second-order
+// cell is measured as the straight-sided cell of its corners.
 double faceArea(const Mesh& mesh, int cell, const std::vector<int>& local) {
   const int* n = mesh.cell(cell);
   const auto& x = mesh.coords;
-  const Point u = local.size() == 3 ? minus(x[n[local[1]]], x[n[local[0]]]) : minus(x[n[local[2]]], x[n[local[0]]]);
-  const Point v = local.size() == 3 ? minus(x[n[local[2]]], x[n[local[0]]]) : minus(x[n[local[3]]], x[n[local[1]]]);
+  const bool triangle = detail::faceCorners(mesh.type) == 3;
+  const Point u = triangle ? minus(x[n[local[1]]], x[n[local[0]]]) : minus(x[n[local[2]]], x[n[local[0]]]);
+  const Point v = triangle ? minus(x[n[local[2]]], x[n[local[0]]]) : minus(x[n[local[3]]], x[n[local[1]]]);
   const Point c = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
   return norm(c) / 2;
 }
@@ -34,7 +36,7 @@ double faceArea(const Mesh& mesh, int cell, const std::vector<int>& local) {
 double cellVolume(const Mesh& mesh, int cell) {
   const int* n = mesh.cell(cell);
   const auto& x = mesh.coords;
-  if (mesh.type == CellType::Tet4) return std::abs(detail::triple(x[n[0]], x[n[1]], x[n[2]], x[n[3]])) / 6;
+  if (detail::isTetrahedron(mesh.type)) return std::abs(detail::triple(x[n[0]], x[n[1]], x[n[2]], x[n[3]])) / 6;
   // Six tetrahedra around the diagonal 0-6 (the Kuhn split), alike oriented.
   static const int ring[7] = {1, 2, 3, 7, 4, 5, 1};
   double six = 0;
@@ -73,8 +75,9 @@ std::vector<double> boundaryAreas(const Mesh& mesh) {
   for (int c = 0; c < mesh.numCells(); ++c)
     for (const auto& local : faces) {
       BodyFace f{mesh.bodyOf(c), {-1, -1, -1, -1}, faceArea(mesh, c, local)};
-      for (size_t a = 0; a < local.size(); ++a) f.key[a] = mesh.cell(c)[local[a]];
-      std::sort(f.key.begin(), f.key.begin() + local.size());
+      const int corners = detail::faceCorners(mesh.type);
+      for (int a = 0; a < corners; ++a) f.key[a] = mesh.cell(c)[local[a]];
+      std::sort(f.key.begin(), f.key.begin() + corners);
       all.push_back(f);
     }
   std::sort(all.begin(), all.end());
@@ -128,10 +131,10 @@ std::string worstCellPlace(const Mesh& mesh, const BodyShape& s) {
 }  // namespace
 
 double cellThickness(const Mesh& mesh, int cell) {
-  requireFirstOrder(mesh.type, "the check of cell shapes");  // straight-sided faces and volumes only
+  // A second-order cell measured by its corners (its straight-sided cell).
   const double largest = largestFaceArea(mesh, cell);
   if (!(largest > 0)) return 0;
-  return (mesh.type == CellType::Tet4 ? 3 : 1) * cellVolume(mesh, cell) / largest;
+  return (detail::isTetrahedron(mesh.type) ? 3 : 1) * cellVolume(mesh, cell) / largest;
 }
 
 double cellDiameter(const Mesh& mesh, int cell) {
@@ -144,7 +147,6 @@ double cellDiameter(const Mesh& mesh, int cell) {
 }
 
 std::vector<BodyShape> bodyShapes(const Mesh& mesh) {
-  requireFirstOrder(mesh.type, "the check of body shapes");  // straight-sided faces and volumes only
   std::vector<BodyShape> shapes(mesh.numBodies());
   std::vector<Point> lo(shapes.size(), Point{HUGE_VAL, HUGE_VAL, HUGE_VAL});
   std::vector<Point> hi(shapes.size(), Point{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL});

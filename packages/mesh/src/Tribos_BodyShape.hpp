@@ -32,7 +32,10 @@ constexpr double kMinBodySlenderness = 5e-3;
 
 // A cell's thickness: its smallest height over its largest face (a
 // hexahedron: volume over the area of its largest face; a tetrahedron:
-// three times that, its smallest altitude).
+// three times that, its smallest altitude). A Tet10 or Hex20 cell is
+// measured by its corners (the straight-sided cell; its volume and boundary
+// area too), which its mid-edge nodes may bend by at most
+// detail::kMidEdgeRefuse of an edge.
 double cellThickness(const Mesh& mesh, int cell);
 // Its diameter: the largest distance between two of its nodes.
 double cellDiameter(const Mesh& mesh, int cell);

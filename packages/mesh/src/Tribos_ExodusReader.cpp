@@ -80,7 +80,25 @@ const std::vector<std::vector<int>>& exodusSides(CellType type) {
   static const std::vector<std::vector<int>> tet = {{1, 2, 4}, {2, 3, 4}, {1, 4, 3}, {1, 3, 2}};
   static const std::vector<std::vector<int>> hex = {{1, 2, 6, 5}, {2, 3, 7, 6}, {3, 4, 8, 7},
                                                     {1, 5, 8, 4}, {1, 4, 3, 2}, {5, 6, 7, 8}};
-  return type == CellType::Tet4 ? tet : hex;
+  return detail::isTetrahedron(type) ? tet : hex;  // second-order sides: their corners
+}
+
+// Exodus II's node of each of Tribos' (Gmsh's) nodes of a cell, 0-based:
+// the corners agree; TETRA10 numbers its mid-edge nodes 0-1, 1-2, 2-0, 0-3,
+// 1-3, 2-3 (Gmsh: ..., 3-0, 3-2, 3-1), HEX20 the bottom edges 0-1, 1-2, 2-3,
+// 3-0, the vertical ones 0-4, 1-5, 2-6, 3-7, the top ones 4-5, 5-6, 6-7, 7-4
+// (Gmsh: 0-1, 0-3, 0-4, 1-2, 1-5, 2-3, 2-6, 3-7, 4-5, 4-7, 5-6, 6-7).
+const std::vector<int>& exodusNodeOf(CellType type) {
+  static const std::vector<int> tet4 = {0, 1, 2, 3}, hex8 = {0, 1, 2, 3, 4, 5, 6, 7};
+  static const std::vector<int> tet10 = {0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
+  static const std::vector<int> hex20 = {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 12, 9, 13, 10, 14, 15, 16, 19, 17, 18};
+  switch (type) {
+    case CellType::Tet4: return tet4;
+    case CellType::Hex8: return hex8;
+    case CellType::Tet10: return tet10;
+    case CellType::Hex20: return hex20;
+  }
+  return hex8;
 }
 
 // The cell type of an Exodus element type ("TETRA", "TET4", "HEX8", ...,
@@ -89,7 +107,18 @@ bool cellTypeOf(std::string name, int64_t nodes, CellType& type) {
   std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return std::toupper(ch); });
   if (name.rfind("TET", 0) == 0 && nodes == 4) return type = CellType::Tet4, true;
   if (name.rfind("HEX", 0) == 0 && nodes == 8) return type = CellType::Hex8, true;
+  if (name.rfind("TET", 0) == 0 && nodes == 10) return type = CellType::Tet10, true;
+  if (name.rfind("HEX", 0) == 0 && nodes == 20) return type = CellType::Hex20, true;
   return false;
+}
+
+// Why an element type is refused, for those a user may meet.
+std::string unsupportedReason(std::string name, int64_t nodes) {
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return std::toupper(ch); });
+  if (name.rfind("HEX", 0) == 0 && nodes == 27) return " (HEX27 is not supported; HEX20 is)";
+  if ((name.rfind("TET", 0) == 0 && nodes > 10) || (name.rfind("HEX", 0) == 0 && nodes > 27))
+    return " (elements of order 3 or more are not supported)";
+  return "";
 }
 
 // The names of a kind of entity, refused when two agree (a name is how an
@@ -113,7 +142,7 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
   ex_init_params init{};
   exo.check(ex_get_init_ext(exo.id(), &init), "its header");
   TRIBOS_REQUIRE(init.num_dim == 3, file << " is a " << init.num_dim << "D mesh; Tribos reads 3D meshes");
-  TRIBOS_REQUIRE(init.num_elem > 0 && init.num_nodes > 0, file << " has no elements; Tribos meshes bodies with Tet4 or Hex8 cells");
+  TRIBOS_REQUIRE(init.num_elem > 0 && init.num_nodes > 0, file << " has no elements; Tribos meshes bodies with Tet4, Hex8, Tet10 or Hex20 cells");
   // The header's counts before the arrays they size are allocated: a
   // netCDF-4 file may declare arrays it does not store (read as fill
   // values). Node and element numbers are ints; the reader holds about 64
@@ -155,11 +184,17 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
       continue;
     }
     CellType type;
-    TRIBOS_REQUIRE(cellTypeOf(typeName, nodes, type), file << ": element type " << typeName << " of " << nodes << " nodes in "
-                                                          << what << " is not supported; Tribos reads Tet4 and Hex8");
+    TRIBOS_REQUIRE(cellTypeOf(typeName, nodes, type),
+                   file << ": element type " << typeName << " of " << nodes << " nodes in " << what << " is not supported"
+                        << unsupportedReason(typeName, nodes)
+                        << "; Tribos reads Tet4 and Hex8 (first order), Tet10 and Hex20 (second order)");
     TRIBOS_REQUIRE(firstBlock.empty() || type == mesh.type,
                    file << " mixes " << cellTypeName(mesh.type) << " (" << firstBlock << ") and " << cellTypeName(type)
-                        << " (" << what << "); a body has one cell type, Tet4 or Hex8");
+                        << " (" << what << "); "
+                        << (isSecondOrder(type) != isSecondOrder(mesh.type)
+                                ? "a mesh of first- and second-order cells is not supported (Tribos' mesh holds one "
+                                  "cell type)"
+                                : "a body has one cell type, and a mesh too: Tet4, Hex8, Tet10 or Hex20"));
     if (firstBlock.empty()) mesh.type = type, firstBlock = what;
     std::vector<int> connectivity(static_cast<size_t>(count) * nodes);
     exo.check(ex_get_conn(exo.id(), EX_ELEM_BLOCK, blockIds[k], connectivity.data(), nullptr, nullptr),
@@ -167,7 +202,9 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
     for (int n : connectivity)
       TRIBOS_REQUIRE(n >= 1 && n <= init.num_nodes, file << ": an element of " << what << " names node " << n
                                                           << "; the file's nodes are 1 to " << init.num_nodes);
-    fileNodes.insert(fileNodes.end(), connectivity.begin(), connectivity.end());
+    const std::vector<int>& exodusNode = exodusNodeOf(type);
+    for (int e = 0; e < count; ++e)
+      for (int a = 0; a < nodes; ++a) fileNodes.push_back(connectivity[static_cast<size_t>(e) * nodes + exodusNode[a]]);
     for (int e = 0; e < count; ++e, ++element) {
       cellOf[element] = static_cast<int>(elementOf.size());
       elementOf.push_back(element);
@@ -175,7 +212,7 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
     }
     mesh.bodyNames.push_back(blockNames[k]);
   }
-  TRIBOS_REQUIRE(!elementOf.empty(), file << " has no elements in its element blocks; Tribos meshes bodies with Tet4 or Hex8 cells");
+  TRIBOS_REQUIRE(!elementOf.empty(), file << " has no elements in its element blocks; Tribos meshes bodies with Tet4, Hex8, Tet10 or Hex20 cells");
 
   // Nodes no cell uses are dropped; the others keep the file's order.
   std::vector<char> usedByCells(init.num_nodes, 0);
@@ -193,7 +230,8 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
   for (int n : fileNodes) mesh.connectivity.push_back(newIndex[n - 1]);
   std::vector<long long> cellIds;
   for (int e : elementOf) cellIds.push_back(elemMap[e]);
-  detail::requirePositiveCells(mesh, file, cellIds);
+  detail::checkMidEdgeNodes(mesh, file, cellIds, warnings, "block");
+  detail::requirePositiveCells(mesh, file, cellIds, "block");
 
   // Side sets: faces, each side the outward face of its cell.
   const detail::FaceIndex index(mesh);

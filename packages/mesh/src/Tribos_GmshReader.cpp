@@ -35,6 +35,49 @@ std::string elementTypeName(int type) {
   }
 }
 
+// The order of the 3D element types Tribos reads (Tet4, Hex8: 1; Tet10,
+// Hex20: 2), 0 for the others.
+int cellOrder(int type) {
+  switch (type) {
+    case 4: case 5: return 1;
+    case 11: case 17: return 2;
+    default: return 0;
+  }
+}
+
+CellType cellTypeOfGmsh(int type) {
+  switch (type) {
+    case 4: return CellType::Tet4;
+    case 5: return CellType::Hex8;
+    case 11: return CellType::Tet10;
+    default: return CellType::Hex20;
+  }
+}
+
+// The boundary facets of each cell type: Tri3, Quad4, Tri6, Quad8.
+int facetTypeOf(CellType type) {
+  switch (type) {
+    case CellType::Tet4: return 2;
+    case CellType::Hex8: return 3;
+    case CellType::Tet10: return 9;
+    case CellType::Hex20: return 16;
+  }
+  return 0;
+}
+
+// Why a 3D element type is refused, for the types a user may meet: the
+// complete second-order hexahedron and the elements of order 3 or more.
+std::string unsupportedReason(int type) {
+  switch (type) {
+    case 12:
+      return " (Hex27 is not supported; mesh with -order 2 and Mesh.SecondOrderIncomplete=1 for Hex20)";
+    case 29: case 30: case 31: case 92: case 93:
+      return " (elements of order 3 or more are not supported; mesh with -order 1 or -order 2)";
+    default:
+      return "";
+  }
+}
+
 // The message of a Gmsh call that failed, empty when it did not.
 template <class F>
 std::string gmshError(F&& call) {
@@ -185,14 +228,23 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
       const std::string what = physical ? bodies[b].what : "volume " + std::to_string(entity);
       const std::vector<int> types = Gmsh::elementTypes(3, entity);
       for (int type : types) {
-        TRIBOS_REQUIRE(type == 4 || type == 5, file << ": element type " << type << " (" << elementTypeName(type) << ") in "
-                                                    << what << " is not supported; Tribos reads Tet4 and Hex8");
-        TRIBOS_REQUIRE(cellGmshType == 0 || cellGmshType == type,
-                       file << " mixes " << elementTypeName(cellGmshType) << " (" << firstVolume << ") and "
-                            << elementTypeName(type) << " (" << what << "); a body has one cell type, Tet4 or Hex8");
-        if (cellGmshType == 0) cellGmshType = type, firstVolume = what;
         std::vector<std::size_t> tags, nodes;
         Gmsh::elementsByType(type, entity, tags, nodes);
+        const std::string element =
+            "element " + (tags.empty() ? std::string("?") : std::to_string(tags.front())) + " (" + elementTypeName(type) + ")";
+        TRIBOS_REQUIRE(cellOrder(type) != 0, file << ": " << element << " in " << what << " is not supported"
+                                                  << unsupportedReason(type)
+                                                  << "; Tribos reads Tet4 and Hex8 (first order), Tet10 and Hex20 "
+                                                     "(second order)");
+        TRIBOS_REQUIRE(cellGmshType == 0 || cellGmshType == type,
+                       file << " mixes " << elementTypeName(cellGmshType) << " (" << firstVolume << ") and "
+                            << elementTypeName(type) << " (" << what << "); "
+                            << (cellOrder(cellGmshType) != cellOrder(type)
+                                    ? "a mesh of first- and second-order cells is not supported (Tribos' mesh holds "
+                                      "one cell type): mesh every volume with the same -order"
+                                    : "a body has one cell type, and a mesh too: Tet4, Hex8, Tet10 or Hex20")
+                            << " (" << element << ")");
+        if (cellGmshType == 0) cellGmshType = type, firstVolume = what;
         cellTags.insert(cellTags.end(), tags.begin(), tags.end());
         cellNodes.insert(cellNodes.end(), nodes.begin(), nodes.end());
       }
@@ -201,16 +253,17 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
     if (physical) mesh.bodyNames.push_back(bodies[b].name);
   }
   TRIBOS_REQUIRE(!cellTags.empty(), file << " has no 3D elements" << (physical ? " in its physical volumes" : "")
-                                          << "; Tribos meshes bodies with Tet4 or Hex8 cells");
+                                          << "; Tribos meshes bodies with Tet4, Hex8, Tet10 or Hex20 cells");
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b)
     TRIBOS_REQUIRE(std::count(mesh.cellBody.begin(), mesh.cellBody.end(), b) > 0,
                    file << ": " << bodies[b].what << " has no 3D elements; each physical volume is a body");
   if (!physical) mesh.cellBody.clear();  // one body, as a box mesh
-  mesh.type = cellGmshType == 4 ? CellType::Tet4 : CellType::Hex8;
+  mesh.type = cellTypeOfGmsh(cellGmshType);
 
   // Nodes no cell uses (geometry points, nodes of surfaces only) are dropped;
-  // the rest keep Gmsh's order. Gmsh's Tet4 and Hex8 node orders are
-  // Tribos' (positive volume; Hex8 bottom 0-3 then top 4-7), checked below.
+  // the rest keep Gmsh's order. Gmsh's node orders are Tribos' (positive
+  // volume; Hex8 bottom 0-3 then top 4-7; Tet10 and Hex20 the corners, then
+  // the mid-edge nodes, docs/quadratic_elements.md), checked below.
   // Nodes shared by cells of two bodies stay shared: the bodies are bonded there.
   std::vector<char> usedByCells(nodeTags.size(), 0);
   for (std::size_t tag : cellNodes) {
@@ -229,11 +282,13 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
   detail::requireUsableCoordinates(mesh.coords, usedTags, file);
   mesh.connectivity.reserve(cellNodes.size());
   for (std::size_t tag : cellNodes) mesh.connectivity.push_back(newIndex[gmshIndex.at(tag)]);
-  detail::requirePositiveCells(mesh, file, std::vector<long long>(cellTags.begin(), cellTags.end()));
+  const std::vector<long long> cellIds(cellTags.begin(), cellTags.end());
+  detail::checkMidEdgeNodes(mesh, file, cellIds, warnings);
+  detail::requirePositiveCells(mesh, file, cellIds);
 
   // Named faces: the physical surfaces, each facet the face of its boundary cell.
   const detail::FaceIndex index(mesh);
-  const int facetType = mesh.type == CellType::Tet4 ? 2 : 3;
+  const int facetType = facetTypeOf(mesh.type);
   const Gmsh::DimTags surfaces = Gmsh::physicalGroups(2);
   for (const auto& g : surfaces) {
     const std::string name = physicalName(2, g.second);
@@ -246,16 +301,28 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
                                                << elementTypeName(facetType));
         std::vector<std::size_t> tags, nodes;
         Gmsh::elementsByType(type, e, tags, nodes);
-        const size_t npf = type == 2 ? 3 : 4;
+        const size_t npf = static_cast<size_t>(nodes.size() / std::max<size_t>(tags.size(), 1));
+        const size_t corners = static_cast<size_t>(detail::faceCorners(mesh.type));
         for (size_t k = 0; k < tags.size(); ++k) {
           std::vector<int> facetNodes;
           for (size_t a = 0; a < npf; ++a) {
             const auto it = gmshIndex.find(nodes[k * npf + a]);
             facetNodes.push_back(it == gmshIndex.end() ? -1 : newIndex[it->second]);
           }
-          const auto* hit = std::count(facetNodes.begin(), facetNodes.end(), -1) ? nullptr : index.boundaryFace(facetNodes);
+          const std::vector<int> facetCorners(facetNodes.begin(), facetNodes.begin() + corners);
+          const auto* hit =
+              std::count(facetNodes.begin(), facetNodes.end(), -1) ? nullptr : index.boundaryFace(facetCorners);
           TRIBOS_REQUIRE(hit, file << ": surface '" << name << "' is not on the boundary (facet " << tags[k] << ")");
-          face.push_back(detail::outwardFacet(mesh, hit->cell, hit->local));
+          // A second-order facet's mid-edge nodes are its cell face's.
+          const Facet facet = detail::outwardFacet(mesh, hit->cell, hit->local);
+          std::vector<int> fileMid(facetNodes.begin() + corners, facetNodes.end());
+          std::vector<int> cellMid(facet.nodes.begin() + corners, facet.nodes.end());
+          std::sort(fileMid.begin(), fileMid.end());
+          std::sort(cellMid.begin(), cellMid.end());
+          TRIBOS_REQUIRE(fileMid == cellMid, file << ": facet " << tags[k] << " of surface '" << name
+                                                  << "' has mid-edge nodes other than those of the face of its "
+                                                     "element (a surface meshed apart from its volume?)");
+          face.push_back(facet);
         }
       }
     }

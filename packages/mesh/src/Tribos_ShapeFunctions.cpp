@@ -271,5 +271,18 @@ std::vector<FacetQuadraturePoint> facetQuadrature(int nodes) {
   throw Error("a facet with " + std::to_string(nodes) + " nodes (3, 4, 6 or 8 expected)");
 }
 
+void isoparametricJacobian(const double dNdxi[][3], const Point* X, int npc, double J[3][3]) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) J[i][j] = 0;
+  for (int a = 0; a < npc; ++a)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) J[i][j] += dNdxi[a][i] * X[a][j];
+}
+
+double determinant3(const double J[3][3]) {
+  return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+}
+
 }  // namespace Fem
 }  // namespace Tribos

@@ -35,6 +35,12 @@ constexpr int kMaxNodesPerFacet = 8;
 // to the reference coordinates, dNdxi[a][i] = dN_a / dxi_i, at xi.
 void referenceShape(Mesh::CellType type, const Point& xi, double N[], double dNdxi[][3]);
 
+// The Jacobian of the isoparametric map x(xi) = sum_a N_a(xi) X_a at the
+// point where dNdxi was evaluated, transposed: J[i][j] = dx_j / dxi_i (its
+// determinant is det J); X holds the cell's npc node coordinates.
+void isoparametricJacobian(const double dNdxi[][3], const Point* X, int npc, double J[3][3]);
+double determinant3(const double J[3][3]);
+
 // The nodes of the reference cell, in the node order above.
 std::vector<Point> referenceNodes(Mesh::CellType type);
 

@@ -264,11 +264,11 @@ TEUCHOS_UNIT_TEST(Bodies, GmshRefusals) {
   std::remove(twoNames.c_str());
   out << e << "\n";
   TEST_ASSERT(contains(e, "samename.msh") && contains(e, "two physical volumes are named 'a'"));
-  // Second order elements in a body: named with the body.
-  e = geoError("tet10.geo", std::string(kConformal) + "Mesh.ElementOrder = 2;\n");
+  // Third-order elements in a body: named with the body.
+  e = geoError("tet20.geo", std::string(kConformal) + "Mesh.ElementOrder = 3;\n");
   out << e << "\n";
-  TEST_ASSERT(contains(e, "tet10.geo") &&
-              contains(e, "element type 11 (Tet10) in physical volume 'lower' is not supported; Tribos reads Tet4 and Hex8"));
+  TEST_ASSERT(contains(e, "tet20.geo") && contains(e, "(Tet20) in physical volume 'lower' is not supported (elements of "
+                                                      "order 3 or more are not supported"));
 }
 
 TEUCHOS_UNIT_TEST(Bodies, MetisPerBody) {

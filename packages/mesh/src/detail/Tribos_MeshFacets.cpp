@@ -14,6 +14,7 @@
 
 #include "Tribos_Error.hpp"
 #include "Tribos_FileKind.hpp"
+#include "Tribos_ShapeFunctions.hpp"
 
 namespace Tribos {
 namespace Mesh {
@@ -56,14 +57,86 @@ Facet outwardFacet(const Mesh& mesh, int cell, int local) {
   return f;
 }
 
-bool positiveCell(const Mesh& mesh, int c) {
-  // Corner volumes do not bound the Jacobian of a cell with mid-edge nodes.
-  requireFirstOrder(mesh.type, "the check of positive cell volumes");
+bool isTetrahedron(CellType type) { return type == CellType::Tet4 || type == CellType::Tet10; }
+int cellCorners(CellType type) { return isTetrahedron(type) ? 4 : 8; }
+int faceCorners(CellType type) { return isTetrahedron(type) ? 3 : 4; }
+
+const std::vector<std::array<int, 3>>& edgeNodes(CellType type) {
+  static const std::vector<std::array<int, 3>> none;
+  static const std::vector<std::array<int, 3>> tet10 = {{4, 0, 1}, {5, 1, 2}, {6, 2, 0},
+                                                        {7, 3, 0}, {8, 3, 2}, {9, 3, 1}};
+  static const std::vector<std::array<int, 3>> hex20 = {{8, 0, 1},  {9, 0, 3},  {10, 0, 4}, {11, 1, 2},
+                                                        {12, 1, 5}, {13, 2, 3}, {14, 2, 6}, {15, 3, 7},
+                                                        {16, 4, 5}, {17, 4, 7}, {18, 5, 6}, {19, 6, 7}};
+  return type == CellType::Tet10 ? tet10 : type == CellType::Hex20 ? hex20 : none;
+}
+
+namespace {
+
+std::string pointText(const Point& p) {
+  std::ostringstream os;
+  os << "(" << p[0] << ", " << p[1] << ", " << p[2] << ")";
+  return os.str();
+}
+
+// The body of cell c as messages name it: " of physical volume 'name'", or
+// "" when the mesh names no bodies.
+std::string bodyOfCell(const Mesh& mesh, int c, const std::string& bodyWord) {
+  if (mesh.bodyNames.empty()) return "";
+  return " of " + bodyWord + " '" + mesh.bodyName(mesh.bodyOf(c)) + "'";
+}
+
+// The smallest det J of a second-order cell over its nodes and the points of
+// its rule, as a volume relative to h^3 (det J times the reference cell's
+// volume: 1/6 for the tetrahedron, 8 for [-1,1]^3), and where it is.
+double smallestJacobian(const Mesh& mesh, int c, double h, std::string& where) {
+  const CellType type = mesh.type;
+  const int npc = mesh.nodesPerCell();
+  const int* n = mesh.cell(c);
+  const double reference = isTetrahedron(type) ? 1.0 / 6.0 : 8.0;
+  std::vector<Point> points = Fem::referenceNodes(type);
+  const size_t nodes = points.size();
+  for (const auto& q : Fem::cellQuadrature(type)) points.push_back(q.xi);
+  double smallest = HUGE_VAL;
+  std::vector<Point> X(npc);
+  for (int a = 0; a < npc; ++a) X[a] = mesh.coords[n[a]];
+  double N[Fem::kMaxNodesPerCell], dN[Fem::kMaxNodesPerCell][3], J[3][3];
+  for (size_t k = 0; k < points.size(); ++k) {
+    Fem::referenceShape(type, points[k], N, dN);
+    Fem::isoparametricJacobian(dN, X.data(), npc, J);
+    const double det = Fem::determinant3(J);
+    const double relative = det * reference / (h * h * h);
+    if (relative < smallest) {
+      smallest = relative;
+      std::ostringstream os;
+      os << "det J = " << det << " at ";
+      if (k < nodes) os << "its node " << k << " " << pointText(mesh.coords[n[k]]);
+      else os << "the quadrature point " << pointText(points[k]) << " of its reference cell";
+      where = os.str();
+    }
+  }
+  return smallest;
+}
+
+}  // namespace
+
+bool positiveCell(const Mesh& mesh, int c, std::string* where) {
   const int* n = mesh.cell(c);
   const auto& x = mesh.coords;
   double h = 0;
   for (int a = 0; a < mesh.nodesPerCell(); ++a)
     for (int d = 0; d < 3; ++d) h = std::max(h, std::abs(x[n[a]][d] - x[n[0]][d]));
+  if (isSecondOrder(mesh.type)) {
+    // Corner volumes do not bound the Jacobian of a cell with mid-edge nodes.
+    if (!(h > 0)) {
+      if (where) *where = "all its nodes at one point";
+      return false;
+    }
+    std::string at;
+    const bool positive = smallestJacobian(mesh, c, h, at) > 1e-12;
+    if (!positive && where) *where = at;
+    return positive;
+  }
   const double floor = 1e-12 * h * h * h;
   if (mesh.type == CellType::Tet4) return triple(x[n[0]], x[n[1]], x[n[2]], x[n[3]]) > floor;
   // Corner k and its three neighbours in right-handed order (Tribos' Hex8
@@ -75,16 +148,67 @@ bool positiveCell(const Mesh& mesh, int c) {
   return true;
 }
 
-void requirePositiveCells(const Mesh& mesh, const std::string& file, const std::vector<long long>& cellIds) {
+void requirePositiveCells(const Mesh& mesh, const std::string& file, const std::vector<long long>& cellIds,
+                          const std::string& bodyWord) {
   std::vector<long long> bad;
-  for (int c = 0; c < mesh.numCells(); ++c)
-    if (!positiveCell(mesh, c)) bad.push_back(cellIds[c]);
+  std::string first;  // the first refused second-order cell: its body and det J
+  for (int c = 0; c < mesh.numCells(); ++c) {
+    std::string where;
+    if (positiveCell(mesh, c, &where)) continue;
+    if (bad.empty() && isSecondOrder(mesh.type))
+      first = "element " + std::to_string(cellIds[c]) + " (" + cellTypeName(mesh.type) + ")" +
+              bodyOfCell(mesh, c, bodyWord) + ": " + where;
+    bad.push_back(cellIds[c]);
+  }
   if (bad.empty()) return;
   std::ostringstream os;
   for (size_t i = 0; i < std::min<size_t>(bad.size(), 5); ++i) os << (i ? ", " : "") << bad[i];
+  if (isSecondOrder(mesh.type))
+    throw Error(file + ": " + std::to_string(bad.size()) + " inverted or folded " + cellTypeName(mesh.type) +
+                " element" + (bad.size() > 1 ? "s" : "") + " (det J <= 0 at a node or quadrature point): " + first +
+                (bad.size() > 1 ? "; elements " + os.str() + (bad.size() > 5 ? ", ..." : "") : "") +
+                " (a mid-edge node too far from the middle of its edge folds the cell)");
   throw Error(file + ": " + std::to_string(bad.size()) + " inverted or degenerate element" +
               (bad.size() > 1 ? "s" : "") + " (non-positive volume): element" + (bad.size() > 1 ? "s " : " ") + os.str() +
               (bad.size() > 5 ? ", ..." : ""));
+}
+
+void checkMidEdgeNodes(const Mesh& mesh, const std::string& file, const std::vector<long long>& cellIds,
+                       std::vector<std::string>* warnings, const std::string& bodyWord) {
+  const auto& edges = edgeNodes(mesh.type);
+  if (edges.empty()) return;
+  double worst = 0;
+  int worstCell = -1, worstNode = -1;
+  long long beyond = 0;
+  for (int c = 0; c < mesh.numCells(); ++c) {
+    const int* n = mesh.cell(c);
+    for (const auto& e : edges) {
+      const Point& m = mesh.coords[n[e[0]]];
+      const Point& a = mesh.coords[n[e[1]]];
+      const Point& b = mesh.coords[n[e[2]]];
+      double off = 0, length = 0;
+      for (int d = 0; d < 3; ++d) {
+        off += std::pow(m[d] - 0.5 * (a[d] + b[d]), 2);
+        length += std::pow(b[d] - a[d], 2);
+      }
+      const double ratio = length > 0 ? std::sqrt(off / length) : (off > 0 ? HUGE_VAL : 0);
+      if (ratio > kMidEdgeRefuse) ++beyond;
+      if (ratio > worst) worst = ratio, worstCell = c, worstNode = e[0];
+    }
+  }
+  if (worst <= kMidEdgeWarn) return;
+  std::ostringstream os;
+  os << file << ": element " << cellIds[worstCell] << " (" << cellTypeName(mesh.type) << ")"
+     << bodyOfCell(mesh, worstCell, bodyWord) << " has its mid-edge node " << worstNode << " at "
+     << pointText(mesh.coords[mesh.cell(worstCell)[worstNode]]) << ", " << worst
+     << " of its edge's length from the edge's midpoint";
+  TRIBOS_REQUIRE(worst <= kMidEdgeRefuse, os.str() << " (" << beyond << " mid-edge node" << (beyond > 1 ? "s" : "")
+                                                   << " beyond " << kMidEdgeRefuse
+                                                   << "); a mid-edge node farther than " << kMidEdgeRefuse
+                                                   << " of its edge from the midpoint is refused: the cell is "
+                                                      "too distorted for its quadrature");
+  os << " (the worst; beyond " << kMidEdgeWarn << " the element's accuracy degrades)";
+  warn(warnings, os.str());
 }
 
 std::array<int, 4> FaceIndex::keyOf(std::vector<int> nodes) {
@@ -96,11 +220,12 @@ std::array<int, 4> FaceIndex::keyOf(std::vector<int> nodes) {
 
 FaceIndex::FaceIndex(const Mesh& mesh) {
   const auto& faces = cellFaces(mesh.type);
+  const size_t corners = static_cast<size_t>(faceCorners(mesh.type));
   entries_.reserve(static_cast<size_t>(mesh.numCells()) * faces.size());
   for (int c = 0; c < mesh.numCells(); ++c)
     for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
       std::vector<int> nodes;
-      for (int ln : faces[f]) nodes.push_back(mesh.cell(c)[ln]);
+      for (size_t a = 0; a < corners; ++a) nodes.push_back(mesh.cell(c)[faces[f][a]]);
       entries_.push_back({keyOf(nodes), c, f});
     }
   std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });

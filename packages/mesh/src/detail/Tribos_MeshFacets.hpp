@@ -31,17 +31,50 @@ const std::vector<std::vector<int>>& cellFaces(CellType type);
 // The face `local` of cell `cell` as a facet, in cellFaces' (outward) order.
 Facet outwardFacet(const Mesh& mesh, int cell, int local);
 
+// Whether the cell type is a tetrahedron (Tet4, Tet10); the corners of a
+// cell (4 or 8) and of its faces (3 or 4), which come first in its node and
+// face lists.
+bool isTetrahedron(CellType type);
+int cellCorners(CellType type);
+int faceCorners(CellType type);
+
+// The mid-edge nodes of Tet10 and Hex20 (Gmsh's order): edgeNodes(type)[k]
+// = {mid-edge node, corner, corner}; empty for Tet4 and Hex8.
+const std::vector<std::array<int, 3>>& edgeNodes(CellType type);
+
 // Whether a cell has positive volume everywhere: the tetrahedron's volume,
 // the hexahedron's Jacobian at each of its corners (the trilinear map is
 // one-to-one when all eight are positive), relative to the cell's size so
-// that round-off flat cells count as degenerate. Refuses Tet10 and Hex20.
-bool positiveCell(const Mesh& mesh, int c);
+// that round-off flat cells count as degenerate. Tet10 and Hex20: det J of
+// the isoparametric map at each node and each point of cellQuadrature
+// (Tribos_ShapeFunctions.hpp), relative to the cell's size; `where`, when
+// given, receives the smallest det J and where it is for a cell refused.
+bool positiveCell(const Mesh& mesh, int c, std::string* where = nullptr);
 
 // Refuses a mesh with inverted or degenerate cells, naming the first five by
-// their ids in the file (cellIds[c]).
-void requirePositiveCells(const Mesh& mesh, const std::string& file, const std::vector<long long>& cellIds);
+// their ids in the file (cellIds[c]); for second-order cells the first one's
+// body (bodyWord and its name, e.g. "physical volume 'block'", when the
+// mesh names its bodies) and its smallest det J.
+void requirePositiveCells(const Mesh& mesh, const std::string& file, const std::vector<long long>& cellIds,
+                          const std::string& bodyWord = "physical volume");
 
-// Every cell face, keyed by its sorted node ids: the cell of a file's
+// A mid-edge node's distance from the midpoint of its edge's corners,
+// relative to that edge's length, beyond which a read warns
+// (kMidEdgeWarn) or refuses (kMidEdgeRefuse): a curved edge has the mid-edge
+// node off its chord; moved along the edge by more than a quarter of its
+// length the map folds at a corner (det J < 0 there, refused as folded).
+constexpr double kMidEdgeWarn = 0.25;
+constexpr double kMidEdgeRefuse = 0.5;
+
+// Warns (one line, the worst element by its id in the file and its ratio)
+// when a mid-edge node of a second-order mesh lies farther than
+// kMidEdgeWarn of its edge from the edge's midpoint, and refuses, naming
+// the element, its body and the node, beyond kMidEdgeRefuse. Nothing for
+// first-order meshes.
+void checkMidEdgeNodes(const Mesh& mesh, const std::string& file, const std::vector<long long>& cellIds,
+                       std::vector<std::string>* warnings, const std::string& bodyWord = "physical volume");
+
+// Every cell face, keyed by its sorted corner ids: the cell of a file's
 // boundary facet and whether the face lies on the boundary (one cell).
 class FaceIndex {
  public:
@@ -50,8 +83,9 @@ class FaceIndex {
     int cell, local;
   };
   explicit FaceIndex(const Mesh& mesh);
-  // The entry of the one cell whose face has these nodes (any order), or
-  // null: no cell has it, or two do (an interior face).
+  // The entry of the one cell whose face has these corners (any order; 3
+  // or 4 of them, a second-order facet's first ones), or null: no cell has
+  // it, or two do (an interior face).
   const Entry* boundaryFace(const std::vector<int>& nodes) const;
 
  private:

@@ -1,4 +1,4 @@
-// A unit cube of quadratic tetrahedra (Tet10): refused by the reader.
+// A unit cube of quadratic tetrahedra (Tet10).
 SetFactory("OpenCASCADE");
 Box(1) = {0, 0, 0, 1, 1, 1};
 Physical Volume("shaft") = {1};

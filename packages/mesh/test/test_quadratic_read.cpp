@@ -1,0 +1,194 @@
+// The readers on second-order cells: Gmsh's Tet10 and Hex20 blocks of
+// test/data/quadratic (their faces of 6- and 8-node facets, outward, with the
+// mid-edge nodes of their cells), the same cells written as Exodus II
+// TETRA10 and HEX20 blocks (Exodus' node order) read back alike, and the
+// files refused: mixed orders, order 3, Hex27, inverted and folded cells,
+// a mid-edge node far from its edge's midpoint (a warning).
+#include <Teuchos_UnitTestHarness.hpp>
+
+#include <exodusII.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+#include <unistd.h>
+
+#include "Tribos_BodyShape.hpp"
+#include "Tribos_ExodusReader.hpp"
+#include "Tribos_GmshReader.hpp"
+#include "MeshTestGeometry.hpp"
+
+#include "Tribos_TestSupport.hpp"
+
+namespace {
+
+using namespace Tribos::Mesh;
+using namespace Tribos::Mesh::Test;
+
+std::string sourceDir() {
+  const char* dir = std::getenv("TRIBOS_SOURCE_DIR");
+  return dir ? dir : ".";
+}
+std::string dataFile(const std::string& name) { return sourceDir() + "/test/data/quadratic/" + name; }
+
+std::string readError(const std::string& path, std::vector<std::string>* warnings = nullptr) {
+  try {
+    path.size() > 4 && path.substr(path.size() - 4) == ".exo" ? readExodus(path, warnings) : readGmsh(path, warnings);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+P midpoint(const Mesh& m, int a, int b) {
+  P p;
+  for (int d = 0; d < 3; ++d) p[d] = 0.5 * (m.coords[a][d] + m.coords[b][d]);
+  return p;
+}
+
+double distance(const P& a, const P& b) { return std::sqrt(dot(sub(a, b), sub(a, b))); }
+
+// A block of 2 x 1 x 1 with faces symmetry_x (x = 0), side_x (x = 2),
+// symmetry_y (y = 0), bottom (z = 0), top (z = 1): every facet of a face has
+// the facet's node count, its mid-edge nodes at the midpoints of its edges
+// (Gmsh's facet order), is a face of its cell, points outward, and the faces
+// have their areas.
+void checkBlock(const Mesh& m, CellType type, Teuchos::FancyOStream& out, bool& success) {
+  TEST_ASSERT(m.type == type);
+  const int corners = type == CellType::Tet10 ? 3 : 4, nodes = 2 * corners;
+  struct Face {
+    const char* name;
+    P normal;
+    double area;
+  };
+  for (const Face& f : {Face{"symmetry_x", {-1, 0, 0}, 1}, Face{"side_x", {1, 0, 0}, 1}, Face{"symmetry_y", {0, -1, 0}, 2},
+                        Face{"bottom", {0, 0, -1}, 2}, Face{"top", {0, 0, 1}, 2}}) {
+    double area = 0, worstMid = 0;
+    bool sized = true, outward = true, ofCell = true;
+    for (const Facet& facet : m.face(f.name)) {
+      sized = sized && static_cast<int>(facet.nodes.size()) == nodes;
+      if (!sized) break;
+      Facet cornersOnly{std::vector<int>(facet.nodes.begin(), facet.nodes.begin() + corners), facet.cell};
+      const P a = areaVector(m, cornersOnly);
+      const double len = std::sqrt(dot(a, a));
+      area += len;
+      outward = outward && std::abs(dot(a, f.normal) - len) < 1e-12;
+      for (int k = 0; k < corners; ++k)
+        worstMid = std::max(worstMid, distance(m.coords[facet.nodes[corners + k]],
+                                               midpoint(m, facet.nodes[k], facet.nodes[(k + 1) % corners])));
+      const std::set<int> cellNodes(m.cell(facet.cell), m.cell(facet.cell) + m.nodesPerCell());
+      for (int n : facet.nodes) ofCell = ofCell && cellNodes.count(n) == 1;
+    }
+    out << f.name << ": " << m.face(f.name).size() << " facets, area " << area << ", mid-edge offset " << worstMid << "\n";
+    TEST_ASSERT(sized && outward && ofCell);
+    TEST_FLOATING_EQUALITY(area, f.area, 1e-12);
+    TEST_ASSERT(worstMid < 1e-12);
+  }
+  // The body's shape from its cells' corners: volume 2, boundary area 10.
+  const auto shapes = bodyShapes(m);
+  TEST_FLOATING_EQUALITY(shapes.at(0).volume, 2.0, 1e-12);
+  TEST_FLOATING_EQUALITY(shapes.at(0).boundaryArea, 10.0, 1e-12);
+  requireSolvableBodies(m, "block");
+}
+
+TEUCHOS_UNIT_TEST(QuadraticRead, GmshTet10Block) {
+  std::vector<std::string> warnings;
+  const Mesh m = readGmsh(dataFile("block_tet10.msh"), &warnings);
+  TEST_EQUALITY(warnings.size(), 0u);
+  TEST_EQUALITY(m.numNodes(), 325);
+  checkBlock(m, CellType::Tet10, out, success);
+}
+
+TEUCHOS_UNIT_TEST(QuadraticRead, GmshHex20Block) {
+  std::vector<std::string> warnings;
+  const Mesh m = readGmsh(dataFile("block_hex20.msh"), &warnings);
+  TEST_EQUALITY(warnings.size(), 0u);
+  TEST_EQUALITY(m.numCells(), 12);
+  TEST_EQUALITY(m.numNodes(), 111);  // 4 x 3 x 3 corners and 75 mid-edge nodes
+  checkBlock(m, CellType::Hex20, out, success);
+}
+
+// Exodus II numbers the mid-edge nodes of TETRA10 0-1, 1-2, 2-0, 0-3, 1-3,
+// 2-3 and of HEX20 the bottom edges, the vertical edges, the top edges.
+void writeExodus(const std::string& file, const Mesh& m) {
+  static const std::vector<int> tet10 = {0, 1, 2, 3, 4, 5, 6, 7, 9, 8};  // Exodus node k = Gmsh node tet10[k]
+  static const std::vector<int> hex20 = {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 10, 12, 14, 15, 16, 18, 19, 17};
+  const auto& order = m.type == CellType::Tet10 ? tet10 : hex20;
+  int cpu = 8, io = 8;
+  const int exo = ex_create(file.c_str(), EX_CLOBBER, &cpu, &io);
+  ex_put_init(exo, "quadratic", 3, m.numNodes(), m.numCells(), 1, 0, 0);
+  std::vector<double> x, y, z;
+  for (const auto& p : m.coords) x.push_back(p[0]), y.push_back(p[1]), z.push_back(p[2]);
+  ex_put_coord(exo, x.data(), y.data(), z.data());
+  std::vector<int> conn;
+  for (int c = 0; c < m.numCells(); ++c)
+    for (int k : order) conn.push_back(m.cell(c)[k] + 1);
+  ex_put_block(exo, EX_ELEM_BLOCK, 1, m.type == CellType::Tet10 ? "TETRA10" : "HEX20", m.numCells(), m.nodesPerCell(), 0,
+               0, 0);
+  ex_put_conn(exo, EX_ELEM_BLOCK, 1, conn.data(), nullptr, nullptr);
+  ex_put_name(exo, EX_ELEM_BLOCK, 1, "block");
+  ex_close(exo);
+}
+
+TEUCHOS_UNIT_TEST(QuadraticRead, ExodusTet10AndHex20) {
+  for (const char* name : {"block_tet10.msh", "block_hex20.msh"}) {
+    const Mesh g = readGmsh(dataFile(name));
+    const std::string file = "/tmp/tribos_quadratic_" + std::to_string(getpid()) + ".exo";
+    writeExodus(file, g);
+    std::vector<std::string> warnings;
+    const Mesh e = readExodus(file, &warnings);
+    std::remove(file.c_str());
+    TEST_ASSERT(e.type == g.type);
+    TEST_EQUALITY(e.numCells(), g.numCells());
+    // Cell by cell, node by node: the same points (both keep the file's node order).
+    double worst = 0;
+    for (int c = 0; c < std::min(e.numCells(), g.numCells()); ++c)
+      for (int a = 0; a < g.nodesPerCell(); ++a)
+        worst = std::max(worst, distance(e.coords[e.cell(c)[a]], g.coords[g.cell(c)[a]]));
+    out << name << " as Exodus II: worst node distance " << worst << "\n";
+    TEST_ASSERT(worst == 0);
+  }
+}
+
+TEUCHOS_UNIT_TEST(QuadraticRead, Refused) {
+  std::string e = readError(dataFile("mixed_order.msh"));
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "mixed_order.msh") &&
+              contains(e, "mixes Tet4 (physical volume 'linear') and Tet10 (physical volume 'quadratic'); a mesh of "
+                          "first- and second-order cells is not supported") &&
+              contains(e, "(element 2 (Tet10))"));
+  e = readError(dataFile("order3.msh"));
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "(Tet20) in physical volume 'cube' is not supported (elements of order 3 or more are not "
+                          "supported"));
+  e = readError(dataFile("hex27.msh"));
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "(Hex27) in physical volume 'cube' is not supported (Hex27 is not supported; mesh with -order "
+                          "2 and Mesh.SecondOrderIncomplete=1 for Hex20)"));
+  e = readError(dataFile("inverted_tet10.msh"));
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "1 inverted or folded Tet10 element (det J <= 0 at a node or quadrature point): element 1 "
+                          "(Tet10) of physical volume 'part': det J = -1 at its node 0"));
+  // Folded: the mid-edge node stays on its edge, 0.35 of it from the middle:
+  // every corner volume is positive, det J at corner 1 is not.
+  std::vector<std::string> warnings;
+  e = readError(dataFile("folded_tet10.msh"), &warnings);
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "1 inverted or folded Tet10 element") && contains(e, "element 1 (Tet10) of physical volume 'part'") &&
+              contains(e, "at its node 1 (1, 0, 0)"));
+  TEST_EQUALITY(warnings.size(), 1u);
+  // Curved: read, with one warning naming the element and the ratio.
+  warnings.clear();
+  e = readError(dataFile("curved_tet10.msh"), &warnings);
+  TEST_EQUALITY(e, "");
+  TEST_EQUALITY(warnings.size(), 1u);
+  if (!warnings.empty()) {
+    out << warnings[0] << "\n";
+    TEST_ASSERT(contains(warnings[0], "element 1 (Tet10) of physical volume 'part' has its mid-edge node 4 at (0.5, -0.3, 0), "
+                                      "0.3 of its edge's length from the edge's midpoint"));
+  }
+}
+
+}  // namespace
