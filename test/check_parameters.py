@@ -84,8 +84,8 @@ def main():
     p = tribos_run("1", "--print-parameters", "--set", "Mesh/Element=Hex8")
     if p.returncode != 0 or values(p.stdout)[0].get("Mesh/Element") != ("string", "Hex8"):
         fail("--print-parameters --set Mesh/Element=Hex8 did not print Hex8", p)
-    p = tribos_run("1", "--print-parameters", "--set", "Mesh/Element=Tet10")
-    if p.returncode != 1 or "Tet10" not in p.stderr:
+    p = tribos_run("1", "--print-parameters", "--set", "Mesh/Element=Tet20")
+    if p.returncode != 1 or "Tet20" not in p.stderr:
         fail("--print-parameters with a bad --set must exit 1 naming the value", p)
     print("ok: documented defaults (%d parameters), --set applied, bad --set refused" % len(defaults))
 

@@ -155,7 +155,8 @@ RCP<const ParameterList> validParameters() {
   mesh.set("Geo Time Limit", 600.0,
            "seconds Gmsh may take to mesh a .geo File (wall clock and CPU); it is stopped at the limit",
            range<double>(0.1, 86400.0));
-  mesh.set("Element", "Tet4", "cell type", choice(tuple<std::string>("Tet4", "Hex8")));
+  mesh.set("Element", "Tet4", "cell type of the box: Tet4 and Hex8 (first order), Tet10 and Hex20 (second order, "
+           "no contact yet)", choice(tuple<std::string>("Tet4", "Hex8", "Tet10", "Hex20")));
   mesh.set("X Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along x");
   mesh.set("Y Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along y");
   mesh.set("Z Range", Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "box extent along z");
@@ -1009,6 +1010,35 @@ void checkScales(const ParameterList& params, const Mesh::Mesh& mesh) {
   }
 }
 
+namespace {
+
+// Contact (node-to-segment and mortar, the search's facets) knows the 3- and
+// 4-node facets of first-order cells only: a run that defines contact on a
+// mesh (`where`) of second-order cells is refused, naming its pair.
+void requireFirstOrderContact(Mesh::CellType type, const std::string& where, const ParameterList& params) {
+  const auto& contact = params.sublist("Contact");
+  if (!contact.get<bool>("Enabled") || !Mesh::isSecondOrder(type)) return;
+  const auto& pairs = contact.sublist("Pairs");
+  std::ostringstream pair;
+  if (pairs.numParams() == 0) {
+    pair << "the rigid plane of \"Contact/Face\" = \"" << contact.get<std::string>("Face") << "\"";
+  } else {
+    const std::string name = pairs.name(pairs.begin());
+    const auto& p = pairs.sublist(name);
+    const std::string master = p.get<std::string>("Master Surface");
+    pair << (p.get<std::string>("Type") == "Glued" ? "glued pair" : "contact pair") << " \"Contact/Pairs/" << name
+         << "\" (slave surface '" << p.get<std::string>("Slave Surface") << "', "
+         << (master.empty() ? std::string("a rigid plane") : "master surface '" + master + "'") << ")";
+    if (pairs.numParams() > 1) pair << " and " << pairs.numParams() - 1 << " more pair(s)";
+  }
+  throw Error(pair.str() + ": " + where + " has " + Mesh::cellTypeName(type) + " cells, whose surfaces are " +
+              (type == Mesh::CellType::Tet10 ? "6-node triangles" : "8-node quadrilaterals") +
+              "; contact on second-order surfaces is not supported yet (mesh the contact bodies with first-order "
+              "cells, Tet4 or Hex8: gmsh -order 1)");
+}
+
+}  // namespace
+
 void checkMeshFaces(const Mesh::Mesh& mesh, const ParameterList& params) {
   const std::string file = meshFile(params);
   const std::string where = file.empty() ? "the box" : "mesh file \"" + file + "\"";
@@ -1030,28 +1060,7 @@ void checkMeshFaces(const Mesh::Mesh& mesh, const ParameterList& params) {
     TRIBOS_REQUIRE(found, "parameter \"Bodies/" << bodies.name(it) << "\": " << where << " has no body of that name; "
                                                 << "its bodies are: " << valid);
   }
-  // Contact (node-to-segment and mortar, the search's facets) knows the
-  // 3- and 4-node facets of first-order cells only.
-  const auto& contact = params.sublist("Contact");
-  if (contact.get<bool>("Enabled") && Mesh::isSecondOrder(mesh.type)) {
-    const auto& pairs = contact.sublist("Pairs");
-    std::ostringstream pair;
-    if (pairs.numParams() == 0) {
-      pair << "the rigid plane of \"Contact/Face\" = \"" << contact.get<std::string>("Face") << "\"";
-    } else {
-      const std::string name = pairs.name(pairs.begin());
-      const auto& p = pairs.sublist(name);
-      const std::string master = p.get<std::string>("Master Surface");
-      pair << (p.get<std::string>("Type") == "Glued" ? "glued pair" : "contact pair") << " \"Contact/Pairs/" << name
-           << "\" (slave surface '" << p.get<std::string>("Slave Surface") << "', "
-           << (master.empty() ? std::string("a rigid plane") : "master surface '" + master + "'") << ")";
-      if (pairs.numParams() > 1) pair << " and " << pairs.numParams() - 1 << " more pair(s)";
-    }
-    throw Error(pair.str() + ": " + where + " has " + Mesh::cellTypeName(mesh.type) + " cells, whose surfaces are " +
-                (mesh.type == Mesh::CellType::Tet10 ? "6-node triangles" : "8-node quadrilaterals") +
-                "; contact on second-order surfaces is not supported yet (mesh the contact bodies with -order 1, "
-                "Tet4 or Hex8)");
-  }
+  requireFirstOrderContact(mesh.type, where, params);
 }
 
 namespace {
@@ -1094,13 +1103,17 @@ Mesh::BoxSpec boxSpec(const ParameterList& params) {
   }
   // Node and cell numbers are ints: refuse what does not fit (the memory
   // estimate refuses most such meshes anyway, with the bytes it would need).
-  const double nodes = double(spec.cells[0] + 1) * (spec.cells[1] + 1) * (spec.cells[2] + 1);
-  const double cells = double(spec.cells[0]) * spec.cells[1] * spec.cells[2] * (spec.type == Mesh::CellType::Tet4 ? 6 : 1);
+  const double nodes = Mesh::boxNodeCount(spec), cells = Mesh::boxCellCount(spec);
   TRIBOS_REQUIRE(nodes * 3 < 2147483647.0 && cells < 2147483647.0,
                  "Mesh: " << spec.cells[0] << " x " << spec.cells[1] << " x " << spec.cells[2] << " cells (" << nodes
                           << " nodes) exceed the 2^31 - 1 degrees of freedom and cells a mesh may have");
-  // The coordinates every mesh reader checks, here for the box before any work.
-  if (meshFile(params).empty()) Mesh::requireUsableBox(spec, "the box (Mesh/X Range, Y Range, Z Range)");
+  // The coordinates every mesh reader checks, and contact on its cells, here
+  // for the box before any work.
+  if (meshFile(params).empty()) {
+    Mesh::requireUsableBox(spec, "the box (Mesh/X Range, Y Range, Z Range)");
+    requireFirstOrderContact(spec.type, "the box (\"Mesh/Element\" = \"" + Mesh::cellTypeName(spec.type) + "\")",
+                             params);
+  }
   return spec;
 }
 

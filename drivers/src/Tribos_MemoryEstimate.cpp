@@ -144,10 +144,10 @@ namespace {
 // The counts of the mesh: the box's, or those of the mesh read from Mesh/File.
 MeshSize meshCounts(const Mesh::BoxSpec& spec, const MeshSize* meshSize) {
   if (meshSize) return *meshSize;
-  const double cx = spec.cells[0], cy = spec.cells[1], cz = spec.cells[2];
   MeshSize m;
-  m.nodes = (cx + 1) * (cy + 1) * (cz + 1);
-  m.cells = cx * cy * cz * (spec.type == Mesh::CellType::Tet4 ? 6.0 : 1.0);
+  m.nodes = Mesh::boxNodeCount(spec);
+  m.cells = Mesh::boxCellCount(spec);
+  m.nodesPerCell = Mesh::nodesPerCell(spec.type);
   return m;
 }
 
@@ -160,7 +160,7 @@ double outputBytesPerStep(const Teuchos::ParameterList& params, const MeshSize* 
   // (3 doubles per node), topology (8-byte indices: one per node of a cell),
   // the cell fields (13 numbers: von Mises, the stress tensor, the principal
   // stresses, subdomain, rank, body).
-  const double nodesPerCell = meshSize ? meshSize->nodesPerCell : spec.type == Mesh::CellType::Hex8 ? 8.0 : 4.0;
+  const double nodesPerCell = m.nodesPerCell;
   double bytes = 16e3 + 72.0 * m.nodes + (8.0 * nodesPerCell + 104.0) * m.cells;
   // The contact point set: about 42 numbers per contact node, the nodes of
   // a face or two of the bodies.

@@ -605,19 +605,6 @@ TEUCHOS_UNIT_TEST(QuadraticMesh, CellTypes) {
     out << e.what() << "\n";
     TEST_ASSERT(messageHas(e.what(), {"Tet20", "Tet4, Hex8, Tet10, Hex20"}));
   }
-  // No quadratic mesh reaches a run: boxes of second-order cells are refused by name.
-  for (CellType t : {CellType::Tet10, CellType::Hex20}) {
-    Mesh::BoxSpec spec;
-    spec.type = t;
-    spec.cells = {2, 2, 2};
-    try {
-      Mesh::generateBox(spec);
-      TEST_ASSERT(false);
-    } catch (const Error& e) {
-      out << e.what() << "\n";
-      TEST_ASSERT(messageHas(e.what(), {Mesh::cellTypeName(t).c_str(), "not supported", "box"}));
-    }
-  }
 }
 
 // The faces of the reference cells: the corners of the first-order faces,

@@ -37,11 +37,6 @@ CellType cellTypeFromName(const std::string& name) {
 
 bool isSecondOrder(CellType type) { return type == CellType::Tet10 || type == CellType::Hex20; }
 
-void requireFirstOrder(CellType type, const std::string& where) {
-  TRIBOS_REQUIRE(!isSecondOrder(type), cellTypeName(type) << " cells are not supported in " << where
-                                                          << " (only Tet4 and Hex8 cells are)");
-}
-
 namespace {
 
 std::string joined(const std::vector<std::string>& names) {
@@ -165,8 +160,24 @@ void collectBoundaryFaces(Mesh& mesh, const BoxSpec& spec) {
 
 }  // namespace
 
+double boxNodeCount(const BoxSpec& spec) {
+  const double nx = spec.cells[0], ny = spec.cells[1], nz = spec.cells[2];
+  const double corners = (nx + 1) * (ny + 1) * (nz + 1);
+  switch (spec.type) {
+    case CellType::Tet10:  // every point of the lattice of half cells
+      return (2 * nx + 1) * (2 * ny + 1) * (2 * nz + 1);
+    case CellType::Hex20:  // the corners and the middles of the edges
+      return corners + nx * (ny + 1) * (nz + 1) + (nx + 1) * ny * (nz + 1) + (nx + 1) * (ny + 1) * nz;
+    default:
+      return corners;
+  }
+}
+
+double boxCellCount(const BoxSpec& spec) {
+  return double(spec.cells[0]) * spec.cells[1] * spec.cells[2] * (detail::isTetrahedron(spec.type) ? 6 : 1);
+}
+
 void requireUsableBox(const BoxSpec& spec, const std::string& what) {
-  requireFirstOrder(spec.type, "box meshes");
   // The corners hold the box's extreme coordinates; every other node lies between them.
   const long long nx = spec.cells[0], ny = spec.cells[1], nz = spec.cells[2];
   std::vector<std::array<double, 3>> corners;
@@ -194,8 +205,56 @@ Mesh generateBox(const BoxSpec& spec) {
 
 namespace detail {
 
+namespace {
+
+// A box of second-order cells: the first-order box of the same cells on the
+// lattice of half cells, each cell's mid-edge nodes the lattice points
+// halfway between its corners (edgeNodes); the lattice points no cell uses
+// (Hex20's face and cell centres) are dropped, the others keep the
+// lattice's order.
+Mesh secondOrderBoxMesh(const BoxSpec& spec) {
+  BoxSpec lattice = spec;
+  lattice.type = isTetrahedron(spec.type) ? CellType::Tet4 : CellType::Hex8;
+  lattice.cells = {2 * spec.cells[0], 2 * spec.cells[1], 2 * spec.cells[2]};
+  const Mesh fine = boxMesh(lattice);  // its nodes: the lattice
+  BoxSpec coarse = lattice;
+  coarse.cells = spec.cells;
+  const Mesh corners = boxMesh(coarse);
+  const int nx = spec.cells[0], ny = spec.cells[1];
+  auto latticeId = [&](int node) {  // corner node (i, j, k) -> lattice point (2i, 2j, 2k)
+    const int i = node % (nx + 1), j = (node / (nx + 1)) % (ny + 1), k = node / ((nx + 1) * (ny + 1));
+    return 2 * i + (2 * nx + 1) * (2 * j + (2 * ny + 1) * 2 * k);
+  };
+  auto latticeMid = [&](int a, int b) {  // the lattice point halfway between two lattice points
+    const int ax = a % (2 * nx + 1), ay = (a / (2 * nx + 1)) % (2 * ny + 1), az = a / ((2 * nx + 1) * (2 * ny + 1));
+    const int bx = b % (2 * nx + 1), by = (b / (2 * nx + 1)) % (2 * ny + 1), bz = b / ((2 * nx + 1) * (2 * ny + 1));
+    return (ax + bx) / 2 + (2 * nx + 1) * ((ay + by) / 2 + (2 * ny + 1) * ((az + bz) / 2));
+  };
+  Mesh mesh;
+  mesh.type = spec.type;
+  const int npc = nodesPerCell(spec.type), cornersPerCell = corners.nodesPerCell();
+  std::vector<int> cell(npc);
+  for (int c = 0; c < corners.numCells(); ++c) {
+    for (int a = 0; a < cornersPerCell; ++a) cell[a] = latticeId(corners.cell(c)[a]);
+    for (const auto& e : detail::edgeNodes(spec.type)) cell[e[0]] = latticeMid(cell[e[1]], cell[e[2]]);
+    mesh.connectivity.insert(mesh.connectivity.end(), cell.begin(), cell.end());
+  }
+  std::vector<int> newId(fine.numNodes(), -1);
+  for (int n : mesh.connectivity) newId[n] = 0;
+  for (int n = 0; n < fine.numNodes(); ++n)
+    if (newId[n] == 0) newId[n] = static_cast<int>(mesh.coords.size()), mesh.coords.push_back(fine.coords[n]);
+  for (int& n : mesh.connectivity) n = newId[n];
+  return mesh;
+}
+
+}  // namespace
+
 Mesh boxMesh(const BoxSpec& spec) {
-  requireFirstOrder(spec.type, "box meshes");  // Kuhn tetrahedra or trilinear hexahedra only
+  if (isSecondOrder(spec.type)) {
+    Mesh mesh = secondOrderBoxMesh(spec);
+    collectBoundaryFaces(mesh, spec);
+    return mesh;
+  }
   const int nx = spec.cells[0], ny = spec.cells[1], nz = spec.cells[2];
   Mesh mesh;
   mesh.type = spec.type;

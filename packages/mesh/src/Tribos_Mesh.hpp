@@ -33,9 +33,6 @@ std::string cellTypeName(CellType type);             // "Tet4", "Hex8", "Tet10",
 CellType cellTypeFromName(const std::string& name);  // the inverse; throws naming the valid names
 // Whether the cell has mid-edge nodes (Tet10, Hex20).
 bool isSecondOrder(CellType type);
-// Throws Tribos::Error naming the cell type and `where` when it is second
-// order: for the steps written for Tet4 and Hex8 cells only.
-void requireFirstOrder(CellType type, const std::string& where);
 
 // A boundary facet: a triangle (Tet4) or quadrilateral (Hex8) of one cell; a
 // 6-node triangle (Tet10) or 8-node quadrilateral (Hex20) lists its corners
@@ -102,10 +99,15 @@ class Mesh {
 
 // Box [x0,x1]x[y0,y1]x[z0,z1] with nx,ny,nz hexahedral cells; for Tet4 each
 // hexahedron is split into 6 tetrahedra around its main diagonal (Kuhn split),
-// which is conforming because every hexahedron is split the same way. Boxes
-// of second-order cells are refused (requireUsableBox).
+// which is conforming because every hexahedron is split the same way. Tet10
+// and Hex20 boxes are the same cells with their mid-edge nodes at the middle
+// of each edge (the lattice of half cells).
 // Faces: xmin, xmax, ymin, ymax, zmin, zmax.
 Mesh generateBox(const BoxSpec& spec);
+// The numbers of nodes and cells of that box (doubles: they are checked
+// against int before a mesh is made).
+double boxNodeCount(const BoxSpec& spec);
+double boxCellCount(const BoxSpec& spec);
 
 // Number of hexahedra along each axis for level L of the semismooth* prism:
 // nx = ceil(2^((L+4)/2)), ny = nz = ceil(2^((L+2)/2)).

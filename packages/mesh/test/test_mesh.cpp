@@ -9,6 +9,7 @@
 
 #include "Tribos_Decomposition.hpp"
 #include "Tribos_Mesh.hpp"
+#include "detail/Tribos_MeshFacets.hpp"
 
 namespace {
 
@@ -85,6 +86,51 @@ void checkBox(CellType type, Teuchos::FancyOStream& out, bool& success) {
     TEST_EQUALITY(boundary, expected);
   }
 }
+
+// A box of second-order cells: the node count boxNodeCount gives, every
+// node of a cell where its first-order cell's shape functions put it (the
+// corners of the first-order box, each mid-edge node the middle of its
+// edge), every node used, the cells tiling the box, and faces whose facets
+// carry their mid-edge nodes on the face's plane.
+void checkSecondOrderBox(CellType type, Teuchos::FancyOStream& out, bool& success) {
+  BoxSpec spec;
+  spec.type = type;
+  spec.x = {0, 3};
+  spec.cells = {3, 2, 2};
+  const Mesh m = generateBox(spec);
+  BoxSpec linear = spec;
+  linear.type = type == CellType::Tet10 ? CellType::Tet4 : CellType::Hex8;
+  const Mesh l = generateBox(linear);
+  TEST_EQUALITY(static_cast<double>(m.numNodes()), boxNodeCount(spec));
+  TEST_EQUALITY(m.numNodes(), type == CellType::Tet10 ? 7 * 5 * 5 : 4 * 3 * 3 + 3 * 3 * 3 + 4 * 2 * 3 + 4 * 3 * 2);
+  TEST_EQUALITY(m.numCells(), l.numCells());
+  TEST_EQUALITY(static_cast<double>(m.numCells()), boxCellCount(spec));
+  std::vector<int> used(m.numNodes(), 0);
+  double worst = 0, vol = 0;
+  for (int c = 0; c < m.numCells(); ++c) {
+    const int* n = m.cell(c);
+    for (int a = 0; a < m.nodesPerCell(); ++a) used[n[a]] = 1;
+    for (int a = 0; a < l.nodesPerCell(); ++a)
+      for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(m.coords[n[a]][d] - l.coords[l.cell(c)[a]][d]));
+    for (const auto& e : Tribos::Mesh::detail::edgeNodes(type))
+      for (int d = 0; d < 3; ++d)
+        worst = std::max(worst, std::abs(m.coords[n[e[0]]][d] - 0.5 * (m.coords[n[e[1]]][d] + m.coords[n[e[2]]][d])));
+    vol += cellVolume(l, c);
+  }
+  TEST_COMPARE(worst, <, 1e-15);
+  TEST_EQUALITY(std::count(used.begin(), used.end(), 0), 0);
+  TEST_COMPARE(std::abs(vol - 3.0), <, 1e-12);
+  const size_t facetNodes = type == CellType::Tet10 ? 6 : 8;
+  for (const auto& name : m.faceNames()) {
+    TEST_EQUALITY(m.face(name).size(), l.face(name).size());
+    for (const auto& f : m.face(name)) TEST_EQUALITY(f.nodes.size(), facetNodes);
+  }
+  for (const auto& f : m.face("zmin"))
+    for (int n : f.nodes) TEST_COMPARE(std::abs(m.coords[n][2]), <, 1e-14);
+}
+
+TEUCHOS_UNIT_TEST(Box, Tet10) { checkSecondOrderBox(CellType::Tet10, out, success); }
+TEUCHOS_UNIT_TEST(Box, Hex20) { checkSecondOrderBox(CellType::Hex20, out, success); }
 
 void checkPartitions(CellType type, Teuchos::FancyOStream& out, bool& success) {
   BoxSpec spec;
