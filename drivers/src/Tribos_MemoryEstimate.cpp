@@ -40,13 +40,26 @@ struct SubdomainShape {
   double nodes = 0, surfaceNodes = 0;
 };
 
+// The nodes of a box face of a x b cells of the type's: the corners' lattice,
+// the lattice of half cells (Tet10), or the corners and the edges' middles
+// (Hex20).
+double faceNodeCount(Mesh::CellType type, double a, double b) {
+  switch (type) {
+    case Mesh::CellType::Tet10: return (2 * a + 1) * (2 * b + 1);
+    case Mesh::CellType::Hex20: return (a + 1) * (b + 1) + a * (b + 1) + (a + 1) * b;
+    default: return (a + 1) * (b + 1);
+  }
+}
+
 SubdomainShape subdomainShape(const Mesh::BoxSpec& spec, double totalNodes, const Mesh::DecompositionSpec& dec, int S) {
   SubdomainShape s;
   if (dec.partitioner == "Structured") {
-    double n[3];
-    for (int a = 0; a < 3; ++a) n[a] = double(spec.cells[a]) / dec.grid[a] + 1.0;
-    s.nodes = n[0] * n[1] * n[2];
-    s.surfaceNodes = 2.0 * (n[0] * n[1] + n[1] * n[2] + n[0] * n[2]);
+    Mesh::BoxSpec sub = spec;  // one subdomain's box: the grid divides the cells
+    for (int a = 0; a < 3; ++a) sub.cells[a] = spec.cells[a] / dec.grid[a];
+    const double n[3] = {double(sub.cells[0]), double(sub.cells[1]), double(sub.cells[2])};
+    s.nodes = Mesh::boxNodeCount(sub);
+    s.surfaceNodes = 2.0 * (faceNodeCount(spec.type, n[0], n[1]) + faceNodeCount(spec.type, n[1], n[2]) +
+                            faceNodeCount(spec.type, n[0], n[2]));
   } else {
     s.nodes = 1.1 * totalNodes / S;  // interface nodes are copied
     s.surfaceNodes = 6.0 * std::pow(s.nodes, 2.0 / 3.0);

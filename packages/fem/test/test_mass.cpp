@@ -17,8 +17,11 @@
 #include "Tribos_Assembly.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_Mass.hpp"
+#include "FemTestAlgebra.hpp"
 
 namespace {
+
+using Tribos::Fem::Test::symmetricEigenvalues;
 
 using namespace Tribos;
 using Fem::Point;
@@ -206,37 +209,6 @@ std::vector<double> choleskySolve(const std::vector<double>& L, int n, std::vect
   return b;
 }
 
-// Eigenvalues of a symmetric matrix (cyclic Jacobi rotations), ascending.
-std::vector<double> symmetricEigenvalues(std::vector<double> A, int n) {
-  for (int sweep = 0; sweep < 100; ++sweep) {
-    double off = 0, diag = 0;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) (i == j ? diag : off) += A[i * n + j] * A[i * n + j];
-    if (off <= 1e-30 * diag) break;
-    for (int p = 0; p < n; ++p)
-      for (int q = p + 1; q < n; ++q) {
-        const double apq = A[p * n + q];
-        if (apq == 0) continue;
-        const double theta = (A[q * n + q] - A[p * n + p]) / (2 * apq);
-        const double t = (theta >= 0 ? 1 : -1) / (std::abs(theta) + std::sqrt(theta * theta + 1));
-        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (int k = 0; k < n; ++k) {  // columns p, q
-          const double akp = A[k * n + p], akq = A[k * n + q];
-          A[k * n + p] = c * akp - s * akq;
-          A[k * n + q] = s * akp + c * akq;
-        }
-        for (int k = 0; k < n; ++k) {  // rows p, q
-          const double apk = A[p * n + k], aqk = A[q * n + k];
-          A[p * n + k] = c * apk - s * aqk;
-          A[q * n + k] = s * apk + c * aqk;
-        }
-      }
-  }
-  std::vector<double> ev(n);
-  for (int i = 0; i < n; ++i) ev[i] = A[i * n + i];
-  std::sort(ev.begin(), ev.end());
-  return ev;
-}
 
 Point cross(const Point& a, const Point& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};

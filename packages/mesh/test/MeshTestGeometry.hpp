@@ -4,12 +4,21 @@
 #pragma once
 
 #include <array>
+#include <cstdlib>
+#include <string>
 
 #include "Tribos_Mesh.hpp"
 
 namespace Tribos {
 namespace Mesh {
 namespace Test {
+
+// The source tree (TRIBOS_SOURCE_DIR, set by ctest), where the tests' data
+// files are.
+inline std::string sourceDir() {
+  const char* dir = std::getenv("TRIBOS_SOURCE_DIR");
+  return dir ? dir : ".";
+}
 
 using P = std::array<double, 3>;
 inline P sub(const P& a, const P& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }

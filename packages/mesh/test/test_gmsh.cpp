@@ -23,10 +23,6 @@ namespace {
 using namespace Tribos::Mesh;
 using namespace Tribos::Mesh::Test;
 
-std::string sourceDir() {
-  const char* dir = std::getenv("TRIBOS_SOURCE_DIR");
-  return dir ? dir : ".";
-}
 std::string dataFile(const std::string& name) { return sourceDir() + "/packages/mesh/test/data/" + name; }
 std::string blockMsh() { return sourceDir() + "/input/gmsh_block.msh"; }
 

@@ -25,10 +25,6 @@ namespace {
 using namespace Tribos::Mesh;
 using namespace Tribos::Mesh::Test;
 
-std::string sourceDir() {
-  const char* dir = std::getenv("TRIBOS_SOURCE_DIR");
-  return dir ? dir : ".";
-}
 std::string dataFile(const std::string& name) { return sourceDir() + "/test/data/quadratic/" + name; }
 
 std::string readError(const std::string& path, std::vector<std::string>* warnings = nullptr) {
