@@ -21,6 +21,7 @@
 
 namespace {
 
+using Tribos::Fem::Test::gaussLegendre;
 using Tribos::Fem::Test::symmetricEigenvalues;
 
 using namespace Tribos;
@@ -82,30 +83,8 @@ std::vector<Point> distortedCell(CellType type) {
 // The independent integral over a straight-edged cell: its map from the
 // corners alone (affine for a tetrahedron, trilinear for a hexahedron),
 // integrated by a Gauss-Legendre product rule of the test's own (Newton's
-// method), collapsed (Duffy) on the tetrahedron. With 8 points it is exact
-// far beyond the degrees met here.
-void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.assign(n, 0);
-  w.assign(n, 0);
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(std::acos(-1.0) * (i + 0.75) / (n + 0.5)), dp = 0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1);
-      const double dz = p1 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-16) break;
-    }
-    x[i] = z;
-    w[i] = 2 / ((1 - z * z) * dp * dp);
-  }
-}
-
+// method, FemTestAlgebra.hpp), collapsed (Duffy) on the tetrahedron. With 8
+// points it is exact far beyond the degrees met here.
 struct CellPoint {
   Point x;
   double weight;  // quadrature weight times det J

@@ -21,6 +21,7 @@
 
 namespace {
 
+using Tribos::Fem::Test::gaussLegendre;
 using Tribos::Fem::Test::symmetricEigenvalues;
 
 using namespace Tribos;
@@ -148,29 +149,9 @@ class LagrangeBasis {
 };
 
 // ---------------------------------------------------------------------------
-// Quadrature of the test: Gauss-Legendre by Newton's method, tensor products
-// on [-1,1]^3, and collapsed (Duffy) products on the unit tetrahedron.
-void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.assign(n, 0);
-  w.assign(n, 0);
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(std::acos(-1.0) * (i + 0.75) / (n + 0.5)), dp = 0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1);
-      const double dz = p1 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-16) break;
-    }
-    x[i] = z;
-    w[i] = 2 / ((1 - z * z) * dp * dp);
-  }
-}
+// Quadrature of the test: Gauss-Legendre by Newton's method
+// (FemTestAlgebra.hpp), tensor products on [-1,1]^3, and collapsed (Duffy)
+// products on the unit tetrahedron.
 
 std::vector<Fem::QuadraturePoint> testHexRule(int n) {
   std::vector<double> x, w;
