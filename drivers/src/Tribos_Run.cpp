@@ -700,9 +700,11 @@ StepReport stepReport(const Teuchos::ParameterList& params, int step, double tim
   s.iterations = sol.result.iterations;
   s.n_A = sol.result.n_A;
   s.kkt = sol.result.kkt;
-  if (report.outer)
-    s.outerAlgorithm = report.outer->name, s.handover = report.outer->handover,
+  if (report.outer) {
+    s.outerAlgorithm = report.outer->name;
+    s.handover = report.outer->handover;
     s.preconditioner = report.outer->preconditioner;
+  }
   if (params.sublist("Contact").get<bool>("Enabled")) {
     const auto& c = sol.result.counts;
     s.contact = ContactCountReport{c.nodes, c.active, c.stick, c.slip};

@@ -100,26 +100,23 @@ std::array<double, 6> stressAt(const std::vector<double>& dN, int npc, const std
   return sigma;
 }
 
-// A second-order cell's map must not fold anywhere. Its quadrature points do
-// not see a fold at a corner (a mid-edge node moved along its edge by more
-// than a quarter of the edge from the middle), so det J is checked at the
-// nodes as well.
+}  // namespace
+
 void requirePositiveJacobianAtNodes(Mesh::CellType type, const std::vector<Point>& X) {
+  if (!Mesh::isSecondOrder(type)) return;
   const int npc = Mesh::nodesPerCell(type);
   const std::vector<Point> nodes = referenceNodes(type);
   double N[kMaxNodesPerCell], dNdxi[kMaxNodesPerCell][3], J[3][3];
   for (int a = 0; a < npc; ++a) {
     referenceShape(type, nodes[a], N, dNdxi);
     isoparametricJacobian(dNdxi, X.data(), npc, J);
-    const double det = invert3(J);
+    const double det = determinant3(J);
     TRIBOS_REQUIRE(det > 0, "inverted or degenerate " << Mesh::cellTypeName(type) << " cell: det J = " << det
                                                       << " <= 0 at its node " << a << " " << pointText(X[a])
                                                       << "; its map from the reference cell folds there (a "
                                                          "mid-edge node too far from the middle of its edge?)");
   }
 }
-
-}  // namespace
 
 double shapeGradients(Mesh::CellType type, const std::vector<Point>& X, const Point& xi, std::vector<double>& dN) {
   requireNodes(type, X);
@@ -153,7 +150,7 @@ std::vector<double> elementStiffness(Mesh::CellType type, const std::vector<Poin
     return Ke;
   }
   requireNodes(type, X);
-  if (Mesh::isSecondOrder(type)) requirePositiveJacobianAtNodes(type, X);
+  requirePositiveJacobianAtNodes(type, X);
   for (const QuadraturePoint& q : cellQuadrature(type)) {
     const double det = shapeGradients(type, X, q.xi, dN);
     addBtDB(strainDisplacement(dN, npc), D, q.weight * det, n, Ke);

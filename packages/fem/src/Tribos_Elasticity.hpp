@@ -53,6 +53,12 @@ std::vector<double> elementStiffness(Mesh::CellType type, const std::vector<Poin
 // type and the point when det J <= 0 (an inverted or degenerate cell).
 double shapeGradients(Mesh::CellType type, const std::vector<Point>& X, const Point& xi, std::vector<double>& dN);
 
+// Refuses (Tribos::Error naming the node) a Tet10 or Hex20 cell whose map
+// folds at one of its nodes: its quadrature points do not see a fold at a
+// corner (a mid-edge node moved along its edge by more than a quarter of the
+// edge from the middle). Nothing to check for Tet4 and Hex8.
+void requirePositiveJacobianAtNodes(Mesh::CellType type, const std::vector<Point>& X);
+
 // Shape function values at reference point xi (Tribos_ShapeFunctions.hpp:
 // Tet4, Tet10 on the unit tetrahedron (0,0,0),(1,0,0),(0,1,0),(0,0,1); Hex8,
 // Hex20 on [-1,1]^3).

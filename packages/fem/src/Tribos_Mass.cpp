@@ -34,8 +34,7 @@ std::vector<double> scalarMass(Mesh::CellType type, const std::vector<Point>& X,
   }
   // A second-order cell folded at a corner may show det J > 0 at every
   // quadrature point; the stiffness refuses it, and so does its mass.
-  if (Mesh::isSecondOrder(type))
-    for (const Point& xi : referenceNodes(type)) shapeGradients(type, X, xi, dN);
+  requirePositiveJacobianAtNodes(type, X);
   for (const QuadraturePoint& q : massQuadrature(type)) {
     const double w = rho * q.weight * shapeGradients(type, X, q.xi, dN);
     const std::vector<double> N = shapeFunctions(type, q.xi);
