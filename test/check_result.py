@@ -128,6 +128,9 @@ if a.total_normal is not None:
 # or none for the rigid plane. w = u_s - sum N_i u_i, normal n: the written
 # one, which must be (0, 0, -1) against the plane z = -gap (--gap); the
 # initial gap d is the geometric one, (x_p - x_s).n with x_p = sum N_i x_i.
+# On a second-order slave surface a mid-edge node's row acts on its value in
+# mortar's transformed basis, sum S_b u_b over the nodes "slave_node" with
+# the weights "slave_weight" (x_s likewise), where the file lists them.
 k = s["kkt"]
 Usc, Psc = max(k["displacement_scale"], 1e-300), max(k["force_scale"], 1e-300)
 if "node" in c:
@@ -139,7 +142,15 @@ n_c = len(rows)
 normal = c["normal"][:] if "normal" in c else np.tile([0.0, 0.0, -1.0], (n_c, 1))
 mnode = c["master_node"][:].astype(int) if "master_node" in c else -np.ones((n_c, 4), dtype=int)
 mweight = c["master_weight"][:] if "master_weight" in c else np.zeros((n_c, 4))
+snode = c["slave_node"][:].astype(int) if "slave_node" in c else -np.ones((n_c, 1), dtype=int)
+sweight = c["slave_weight"][:] if "slave_weight" in c else np.zeros((n_c, 1))
 W = U[rows].copy()
+Xs = X[rows].copy()
+for j in np.flatnonzero((snode >= 0).any(axis=1)):
+    on = snode[j] >= 0
+    W[j] = (sweight[j][on, None] * U[snode[j][on]]).sum(axis=0)
+    Xs[j] = (sweight[j][on, None] * X[snode[j][on]]).sum(axis=0)
+check(np.abs(sweight.sum(axis=1)[(snode >= 0).any(axis=1)] - 1).max(initial=0) <= 1e-12, "slave weights sum to 1")
 d = np.full(n_c, a.gap)
 for j in range(n_c):
     has = mnode[j] >= 0
@@ -150,7 +161,7 @@ for j in range(n_c):
         continue
     W[j] -= (mweight[j][has, None] * U[mnode[j][has]]).sum(axis=0)
     xp = (mweight[j][has, None] * X[mnode[j][has]]).sum(axis=0)
-    d[j] = (xp - X[rows[j]]) @ normal[j]
+    d[j] = (xp - Xs[j]) @ normal[j]
 check(np.abs(mweight.sum(axis=1)[(mnode >= 0).any(axis=1)] - 1).max(initial=0) <= 1e-12, "master weights sum to 1")
 wn = (W * normal).sum(axis=1)
 gap_left = d - wn

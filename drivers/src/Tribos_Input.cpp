@@ -1012,29 +1012,25 @@ void checkScales(const ParameterList& params, const Mesh::Mesh& mesh) {
 
 namespace {
 
-// Contact (node-to-segment and mortar, the search's facets) knows the 3- and
-// 4-node facets of first-order cells only: a run that defines contact on a
-// mesh (`where`) of second-order cells is refused, naming its pair.
-void requireFirstOrderContact(Mesh::CellType type, const std::string& where, const ParameterList& params) {
+// Contact on second-order surfaces is mortar's (its transformed basis,
+// Tribos_Mortar.hpp) or a rigid plane's: a node-to-segment pair between two
+// bodies of a mesh (`where`) of second-order cells is refused, naming it.
+void requireMortarOnSecondOrder(Mesh::CellType type, const std::string& where, const ParameterList& params) {
   const auto& contact = params.sublist("Contact");
   if (!contact.get<bool>("Enabled") || !Mesh::isSecondOrder(type)) return;
   const auto& pairs = contact.sublist("Pairs");
-  std::ostringstream pair;
-  if (pairs.numParams() == 0) {
-    pair << "the rigid plane of \"Contact/Face\" = \"" << contact.get<std::string>("Face") << "\"";
-  } else {
-    const std::string name = pairs.name(pairs.begin());
+  for (auto it = pairs.begin(); it != pairs.end(); ++it) {
+    const std::string name = pairs.name(it);
     const auto& p = pairs.sublist(name);
     const std::string master = p.get<std::string>("Master Surface");
-    pair << (p.get<std::string>("Type") == "Glued" ? "glued pair" : "contact pair") << " \"Contact/Pairs/" << name
-         << "\" (slave surface '" << p.get<std::string>("Slave Surface") << "', "
-         << (master.empty() ? std::string("a rigid plane") : "master surface '" + master + "'") << ")";
-    if (pairs.numParams() > 1) pair << " and " << pairs.numParams() - 1 << " more pair(s)";
+    if (master.empty() || p.get<std::string>("Discretization") != "Node To Segment") continue;
+    throw Error("parameter \"Contact/Pairs/" + name + "/Discretization\" = \"Node To Segment\" (slave surface '" +
+                p.get<std::string>("Slave Surface") + "', master surface '" + master + "'): " + where + " has " +
+                Mesh::cellTypeName(type) + " cells, whose surfaces are " +
+                (type == Mesh::CellType::Tet10 ? "6-node triangles" : "8-node quadrilaterals") +
+                "; their corner nodes take no share, or a negative one, of a uniform pressure, which one "
+                "node-to-segment row per node cannot transmit: use \"Mortar\" (the default)");
   }
-  throw Error(pair.str() + ": " + where + " has " + Mesh::cellTypeName(type) + " cells, whose surfaces are " +
-              (type == Mesh::CellType::Tet10 ? "6-node triangles" : "8-node quadrilaterals") +
-              "; contact on second-order surfaces is not supported yet (mesh the contact bodies with first-order "
-              "cells, Tet4 or Hex8: gmsh -order 1)");
 }
 
 }  // namespace
@@ -1060,7 +1056,7 @@ void checkMeshFaces(const Mesh::Mesh& mesh, const ParameterList& params) {
     TRIBOS_REQUIRE(found, "parameter \"Bodies/" << bodies.name(it) << "\": " << where << " has no body of that name; "
                                                 << "its bodies are: " << valid);
   }
-  requireFirstOrderContact(mesh.type, where, params);
+  requireMortarOnSecondOrder(mesh.type, where, params);
 }
 
 namespace {
@@ -1111,7 +1107,7 @@ Mesh::BoxSpec boxSpec(const ParameterList& params) {
   // for the box before any work.
   if (meshFile(params).empty()) {
     Mesh::requireUsableBox(spec, "the box (Mesh/X Range, Y Range, Z Range)");
-    requireFirstOrderContact(spec.type, "the box (\"Mesh/Element\" = \"" + Mesh::cellTypeName(spec.type) + "\")",
+    requireMortarOnSecondOrder(spec.type, "the box (\"Mesh/Element\" = \"" + Mesh::cellTypeName(spec.type) + "\")",
                              params);
   }
   return spec;

@@ -187,9 +187,16 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
   IO::Field masterNode{"master_node", width, {}, IO::FieldShape::Matrix},
       masterWeight{"master_weight", width, {}, IO::FieldShape::Matrix};
   for (int s : r.status) status.values.push_back(s);
+  // The slave side of rows on second-order surfaces (a mid-edge node's
+  // transformed value, three slave nodes): written when a row of the run has one.
+  int slaveSideHere = 0, slaveSide = 0;
+  for (const auto& c : r.constraint) slaveSideHere = std::max(slaveSideHere, static_cast<int>(c.slave.size()));
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, slaveSideHere, Teuchos::outArg(slaveSide));
+  IO::Field slaveNode{"slave_node", slaveSide, {}, IO::FieldShape::Matrix},
+      slaveWeight{"slave_weight", slaveSide, {}, IO::FieldShape::Matrix};
   std::vector<int> asked(r.nodes);
   for (const auto& c : r.constraint)
-    for (const auto& m : c.master) asked.push_back(m.first);
+    for (const auto& [n, weight] : c.terms()) asked.push_back(n);
   const auto answers = disc.askOwners(asked, 4,
                                       [&](int n, double* out) {
                                         out[0] = static_cast<double>(disc.nodeIndex()[n]);
@@ -211,10 +218,15 @@ IO::PointSet contactPointSet(const Mesh::Discretization& disc, const Contact::Co
       masterNode.values.push_back(i < c.master.size() ? known.at(c.master[i].first)[0] : -1);
       masterWeight.values.push_back(i < c.master.size() ? c.master[i].second : 0.0);
     }
+    for (size_t i = 0; i < static_cast<size_t>(slaveSide); ++i) {
+      slaveNode.values.push_back(i < c.slave.size() ? known.at(c.slave[i].first)[0] : -1);
+      slaveWeight.values.push_back(i < c.slave.size() ? c.slave[i].second : 0.0);
+    }
   }
   ps.fields = {normal,        normalTraction, tangential,       tangentialTraction, slip,
                slipIncrement, slipAmplitude,  dissipatedEnergy, status,             gap,
                direction,     pair,           node,             masterNode,         masterWeight};
+  if (slaveSide > 0) ps.fields.insert(ps.fields.end(), {slaveNode, slaveWeight});
   return ps;
 }
 

@@ -10,6 +10,12 @@ int N_s dA (over the contact facets around it: the boundary faces of its
 body's cells whose nodes are all contact nodes) equals P to T relative
 (default 1e-8). Contact nodes are those of every pair, on the rigid plane
 as between the bodies.
+
+On second-order cells (Tet10, Hex20; flat facets) the area is that of
+mortar's transformed basis, int N~_s dA with a fifth of each mid-edge
+function moved to its edge's corners: 2A/15 at a 6-node triangle's corners
+and A/5 at its mid-edge nodes, A/20 and A/5 on an 8-node parallelogram.
+The written normal_traction must carry P too.
 """
 import argparse
 import os
@@ -31,6 +37,9 @@ failed = rc != 0
 
 HEX_FACES = [(0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
 TET_FACES = [(0, 1, 2), (0, 1, 3), (1, 2, 3), (0, 2, 3)]
+# The mid-edge nodes of the written second-order cells (VTK's order).
+TET10_EDGES = [(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)]
+HEX20_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
 G = 1 / np.sqrt(3)
 
 
@@ -56,23 +65,38 @@ body = h["cells/body"][:].astype(int).ravel() if "cells/body" in h else np.zeros
 c = h["points/contact"]
 rows = c["node"][:].astype(int).ravel()
 force = c["normal_force"][:].ravel()
-faces = HEX_FACES if T.shape[1] == 8 else TET_FACES
+corners = 8 if T.shape[1] in (8, 20) else 4
+faces = HEX_FACES if corners == 8 else TET_FACES
+second_order = T.shape[1] > corners
+edges = HEX20_EDGES if corners == 8 else TET10_EDGES
 # The contact facets: faces of a body's cells that no other cell of the body
 # shares (boundary faces) and whose nodes are all contact nodes.
 contact = set(rows.tolist())
 seen = {}
+mids = {}  # a facet's corners -> the mid-edge nodes of its edges
 for cell, b in zip(T, body):
+    mid = {frozenset((cell[i], cell[j])): cell[corners + k] for k, (i, j) in enumerate(edges)} if second_order else {}
     for f in faces:
         nodes = cell[list(f)]
         if contact.issuperset(nodes.tolist()):
             key = (b, tuple(sorted(nodes.tolist())))
             seen[key] = None if key in seen else nodes
+            if second_order:
+                mids[key] = [mid[frozenset((nodes[i], nodes[(i + 1) % len(nodes)]))] for i in range(len(nodes))]
 area = {}
-for (b, _), nodes in seen.items():
+for key, nodes in seen.items():
     if nodes is None:
         continue
-    for n, w in zip(nodes, nodal_areas(X[nodes])):
-        area[(n, b)] = area.get((n, b), 0.0) + w
+    b = key[0]
+    w = nodal_areas(X[nodes])
+    if second_order:
+        A = w.sum()  # flat facet: its area
+        share = (2 / 15, 1 / 5) if len(nodes) == 3 else (1 / 20, 1 / 5)
+        w = np.full(len(nodes), share[0] * A)
+        for n in mids[key]:
+            area[(n, b)] = area.get((n, b), 0.0) + share[1] * A
+    for n, wn in zip(nodes, w):
+        area[(n, b)] = area.get((n, b), 0.0) + wn
 node_body = {}
 for cell, b in zip(T, body):
     for n in cell:
@@ -82,4 +106,8 @@ err = np.abs(p - a.pressure).max() / abs(a.pressure)
 ok = err <= a.tol
 print(("ok: " if ok else "FAILED: ") + f"{len(p)} contact nodes carry the pressure {a.pressure:g}: "
       f"max |p_s - p| / p = {err:.3g} <= {a.tol}")
-sys.exit(1 if failed or not ok else 0)
+written = c["normal_traction"][:].ravel()
+err_t = np.abs(written - a.pressure).max() / abs(a.pressure)
+ok_t = err_t <= a.tol
+print(("ok: " if ok_t else "FAILED: ") + f"the written normal_traction: max |t_s - p| / p = {err_t:.3g} <= {a.tol}")
+sys.exit(1 if failed or not ok or not ok_t else 0)

@@ -806,6 +806,7 @@ std::vector<Feti::ContactConstraint> AssembledFeti::contactConstraints(const Con
   for (auto& cc : constraints) {
     cc.node = surfaceNodes_[cc.node];
     for (auto& m : cc.master) m.first = surfaceNodes_[m.first];
+    for (auto& m : cc.slave) m.first = surfaceNodes_[m.first];
   }
   // The first copy of every surface node, from its owner.
   std::vector<int> first;

@@ -15,6 +15,7 @@
 #include "Tribos_Mortar.hpp"
 #include "Tribos_NodalVector.hpp"
 #include "Tribos_RigidMotions.hpp"
+#include "Tribos_ShapeFunctions.hpp"
 #include "Tribos_Vec3.hpp"
 
 namespace Tribos {
@@ -35,6 +36,7 @@ struct Projection {
   double distance = 0;
   Vec3 point{}, outwardNormal{};
   std::vector<std::pair<int, double>> weights;  // facet node, shape function value
+  Point2 xi{};  // the reference coordinates of the point (Fem::facetShape's)
 };
 
 // Triangle: the plane's closest point in barycentric coordinates.
@@ -46,6 +48,7 @@ Projection projectOnTriangle(const Vec3& x, const std::vector<int>& v, const std
   p.onFacet = s >= -kInside && t >= -kInside && s + t <= 1 + kInside;
   const double sc = std::clamp(s, 0.0, 1.0), tc = std::clamp(t, 0.0, 1.0 - sc);
   p.weights = {{v[0], 1 - sc - tc}, {v[1], sc}, {v[2], tc}};
+  p.xi = {sc, tc};
   for (int d = 0; d < 3; ++d) p.point[d] = a[d] + sc * e1[d] + tc * e2[d];
   p.outwardNormal = normalized(cross(e1, e2));
   return p;
@@ -84,16 +87,38 @@ Projection projectOnQuad(const Vec3& x, const std::vector<int>& v, const std::ve
   out.point = p;
   out.outwardNormal = normalized(cross(dxi, deta));
   for (int i = 0; i < 4; ++i) out.weights.push_back({v[i], (1 + sx[i] * xi) * (1 + sy[i] * eta) / 4});
+  out.xi = {xi, eta};
   return out;
 }
 
+// A facet of 3 or 4 nodes, or a second-order one: projected on the flat
+// facet of its corners, its weights and point then those of the facet's
+// own shape functions at the same reference coordinates (the closest point
+// itself on a flat facet, whose mid-edge nodes lie on its plane).
+Projection projectOnFacet(const Vec3& x, const Mesh::Facet& facet, const Mesh::Mesh& mesh) {
+  const auto& v = facet.nodes;
+  const int corners = v.size() == 3 || v.size() == 6 ? 3 : 4;
+  const std::vector<int> c(v.begin(), v.begin() + corners);
+  Projection p = corners == 3 ? projectOnTriangle(x, c, mesh.coords) : projectOnQuad(x, c, mesh.coords);
+  if (static_cast<int>(v.size()) == corners) return p;
+  const SurfaceElement e(facet, mesh);
+  double N[Fem::kMaxNodesPerFacet], d1[Fem::kMaxNodesPerFacet], d2[Fem::kMaxNodesPerFacet];
+  e.shape().evaluate(p.xi, N, d1, d2);
+  p.weights.clear();
+  for (size_t a = 0; a < v.size(); ++a) p.weights.push_back({v[a], N[a]});
+  p.point = e.position(p.xi);
+  p.outwardNormal = e.normal(p.xi);
+  return p;
+}
+
 // Weights below round-off are dropped (a node-matching slave node gets the
-// one master node it sits on) and the rest rescaled to sum 1.
+// one master node it sits on) and the rest rescaled to sum 1 (those of a
+// second-order facet may be negative).
 std::vector<std::pair<int, double>> significant(const std::vector<std::pair<int, double>>& w) {
   std::vector<std::pair<int, double>> out;
   double sum = 0;
   for (const auto& [node, value] : w)
-    if (value > 1e-10) out.push_back({node, value}), sum += value;
+    if (std::abs(value) > 1e-10) out.push_back({node, value}), sum += value;
   for (auto& e : out) e.second /= sum;
   return out;
 }
@@ -153,6 +178,12 @@ struct MasterSurface {
   }
 };
 
+bool secondOrderFace(const Mesh::Mesh& mesh, const std::string& face) {
+  for (const auto& f : mesh.face(face))
+    if (surfaceShape(static_cast<int>(f.nodes.size())).secondOrder()) return true;
+  return false;
+}
+
 void requireNotOnMaster(const MasterSurface& surface, const ContactPair& pair, int s) {
   TRIBOS_REQUIRE(!surface.isMasterNode[s], "contact pair '" << pair.name << "': slave node " << s << " of '" << pair.slave
                                                             << "' is also a node of the master surface '" << pair.master
@@ -169,8 +200,7 @@ bool closestPoint(const Mesh::Mesh& mesh, const MasterSurface& surface, const Co
   best.distance = std::numeric_limits<double>::infinity();
   for (size_t f = 0; f < surface.facets.size(); ++f) {
     if (surface.boxes[f].distance(x) > best.distance) continue;
-    const auto& v = surface.facets[f].nodes;
-    Projection p = v.size() == 3 ? projectOnTriangle(x, v, mesh.coords) : projectOnQuad(x, v, mesh.coords);
+    Projection p = projectOnFacet(x, surface.facets[f], mesh);
     if (!p.onFacet) continue;
     p.distance = norm(minus(p.point, x));
     if (p.distance < best.distance) best = std::move(p);
@@ -201,10 +231,31 @@ void slaveOnMaster(const Mesh::Mesh& mesh, const ContactPair& pair, int index, c
 // node, so a partly covered node's int psi_s dA may be small or negative.
 constexpr double kMortarCovered = 0.5;
 
+// The slave side of the rows of a pair: the transformed value of each
+// mid-edge node of a second-order slave surface (transformedNodes; empty
+// for first-order ones), and the reference position the row sees there.
+struct SlaveSide {
+  std::map<int, std::vector<std::pair<int, double>>> transformed;
+  SlaveSide(const Mesh::Mesh& mesh, const std::string& face) : transformed(transformedNodes(mesh, face)) {}
+  std::vector<std::pair<int, double>> of(int s) const {
+    const auto it = transformed.find(s);
+    return it == transformed.end() ? std::vector<std::pair<int, double>>{} : it->second;
+  }
+  Vec3 position(const Mesh::Mesh& mesh, int s) const {
+    const auto it = transformed.find(s);
+    if (it == transformed.end()) return mesh.coords[s];
+    Vec3 x{0, 0, 0};
+    for (const auto& [b, weight] : it->second)
+      for (int d = 0; d < 3; ++d) x[d] += weight * mesh.coords[b][d];
+    return x;
+  }
+};
+
 // The mortar row of one slave node divided by D_s: weights M_sm / D_s (those
 // below round-off dropped, the rest summing to 1), the gap of the row
 // applied to the reference positions, the area D_s.
-ContactConstraint mortarConstraint(const Mesh::Mesh& mesh, const MortarNode& node, int index, const ContactPair& pair) {
+ContactConstraint mortarConstraint(const Mesh::Mesh& mesh, const MortarNode& node, int index, const ContactPair& pair,
+                                   const SlaveSide& side) {
   const double D = node.covered();
   std::vector<std::pair<int, double>> weights;
   double sum = 0;
@@ -215,20 +266,23 @@ ContactConstraint mortarConstraint(const Mesh::Mesh& mesh, const MortarNode& nod
     w /= sum;
     for (int d = 0; d < 3; ++d) xp[d] += w * mesh.coords[m][d];
   }
-  const double gap = dot(minus(xp, mesh.coords[node.node]), node.normal);
-  return constraint(node.node, index, pair, node.normal, gap, std::move(weights), D);
+  const double gap = dot(minus(xp, side.position(mesh, node.node)), node.normal);
+  ContactConstraint c = constraint(node.node, index, pair, node.normal, gap, std::move(weights), D);
+  c.slave = side.of(node.node);
+  return c;
 }
 
 // Mortar constraints of the slave nodes of one pair; nodes covered too
-// little take node-to-segment rows (`fallback`).
+// little take node-to-segment rows (`fallback`), on the same slave side.
 void slaveOnMasterMortar(const Mesh::Mesh& mesh, const ContactPair& pair, int index, const std::vector<int>& slaveNodes,
                          std::vector<ContactConstraint>& out, std::vector<int>& leftOut, std::vector<int>& fallback) {
   const MasterSurface surface(mesh, pair.master);
   for (int s : slaveNodes) requireNotOnMaster(surface, pair, s);
+  const SlaveSide side(mesh, pair.slave);
   const std::vector<MortarNode> coupling = mortarCoupling(mesh, pair.slave, pair.master, pair.searchDistance);
   for (const MortarNode& node : coupling) {
     if (node.covered() >= kMortarCovered * node.area) {
-      out.push_back(mortarConstraint(mesh, node, index, pair));
+      out.push_back(mortarConstraint(mesh, node, index, pair, side));
       continue;
     }
     Projection best;
@@ -238,8 +292,9 @@ void slaveOnMasterMortar(const Mesh::Mesh& mesh, const ContactPair& pair, int in
     }
     fallback.push_back(node.node);
     const Vec3 n = {-best.outwardNormal[0], -best.outwardNormal[1], -best.outwardNormal[2]};
-    out.push_back(constraint(node.node, index, pair, n, dot(minus(best.point, mesh.coords[node.node]), n),
+    out.push_back(constraint(node.node, index, pair, n, dot(minus(best.point, side.position(mesh, node.node)), n),
                              significant(best.weights), node.area));
+    out.back().slave = side.of(node.node);
   }
 }
 
@@ -249,20 +304,23 @@ double planeGap(const Mesh::Mesh& mesh, const ContactPair& pair, int s) {
   return dot(minus(mesh.coords[s], pair.planePoint), pair.planeNormal);
 }
 
-// A rigid plane: node rows with the node's area int N_s dA, for both
+// A rigid plane: node rows with the node's area int N~_s dA, for both
 // discretizations (the plane's gap is linear in x, so the weighted gap of
-// mortar, int psi_s g dA, is D_s g(x_s), and D_s = int N_s dA).
+// mortar, int psi_s g dA, is D_s g(x~_s), and D_s = int N~_s dA; x~_s = x_s
+// but at the mid-edge nodes of second-order facets, Tribos_Mortar.hpp).
 void slaveOnPlane(const Mesh::Mesh& mesh, const ContactPair& pair, int index, const std::vector<int>& slaveNodes,
                   std::vector<ContactConstraint>& out, std::vector<int>& leftOut) {
   const Vec3& m = pair.planeNormal;
-  const std::vector<double> area = Fem::faceNodalAreas(mesh, pair.slave);
+  const std::vector<double> area = transformedAreas(mesh, pair.slave);
+  const SlaveSide side(mesh, pair.slave);
   for (int s : slaveNodes) {
-    const double gap = planeGap(mesh, pair, s);
+    const double gap = dot(minus(side.position(mesh, s), pair.planePoint), m);
     if (std::abs(gap) > pair.searchDistance) {
       leftOut.push_back(s);
       continue;
     }
     out.push_back(constraint(s, index, pair, {-m[0], -m[1], -m[2]}, gap, {}, area[s]));
+    out.back().slave = side.of(s);
   }
 }
 
@@ -349,6 +407,11 @@ std::vector<ContactConstraint> contactConstraints(const Mesh::Mesh& mesh, const 
                           << ") must be a unit vector and its point finite");
     } else {
       mesh.face(pair.master);
+      TRIBOS_REQUIRE(pair.discretization == ContactDiscretization::Mortar || !secondOrderFace(mesh, pair.slave),
+                     name << ": the slave surface '" << pair.slave << "' has second-order facets, whose corner "
+                          << "nodes carry no share (6-node triangles) or a negative one (8-node quadrilaterals) of a "
+                             "uniform pressure: one node-to-segment row per node cannot transmit it; use "
+                             "Discretization = Mortar (its transformed basis, docs/contact.md)");
     }
     const std::vector<int> slaveNodes = mesh.faceNodes(pair.slave);
     for (int s : slaveNodes) {

@@ -134,7 +134,7 @@ void requireNoPrescribedSlip(const std::vector<Feti::ContactConstraint>& contact
   if (dirichlet.empty()) return;
   for (const auto& c : contact)
     if (!c.glued && frictionOfPair(friction, c.pair).law != FrictionLaw::Frictionless)
-      Fem::requireNoPrescribedSlip(dirichlet, c.node, position(c.node), c.normal, c.master);
+      Fem::requireNoPrescribedSlip(dirichlet, c.node, position(c.node), c.normal, c.terms());
 }
 
 FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const PairFriction& friction, double normPFP)
@@ -437,6 +437,7 @@ std::vector<Contact::ContactNodeForce> bondedForces(const Feti::FetiProblem& p, 
     f.bonded = true;
     f.normal = cc.normal;
     f.master = cc.master;
+    f.slave = cc.slave;
     f.normalForce = m[0];  // the force on the slave node is -B'lambda
     for (int d = 0; d < 3; ++d) f.tangentialForce[d] = -(m[1] * cc.t1[d] + m[2] * cc.t2[d]);
     out.push_back(f);

@@ -4,6 +4,7 @@
 #include <Teuchos_SerialDenseSolver.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -28,13 +29,17 @@ bool mayOverlap(const SurfaceElement& e, const Vec3& n0, const SurfaceElement& m
   return norm(across) <= size * (1 + 1e-12) && std::abs(along) <= reach + size;
 }
 
-// The master facet's nodes projected along n0 onto e, in e's reference
-// coordinates; empty when a node does not project or all lie beyond `reach`.
+// The master facet's corners projected along n0 onto e, in e's reference
+// coordinates; empty when a corner does not project or all lie beyond
+// `reach`. A curved second-order master facet is so cut along the chords of
+// its edges, which its neighbours share: the segments still tile e.
 std::vector<Point2> projectedPolygon(const SurfaceElement& e, const Vec3& n0, const SurfaceElement& m,
                                      const Mesh::Mesh& mesh, double reach) {
   std::vector<Point2> poly;
   double nearest = std::numeric_limits<double>::infinity();
-  for (int node : m.nodes()) {
+  const int corners = static_cast<int>(m.shape().corners().size());
+  for (int a = 0; a < corners; ++a) {
+    const int node = m.nodes()[a];
     Point2 xi;
     if (!e.project(mesh.coords[node], n0, xi)) return {};
     nearest = std::min(nearest, norm(minus(mesh.coords[node], e.position(xi))));
@@ -45,18 +50,20 @@ std::vector<Point2> projectedPolygon(const SurfaceElement& e, const Vec3& n0, co
 }
 
 // M_jk += int over the segment of psi_j N_k dA for the slave nodes j of e
-// and the master nodes k of m, and normal_j += int N_j n_m dA (n_m the
-// master's outward normal); the segment in e's reference coordinates.
+// and the master nodes k of m, and normal_j += int N~_j n_m dA (n_m the
+// master's outward normal, N~ the slave's transformed basis); the segment
+// in e's reference coordinates.
 void integrateSegment(const SurfaceElement& e, const std::vector<std::vector<double>>& A, const Vec3& n0,
                       const SurfaceElement& m, const std::vector<Point2>& segment,
                       std::vector<std::unordered_map<int, double>>& M, std::vector<Vec3>& normal) {
   const int ns = e.size(), nm = m.size();
   double Ns[kMaxNodes], Nm[kMaxNodes], d1[kMaxNodes], d2[kMaxNodes];
+  const int degree = std::max(e.shape().productDegree(), m.shape().productDegree());
   integratePolygon(segment, [&](const Point2& xi, double w) {
     Point2 zeta;
     if (!m.project(e.position(xi), n0, zeta)) return;
     const double dA = w * e.jacobian(xi);
-    e.shape().evaluate(xi, Ns, d1, d2);
+    transformedShape(e.shape(), xi, Ns);
     m.shape().evaluate(zeta, Nm, d1, d2);
     const Vec3 outward = m.normal(zeta);
     for (int j = 0; j < ns; ++j) {
@@ -65,10 +72,46 @@ void integrateSegment(const SurfaceElement& e, const std::vector<std::vector<dou
       for (int k = 0; k < ns; ++k) psi += A[j][k] * Ns[k];
       for (int k = 0; k < nm; ++k) M[j][m.nodes()[k]] += psi * Nm[k] * dA;
     }
-  });
+  }, degree);
 }
 
 }  // namespace
+
+void transformedShape(const SurfaceShape& shape, const Point2& xi, double* N) {
+  double d1[kMaxNodes], d2[kMaxNodes];
+  shape.evaluate(xi, N, d1, d2);
+  if (!shape.secondOrder()) return;
+  const int corners = static_cast<int>(shape.corners().size());
+  for (int c = 0; c < corners; ++c) N[c] += kMidEdgeShare * (N[corners + c] + N[corners + (c + corners - 1) % corners]);
+  for (int m = corners; m < shape.numNodes(); ++m) N[m] *= 1 - 2 * kMidEdgeShare;
+}
+
+std::map<int, std::vector<std::pair<int, double>>> transformedNodes(const Mesh::Mesh& mesh, const std::string& face) {
+  std::map<int, std::vector<std::pair<int, double>>> out;
+  const double alpha = kMidEdgeShare, keep = 1 - 2 * kMidEdgeShare;
+  for (const auto& f : mesh.face(face)) {
+    const int corners = static_cast<int>(surfaceShape(static_cast<int>(f.nodes.size())).corners().size());
+    for (int k = corners; k < static_cast<int>(f.nodes.size()); ++k) {
+      const int a = f.nodes[k - corners], b = f.nodes[(k - corners + 1) % corners];
+      out[f.nodes[k]] = {{f.nodes[k], 1 / keep}, {a, -alpha / keep}, {b, -alpha / keep}};
+    }
+  }
+  return out;
+}
+
+std::vector<double> transformedAreas(const Mesh::Mesh& mesh, const std::string& face) {
+  std::vector<double> area(mesh.numNodes(), 0.0);
+  double N[kMaxNodes];
+  for (const auto& f : mesh.face(face)) {
+    const SurfaceElement e(f, mesh);
+    integratePolygon(e.shape().corners(), [&](const Point2& xi, double w) {
+      transformedShape(e.shape(), xi, N);
+      const double dA = w * e.jacobian(xi);
+      for (int j = 0; j < e.size(); ++j) area[e.nodes()[j]] += N[j] * dA;
+    }, e.shape().productDegree());
+  }
+  return area;
+}
 
 double MortarNode::covered() const {
   double sum = 0;
@@ -79,13 +122,13 @@ double MortarNode::covered() const {
 DualBasis dualBasis(const SurfaceElement& e) {
   const int n = e.size();
   Teuchos::SerialDenseMatrix<int, double> mass(n, n);
-  double N[kMaxNodes], d1[kMaxNodes], d2[kMaxNodes];
+  double N[kMaxNodes];
   integratePolygon(e.shape().corners(), [&](const Point2& xi, double w) {
-    e.shape().evaluate(xi, N, d1, d2);
+    transformedShape(e.shape(), xi, N);
     const double dA = w * e.jacobian(xi);
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k) mass(j, k) += N[j] * N[k] * dA;
-  });
+  }, e.shape().productDegree());
   std::vector<double> D(n, 0.0);
   for (int j = 0; j < n; ++j)
     for (int k = 0; k < n; ++k) D[j] += mass(j, k);

@@ -28,8 +28,26 @@
 // in e's reference coordinates (Tribos_MortarElement.hpp). Geometry is the
 // reference configuration.
 //
+// Second-order slave facets (6-node triangles, 8-node quadrilaterals): a
+// corner's quadratic function has int N_c dA = 0 (flat 6-node triangle) or
+// -A/12 (8-node quadrilateral), so its dual function would carry no force,
+// or a tensile one, under a uniform pressure. As Popp, Wohlmuth, Gee and
+// Wall (2012) do, the slave side is written in the transformed basis
+//
+//   N~_c = N_c + alpha sum_{m on an edge of c} N_m,   N~_m = (1 - 2 alpha) N_m,
+//
+// alpha = kMidEdgeShare = 1/5, which keeps the partition of unity and makes
+// every int N~ dA positive (flat facets: 2A/15 at a triangle's corners and
+// A/5 at its mid-edge nodes; A/20 and A/5 for the quadrilateral). The dual
+// basis, D and the normals are built on N~ (first-order facets have
+// N~ = N). The nodal values of the slave displacement in that basis are
+// u~_c = u_c at a corner and u~_m = (u_m - alpha (u_a + u_b)) / (1 - 2 alpha)
+// at the mid-edge node of the edge a-b, so a mid-edge node's row acts on
+// three slave nodes (transformedNodes); a uniform pressure still gives every
+// node lambda_s = p and the consistent nodal forces p int N_b dA.
+//
 // The normal n_s of a slave node is the master's inward normal averaged
-// over the node's support, n_s ~ -int N_s n^(2) dA: a flat master gives
+// over the node's support, n_s ~ -int N~_s n^(2) dA: a flat master gives
 // every slave node its exact normal, as node-to-segment does, however the
 // slave surface is curved or cut. The slave's own averaged normal would
 // tilt at the edges of a cut slave surface (a quarter model's symmetry
@@ -40,6 +58,7 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "Tribos_Mesh.hpp"
@@ -49,10 +68,28 @@
 namespace Tribos {
 namespace Contact {
 
+// The share of each mid-edge function moved to the corners of its edge in
+// the transformed basis of second-order slave facets.
+constexpr double kMidEdgeShare = 0.2;
+
+// The transformed shape functions N~ of the facet at xi (numNodes() values).
+void transformedShape(const SurfaceShape& shape, const Point2& xi, double* N);
+
+// The slave side of the rows of a face's mid-edge nodes: for each, its
+// value in the transformed basis as a combination of nodal displacements,
+// u~_m = sum_b S_b u_b = (u_m - alpha (u_a + u_b)) / (1 - 2 alpha) (weights
+// summing to 1). Empty for a first-order face; corners are not listed
+// (u~_c = u_c).
+std::map<int, std::vector<std::pair<int, double>>> transformedNodes(const Mesh::Mesh& mesh, const std::string& face);
+
+// int N~_s dA of every node of the face (mesh numbering; 0 off the face):
+// the areas D_s of its rows against a rigid plane.
+std::vector<double> transformedAreas(const Mesh::Mesh& mesh, const std::string& face);
+
 // The mortar integrals of one slave node.
 struct MortarNode {
   int node = -1;
-  double area = 0;          // int N_s dA over the node's slave facets
+  double area = 0;          // int N~_s dA over the node's slave facets (N~ = N on first-order ones)
   std::map<int, double> M;  // master node m -> M_sm over the covered part
   Vec3 normal{0, 0, 0};     // unit, from the node into the master: -int N_s n^(2) dA normalized
   // int psi_s dA over the covered part: sum_m M_sm (the master's shape
@@ -61,8 +98,9 @@ struct MortarNode {
   double covered() const;
 };
 
-// The dual basis of a slave facet: psi_j = sum_k A[j][k] N_k, and
-// D[j] = int_e N_j dA (= int_e psi_j N_j dA), the row sums of its mass matrix.
+// The dual basis of a slave facet: psi_j = sum_k A[j][k] N~_k, and
+// D[j] = int_e N~_j dA (= int_e psi_j N~_j dA), the row sums of its mass
+// matrix (of the transformed basis N~).
 struct DualBasis {
   std::vector<std::vector<double>> A;
   std::vector<double> D;

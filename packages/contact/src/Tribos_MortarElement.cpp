@@ -4,41 +4,30 @@
 #include <cmath>
 
 #include "Tribos_Error.hpp"
+#include "Tribos_ShapeFunctions.hpp"
 
 namespace Tribos {
 namespace Contact {
 
 namespace {
 
-class Tri3 : public SurfaceShape {
+// The facets of the meshes: 3- and 6-node triangles on (0,0), (1,0), (0,1),
+// 4- and 8-node quadrilaterals on [-1,1]^2 (Fem::facetShape, whose node
+// orders the mesh's facets follow).
+class FacetShape : public SurfaceShape {
  public:
-  int numNodes() const override { return 3; }
+  FacetShape(int nodes, std::vector<Point2> corners) : nodes_(nodes), corners_(std::move(corners)) {}
+  int numNodes() const override { return nodes_; }
   void evaluate(const Point2& xi, double* N, double* dN1, double* dN2) const override {
-    N[0] = 1 - xi[0] - xi[1], N[1] = xi[0], N[2] = xi[1];
-    dN1[0] = -1, dN1[1] = 1, dN1[2] = 0;
-    dN2[0] = -1, dN2[1] = 0, dN2[2] = 1;
+    double dN[Fem::kMaxNodesPerFacet][2];
+    Fem::facetShape(nodes_, xi[0], xi[1], N, dN);
+    for (int a = 0; a < nodes_; ++a) dN1[a] = dN[a][0], dN2[a] = dN[a][1];
   }
-  const std::vector<Point2>& corners() const override {
-    static const std::vector<Point2> c = {{0, 0}, {1, 0}, {0, 1}};
-    return c;
-  }
-};
+  const std::vector<Point2>& corners() const override { return corners_; }
 
-class Quad4 : public SurfaceShape {
- public:
-  int numNodes() const override { return 4; }
-  void evaluate(const Point2& xi, double* N, double* dN1, double* dN2) const override {
-    const auto& c = corners();
-    for (int a = 0; a < 4; ++a) {
-      N[a] = (1 + c[a][0] * xi[0]) * (1 + c[a][1] * xi[1]) / 4;
-      dN1[a] = c[a][0] * (1 + c[a][1] * xi[1]) / 4;
-      dN2[a] = c[a][1] * (1 + c[a][0] * xi[0]) / 4;
-    }
-  }
-  const std::vector<Point2>& corners() const override {
-    static const std::vector<Point2> c = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-    return c;
-  }
+ private:
+  int nodes_;
+  std::vector<Point2> corners_;
 };
 
 constexpr int kMaxNodes = 9;
@@ -47,28 +36,18 @@ double cross2(const Point2& a, const Point2& b, const Point2& c) {
   return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
 }
 
-// Dunavant's 7-point rule on a triangle: barycentric points and weights
-// summing to 1, exact for polynomials of degree 5.
-struct TriangleRule {
-  std::array<std::array<double, 3>, 7> point;
-  std::array<double, 7> weight;
-  TriangleRule() {
-    const double r = std::sqrt(15.0);
-    const double a1 = (9 - 2 * r) / 21, b1 = (6 + r) / 21, w1 = (155 + r) / 1200;
-    const double a2 = (9 + 2 * r) / 21, b2 = (6 - r) / 21, w2 = (155 - r) / 1200;
-    point = {{{1.0 / 3, 1.0 / 3, 1.0 / 3}, {a1, b1, b1}, {b1, a1, b1}, {b1, b1, a1}, {a2, b2, b2}, {b2, a2, b2},
-              {b2, b2, a2}}};
-    weight = {9.0 / 40, w1, w1, w1, w2, w2, w2};
-  }
-};
-
 }  // namespace
 
 const SurfaceShape& surfaceShape(int numNodes) {
-  static const Tri3 tri;
-  static const Quad4 quad;
-  TRIBOS_REQUIRE(numNodes == 3 || numNodes == 4, "mortar contact: a facet with " << numNodes << " nodes (3 or 4 expected)");
-  return numNodes == 3 ? static_cast<const SurfaceShape&>(tri) : quad;
+  static const std::vector<Point2> triangle = {{0, 0}, {1, 0}, {0, 1}}, square = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  static const FacetShape tri3(3, triangle), quad4(4, square), tri6(6, triangle), quad8(8, square);
+  switch (numNodes) {
+    case 3: return tri3;
+    case 4: return quad4;
+    case 6: return tri6;
+    case 8: return quad8;
+  }
+  throw Error("contact: a facet with " + std::to_string(numNodes) + " nodes (3, 4, 6 or 8 expected)");
 }
 
 SurfaceElement::SurfaceElement(const Mesh::Facet& facet, const Mesh::Mesh& mesh)
@@ -142,8 +121,12 @@ double signedArea(const std::vector<Point2>& p) {
   return a / 2;
 }
 
-void integratePolygon(const std::vector<Point2>& polygon, const std::function<void(const Point2&, double)>& f) {
-  static const TriangleRule rule;
+void integratePolygon(const std::vector<Point2>& polygon, const std::function<void(const Point2&, double)>& f,
+                      int degree) {
+  static const std::vector<Fem::FacetQuadraturePoint> rule5 = Fem::triangleQuadrature(5),
+                                                      rule8 = Fem::triangleQuadrature(8);
+  const auto& rule = degree <= 5 ? rule5 : rule8;
+  TRIBOS_REQUIRE(degree <= 8, "integratePolygon: no rule of degree " << degree);
   if (polygon.size() < 3) return;
   Point2 c{0, 0};
   for (const Point2& p : polygon) c[0] += p[0] / polygon.size(), c[1] += p[1] / polygon.size();
@@ -151,9 +134,10 @@ void integratePolygon(const std::vector<Point2>& polygon, const std::function<vo
     const Point2 &a = polygon[i], &b = polygon[(i + 1) % polygon.size()];
     const double area = std::abs(cross2(c, a, b)) / 2;
     if (area == 0) continue;
-    for (size_t q = 0; q < rule.weight.size(); ++q) {
-      const auto& l = rule.point[q];
-      f({l[0] * c[0] + l[1] * a[0] + l[2] * b[0], l[0] * c[1] + l[1] * a[1] + l[2] * b[1]}, rule.weight[q] * area);
+    // The rule's triangle (0,0), (1,0), (0,1) of area 1/2 mapped onto (c, a, b).
+    for (const auto& q : rule) {
+      const double l0 = 1 - q.s - q.t;
+      f({l0 * c[0] + q.s * a[0] + q.t * b[0], l0 * c[1] + q.s * a[1] + q.t * b[1]}, 2 * q.weight * area);
     }
   }
 }

@@ -6,11 +6,14 @@
 // The mortar integrals are taken in the reference coordinates xi of the
 // slave facet: master facets are projected onto it, clipped against its
 // reference polygon (clipPolygon), the pieces cut into triangles and each
-// triangle integrated with a rule of degree 5 (integratePolygon), weighted
-// by the surface Jacobian J(xi). The same rule integrates the facet's own
-// mass matrix, so that the dual basis and the segments see one measure.
-// Linear facets (3-node triangles, 4-node quadrilaterals) are the shapes
-// the meshes have; a quadratic facet is another SurfaceShape.
+// triangle integrated with a rule of degree 5 (first-order facets) or 8
+// (second-order ones, whose integrands are products of two quadratic or
+// serendipity functions; integratePolygon), weighted by the surface
+// Jacobian J(xi). The same rule integrates the facet's own mass matrix, so
+// that the dual basis and the segments see one measure. The facets are
+// those of the meshes' cells: 3- and 6-node triangles, 4- and 8-node
+// quadrilaterals (Fem::facetShape's node orders: corners, then the mid-edge
+// nodes edge by edge).
 #pragma once
 
 #include <array>
@@ -33,12 +36,17 @@ class SurfaceShape {
   virtual int numNodes() const = 0;
   // N[a], dN1[a] = dN_a/dxi_1, dN2[a] = dN_a/dxi_2 at xi (arrays of numNodes()).
   virtual void evaluate(const Point2& xi, double* N, double* dN1, double* dN2) const = 0;
-  // The reference polygon, counter-clockwise (convex).
+  // The reference polygon, counter-clockwise (convex): the corner nodes,
+  // which come first in the node order.
   virtual const std::vector<Point2>& corners() const = 0;
+  // Whether mid-edge nodes follow the corners (6- and 8-node facets).
+  bool secondOrder() const { return numNodes() > static_cast<int>(corners().size()); }
+  // The degree of the rule that integrates products of two shape functions
+  // (exactly on flat facets): 5, or 8 for second-order facets.
+  int productDegree() const { return secondOrder() ? 8 : 5; }
 };
 
-// The shape of a facet with that many nodes (3: linear triangle, 4: bilinear
-// quadrilateral); throws for others.
+// The shape of a facet with that many nodes (3, 4, 6 or 8); throws for others.
 const SurfaceShape& surfaceShape(int numNodes);
 
 // A facet of a contact surface in the reference configuration.
@@ -75,9 +83,12 @@ class SurfaceElement {
 
 // sum_q w_q f(xi_q) over the polygon (its vertices in order, either
 // orientation; convex, or star-shaped about its vertex average): a fan of
-// triangles from the vertex average, each with the 7-point rule of degree
-// 5 (exact for products of two bilinear functions on parallelograms).
-void integratePolygon(const std::vector<Point2>& polygon, const std::function<void(const Point2&, double)>& f);
+// triangles from the vertex average, each with a rule exact for polynomials
+// of the degree, at most 8 (Fem::triangleQuadrature: 7 points up to degree
+// 5, exact for products of two bilinear functions on parallelograms; 25
+// beyond).
+void integratePolygon(const std::vector<Point2>& polygon, const std::function<void(const Point2&, double)>& f,
+                      int degree = 5);
 
 // The area of a polygon (positive when counter-clockwise).
 double signedArea(const std::vector<Point2>& polygon);

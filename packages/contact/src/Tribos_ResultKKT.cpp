@@ -30,8 +30,7 @@ Fem::NodalVector contactForces(const RCP<const Fem::NodalLayout>& layout, const 
   for (const auto& c : contact)
     for (int d = 0; d < 3; ++d) {
       const double force = -c.normalForce * c.normal[d] + c.tangentialForce[d];
-      phi.at(c.node)[d] += force;
-      for (const auto& [node, weight] : c.master) phi.at(node)[d] -= weight * force;
+      for (const auto& [node, weight] : c.terms()) phi.at(node)[d] += weight * force;
     }
   layout->sumOverHolders(phi.values());
   return phi;
@@ -79,10 +78,9 @@ ResultKKT resultKKT(const Fem::NodalVector& u, const Fem::NodalVector& Ku, const
   for (size_t k = 0; k < contact.size(); ++k) {
     const ContactNodeForce& c = contact[k];
     // w: the relative displacement of the slave node and its partner.
-    Vec3 w;
-    for (int d = 0; d < 3; ++d) w[d] = u.at(c.node)[d];
-    for (const auto& [node, weight] : c.master)
-      for (int d = 0; d < 3; ++d) w[d] -= weight * u.at(node)[d];
+    Vec3 w{0, 0, 0};
+    for (const auto& [node, weight] : c.terms())
+      for (int d = 0; d < 3; ++d) w[d] += weight * u.at(node)[d];
     const double wn = dot(c.normal, w);
     if (c.bonded) {
       bondedGap = std::max({bondedGap, std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});

@@ -39,6 +39,7 @@
 #include <utility>
 #include <vector>
 
+#include "Tribos_ContactConstraint.hpp"
 #include "Tribos_FrictionLaw.hpp"
 #include "Tribos_NodalVector.hpp"
 #include "Tribos_Types.hpp"
@@ -57,6 +58,9 @@ struct ContactNodeForce {
   std::array<double, 3> normal{0, 0, -1};  // n, unit, pointing from the slave node into its partner
   double gap = 0.0;                     // d
   std::vector<std::pair<int, double>> master;  // master nodes and weights N_i; empty: a rigid plane
+  std::vector<std::pair<int, double>> slave;   // the slave side u~_s = sum S_b u_b; empty: u_s (ContactConstraint)
+  // Every node of the row with its coefficient (Feti::rowTerms).
+  std::vector<std::pair<int, double>> terms() const { return Feti::rowTerms(node, slave, master); }
   // w at the previous load step: friction acts on the slip since then,
   // the tangential part of w - previousRelative (zero for a single step).
   std::array<double, 3> previousRelative{0, 0, 0};

@@ -16,6 +16,7 @@ std::vector<ContactNodeForce> ContactNodeResults::forces() const {
     out[k].normal = constraint[k].normal;
     out[k].gap = constraint[k].gap;
     out[k].master = constraint[k].master;
+    out[k].slave = constraint[k].slave;
     if (!previousRelative.empty())
       for (int d = 0; d < 3; ++d) out[k].previousRelative[d] = previousRelative[3 * k + d];
   }

@@ -225,6 +225,114 @@ TEUCHOS_UNIT_TEST(Mortar, MatchingFacetsOfAGmshMesh) {
   TEST_COMPARE(worstLinear, <, 1e-10);
 }
 
+// The rule of second-order facets: every monomial s^a t^b of degree at
+// most 8 over the unit triangle, cut into a fan, against a! b! / (a+b+2)!.
+TEUCHOS_UNIT_TEST(Mortar, IntegratesPolynomialsOfDegreeEight) {
+  const std::vector<Point2> triangle = {{0, 0}, {1, 0}, {0, 1}};
+  auto factorial = [](int n) { return std::tgamma(n + 1.0); };
+  double worst = 0;
+  for (int a = 0; a <= 8; ++a)
+    for (int b = 0; a + b <= 8; ++b) {
+      double m = 0;
+      Contact::integratePolygon(triangle, [&](const Point2& p, double w) { m += w * std::pow(p[0], a) * std::pow(p[1], b); },
+                                8);
+      worst = std::max(worst, std::abs(m / (factorial(a) * factorial(b) / factorial(a + b + 2)) - 1));
+    }
+  out << "largest relative error of a monomial of degree <= 8: " << worst << "\n";
+  TEST_COMPARE(worst, <, 1e-13);
+}
+
+// The transformed basis of second-order facets (a flat 6-node triangle and
+// an 8-node parallelogram, tilted in space, mid-edge nodes at the middle
+// of their edges): it sums to one; int N~ dA is 2A/15 at a triangle's
+// corners and A/5 at its mid-edge nodes, A/20 and A/5 on the quadrilateral
+// (alpha = 1/5, all positive where int N_c dA is 0 and -A/12); and the
+// dual basis built on it is biorthogonal to it.
+TEUCHOS_UNIT_TEST(Mortar, TransformedBasisOfSecondOrderFacets) {
+  const Vec3 o{0.2, -0.1, 0.3}, e1{1.3, 0.2, 0.4}, e2{-0.3, 0.9, 0.5};
+  auto at = [&](double s, double t) {
+    return Vec3{o[0] + s * e1[0] + t * e2[0], o[1] + s * e1[1] + t * e2[1], o[2] + s * e1[2] + t * e2[2]};
+  };
+  const double A = norm(cross(e1, e2));
+  struct Case {
+    std::vector<Point2> points;  // in (s, t) of the parallelogram o + s e1 + t e2
+    double corner, mid;          // int N~ dA / area
+  };
+  const std::vector<Case> cases = {
+      {{{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}}, 2.0 / 15, 1.0 / 5},
+      {{{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0}, {1, 0.5}, {0.5, 1}, {0, 0.5}}, 1.0 / 20, 1.0 / 5}};
+  for (const Case& c : cases) {
+    Mesh::Mesh mesh;
+    std::vector<int> nodes;
+    for (const Point2& p : c.points) nodes.push_back(mesh.numNodes()), mesh.coords.push_back(at(p[0], p[1]));
+    const Contact::SurfaceElement e(Mesh::Facet{nodes, 0}, mesh);
+    const int n = e.size(), corners = n / 2;
+    const double area = c.points.size() == 6 ? A / 2 : A;
+    const auto basis = Contact::dualBasis(e);
+    std::vector<std::vector<double>> psiN(n, std::vector<double>(n, 0.0));
+    std::vector<double> integral(n, 0.0);
+    double N[8], sumErr = 0;
+    Contact::integratePolygon(e.shape().corners(), [&](const Point2& xi, double w) {
+      Contact::transformedShape(e.shape(), xi, N);
+      const double dA = w * e.jacobian(xi);
+      double sum = 0;
+      for (int j = 0; j < n; ++j) {
+        sum += N[j];
+        integral[j] += N[j] * dA;
+        double psi = 0;
+        for (int k = 0; k < n; ++k) psi += basis.A[j][k] * N[k];
+        for (int k = 0; k < n; ++k) psiN[j][k] += psi * N[k] * dA;
+      }
+      sumErr = std::max(sumErr, std::abs(sum - 1));
+    }, 8);
+    TEST_COMPARE(sumErr, <, 1e-14);
+    for (int j = 0; j < n; ++j) {
+      const double expected = (j < corners ? c.corner : c.mid) * area;
+      TEST_FLOATING_EQUALITY(integral[j], expected, 1e-13);
+      TEST_FLOATING_EQUALITY(basis.D[j], expected, 1e-13);
+      for (int k = 0; k < n; ++k) TEST_COMPARE(std::abs(psiN[j][k] - (j == k ? expected : 0.0)), <, 1e-13 * area);
+    }
+  }
+}
+
+// Non-matching flat faces of second-order boxes (Tet10 and Hex20, 3^3
+// cells under 4^3): D sums to the slave area, sum_s M_sm is the master
+// node's consistent area int N_m dA (its quadratic function's: zero or
+// negative at corners), and each row carries a linear field over exactly
+// (the slave side at a mid-edge node its transformed position, which for a
+// straight edge is the node).
+TEUCHOS_UNIT_TEST(Mortar, SecondOrderNonMatchingFaces) {
+  for (auto type : {Mesh::CellType::Tet10, Mesh::CellType::Hex20}) {
+    const Mesh::Mesh mesh = stackedBoxes(type, 3, 4);
+    const auto coupling = Contact::mortarCoupling(mesh, "upper_bottom", "lower_top");
+    const auto masterArea = Fem::faceNodalAreas(mesh, "lower_top");
+    const auto slaveArea = Contact::transformedAreas(mesh, "upper_bottom");
+    double total = 0, worstLinear = 0, worstArea = 0, smallest = 1;
+    std::map<int, double> toMaster;
+    for (const auto& node : coupling) {
+      total += node.covered();
+      smallest = std::min(smallest, node.area);
+      worstArea = std::max({worstArea, std::abs(node.covered() - node.area), std::abs(node.area - slaveArea[node.node])});
+      double linear = 0;
+      for (const auto& [m, value] : node.M) {
+        toMaster[m] += value;
+        linear += value * (1 + 2 * mesh.coords[m][0] - 3 * mesh.coords[m][1]);
+      }
+      const auto& xs = mesh.coords[node.node];
+      worstLinear = std::max(worstLinear, std::abs(linear / node.covered() - (1 + 2 * xs[0] - 3 * xs[1])));
+    }
+    double worstMaster = 0;
+    for (int m : mesh.faceNodes("lower_top")) worstMaster = std::max(worstMaster, std::abs(toMaster[m] - masterArea[m]));
+    out << Mesh::cellTypeName(type) << ": total D " << total << ", smallest D_s " << smallest << ", master areas "
+        << worstMaster << ", linear " << worstLinear << "\n";
+    TEST_FLOATING_EQUALITY(total, 1.0, 1e-13);
+    TEST_COMPARE(smallest, >, 0.0);
+    TEST_COMPARE(worstArea, <, 1e-14);
+    TEST_COMPARE(worstMaster, <, 1e-14);
+    TEST_COMPARE(worstLinear, <, 1e-12);
+  }
+}
+
 // The search's rows: Mortar gives each slave node weights summing to one,
 // the nodal normal, area D_s, and the gap of the lifted block; a name that
 // is no discretization is refused by the validator.

@@ -98,9 +98,8 @@ void buildFromFeti(const Feti::FetiProblem& problem, const Mesh::Mesh& wholeMesh
       for (int d = 0; d < 3; ++d) {
         const double h = sign[a] * (*dirs[a])[d];
         if (h == 0.0) continue;
-        rows.push_back(3 * node + d), cols.push_back(3 * nc + a), vals.push_back(h);
-        for (const auto& [m, weight] : cc.master)
-          rows.push_back(3 * m + d), cols.push_back(3 * nc + a), vals.push_back(-weight * h);
+        for (const auto& [m, weight] : cc.terms())
+          rows.push_back(3 * m + d), cols.push_back(3 * nc + a), vals.push_back(weight * h);
       }
       // force on the body -lambda_a dir_a = r_a sign_a dir_a
       solution.r.push_back(-sign[a] * e[1 + a]);

@@ -1,5 +1,6 @@
 #include "Tribos_DirichletAtContact.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -11,9 +12,11 @@ namespace Fem {
 
 namespace {
 
-// Per axis d: whether Dirichlet conditions fix it at the slave node and
-// every master node, and then the prescribed relative displacement
-// w_d = ubar_s - sum N_i ubar_i and the size of the values (for round-off).
+// Per axis d: whether Dirichlet conditions fix it at every node of the row
+// (terms: node and coefficient; empty: the node alone, coefficient 1), and
+// then the prescribed relative displacement w_d = sum c_k ubar_k (ubar_s -
+// sum N_i ubar_i for a slave node and its masters) and the size of the
+// values (for round-off).
 struct PrescribedRelativeMotion {
   std::array<bool, 3> fixed{};
   std::array<double, 3> w{}, scale{};
@@ -22,20 +25,18 @@ struct PrescribedRelativeMotion {
 
 PrescribedRelativeMotion prescribedRelativeMotion(const std::map<long long, double>& dirichlet, int node,
                                                   const std::array<double, 3>& x,
-                                                  const std::vector<std::pair<int, double>>& master) {
+                                                  const std::vector<std::pair<int, double>>& terms) {
   PrescribedRelativeMotion m;
+  const std::vector<std::pair<int, double>> row = terms.empty() ? std::vector<std::pair<int, double>>{{node, 1.0}} : terms;
   for (int d = 0; d < 3; ++d) {
-    auto value = [&](int n) {
+    m.fixed[d] = true;
+    for (const auto& [n, coefficient] : row) {
       const auto it = dirichlet.find(3LL * n + d);
-      return it == dirichlet.end() ? std::nan("") : it->second;
-    };
-    m.fixed[d] = !std::isnan(value(node));
-    m.w[d] = m.fixed[d] ? value(node) : 0.0;
-    m.scale[d] = std::abs(m.w[d]);
-    for (const auto& [mn, weight] : master) {
-      m.fixed[d] = m.fixed[d] && !std::isnan(value(mn));
-      if (m.fixed[d]) m.w[d] -= weight * value(mn), m.scale[d] = std::max(m.scale[d], std::abs(value(mn)));
+      m.fixed[d] = m.fixed[d] && it != dirichlet.end();
+      if (!m.fixed[d]) break;
+      m.w[d] += coefficient * it->second, m.scale[d] = std::max(m.scale[d], std::abs(it->second));
     }
+    if (!m.fixed[d]) m.w[d] = 0;
   }
   std::ostringstream os;
   os << "contact node " << node;
@@ -52,8 +53,8 @@ bool tangentialAxis(const std::array<double, 3>& normal, int d) {
 
 void requireNoPrescribedPenetration(const std::map<long long, double>& dirichlet, int node,
                                     const std::array<double, 3>& x, const std::array<double, 3>& normal, double gap,
-                                    const std::vector<std::pair<int, double>>& master) {
-  const auto m = prescribedRelativeMotion(dirichlet, node, x, master);
+                                    const std::vector<std::pair<int, double>>& terms) {
+  const auto m = prescribedRelativeMotion(dirichlet, node, x, terms);
   const double nn = norm(normal);
   double wn = 0, scale = std::abs(gap);
   for (int d = 0; d < 3; ++d) {
@@ -67,8 +68,8 @@ void requireNoPrescribedPenetration(const std::map<long long, double>& dirichlet
 }
 
 void requireNoPrescribedSlip(const std::map<long long, double>& dirichlet, int node, const std::array<double, 3>& x,
-                             const std::array<double, 3>& normal, const std::vector<std::pair<int, double>>& master) {
-  const auto m = prescribedRelativeMotion(dirichlet, node, x, master);
+                             const std::array<double, 3>& normal, const std::vector<std::pair<int, double>>& terms) {
+  const auto m = prescribedRelativeMotion(dirichlet, node, x, terms);
   for (int d = 0; d < 3; ++d)
     TRIBOS_REQUIRE(!tangentialAxis(normal, d) || !m.fixed[d] || std::abs(m.w[d]) <= 1e-10 * m.scale[d],
                    m.where << ": its Dirichlet values make it slide " << m.w[d] << " along " << "xyz"[d]

@@ -22,11 +22,14 @@ namespace Fem {
 //    contact has no friction, since friction would oppose a prescribed slip
 //    with a force that the Dirichlet reaction hides (requireNoPrescribedSlip,
 //    for contacts with friction).
+// `terms` lists every node of the contact row with its coefficient (+1 at
+// the slave node, -N_i at its masters; Feti::ContactConstraint::terms());
+// empty: the node alone against a rigid obstacle.
 void requireNoPrescribedPenetration(const std::map<long long, double>& dirichlet, int node,
                                     const std::array<double, 3>& x, const std::array<double, 3>& normal, double gap,
-                                    const std::vector<std::pair<int, double>>& master);
+                                    const std::vector<std::pair<int, double>>& terms);
 void requireNoPrescribedSlip(const std::map<long long, double>& dirichlet, int node, const std::array<double, 3>& x,
-                             const std::array<double, 3>& normal, const std::vector<std::pair<int, double>>& master);
+                             const std::array<double, 3>& normal, const std::vector<std::pair<int, double>>& terms);
 
 }  // namespace Fem
 }  // namespace Tribos

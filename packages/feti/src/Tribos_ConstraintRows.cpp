@@ -39,8 +39,8 @@ std::map<int, Mesh::NodeCopy> contactPartners(const Mesh::Discretization& disc,
   for (const ContactConstraint& cc : contact) {
     const int n = disc.partNode(cc.node);
     if (n < 0 || disc.nodeOwner()[n] != disc.myRank) continue;
-    for (const auto& m : cc.master)
-      if (disc.partNode(m.first) < 0) asked.push_back(m.first);
+    for (const auto& [m, weight] : cc.terms())
+      if (disc.partNode(m) < 0) asked.push_back(m);
   }
   // The owner answers: the node's first copy, then per component whether a
   // Dirichlet condition fixes it and its value.
@@ -128,23 +128,24 @@ void contactRows(const ContactConstraint& cc, const std::function<Mesh::NodeCopy
     for (int c = 0; c < 3; ++c) fixed[c] = bc.count(3LL * node + c) > 0;
     return fixedDirection(dir, fixed, node);
   };
+  const std::vector<std::pair<int, double>> terms = cc.terms();  // the slave side first
   auto fixedAtAll = [&](const std::array<double, 3>& dir) {
-    if (!fixedAt(cc.node, dir)) return false;
-    for (const auto& m : cc.master)
-      if (!fixedAt(m.first, dir)) return false;
+    for (const auto& [node, weight] : terms)
+      if (!fixedAt(node, dir)) return false;
     return true;
   };
   // Out of the contact set (below) only if the values keep it out.
-  if (!cc.glued) Fem::requireNoPrescribedPenetration(bc, cc.node, x, cc.normal, cc.gap, cc.master);
+  if (!cc.glued) Fem::requireNoPrescribedPenetration(bc, cc.node, x, cc.normal, cc.gap, terms);
   if (!cc.glued && fixedAtAll(cc.normal)) return;
   DualRow r{cc.glued ? DualRow::Bonded : DualRow::Normal};
   r.node = cc.node;
-  r.copies = {copyOf(firstCopy(cc.node), 1.0)};
-  for (const auto& [node, weight] : cc.master) r.copies.push_back(copyOf(firstCopy(node), -weight));
+  std::vector<int> copyNodes;
+  for (const auto& [node, weight] : terms) {
+    r.copies.push_back(copyOf(firstCopy(node), weight));
+    copyNodes.push_back(node);
+  }
   const std::array<double, 3>* dirs[3] = {&cc.normal, &cc.t1, &cc.t2};
   const DualRow::Kind kinds[3] = {DualRow::Normal, DualRow::Tangent1, DualRow::Tangent2};
-  std::vector<int> copyNodes{cc.node};
-  for (const auto& m : cc.master) copyNodes.push_back(m.first);
   for (int j = 0; j < 3; ++j) {
     if (cc.glued ? fixedAtAll(*dirs[j]) : j > 0 && fixedAt(cc.node, *dirs[j])) continue;
     DualRow row = r;

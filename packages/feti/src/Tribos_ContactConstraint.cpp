@@ -18,7 +18,8 @@ void tangents(const std::array<double, 3>& n, std::array<double, 3>& t1, std::ar
 namespace {
 
 // Each constraint as doubles: node, pair, glued, normal, t1, t2, gap, area,
-// the number of master nodes, then (node, weight) per master node.
+// the number of master nodes, then (node, weight) per master node, and the
+// same for the slave side.
 std::vector<double> packConstraints(const std::vector<ContactConstraint>& list) {
   std::vector<double> packed;
   for (const auto& c : list) {
@@ -26,6 +27,8 @@ std::vector<double> packConstraints(const std::vector<ContactConstraint>& list) 
     for (const auto* v : {&c.normal, &c.t1, &c.t2}) packed.insert(packed.end(), v->begin(), v->end());
     packed.insert(packed.end(), {c.gap, c.area, double(c.master.size())});
     for (const auto& [node, weight] : c.master) packed.insert(packed.end(), {double(node), weight});
+    packed.push_back(double(c.slave.size()));
+    for (const auto& [node, weight] : c.slave) packed.insert(packed.end(), {double(node), weight});
   }
   return packed;
 }
@@ -43,6 +46,8 @@ std::vector<ContactConstraint> unpackConstraints(const std::vector<double>& all)
     c.area = all[i++];
     const size_t masters = static_cast<size_t>(all[i++]);
     for (size_t m = 0; m < masters; ++m, i += 2) c.master.emplace_back(static_cast<int>(all[i]), all[i + 1]);
+    const size_t slaves = static_cast<size_t>(all[i++]);
+    for (size_t m = 0; m < slaves; ++m, i += 2) c.slave.emplace_back(static_cast<int>(all[i]), all[i + 1]);
     out.push_back(std::move(c));
   }
   return out;
@@ -76,11 +81,21 @@ std::vector<ContactConstraint> scatterContactConstraints(const std::vector<Conta
   return perRank[root];
 }
 
+std::vector<std::pair<int, double>> rowTerms(int node, const std::vector<std::pair<int, double>>& slave,
+                                             const std::vector<std::pair<int, double>>& master) {
+  std::vector<std::pair<int, double>> out;
+  if (slave.empty()) out.push_back({node, 1.0});
+  else out = slave;
+  for (const auto& [m, weight] : master) out.push_back({m, -weight});
+  return out;
+}
+
+std::vector<std::pair<int, double>> ContactConstraint::terms() const { return rowTerms(node, slave, master); }
+
 std::array<double, 3> relativeDisplacement(const ContactConstraint& c, const Fem::NodalVector& u) {
-  std::array<double, 3> w;
-  for (int d = 0; d < 3; ++d) w[d] = u.at(c.node)[d];
-  for (const auto& [node, weight] : c.master)
-    for (int d = 0; d < 3; ++d) w[d] -= weight * u.at(node)[d];
+  std::array<double, 3> w{0, 0, 0};
+  for (const auto& [node, weight] : c.terms())
+    for (int d = 0; d < 3; ++d) w[d] += weight * u.at(node)[d];
   return w;
 }
 

@@ -244,10 +244,10 @@ void checkRows(const std::vector<DualRow>& rows, const std::vector<GO>& primalOf
     TRIBOS_REQUIRE(f > 0 || r.kind == DualRow::Bonded || std::abs(r.c - cc.gap) <= 1e-12 * std::max(1.0, std::abs(cc.gap)),
                    "FetiProblem: normal row " << i << " of node " << r.node << " has the gap " << r.c
                                               << ", its contact constraint " << cc.gap);
-    TRIBOS_REQUIRE(r.copies.size() == 1 + cc.master.size(),
+    TRIBOS_REQUIRE(r.copies.size() == cc.terms().size(),
                    "FetiProblem: contact row " << i << " of node " << r.node << " touches " << r.copies.size()
-                                               << " node copies, its constraint names " << cc.master.size()
-                                               << " master nodes besides the node");
+                                               << " node copies, its constraint names " << cc.terms().size()
+                                               << " nodes");
   }
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
@@ -600,7 +600,7 @@ RCP<const Fem::NodalLayout> FetiProblem::makeNodalLayout() const {
   for (const auto& sys : systems_) held.insert(held.end(), sys.nodes.begin(), sys.nodes.end());
   for (const auto& c : contactConstraints_) {
     held.push_back(c.node);
-    for (const auto& m : c.master) held.push_back(m.first);
+    for (const auto& [node, weight] : c.terms()) held.push_back(node);
   }
   return rcp(new Fem::NodalLayout(held, comm_));
 }

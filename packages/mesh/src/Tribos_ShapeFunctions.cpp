@@ -122,6 +122,12 @@ GaussRule gaussLegendre(int n) {
       const double wa = (18 + std::sqrt(30.0)) / 36, wb = (18 - std::sqrt(30.0)) / 36;
       return {{-b, -a, a, b}, {wb, wa, wa, wb}};
     }
+    case 5: {
+      const double r = 2 * std::sqrt(10.0 / 7);
+      const double a = std::sqrt(5 - r) / 3, b = std::sqrt(5 + r) / 3;
+      const double wa = (322 + 13 * std::sqrt(70.0)) / 900, wb = (322 - 13 * std::sqrt(70.0)) / 900;
+      return {{-b, -a, 0.0, a, b}, {wb, wa, 128.0 / 225, wa, wb}};
+    }
   }
   throw Error("gaussLegendre: no " + std::to_string(n) + "-point rule");
 }
@@ -269,6 +275,25 @@ std::vector<FacetQuadraturePoint> facetQuadrature(int nodes) {
     }
   }
   throw Error("a facet with " + std::to_string(nodes) + " nodes (3, 4, 6 or 8 expected)");
+}
+
+std::vector<FacetQuadraturePoint> triangleQuadrature(int degree) {
+  TRIBOS_REQUIRE(degree >= 0 && degree <= 8, "triangleQuadrature: no rule of degree " << degree);
+  if (degree <= 5) return facetQuadrature(6);
+  // The square [0,1]^2 collapsed onto the triangle, (u, v) -> (u, v (1 - u)),
+  // with the Jacobian 1 - u: a polynomial of degree p on the triangle is one
+  // of degree p + 1 in u and p in v, which 5 Gauss points integrate exactly
+  // for p <= 8.
+  const GaussRule g = gaussLegendre(5);
+  std::vector<FacetQuadraturePoint> q;
+  for (size_t i = 0; i < g.x.size(); ++i) {
+    const double u = (1 + g.x[i]) / 2;
+    for (size_t j = 0; j < g.x.size(); ++j) {
+      const double v = (1 + g.x[j]) / 2;
+      q.push_back({u, v * (1 - u), g.w[i] * g.w[j] * (1 - u) / 4});
+    }
+  }
+  return q;
 }
 
 void isoparametricJacobian(const double dNdxi[][3], const Point* X, int npc, double J[3][3]) {

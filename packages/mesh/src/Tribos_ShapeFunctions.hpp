@@ -87,5 +87,11 @@ struct FacetQuadraturePoint {
 // (6 nodes) or 5 in each coordinate (8 nodes).
 std::vector<FacetQuadraturePoint> facetQuadrature(int nodes);
 
+// A rule on the triangle (0,0), (1,0), (0,1) (weights summing to 1/2) exact
+// for polynomials of the given degree, at most 8: Radon's 7 points up to
+// degree 5, a collapsed 5x5 Gauss product beyond (the mortar integrals of
+// second-order facets, products of two quadratic or serendipity functions).
+std::vector<FacetQuadraturePoint> triangleQuadrature(int degree);
+
 }  // namespace Fem
 }  // namespace Tribos
