@@ -334,22 +334,22 @@ def loop_width(Q, delta, exact, turns):
 # ----------------------------------------------------------------- running
 
 
-def mesh_for(level, out):
+def mesh_for(level, out, order=1):
     shipped = os.path.join(ROOT, "input", "cattaneo_mindlin_%d.msh" % level)
-    if os.path.exists(shipped):
+    if os.path.exists(shipped) and order == 1:
         return shipped
-    msh = os.path.join(out, "cattaneo_mindlin_%d.msh" % level)
+    msh = os.path.join(out, "cattaneo_mindlin_%d%s.msh" % (level, "" if order == 1 else "_order%d" % order))
     if not os.path.exists(msh):
         gmsh = shutil.which("gmsh") or fail("gmsh not found (apt-get install gmsh)")
-        subprocess.run([gmsh, "-3", "-format", "msh4", "-setnumber", "Level", str(level), GEO, "-o", msh],
-                       check=True, stdout=subprocess.DEVNULL)
+        subprocess.run([gmsh, "-3", "-order", str(order), "-format", "msh4", "-setnumber", "Level", str(level), GEO,
+                        "-o", msh], check=True, stdout=subprocess.DEVNULL)
     return msh
 
 
 def run(level, args, stick):
     directory = os.path.join(args.out, "level_%d%s" % (level, "_stick" if stick else ""))
     cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(args.np), args.tribos, INPUT,
-           "--set", "Mesh/File=" + mesh_for(level, args.out), "--output", directory, "--quiet"]
+           "--set", "Mesh/File=" + mesh_for(level, args.out, args.order), "--output", directory, "--quiet"]
     for s in list(args.set) + (list(STICK_SETS) if stick else []):
         cmd += ["--set", s]
     return directory, timed_run(cmd, directory, level, fail)
@@ -475,6 +475,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("-l", "--levels", type=int, nargs="+", default=[1, 2, 3])
     ap.add_argument("--np", type=int, default=2)
+    ap.add_argument("--order", type=int, choices=(1, 2), default=1,
+                    help="element order of the meshes: 2 makes Gmsh write Tet10 (gmsh -order 2)")
     ap.add_argument("--tribos", default=default_tribos())
     ap.add_argument("--out", default=os.path.join(ROOT, "output", "cattaneo_mindlin"))
     ap.add_argument("--table")

@@ -118,26 +118,42 @@ def tet_boundary_facets(cells):
     return uniq[count == 1]
 
 
+# The mid-edge nodes of a written Tet10 cell (VTK's order): the corners of
+# each edge.
+TET10_EDGES = [(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)]
+
+
 def slave_facets(cells, node, num_nodes):
-    """The slave facets: boundary facets of the mesh whose three nodes are
+    """The slave facets: boundary facets of the mesh whose three corners are
     all contact nodes (node triples)."""
     is_contact = np.zeros(num_nodes, bool)
     is_contact[node] = True
-    facets = tet_boundary_facets(cells)
+    facets = tet_boundary_facets(cells[:, :4])
     return facets[is_contact[facets].all(axis=1)]
 
 
 def nodal_areas(coords, cells, node):
-    """A_i of the contact nodes `node`: a third of each adjacent slave facet,
+    """A_i of the contact nodes `node`: their share of the slave facets
     projected on the plane z = 0 (facets of a symmetry plane project to
-    nothing)."""
+    nothing). A 3-node facet gives each corner a third; a 6-node one (Tet10)
+    gives the shares of mortar's transformed basis, int N~_i dA on a flat
+    facet: 2/15 to each corner, 1/5 to each mid-edge node (docs/contact.md)."""
     facets = slave_facets(cells, node, len(coords))
     p = coords[facets]
     e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
     area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
     nodal = np.zeros(len(coords))
+    second_order = cells.shape[1] == 10
     for k in range(3):
-        np.add.at(nodal, facets[:, k], area / 3.0)
+        np.add.at(nodal, facets[:, k], area * (2.0 / 15 if second_order else 1.0 / 3))
+    if second_order:
+        mid = {}
+        for c in cells:
+            for k, (i, j) in enumerate(TET10_EDGES):
+                mid[(min(c[i], c[j]), max(c[i], c[j]))] = c[4 + k]
+        for f, A in zip(facets, area):
+            for i, j in ((0, 1), (1, 2), (0, 2)):
+                nodal[mid[(min(f[i], f[j]), max(f[i], f[j]))]] += A / 5
     return nodal[node]
 
 
@@ -187,6 +203,9 @@ def analyse(directory, R=RADIUS, base="solution", input_file=INPUT, overrides=()
     active = status > 0
     a_act = float(r[active].max()) if active.any() else 0.0
 
+    # The force over the area projected on the contact plane (the written
+    # normal_traction divides by the area on the sphere itself, larger by
+    # 1/cos of the surface's tilt: 0.5 % at r = a).
     A = nodal_areas(coords, cells, node)
     pressure = np.divide(fn, A, out=np.zeros_like(fn), where=A > 0)
     centre = int(np.argmin(r))
@@ -238,21 +257,21 @@ def default_tribos():
     return os.path.join(ROOT, "build", "drivers", "tribos")
 
 
-def mesh_for(level, out):
-    if level == 1:
+def mesh_for(level, out, order=1):
+    if level == 1 and order == 1:
         return COARSE  # the same as meshing the .geo with Level 1
-    msh = os.path.join(out, "hertz_sphere_%d.msh" % level)
+    msh = os.path.join(out, "hertz_sphere_%d%s.msh" % (level, "" if order == 1 else "_order%d" % order))
     if not os.path.exists(msh) or os.path.getmtime(msh) < os.path.getmtime(GEO):
         gmsh = shutil.which("gmsh") or fail("gmsh not found (apt-get install gmsh)")
-        subprocess.run([gmsh, "-3", "-format", "msh4", "-setnumber", "Level", str(level), GEO, "-o", msh],
-                       check=True, stdout=subprocess.DEVNULL)
+        subprocess.run([gmsh, "-3", "-order", str(order), "-format", "msh4", "-setnumber", "Level", str(level), GEO,
+                        "-o", msh], check=True, stdout=subprocess.DEVNULL)
     return msh
 
 
 def run(level, args):
     directory = os.path.join(args.out, "level_%d" % level)
     cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(args.np), args.tribos, INPUT,
-           "--set", "Mesh/File=" + mesh_for(level, args.out), "--output", directory, "--quiet"]
+           "--set", "Mesh/File=" + mesh_for(level, args.out, args.order), "--output", directory, "--quiet"]
     if level in args.subdomains:
         cmd += ["--set", "Mesh/Subdomains=%d" % args.subdomains[level]]
     for s in args.set:
@@ -359,7 +378,7 @@ def mesh_plot(row, path):
         cells = f["mesh/topology"][...].astype(int)
         node = f["points/contact/node"][...].ravel().astype(int)
         status = f["points/contact/status"][...].ravel().astype(int)
-    facets = tet_boundary_facets(cells)
+    facets = tet_boundary_facets(cells[:, :4])
     is_slave = np.zeros(len(coords), bool)
     is_slave[node] = True
     slave = facets[is_slave[facets].all(axis=1)]
@@ -396,6 +415,8 @@ def main():
     ap.add_argument("--subdomains", nargs="*", default=["3:8"],
                     help="LEVEL:S, METIS subdomains of a level (default 3:8; the input file has 2)")
     ap.add_argument("--np", type=int, default=2)
+    ap.add_argument("--order", type=int, choices=(1, 2), default=1,
+                    help="element order of the meshes: 2 makes Gmsh write Tet10 (gmsh -order 2)")
     ap.add_argument("--tribos", default=default_tribos())
     ap.add_argument("--out", default=os.path.join(ROOT, "output", "hertz"))
     ap.add_argument("--table", help="write the table as Markdown to this file")

@@ -1013,11 +1013,17 @@ void checkScales(const ParameterList& params, const Mesh::Mesh& mesh) {
 namespace {
 
 // Contact on second-order surfaces is mortar's (its transformed basis,
-// Tribos_Mortar.hpp) or a rigid plane's: a node-to-segment pair between two
-// bodies of a mesh (`where`) of second-order cells is refused, naming it.
+// Tribos_Mortar.hpp) or a rigid plane's, through FETI: on a mesh (`where`)
+// of second-order cells a node-to-segment pair between two bodies is
+// refused, naming it, and so is the semismooth* method, whose rows are
+// nodal (a corner's lumped area is zero or negative).
 void requireMortarOnSecondOrder(Mesh::CellType type, const std::string& where, const ParameterList& params) {
   const auto& contact = params.sublist("Contact");
   if (!contact.get<bool>("Enabled") || !Mesh::isSecondOrder(type)) return;
+  TRIBOS_REQUIRE(method(params) != Method::Semismooth,
+                 "Solver/Outer Algorithm = " << kSemismooth << ": " << where << " has " << Mesh::cellTypeName(type)
+                                             << " cells; the method's contact rows are nodal, and the corner nodes of "
+                                                "second-order facets have no positive area (use FETI's algorithms)");
   const auto& pairs = contact.sublist("Pairs");
   for (auto it = pairs.begin(); it != pairs.end(); ++it) {
     const std::string name = pairs.name(it);

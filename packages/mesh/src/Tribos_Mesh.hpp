@@ -1,4 +1,4 @@
-// Tribos_Mesh.hpp: meshes of P1 tetrahedra or Q1 hexahedra with named boundary
+// Tribos_Mesh.hpp: meshes of tetrahedra or hexahedra (first or second order) with named boundary
 // faces, named node sets and one or several bodies; structured box meshes.
 // A run holds the whole mesh on one rank only, while it is read and
 // decomposed; every rank then keeps its part (Tribos_Discretization.hpp),
@@ -13,11 +13,10 @@
 namespace Tribos {
 namespace Mesh {
 
-// Tet4 and Hex8 are the cells of every mesh a run reads or generates. Tet10
-// and Hex20 (second order, Gmsh's node ordering: corners, then one node per
-// edge; docs/quadratic_elements.md) exist at the element level only
-// (Tribos_Elasticity.hpp): no reader or box produces them yet, and the steps
-// of a run that do not know them refuse them by name.
+// The cells of a mesh: Tet4 and Hex8, or Tet10 and Hex20 (second order,
+// Gmsh's node ordering: corners, then one node per edge;
+// docs/quadratic_elements.md), read from Gmsh and Exodus files or made by
+// generateBox. A mesh holds cells of one type.
 enum class CellType { Tet4, Hex8, Tet10, Hex20 };
 
 constexpr int nodesPerCell(CellType type) {
