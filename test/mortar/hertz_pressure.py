@@ -45,13 +45,23 @@ args = ap.parse_args()
 
 
 def surface_l2(coords, cells, node, p, a, p0, n=8):
-    """||p_h - p_H|| / ||p_H|| over the slave facets projected on z = 0."""
+    """||p_h - p_H|| / ||p_H|| over the slave facets projected on z = 0; p_h
+    interpolates the nodal pressures with the facets' own functions (linear
+    on 3-node facets, quadratic on the 6-node facets of Tet10 cells)."""
     facets = hertz.slave_facets(cells, node, len(coords))
     value = np.zeros(len(coords))
     value[node] = p
     P = coords[facets][:, :, :2]
     e1, e2 = P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]
     area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    second_order = cells.shape[1] == 10
+    if second_order:  # each facet's mid-edge nodes on its edges 0-1, 1-2, 2-0
+        mid = {}
+        for c in cells:
+            for k, (i, j) in enumerate(hertz.TET10_EDGES):
+                mid[(min(c[i], c[j]), max(c[i], c[j]))] = c[4 + k]
+        mids = np.array([[mid[(min(f[i], f[j]), max(f[i], f[j]))] for i, j in ((0, 1), (1, 2), (2, 0))]
+                         for f in facets]).reshape(-1, 3)
     # the centroids of the n^2 congruent sub-triangles of the reference triangle
     points = [((i + 1 / 3) / n, (j + 1 / 3) / n) for i in range(n) for j in range(n - i)]
     points += [((i + 2 / 3) / n, (j + 2 / 3) / n) for i in range(n) for j in range(n - i - 1)]
@@ -60,7 +70,12 @@ def surface_l2(coords, cells, node, p, a, p0, n=8):
         lam = np.array([1 - s_ - t_, s_, t_])
         x = np.einsum("k,fkd->fd", lam, P)
         pH = p0 * np.sqrt(np.clip(1 - (np.hypot(x[:, 0], x[:, 1]) / a) ** 2, 0, None))
-        ph = value[facets] @ lam
+        if second_order:
+            corner = lam * (2 * lam - 1)
+            edge = 4 * np.array([lam[0] * lam[1], lam[1] * lam[2], lam[2] * lam[0]])
+            ph = value[facets] @ corner + value[mids] @ edge
+        else:
+            ph = value[facets] @ lam
         num += np.sum(area * (ph - pH) ** 2)
         den += np.sum(area * pH ** 2)
     return math.sqrt(num / den)
