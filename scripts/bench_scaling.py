@@ -85,6 +85,8 @@ def main():
                     help="relative tolerance of the contact solve (Algorithm 2's, which Auto's Newton method takes)")
     ap.add_argument("--precision", choices=["Double", "Single"], default="Single", help="dense block precision")
     ap.add_argument("--no-linear", action="store_true", help="skip the monolithic linear solve")
+    ap.add_argument("--element", choices=["Tet4", "Hex8", "Tet10", "Hex20"],
+                    help="Mesh/Element of both runs (default: the inputs', Tet4)")
     ap.add_argument("--set", action="append", default=[], help="extra NAME=VALUE for the contact runs")
     ap.add_argument("--tribos", default=os.path.join(ROOT, "build/drivers/tribos"))
     ap.add_argument("--stream", default=os.path.join(ROOT, "build/drivers/bench/tribos_stream_triad"))
@@ -100,22 +102,23 @@ def main():
     print("| k | H | mesh dofs | primal | dual | S | coarse | setup s | factor s | F apps | F ms | bound ms "
           "| solve s | wall s | Iter | n_A | KKT max | RSS/rank GB | linear s | ratio |")
     print("|---" * 20 + "|")
+    element = ["--set", "Mesh/Element=" + args.element] if args.element else []
     for level in args.levels:
         linear = None
         if not args.no_linear:
             s, wall = run(mpirun(args.ranks) + [args.tribos, os.path.join(ROOT, "input/brick_linear.xml"),
                                                 "--set", "Mesh/Level=%d" % level, "--set", "Solver/Type=Monolithic",
-                                                "--set", "Mesh/Subdomain Grid={%d,1,1}" % args.ranks])
+                                                "--set", "Mesh/Subdomain Grid={%d,1,1}" % args.ranks] + element)
             linear = (wall, s)
         for H in args.sizes:
             cmd = mpirun(args.ranks) + [args.tribos, os.path.join(ROOT, "input/brick_coulomb_F03.xml"),
                                         "--set", "Mesh/Level=%d" % level, "--set", "Mesh/Subdomain Size=" + H,
                                         "--set", "Solver/Algorithm 2/Relative Tolerance=%g" % args.tolerance,
-                                        "--set", "Solver/FETI/Dense Block Precision=" + args.precision]
+                                        "--set", "Solver/FETI/Dense Block Precision=" + args.precision] + element
             for e in args.set:
                 cmd += ["--set", e]
             s, wall = run(cmd)
-            mesh_dofs = 3 * (3 * level + 1) * (level + 1) ** 2
+            mesh_dofs = 3 * s["nodes"]
             f_ms = 1e3 * s["time_F_apply_s"] / max(s["F_applications"], 1)
             bound_ms = 1e3 * s["dense_block_memory_mb"] * 1048576.0 / (spmv * 1e9)
             kkt = max(v for k, v in s["kkt"].items() if k not in ("displacement_scale", "force_scale", "tolerance", "limit"))
