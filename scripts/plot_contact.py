@@ -75,6 +75,25 @@ import tribos_summary  # noqa: E402
 # Faces of a cell by local node index, in Tribos' (VTK) ordering.
 HEX_FACES = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
 TET_FACES = [(0, 2, 1), (0, 1, 3), (1, 2, 3), (0, 3, 2)]
+# The nodes of each cell type in XDMF's Mixed topology (bodies of different
+# cell types): Tet4, Hex8, Tet10, Hex20.
+XDMF_MIXED_NODES = {6: 4, 9: 8, 38: 10, 48: 20}
+
+
+def cell_corners(topology):
+    """The corners of each cell (the first 4 or 8 of its nodes), as a list of
+    arrays: from the rows of /mesh/topology, or from its Mixed list (each
+    cell's type number, then its nodes)."""
+    T = np.asarray(topology, dtype=int)
+    if T.shape[1] > 1:
+        cells = list(T)
+    else:
+        flat, cells, i = T.ravel(), [], 0
+        while i < len(flat):
+            n = XDMF_MIXED_NODES[flat[i]]
+            cells.append(flat[i + 1:i + 1 + n])
+            i += 1 + n
+    return [c[:8] if len(c) in (8, 20) else c[:4] for c in cells]
 
 
 def fail(message):
@@ -202,7 +221,7 @@ def read_result(directory, base, step=None, time=None):
         n = c["geometry"].shape[0]
         r = {
             "coords": f["mesh/geometry"][...],
-            "cells": f["mesh/topology"][...].astype(int),
+            "cells": cell_corners(f["mesh/topology"][...]),
             "body": f["cells/body"][...].ravel().astype(int) if "cells/body" in f else None,
             "x": c["geometry"][...],
             "normal_force": c["normal_force"][...].ravel(),
@@ -270,14 +289,21 @@ def contact_index(r):
 
 def boundary_facets(cells):
     """The facets of the mesh that belong to one cell only (mesh node ids, in
-    the cell's order), with that cell."""
-    faces = HEX_FACES if cells.shape[1] == 8 else TET_FACES
-    local = np.array(faces)
-    all_facets = cells[:, local].reshape(-1, local.shape[1])
-    owner = np.repeat(np.arange(len(cells)), len(faces))
-    _, first, counts = np.unique(np.sort(all_facets, axis=1), axis=0, return_index=True, return_counts=True)
-    once = first[counts == 1]
-    return all_facets[once], owner[once]
+    the cell's order), with that cell: tetrahedra and hexahedra apart (their
+    faces differ in node count)."""
+    facets, owners = [], []
+    for corners, faces in ((4, TET_FACES), (8, HEX_FACES)):
+        ids = np.array([i for i, c in enumerate(cells) if len(c) == corners], dtype=int)
+        if not len(ids):
+            continue
+        local = np.array(faces)
+        all_facets = np.array([cells[i] for i in ids])[:, local].reshape(-1, local.shape[1])
+        owner = np.repeat(ids, len(faces))
+        _, first, counts = np.unique(np.sort(all_facets, axis=1), axis=0, return_index=True, return_counts=True)
+        once = first[counts == 1]
+        facets += list(all_facets[once])
+        owners += list(owner[once])
+    return facets, np.array(owners, dtype=int)
 
 
 def contact_normal(r):
@@ -304,8 +330,10 @@ def face_facets(r):
     if r.get("body") is not None:
         # The bodies of the cells at the points: the other side of a contact
         # between two bodies lies on the same surface but is not drawn.
-        at_point = np.isin(cells, np.nonzero(index >= 0)[0]).any(axis=1)
-        facets, owner = facets[np.isin(r["body"][owner], np.unique(r["body"][at_point]))], None
+        points = np.nonzero(index >= 0)[0]
+        at_point = np.array([np.isin(c, points).any() for c in cells], dtype=bool)
+        keep = np.isin(r["body"][owner], np.unique(r["body"][at_point]))
+        facets, owner = [f for f, k in zip(facets, keep) if k], None
     centre = x.mean(axis=0)
     plane = np.linalg.svd(x - centre)[2][2] if len(x) >= 3 else contact_normal(r)
     tol = 1e-9 * extent

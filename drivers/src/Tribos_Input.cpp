@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <sstream>
 
@@ -1013,26 +1014,32 @@ void checkScales(const ParameterList& params, const Mesh::Mesh& mesh) {
 namespace {
 
 // Contact on second-order surfaces is mortar's (its transformed basis,
-// Tribos_Mortar.hpp) or a rigid plane's, through FETI: on a mesh (`where`)
-// of second-order cells a node-to-segment pair between two bodies is
-// refused, naming it, and so is the semismooth* method, whose rows are
-// nodal (a corner's lumped area is zero or negative).
-void requireMortarOnSecondOrder(Mesh::CellType type, const std::string& where, const ParameterList& params) {
+// Tribos_Mortar.hpp) or a rigid plane's, through FETI: a node-to-segment
+// pair between two bodies whose slave surface lies on second-order cells
+// (surfaceType(name) the type of the cells under a face) is refused, naming
+// it, and on a mesh (`where`) with second-order cells so is the semismooth*
+// method, whose rows are nodal (a corner's lumped area is zero or negative).
+void requireMortarOnSecondOrder(const std::vector<Mesh::CellType>& cellTypes,
+                                const std::function<Mesh::CellType(const std::string&)>& surfaceType,
+                                const std::string& where, const ParameterList& params) {
   const auto& contact = params.sublist("Contact");
-  if (!contact.get<bool>("Enabled") || !Mesh::isSecondOrder(type)) return;
-  TRIBOS_REQUIRE(method(params) != Method::Semismooth,
-                 "Solver/Outer Algorithm = " << kSemismooth << ": " << where << " has " << Mesh::cellTypeName(type)
-                                             << " cells; the method's contact rows are nodal, and the corner nodes of "
-                                                "second-order facets have no positive area (use FETI's algorithms)");
+  if (!contact.get<bool>("Enabled")) return;
+  for (Mesh::CellType type : cellTypes)
+    TRIBOS_REQUIRE(!Mesh::isSecondOrder(type) || method(params) != Method::Semismooth,
+                   "Solver/Outer Algorithm = " << kSemismooth << ": " << where << " has " << Mesh::cellTypeName(type)
+                                               << " cells; the method's contact rows are nodal, and the corner nodes of "
+                                                  "second-order facets have no positive area (use FETI's algorithms)");
   const auto& pairs = contact.sublist("Pairs");
   for (auto it = pairs.begin(); it != pairs.end(); ++it) {
     const std::string name = pairs.name(it);
     const auto& p = pairs.sublist(name);
-    const std::string master = p.get<std::string>("Master Surface");
+    const std::string master = p.get<std::string>("Master Surface"), slave = p.get<std::string>("Slave Surface");
     if (master.empty() || p.get<std::string>("Discretization") != "Node To Segment") continue;
+    const Mesh::CellType type = surfaceType(slave);
+    if (!Mesh::isSecondOrder(type)) continue;
     throw Error("parameter \"Contact/Pairs/" + name + "/Discretization\" = \"Node To Segment\" (slave surface '" +
-                p.get<std::string>("Slave Surface") + "', master surface '" + master + "'): " + where + " has " +
-                Mesh::cellTypeName(type) + " cells, whose surfaces are " +
+                slave + "', master surface '" + master + "'): " + where + " has " + Mesh::cellTypeName(type) +
+                " cells under the slave surface, whose facets are " +
                 (type == Mesh::CellType::Tet10 ? "6-node triangles" : "8-node quadrilaterals") +
                 "; their corner nodes take no share, or a negative one, of a uniform pressure, which one "
                 "node-to-segment row per node cannot transmit: use \"Mortar\" (the default)");
@@ -1062,7 +1069,12 @@ void checkMeshFaces(const Mesh::Mesh& mesh, const ParameterList& params) {
     TRIBOS_REQUIRE(found, "parameter \"Bodies/" << bodies.name(it) << "\": " << where << " has no body of that name; "
                                                 << "its bodies are: " << valid);
   }
-  requireMortarOnSecondOrder(mesh.type, where, params);
+  // The type of the cells under a face (one body's: every body has one type).
+  const auto surfaceType = [&](const std::string& face) {
+    const auto& facets = mesh.faces.count(face) ? mesh.face(face) : std::vector<Mesh::Facet>();
+    return facets.empty() ? Mesh::CellType::Tet4 : mesh.cellType(facets.front().cell);
+  };
+  requireMortarOnSecondOrder(mesh.cellTypesPresent(), surfaceType, where, params);
 }
 
 namespace {
@@ -1113,8 +1125,8 @@ Mesh::BoxSpec boxSpec(const ParameterList& params) {
   // for the box before any work.
   if (meshFile(params).empty()) {
     Mesh::requireUsableBox(spec, "the box (Mesh/X Range, Y Range, Z Range)");
-    requireMortarOnSecondOrder(spec.type, "the box (\"Mesh/Element\" = \"" + Mesh::cellTypeName(spec.type) + "\")",
-                             params);
+    requireMortarOnSecondOrder({spec.type}, [&](const std::string&) { return spec.type; },
+                               "the box (\"Mesh/Element\" = \"" + Mesh::cellTypeName(spec.type) + "\")", params);
   }
   return spec;
 }

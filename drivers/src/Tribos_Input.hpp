@@ -30,7 +30,7 @@ namespace Tribos {
 struct MeshSize {
   double nodes = 0, cells = 0;
   int bodies = 1;
-  int nodesPerCell = 8;  // 4, 8, 10 or 20
+  int nodesPerCell = 8;  // 4, 8, 10 or 20; the mean, rounded up, of a mesh of several cell types
 };
 
 namespace Input {

@@ -99,12 +99,12 @@ std::vector<IO::Field> cellFields(const Mesh::Discretization& disc, const Fem::B
       principal{"principal_stress", 3, {}, IO::FieldShape::Matrix},  // three numbers, not a vector
       sub{"subdomain", 1, {}}, rank{"rank", 1, {}}, body{"body", 1, {}};
   const Mesh::Mesh& part = disc.part;
-  const int npc = part.nodesPerCell();
-  std::vector<double> ue(3 * npc);
+  std::vector<double> ue;
   for (int c = 0; c < part.numCells(); ++c) {
-    for (int a = 0; a < npc; ++a)
+    ue.resize(3 * part.cellSize(c));
+    for (int a = 0; a < part.cellSize(c); ++a)
       for (int d = 0; d < 3; ++d) ue[3 * a + d] = u.at(disc.meshNode(part.cell(c)[a]))[d];
-    const auto sigma = Fem::cellStress(part.type, Fem::cellCoordinates(part, c), ue, mat.ofCell(part, c));
+    const auto sigma = Fem::cellStress(part.cellType(c), Fem::cellCoordinates(part, c), ue, mat.ofCell(part, c));
     vm.values.push_back(Fem::vonMises(sigma));
     for (int k : kTensor6FromVoigt) stress.values.push_back(sigma[k]);
     const auto e = principalStresses(sigma);
@@ -594,11 +594,24 @@ std::unique_ptr<Mesh::Mesh> readStep(const Teuchos::ParameterList& params, const
   Progress::stage("reading the mesh");
   auto whole = std::make_unique<Mesh::Mesh>(readMeshFile(params, decomposition, options.maxMemory, comm));
   double counts[4] = {double(whole->numNodes()), double(whole->numCells()), double(whole->numBodies()),
-                       double(whole->nodesPerCell())};
+                       std::ceil(double(whole->connectivity.size()) / std::max(whole->numCells(), 1))};
   Teuchos::broadcast(comm, 0, 4, counts);
   fileSize = {counts[0], counts[1], static_cast<int>(counts[2]), static_cast<int>(counts[3])};
   decomposition = decompositionFor(params, comm.getSize(), &fileSize);
   return whole;
+}
+
+// The cell types of the whole mesh from every rank's part: "Tet10", or
+// "Tet4, Tet10" for bodies of different types.
+std::string cellTypeNames(const Mesh::Mesh& part, const Comm& comm) {
+  constexpr int kTypes = 4;  // Mesh::CellType's values
+  int mine[kTypes] = {0, 0, 0, 0}, all[kTypes];
+  for (Mesh::CellType t : part.cellTypesPresent()) mine[static_cast<int>(t)] = 1;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, kTypes, mine, all);
+  std::string names;
+  for (int t = 0; t < kTypes; ++t)
+    if (all[t]) names += (names.empty() ? "" : ", ") + Mesh::cellTypeName(static_cast<Mesh::CellType>(t));
+  return names;
 }
 
 // Step "mesh": the box generated (rank 0), the whole mesh checked against the
@@ -640,7 +653,7 @@ Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& opt
   report.ranks = comm.getSize();
   report.subdomains = d.disc.numSubdomains();
   report.subdomainSize = decomposition.size;
-  report.element = Mesh::cellTypeName(d.disc.part.type);
+  report.element = cellTypeNames(d.disc.part, comm);
   if (fromFile) report.meshFile = Input::meshFile(params);
   report.nodes = d.disc.numMeshNodes();
   report.cells = d.disc.numMeshCells();

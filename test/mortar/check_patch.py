@@ -11,7 +11,8 @@ body's cells whose nodes are all contact nodes) equals P to T relative
 (default 1e-8). Contact nodes are those of every pair, on the rigid plane
 as between the bodies.
 
-On second-order cells (Tet10, Hex20; flat facets) the area is that of
+On second-order cells (Tet10, Hex20; flat facets; bodies may differ in
+order, the topology then XDMF's Mixed list) the area is that of
 mortar's transformed basis, int N~_s dA with a fifth of each mid-edge
 function moved to its edge's corners: 2A/15 at a 6-node triangle's corners
 and A/5 at its mid-edge nodes, A/20 and A/5 on an 8-node parallelogram.
@@ -41,6 +42,30 @@ TET_FACES = [(0, 1, 2), (0, 1, 3), (1, 2, 3), (0, 2, 3)]
 TET10_EDGES = [(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)]
 HEX20_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
 G = 1 / np.sqrt(3)
+# The nodes of each cell type of XDMF's Mixed topology (a mesh whose bodies
+# differ in cell type): Tet4, Hex8, Tet10, Hex20.
+XDMF_MIXED_NODES = {6: 4, 9: 8, 38: 10, 48: 20}
+
+
+def cells_of(h):
+    """The node lists of the written cells: the rows of /mesh/topology, or
+    its Mixed list (each cell's type number, then its nodes)."""
+    T = h["mesh/topology"][:].astype(int)
+    if T.shape[1] > 1:
+        return list(T)
+    flat, cells, i = T.ravel(), [], 0
+    while i < len(flat):
+        n = XDMF_MIXED_NODES[flat[i]]
+        cells.append(flat[i + 1:i + 1 + n])
+        i += 1 + n
+    return cells
+
+
+def cell_shape(cell):
+    """Corners, faces, mid-edge edges (empty for first order) of a cell."""
+    corners = 8 if len(cell) in (8, 20) else 4
+    edges = (HEX20_EDGES if corners == 8 else TET10_EDGES) if len(cell) > corners else []
+    return corners, HEX_FACES if corners == 8 else TET_FACES, edges
 
 
 def nodal_areas(P):
@@ -60,28 +85,25 @@ def nodal_areas(P):
 
 h = h5py.File(f"{a.out}/solution.h5", "r")
 X = h["mesh/geometry"][:]
-T = h["mesh/topology"][:].astype(int)
+T = cells_of(h)
 body = h["cells/body"][:].astype(int).ravel() if "cells/body" in h else np.zeros(len(T), dtype=int)
 c = h["points/contact"]
 rows = c["node"][:].astype(int).ravel()
 force = c["normal_force"][:].ravel()
-corners = 8 if T.shape[1] in (8, 20) else 4
-faces = HEX_FACES if corners == 8 else TET_FACES
-second_order = T.shape[1] > corners
-edges = HEX20_EDGES if corners == 8 else TET10_EDGES
 # The contact facets: faces of a body's cells that no other cell of the body
 # shares (boundary faces) and whose nodes are all contact nodes.
 contact = set(rows.tolist())
 seen = {}
 mids = {}  # a facet's corners -> the mid-edge nodes of its edges
 for cell, b in zip(T, body):
-    mid = {frozenset((cell[i], cell[j])): cell[corners + k] for k, (i, j) in enumerate(edges)} if second_order else {}
+    corners, faces, edges = cell_shape(cell)
+    mid = {frozenset((cell[i], cell[j])): cell[corners + k] for k, (i, j) in enumerate(edges)}
     for f in faces:
         nodes = cell[list(f)]
         if contact.issuperset(nodes.tolist()):
             key = (b, tuple(sorted(nodes.tolist())))
             seen[key] = None if key in seen else nodes
-            if second_order:
+            if mid:
                 mids[key] = [mid[frozenset((nodes[i], nodes[(i + 1) % len(nodes)]))] for i in range(len(nodes))]
 area = {}
 for key, nodes in seen.items():
@@ -89,7 +111,7 @@ for key, nodes in seen.items():
         continue
     b = key[0]
     w = nodal_areas(X[nodes])
-    if second_order:
+    if key in mids:
         A = w.sum()  # flat facet: its area
         share = (2 / 15, 1 / 5) if len(nodes) == 3 else (1 / 20, 1 / 5)
         w = np.full(len(nodes), share[0] * A)

@@ -471,7 +471,7 @@ struct BondedUnits {
     for (size_t b = 0; b < unit.size(); ++b) unit[b] = static_cast<int>(b);
     std::vector<int> nodeBody(mesh.numNodes(), -1);
     for (int c = 0; c < mesh.numCells(); ++c)
-      for (int a = 0; a < mesh.nodesPerCell(); ++a) {
+      for (int a = 0; a < mesh.cellSize(c); ++a) {
         int& b = nodeBody[mesh.cell(c)[a]];
         if (b < 0) b = mesh.bodyOf(c);
         else join(b, mesh.bodyOf(c));

@@ -512,9 +512,8 @@ void requireEveryBodyHeld(const Mesh::Mesh& mesh, const std::map<long long, doub
   // A body of each node (its first cell's); bodies sharing a node are bonded there.
   std::vector<int> nodeBody(static_cast<size_t>(mesh.numNodes()), -1);
   BodyGroups groups(bodies);
-  const int npc = mesh.nodesPerCell();
   for (int c = 0; c < mesh.numCells(); ++c)
-    for (int a = 0; a < npc; ++a) {
+    for (int a = 0; a < mesh.cellSize(c); ++a) {
       int& b = nodeBody[mesh.cell(c)[a]];
       if (b < 0) b = mesh.bodyOf(c);
       else groups.join(b, mesh.bodyOf(c));

@@ -15,19 +15,40 @@ namespace Tribos {
 namespace Fem {
 
 std::vector<Point> cellCoordinates(const Mesh::Mesh& mesh, int cell) {
-  std::vector<Point> X(mesh.nodesPerCell());
-  for (int a = 0; a < mesh.nodesPerCell(); ++a) X[a] = mesh.coords[mesh.cell(cell)[a]];
+  std::vector<Point> X(mesh.cellSize(cell));
+  for (int a = 0; a < mesh.cellSize(cell); ++a) X[a] = mesh.coords[mesh.cell(cell)[a]];
   return X;
 }
 
 namespace {
 
+// A cell of a subdomain: its local nodes in sub.connectivity and their count.
+struct SubdomainCell {
+  const int* nodes;
+  int count;
+};
+
+// Calls f(k, cell) for the subdomain's cells k in [first, end), walking
+// sub.connectivity cell by cell (cells of several types differ in size).
+template <class F>
+void forEachCell(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, size_t first, size_t end, F&& f) {
+  size_t at = 0;
+  for (size_t k = 0; k < first; ++k) at += mesh.cellSize(sub.cells[k]);
+  for (size_t k = first; k < end; ++k) {
+    const int count = mesh.cellSize(sub.cells[k]);
+    f(k, SubdomainCell{&sub.connectivity[at], count});
+    at += count;
+  }
+}
+
 // Sparsity of the dof graph: dofs of nodes sharing a cell are coupled.
-LocalCsr dofPattern(int numNodes, const std::vector<int>& conn, int npc) {
-  std::vector<std::vector<int>> adj(numNodes);
-  for (size_t c = 0; c < conn.size(); c += npc)
-    for (int a = 0; a < npc; ++a)
-      for (int b = 0; b < npc; ++b) adj[conn[c + a]].push_back(conn[c + b]);
+LocalCsr dofPattern(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub) {
+  std::vector<std::vector<int>> adj(sub.nodes.size());
+  forEachCell(mesh, sub, 0, sub.cells.size(), [&](size_t, const SubdomainCell& cell) {
+    for (int a = 0; a < cell.count; ++a)
+      for (int b = 0; b < cell.count; ++b) adj[cell.nodes[a]].push_back(cell.nodes[b]);
+  });
+  const int numNodes = static_cast<int>(sub.nodes.size());
   LocalCsr A;
   A.rows = A.cols = 3 * numNodes;
   A.rowptr.assign(A.rows + 1, 0);
@@ -69,22 +90,22 @@ void addElement(LocalCsr& A, const int* ln, int npc, const std::vector<double>& 
 
 LocalCsr assembleCellMatrices(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const ElementMatrix& elementMatrix,
                               size_t first, size_t end) {
-  const int npc = mesh.nodesPerCell();
-  LocalCsr A = dofPattern(static_cast<int>(sub.nodes.size()), sub.connectivity, npc);
-  for (size_t k = first; k < end; ++k)
-    addElement(A, &sub.connectivity[k * npc], npc, elementMatrix(sub.cells[k], cellCoordinates(mesh, sub.cells[k])));
+  LocalCsr A = dofPattern(mesh, sub);
+  forEachCell(mesh, sub, first, end, [&](size_t k, const SubdomainCell& cell) {
+    addElement(A, cell.nodes, cell.count, elementMatrix(sub.cells[k], cellCoordinates(mesh, sub.cells[k])));
+  });
   return A;
 }
 
 std::vector<double> subdomainLoad(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const LoadCase& loads) {
-  const int npc = mesh.nodesPerCell();
   std::vector<double> f(3 * sub.nodes.size(), 0.0);
   const bool hasVolumeForce = loads.volumeForce[0] != 0 || loads.volumeForce[1] != 0 || loads.volumeForce[2] != 0;
-  for (size_t k = 0; hasVolumeForce && k < sub.cells.size(); ++k) {
-    const int* ln = &sub.connectivity[k * npc];
-    const auto fe = cellVolumeForces(mesh.type, cellCoordinates(mesh, sub.cells[k]), loads.volumeForce);
-    for (int a = 0; a < 3 * npc; ++a) f[3 * ln[a / 3] + a % 3] += fe[a];
-  }
+  if (hasVolumeForce)
+    forEachCell(mesh, sub, 0, sub.cells.size(), [&](size_t k, const SubdomainCell& cell) {
+      const int c = sub.cells[k];
+      const auto fe = cellVolumeForces(mesh.cellType(c), cellCoordinates(mesh, c), loads.volumeForce);
+      for (int a = 0; a < 3 * cell.count; ++a) f[3 * cell.nodes[a / 3] + a % 3] += fe[a];
+    });
   // Tractions act on the facets whose cell belongs to this subdomain.
   std::vector<char> mine(mesh.numCells(), 0);
   for (int c : sub.cells) mine[c] = 1;
@@ -112,7 +133,7 @@ SubdomainSystem assembleCells(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub
   const int nl = static_cast<int>(sub.nodes.size());
   sys.K = assembleCellMatrices(
       mesh, sub,
-      [&](int cell, const std::vector<Point>& X) { return elementStiffness(mesh.type, X, mat.ofCell(mesh, cell)); },
+      [&](int cell, const std::vector<Point>& X) { return elementStiffness(mesh.cellType(cell), X, mat.ofCell(mesh, cell)); },
       first, end);
   sys.f = subdomainLoad(mesh, sub, loads);
   sys.coords.resize(nl);
@@ -167,9 +188,9 @@ RCP<CrsMatrix> toTpetra(const LocalCsr& A, const RCP<const Comm>& comm) {
 
 std::vector<double> loadVector(const Mesh::Mesh& mesh, const LoadCase& loads) {
   std::vector<double> f(3 * static_cast<size_t>(mesh.numNodes()), 0.0);
-  const int npc = mesh.nodesPerCell();
   for (int c = 0; c < mesh.numCells(); ++c) {
-    const auto fe = cellVolumeForces(mesh.type, cellCoordinates(mesh, c), loads.volumeForce);
+    const int npc = mesh.cellSize(c);
+    const auto fe = cellVolumeForces(mesh.cellType(c), cellCoordinates(mesh, c), loads.volumeForce);
     for (int a = 0; a < 3 * npc; ++a) f[3 * mesh.cell(c)[a / 3] + a % 3] += fe[a];
   }
   for (const auto& t : loads.tractions)

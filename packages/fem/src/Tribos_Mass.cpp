@@ -72,7 +72,7 @@ std::vector<double> elementMass(Mesh::CellType type, const std::vector<Point>& X
 LocalCsr assembleSubdomainMass(const Mesh::Mesh& mesh, const Mesh::Subdomain& sub, const BodyDensities& rho) {
   return assembleCellMatrices(
       mesh, sub,
-      [&](int cell, const std::vector<Point>& X) { return elementMass(mesh.type, X, rho.ofCell(mesh, cell)); }, 0,
+      [&](int cell, const std::vector<Point>& X) { return elementMass(mesh.cellType(cell), X, rho.ofCell(mesh, cell)); }, 0,
       sub.cells.size());
 }
 

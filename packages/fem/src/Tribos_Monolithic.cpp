@@ -37,7 +37,6 @@ MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const BodyM
   partMap_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(held), 0, comm));
   const Export toOwners(partMap_, map_);
   const auto bc = constrainedDofs(mesh, loads.dirichlet);
-  const int npc = mesh.nodesPerCell(), ne = 3 * npc;
   // Entries per row: 3 per node sharing a part cell with the row's node,
   // summed over the ranks holding it (a neighbour seen by two ranks counts
   // twice: an upper bound, which is all the allocation needs). Counted, not
@@ -47,9 +46,9 @@ MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const BodyM
   {
     std::vector<std::vector<int>> neighbours(mesh.numNodes());
     for (int c = 0; c < mesh.numCells(); ++c)
-      for (int a = 0; a < npc; ++a) {
+      for (int a = 0; a < mesh.cellSize(c); ++a) {
         auto& nb = neighbours[mesh.cell(c)[a]];
-        nb.insert(nb.end(), mesh.cell(c), mesh.cell(c) + npc);
+        nb.insert(nb.end(), mesh.cell(c), mesh.cell(c) + mesh.cellSize(c));
       }
     auto count = partCount.getDataNonConst();
     for (int n = 0; n < mesh.numNodes(); ++n) {
@@ -70,10 +69,13 @@ MonolithicSystem::MonolithicSystem(const Mesh::Discretization& disc, const BodyM
   // f: the part's share (its cells and facets), 3 per part node.
   std::vector<double> f = loadVector(mesh, loads);
   for (const auto& d : bc) f[d.first] = 0.0;
-  std::vector<GO> dofs(ne);
-  std::vector<SC> row(ne);
+  std::vector<GO> dofs;
+  std::vector<SC> row;
   for (int c = 0; c < mesh.numCells(); ++c) {
-    const auto Ke = elementStiffness(mesh.type, cellCoordinates(mesh, c), mat.ofCell(mesh, c));
+    const int ne = 3 * mesh.cellSize(c);
+    dofs.resize(ne);
+    row.resize(ne);
+    const auto Ke = elementStiffness(mesh.cellType(c), cellCoordinates(mesh, c), mat.ofCell(mesh, c));
     std::vector<double> ubar(ne, 0.0);
     std::vector<char> fixed(ne, 0);
     for (int a = 0; a < ne; ++a) {

@@ -363,6 +363,17 @@ std::string xmlEscaped(const std::string& s) {
   return out;
 }
 
+// XDMF's number of a cell type in a Mixed topology (Xdmf3's XdmfTopologyType ids).
+int xdmfMixedCode(Mesh::CellType type) {
+  switch (type) {
+    case Mesh::CellType::Tet4: return 6;
+    case Mesh::CellType::Hex8: return 9;
+    case Mesh::CellType::Tet10: return 38;
+    case Mesh::CellType::Hex20: return 48;
+  }
+  return 9;
+}
+
 // XDMF's name of a cell type.
 const char* xdmfTopologyType(Mesh::CellType type) {
   switch (type) {
@@ -394,9 +405,12 @@ void xdmfAttribute(std::ostream& os, int pad, const std::string& h5, const std::
 void xdmfGrids(std::ostream& x, int pad, const std::string& h5, const ResultLayout& n) {
   const std::string in(pad, ' ');
   x << in << "<Grid Name=\"body\" GridType=\"Uniform\">\n"
-    << in << "  <Topology TopologyType=\"" << xdmfTopologyType(n.cellType)
+    << in << "  <Topology TopologyType=\"" << (n.mixed ? "Mixed" : xdmfTopologyType(n.cellType))
     << "\" NumberOfElements=\"" << n.cells << "\">\n";
-  xdmfDataItem(x, pad + 4, h5, "/mesh/topology", n.cells, n.nodesPerCell, "Int");
+  if (n.mixed)
+    xdmfDataItem(x, pad + 4, h5, "/mesh/topology", n.topologyEntries, 1, "Int");
+  else
+    xdmfDataItem(x, pad + 4, h5, "/mesh/topology", n.cells, n.nodesPerCell, "Int");
   x << in << "  </Topology>\n" << in << "  <Geometry GeometryType=\"XYZ\">\n";
   xdmfDataItem(x, pad + 4, h5, "/mesh/geometry", n.nodes, 3, "Float");
   x << in << "  </Geometry>\n";
@@ -471,13 +485,23 @@ struct Content {
   Content(const Mesh::Discretization& disc, const std::vector<double>& uOwned, const std::vector<Field>& nodeFields,
           const std::vector<Field>& cellFields, const std::vector<PointSet>& pointSets, MPI_Comm comm) {
     const Mesh::Mesh& mesh = disc.part;
-    const int npc = mesh.nodesPerCell();
     for (int n : disc.ownedNodes())
       for (int d = 0; d < 3; ++d) xyz.push_back(mesh.coords[n][d]);
     disp = uOwned;
-    const std::vector<int>& order = xdmfNodeOrder(mesh.type);
-    for (int c = 0; c < mesh.numCells(); ++c)
-      for (int k = 0; k < npc; ++k) topo.push_back(disc.nodeIndex()[mesh.cell(c)[order[k]]]);
+    // The cell types of every rank's part: one (a table of cells) or several
+    // (XDMF's Mixed list: each cell's type number, then its nodes).
+    int mine = 0, all = 0;
+    for (Mesh::CellType t : mesh.cellTypesPresent()) mine |= 1 << static_cast<int>(t);
+    MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_BOR, comm);
+    layout.mixed = (all & (all - 1)) != 0;
+    for (int t = 0; !layout.mixed && t < 4; ++t)
+      if (all == 1 << t) layout.cellType = static_cast<Mesh::CellType>(t);
+    layout.nodesPerCell = layout.mixed ? 1 : Mesh::nodesPerCell(layout.cellType);
+    for (int c = 0; c < mesh.numCells(); ++c) {
+      const std::vector<int>& order = xdmfNodeOrder(mesh.cellType(c));
+      if (layout.mixed) topo.push_back(xdmfMixedCode(mesh.cellType(c)));
+      for (int k : order) topo.push_back(disc.nodeIndex()[mesh.cell(c)[k]]);
+    }
     pointXyz.resize(pointSets.size());
     for (size_t k = 0; k < pointSets.size(); ++k)
       for (const auto& p : pointSets[k].coords) pointXyz[k].insert(pointXyz[k].end(), p.begin(), p.end());
@@ -485,15 +509,16 @@ struct Content {
     const long long nOwned = static_cast<long long>(disc.ownedNodes().size());
     const long long nCells = static_cast<long long>(mesh.numCells());
     const auto nodeBlock = blockOffset(nOwned, comm), cellBlock = blockOffset(nCells, comm);
-    layout.cellType = mesh.type;
-    layout.nodesPerCell = npc;
+    const long long topoRows = layout.mixed ? static_cast<long long>(topo.size()) : nCells;
+    const auto topoBlock = layout.mixed ? blockOffset(topoRows, comm) : cellBlock;
+    layout.topologyEntries = layout.mixed ? topoBlock.second : cellBlock.second * layout.nodesPerCell;
     layout.nodes = nodeBlock.second;
     layout.cells = cellBlock.second;
     layout.nodeFields = fieldLayouts(nodeFields);
     layout.nodeFields.insert(layout.nodeFields.begin(), {"displacement", 3});
     layout.cellFields = fieldLayouts(cellFields);
     groups = {"/mesh", "/nodes", "/cells", "/points"};
-    blocks = {block("/mesh/geometry", xyz, nodeBlock, nOwned, 3), block("/mesh/topology", topo, cellBlock, nCells, npc),
+    blocks = {block("/mesh/geometry", xyz, nodeBlock, nOwned, 3), block("/mesh/topology", topo, topoBlock, topoRows, layout.nodesPerCell),
               block("/nodes/displacement", disp, nodeBlock, nOwned, 3)};
     for (const Field& f : nodeFields) blocks.push_back(block("/nodes/" + f.name, f.values, nodeBlock, nOwned, f.components));
     for (const Field& f : cellFields) blocks.push_back(block("/cells/" + f.name, f.values, cellBlock, nCells, f.components));

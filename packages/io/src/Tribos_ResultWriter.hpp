@@ -50,7 +50,9 @@ struct ResultAttributes {
 // What one write put in its HDF5 file, as an XDMF grid describes it; the
 // same on every rank. The datasets are /mesh/geometry (nodes x 3),
 // /mesh/topology (cells x nodesPerCell, integers: rows of /mesh/geometry, in
-// XDMF's node order, xdmfNodeOrder),
+// XDMF's node order, xdmfNodeOrder; for a mesh of several cell types,
+// `mixed`, XDMF's Mixed list instead: topologyEntries x 1, each cell's type
+// number (Tet4 6, Hex8 9, Tet10 38, Hex20 48) followed by its nodes),
 // /nodes/NAME (nodes x components; displacement first), /cells/NAME
 // (cells x components), and per point set /points/SET/geometry (points x 3)
 // and /points/SET/NAME (points x components).
@@ -75,8 +77,10 @@ struct ResultLayout {
     long long points = 0;
     std::vector<FieldLayout> fields;
   };
-  Mesh::CellType cellType = Mesh::CellType::Hex8;
-  int nodesPerCell = 8;
+  Mesh::CellType cellType = Mesh::CellType::Hex8;  // of every cell, unless mixed
+  bool mixed = false;                              // cells of several types
+  int nodesPerCell = 8;                            // the topology's columns (1 when mixed)
+  long long topologyEntries = 0;                   // the topology's numbers
   long long nodes = 0, cells = 0;
   std::vector<FieldLayout> nodeFields;  // displacement first, then the caller's
   std::vector<FieldLayout> cellFields;

@@ -26,7 +26,7 @@ double norm(const Point& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] 
 double faceArea(const Mesh& mesh, int cell, const std::vector<int>& local) {
   const int* n = mesh.cell(cell);
   const auto& x = mesh.coords;
-  const bool triangle = detail::faceCorners(mesh.type) == 3;
+  const bool triangle = detail::faceCorners(mesh.cellType(cell)) == 3;
   const Point u = triangle ? minus(x[n[local[1]]], x[n[local[0]]]) : minus(x[n[local[2]]], x[n[local[0]]]);
   const Point v = triangle ? minus(x[n[local[2]]], x[n[local[0]]]) : minus(x[n[local[3]]], x[n[local[1]]]);
   const Point c = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
@@ -36,7 +36,7 @@ double faceArea(const Mesh& mesh, int cell, const std::vector<int>& local) {
 double cellVolume(const Mesh& mesh, int cell) {
   const int* n = mesh.cell(cell);
   const auto& x = mesh.coords;
-  if (detail::isTetrahedron(mesh.type)) return std::abs(detail::triple(x[n[0]], x[n[1]], x[n[2]], x[n[3]])) / 6;
+  if (detail::isTetrahedron(mesh.cellType(cell))) return std::abs(detail::triple(x[n[0]], x[n[1]], x[n[2]], x[n[3]])) / 6;
   // Six tetrahedra around the diagonal 0-6 (the Kuhn split), alike oriented.
   static const int ring[7] = {1, 2, 3, 7, 4, 5, 1};
   double six = 0;
@@ -46,14 +46,14 @@ double cellVolume(const Mesh& mesh, int cell) {
 
 double largestFaceArea(const Mesh& mesh, int cell) {
   double largest = 0;
-  for (const auto& local : detail::cellFaces(mesh.type)) largest = std::max(largest, faceArea(mesh, cell, local));
+  for (const auto& local : detail::cellFaces(mesh.cellType(cell))) largest = std::max(largest, faceArea(mesh, cell, local));
   return largest;
 }
 
 Point centroid(const Mesh& mesh, int cell) {
   Point c{0, 0, 0};
-  for (int a = 0; a < mesh.nodesPerCell(); ++a)
-    for (int d = 0; d < 3; ++d) c[d] += mesh.coords[mesh.cell(cell)[a]][d] / mesh.nodesPerCell();
+  for (int a = 0; a < mesh.cellSize(cell); ++a)
+    for (int d = 0; d < 3; ++d) c[d] += mesh.coords[mesh.cell(cell)[a]][d] / mesh.cellSize(cell);
   return c;
 }
 
@@ -69,13 +69,12 @@ struct BodyFace {
 // The area of the faces of each body's cells that no other cell of the
 // body shares.
 std::vector<double> boundaryAreas(const Mesh& mesh) {
-  const auto& faces = detail::cellFaces(mesh.type);
   std::vector<BodyFace> all;
-  all.reserve(static_cast<size_t>(mesh.numCells()) * faces.size());
+  all.reserve(static_cast<size_t>(mesh.numCells()) * 6);
   for (int c = 0; c < mesh.numCells(); ++c)
-    for (const auto& local : faces) {
+    for (const auto& local : detail::cellFaces(mesh.cellType(c))) {
       BodyFace f{mesh.bodyOf(c), {-1, -1, -1, -1}, faceArea(mesh, c, local)};
-      const int corners = detail::faceCorners(mesh.type);
+      const int corners = detail::faceCorners(mesh.cellType(c));
       for (int a = 0; a < corners; ++a) f.key[a] = mesh.cell(c)[local[a]];
       std::sort(f.key.begin(), f.key.begin() + corners);
       all.push_back(f);
@@ -134,14 +133,14 @@ double cellThickness(const Mesh& mesh, int cell) {
   // A second-order cell measured by its corners (its straight-sided cell).
   const double largest = largestFaceArea(mesh, cell);
   if (!(largest > 0)) return 0;
-  return (detail::isTetrahedron(mesh.type) ? 3 : 1) * cellVolume(mesh, cell) / largest;
+  return (detail::isTetrahedron(mesh.cellType(cell)) ? 3 : 1) * cellVolume(mesh, cell) / largest;
 }
 
 double cellDiameter(const Mesh& mesh, int cell) {
   const int* n = mesh.cell(cell);
   double longest = 0;
-  for (int a = 0; a < mesh.nodesPerCell(); ++a)
-    for (int b = a + 1; b < mesh.nodesPerCell(); ++b)
+  for (int a = 0; a < mesh.cellSize(cell); ++a)
+    for (int b = a + 1; b < mesh.cellSize(cell); ++b)
       longest = std::max(longest, norm(minus(mesh.coords[n[a]], mesh.coords[n[b]])));
   return longest;
 }
@@ -158,7 +157,7 @@ std::vector<BodyShape> bodyShapes(const Mesh& mesh) {
     const double aspect = thickness > 0 ? edge / thickness : HUGE_VAL;
     if (s.worstCell < 0 || aspect > s.worstAspect) s.worstCell = c, s.worstAspect = aspect, s.worstDiameter = edge,
                                                    s.worstThickness = thickness;
-    for (int a = 0; a < mesh.nodesPerCell(); ++a)
+    for (int a = 0; a < mesh.cellSize(c); ++a)
       for (int d = 0; d < 3; ++d) {
         lo[b][d] = std::min(lo[b][d], mesh.coords[mesh.cell(c)[a]][d]);
         hi[b][d] = std::max(hi[b][d], mesh.coords[mesh.cell(c)[a]][d]);

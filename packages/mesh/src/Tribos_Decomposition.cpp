@@ -15,8 +15,37 @@ namespace Mesh {
 namespace {
 
 // The nodes two cells share when they share a face: METIS's ncommon, so that
-// the dual graph joins cells through faces only.
-idx_t facetNodes(CellType type) { return static_cast<idx_t>(detail::cellFaces(type).front().size()); }
+// the dual graph joins cells through faces only. A mesh of one type here
+// (bodies of different types go to METIS one by one).
+idx_t facetNodes(const Mesh& mesh) { return static_cast<idx_t>(detail::cellFaces(mesh.type).front().size()); }
+
+// METIS' element pointers and nodes of a mesh, cell after cell.
+void metisCells(const Mesh& mesh, std::vector<idx_t>& eptr, std::vector<idx_t>& eind) {
+  eind.assign(mesh.connectivity.begin(), mesh.connectivity.end());
+  eptr.assign(static_cast<size_t>(mesh.numCells()) + 1, 0);
+  for (int e = 0; e < mesh.numCells(); ++e) eptr[e + 1] = eptr[e] + mesh.cellSize(e);
+}
+
+// The cells of one body as a mesh of their own (nodes renumbered in
+// ascending global order; no faces): what METIS partitions for the body.
+Mesh bodyMesh(const Mesh& mesh, int body, std::vector<int>& cells) {
+  Mesh sub;
+  cells.clear();
+  for (int c = 0; c < mesh.numCells(); ++c)
+    if (mesh.bodyOf(c) == body) cells.push_back(c);
+  std::vector<int> local(mesh.numNodes(), -1);
+  for (int c : cells)
+    for (int a = 0; a < mesh.cellSize(c); ++a) local[mesh.cell(c)[a]] = 0;
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    if (local[n] == 0) local[n] = sub.numNodes(), sub.coords.push_back(mesh.coords[n]);
+  std::vector<int> nodes;
+  for (int c : cells) {
+    nodes.clear();
+    for (int a = 0; a < mesh.cellSize(c); ++a) nodes.push_back(local[mesh.cell(c)[a]]);
+    sub.addCell(mesh.cellType(c), nodes.data());
+  }
+  return sub;
+}
 
 }  // namespace
 
@@ -26,10 +55,11 @@ std::vector<int> partitionMetis(const Mesh& mesh, int numSubdomains) {
                  "METIS partition: need 1 <= subdomains <= cells (" << ne << "), got " << numSubdomains);
   std::vector<int> part(ne, 0);
   if (numSubdomains == 1) return part;
-  const int npc = mesh.nodesPerCell();
-  std::vector<idx_t> eptr(ne + 1), eind(mesh.connectivity.begin(), mesh.connectivity.end());
-  for (int e = 0; e <= ne; ++e) eptr[e] = static_cast<idx_t>(e) * npc;
-  idx_t nn = mesh.numNodes(), nev = ne, ncommon = facetNodes(mesh.type);
+  TRIBOS_REQUIRE(!mesh.mixed(), "METIS partition: the mesh holds cells of several types; partition it body by body "
+                                "(partitionMetisByBody)");
+  std::vector<idx_t> eptr, eind;
+  metisCells(mesh, eptr, eind);
+  idx_t nn = mesh.numNodes(), nev = ne, ncommon = facetNodes(mesh);
   idx_t nparts = numSubdomains, objval = 0;
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
@@ -81,31 +111,27 @@ std::vector<int> subdomainsPerBody(const Mesh& mesh, int numSubdomains) {
   return count;
 }
 
-void requireConnectedBodies(const Mesh& mesh) {
+namespace {
+
+// Two cells of one body in pieces that share no face (q < start), or
+// {-1, -1} when every body of this mesh of one cell type is connected.
+std::pair<int, int> disconnectedCells(const Mesh& mesh) {
   const int ne = mesh.numCells();
-  if (ne == 0) return;
-  const int npc = mesh.nodesPerCell();
-  std::vector<idx_t> eptr(ne + 1), eind(mesh.connectivity.begin(), mesh.connectivity.end());
-  for (int e = 0; e <= ne; ++e) eptr[e] = static_cast<idx_t>(e) * npc;
-  idx_t nev = ne, nn = mesh.numNodes(), ncommon = facetNodes(mesh.type), numflag = 0;
+  std::vector<idx_t> eptr, eind;
+  metisCells(mesh, eptr, eind);
+  idx_t nev = ne, nn = mesh.numNodes(), ncommon = facetNodes(mesh), numflag = 0;
   idx_t *xadj = nullptr, *adjncy = nullptr;
   const int status = METIS_MeshToDual(&nev, &nn, eptr.data(), eind.data(), &ncommon, &numflag, &xadj, &adjncy);
   TRIBOS_REQUIRE(status == METIS_OK, "METIS_MeshToDual failed with status " << status);
   // Pieces by breadth-first search within each body.
   std::vector<int> piece(ne, -1), firstCell;  // the first cell of each piece
   std::vector<int> queue;
-  for (int start = 0; start < ne; ++start) {
+  std::pair<int, int> found{-1, -1};
+  for (int start = 0; start < ne && found.first < 0; ++start) {
     if (piece[start] >= 0) continue;
     const int p = static_cast<int>(firstCell.size()), body = mesh.bodyOf(start);
-    for (int q : firstCell) {
-      if (mesh.bodyOf(q) != body) continue;
-      METIS_Free(xadj);
-      METIS_Free(adjncy);
-      throw Error("body \"" + mesh.bodyName(body) + "\" is in several pieces that share no face (cells " +
-                  std::to_string(q) + " and " + std::to_string(start) +
-                  " of the mesh are in different pieces): a subdomain of two pieces has 12 rigid motions, not the 6 "
-                  "FETI counts; make each piece a body of its own (a physical volume or element block each)");
-    }
+    for (int q : firstCell)
+      if (mesh.bodyOf(q) == body && found.first < 0) found = {q, start};
     firstCell.push_back(start);
     piece[start] = p;
     queue.assign(1, start);
@@ -117,29 +143,35 @@ void requireConnectedBodies(const Mesh& mesh) {
   }
   METIS_Free(xadj);
   METIS_Free(adjncy);
-}
-
-namespace {
-
-// The cells of one body as a mesh of their own (nodes renumbered in
-// ascending global order; no faces): what METIS partitions for the body.
-Mesh bodyMesh(const Mesh& mesh, int body, std::vector<int>& cells) {
-  Mesh sub;
-  sub.type = mesh.type;
-  cells.clear();
-  for (int c = 0; c < mesh.numCells(); ++c)
-    if (mesh.bodyOf(c) == body) cells.push_back(c);
-  std::vector<int> local(mesh.numNodes(), -1);
-  for (int c : cells)
-    for (int a = 0; a < mesh.nodesPerCell(); ++a) local[mesh.cell(c)[a]] = 0;
-  for (int n = 0; n < mesh.numNodes(); ++n)
-    if (local[n] == 0) local[n] = sub.numNodes(), sub.coords.push_back(mesh.coords[n]);
-  for (int c : cells)
-    for (int a = 0; a < mesh.nodesPerCell(); ++a) sub.connectivity.push_back(local[mesh.cell(c)[a]]);
-  return sub;
+  return found;
 }
 
 }  // namespace
+
+void requireConnectedBodies(const Mesh& mesh) {
+  if (mesh.numCells() == 0) return;
+  std::pair<int, int> found{-1, -1};
+  int body = 0;
+  if (!mesh.mixed()) {
+    found = disconnectedCells(mesh);
+    if (found.first >= 0) body = mesh.bodyOf(found.first);
+  } else {
+    // Faces of different types have different node counts (METIS' ncommon):
+    // body by body, each of one type.
+    std::vector<int> cells;
+    for (body = 0; body < mesh.numBodies() && found.first < 0; ++body) {
+      found = disconnectedCells(bodyMesh(mesh, body, cells));
+      if (found.first >= 0) found = {cells[found.first], cells[found.second]};
+    }
+    --body;
+  }
+  if (found.first < 0) return;
+  throw Error("body \"" + mesh.bodyName(body) + "\" is in several pieces that share no face (cells " +
+              std::to_string(found.first) + " and " + std::to_string(found.second) +
+              " of the mesh are in different pieces): a subdomain of two pieces has 12 rigid motions, not the 6 "
+              "FETI counts; make each piece a body of its own (a physical volume or element block each)");
+}
+
 
 std::vector<int> partitionMetisByBody(const Mesh& mesh, int numSubdomains, std::vector<int>* subdomainBody) {
   requireConnectedBodies(mesh);
@@ -166,8 +198,8 @@ std::vector<int> partitionStructured(const Mesh& mesh, const BoxSpec& spec, cons
                                            << " must divide the " << spec.cells[a] << " cells");
   const std::array<std::array<double, 2>, 3> range = {spec.x, spec.y, spec.z};
   std::vector<int> part(mesh.numCells());
-  const int npc = mesh.nodesPerCell();
   for (int c = 0; c < mesh.numCells(); ++c) {
+    const int npc = mesh.cellSize(c);
     int idx[3];
     for (int a = 0; a < 3; ++a) {
       double centroid = 0;
@@ -195,14 +227,13 @@ std::vector<Subdomain> extractSubdomains(const Mesh& mesh, const std::vector<int
     TRIBOS_REQUIRE(s >= 0 && s < numSubdomains, "cell " << c << " has invalid subdomain " << cellPart[c]);
     subs[s].cells.push_back(c);
   }
-  const int npc = mesh.nodesPerCell();
   for (Subdomain& s : subs) {
     TRIBOS_REQUIRE(!s.cells.empty(), "subdomain " << s.id << " has no cells");
-    for (int c : s.cells) s.nodes.insert(s.nodes.end(), mesh.cell(c), mesh.cell(c) + npc);
+    for (int c : s.cells) s.nodes.insert(s.nodes.end(), mesh.cell(c), mesh.cell(c) + mesh.cellSize(c));
     std::sort(s.nodes.begin(), s.nodes.end());
     s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
     for (int c : s.cells)
-      for (int k = 0; k < npc; ++k) s.connectivity.push_back(s.localNode(mesh.cell(c)[k]));
+      for (int k = 0; k < mesh.cellSize(c); ++k) s.connectivity.push_back(s.localNode(mesh.cell(c)[k]));
   }
   return subs;
 }

@@ -11,7 +11,8 @@ namespace Tribos {
 namespace Mesh {
 
 // Element-to-subdomain map from METIS (k-way partition of the dual graph in
-// which two cells are adjacent when they share a face). Deterministic.
+// which two cells are adjacent when they share a face). Deterministic. A
+// mesh of one cell type (partitionMetisByBody splits the others).
 std::vector<int> partitionMetis(const Mesh& mesh, int numSubdomains);
 
 // Subdomains of each body when numSubdomains are spread over the bodies in
@@ -43,7 +44,7 @@ struct Subdomain {
   int id = -1;
   std::vector<int> cells;          // global cell ids
   std::vector<int> nodes;          // local node -> global node (sorted)
-  std::vector<int> connectivity;   // local node ids, nodesPerCell per cell
+  std::vector<int> connectivity;   // local node ids of each cell, cell after cell (mesh.cellSize(cells[k]) each)
   int localNode(int globalNode) const;  // -1 if absent
 };
 

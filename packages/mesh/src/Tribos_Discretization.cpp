@@ -109,10 +109,12 @@ Discretization DiscretizationAccess::cut(const Mesh& mesh, const WholeDecomposit
   Mesh& part = d.part;
   part.type = mesh.type;
   part.bodyNames = mesh.bodyNames;
-  const int npc = mesh.nodesPerCell();
   for (int n : d.meshNodes_) part.coords.push_back(mesh.coords[n]);
+  std::vector<int> nodes;
   for (int c : d.meshCells_) {
-    for (int a = 0; a < npc; ++a) part.connectivity.push_back(partOfNode[mesh.cell(c)[a]]);
+    nodes.clear();
+    for (int a = 0; a < mesh.cellSize(c); ++a) nodes.push_back(partOfNode[mesh.cell(c)[a]]);
+    part.addCell(mesh.cellType(c), nodes.data());
     if (!mesh.cellBody.empty()) part.cellBody.push_back(mesh.cellBody[c]);
   }
   for (const auto& [name, facets] : mesh.faces) {

@@ -171,7 +171,7 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
   std::vector<int> fileNodes;                     // 1-based file node of each cell corner
   std::vector<int> elementOf;                     // cell -> 0-based internal element number
   std::vector<int> cellOf(init.num_elem, -1);     // internal element -> cell
-  std::string firstBlock;
+  std::vector<CellType> cellTypes;                // per cell: each block is a body of one type
   int element = 0;
   for (size_t k = 0; k < blockIds.size(); ++k) {
     char typeName[MAX_STR_LENGTH + 1] = "";
@@ -188,14 +188,6 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
                    file << ": element type " << typeName << " of " << nodes << " nodes in " << what << " is not supported"
                         << unsupportedReason(typeName, nodes)
                         << "; Tribos reads Tet4 and Hex8 (first order), Tet10 and Hex20 (second order)");
-    TRIBOS_REQUIRE(firstBlock.empty() || type == mesh.type,
-                   file << " mixes " << cellTypeName(mesh.type) << " (" << firstBlock << ") and " << cellTypeName(type)
-                        << " (" << what << "); "
-                        << (isSecondOrder(type) != isSecondOrder(mesh.type)
-                                ? "a mesh of first- and second-order cells is not supported (Tribos' mesh holds one "
-                                  "cell type)"
-                                : "a body has one cell type, and a mesh too: Tet4, Hex8, Tet10 or Hex20"));
-    if (firstBlock.empty()) mesh.type = type, firstBlock = what;
     std::vector<int> connectivity(static_cast<size_t>(count) * nodes);
     exo.check(ex_get_conn(exo.id(), EX_ELEM_BLOCK, blockIds[k], connectivity.data(), nullptr, nullptr),
               "the connectivity of " + what);
@@ -208,6 +200,7 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
     for (int e = 0; e < count; ++e, ++element) {
       cellOf[element] = static_cast<int>(elementOf.size());
       elementOf.push_back(element);
+      cellTypes.push_back(type);
       mesh.cellBody.push_back(static_cast<int>(mesh.bodyNames.size()));
     }
     mesh.bodyNames.push_back(blockNames[k]);
@@ -228,6 +221,8 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
   detail::requireUsableCoordinates(mesh.coords, usedIds, file);
   mesh.connectivity.reserve(fileNodes.size());
   for (int n : fileNodes) mesh.connectivity.push_back(newIndex[n - 1]);
+  mesh.setCellTypes(cellTypes);
+  mesh.checkBodies(file, usedIds);  // blocks of different types share no node
   std::vector<long long> cellIds;
   for (int e : elementOf) cellIds.push_back(elemMap[e]);
   detail::checkMidEdgeNodes(mesh, file, cellIds, warnings, "block");
@@ -235,7 +230,6 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
 
   // Side sets: faces, each side the outward face of its cell.
   const detail::FaceIndex index(mesh);
-  const auto& sides = exodusSides(mesh.type);
   const std::vector<int> sideSetIds = exo.ids(EX_SIDE_SET, init.num_side_sets, "side sets");
   const std::vector<std::string> sideSetNames = uniqueNames(exo, EX_SIDE_SET, sideSetIds, "sideset_", "side set", file);
   for (size_t k = 0; k < sideSetIds.size(); ++k) {
@@ -247,10 +241,11 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
       const int e = elements[s] - 1, side = sideNumbers[s];
       TRIBOS_REQUIRE(e >= 0 && e < init.num_elem && cellOf[e] >= 0,
                      file << ": " << what << " names element " << elements[s] << ", which is in no element block");
+      const int c = cellOf[e];
+      const auto& sides = exodusSides(mesh.cellType(c));
       TRIBOS_REQUIRE(side >= 1 && side <= static_cast<int>(sides.size()),
                      file << ": " << what << " names side " << side << " of element " << elemMap[e] << "; a "
-                          << cellTypeName(mesh.type) << " has sides 1 to " << sides.size());
-      const int c = cellOf[e];
+                          << cellTypeName(mesh.cellType(c)) << " has sides 1 to " << sides.size());
       std::vector<int> nodes;
       for (int ln : sides[side - 1]) nodes.push_back(mesh.cell(c)[ln - 1]);
       const auto* hit = index.boundaryFace(nodes);
@@ -277,7 +272,6 @@ Mesh readExodusFile(const std::string& path, const std::string& file, std::vecto
     std::sort(set.begin(), set.end());
     set.erase(std::unique(set.begin(), set.end()), set.end());
   }
-  mesh.checkBodies();
   return mesh;
 }
 

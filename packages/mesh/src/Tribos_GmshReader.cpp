@@ -65,6 +65,10 @@ int facetTypeOf(CellType type) {
   return 0;
 }
 
+// Whether a 2D element type is a face of some cell type, and its corners.
+bool isFacetType(int type) { return type == 2 || type == 3 || type == 9 || type == 16; }
+int facetCorners(int type) { return type == 2 || type == 9 ? 3 : 4; }
+
 // Why a 3D element type is refused, for the types a user may meet: the
 // complete second-order hexahedron and the elements of order 3 or more.
 std::string unsupportedReason(int type) {
@@ -219,11 +223,12 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
   const std::vector<Body> bodies = readBodies(file);
   const bool physical = !bodies.front().what.empty();
   Mesh mesh;
-  int cellGmshType = 0;
-  std::string firstVolume;
   std::vector<std::size_t> cellTags, cellNodes;  // Gmsh tags
+  std::vector<CellType> cellTypes;
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
     const size_t before = cellTags.size();
+    int cellGmshType = 0;  // a body holds cells of one type
+    std::string firstVolume;
     for (int entity : bodies[b].entities) {
       const std::string what = physical ? bodies[b].what : "volume " + std::to_string(entity);
       const std::vector<int> types = Gmsh::elementTypes(3, entity);
@@ -237,16 +242,19 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
                                                   << "; Tribos reads Tet4 and Hex8 (first order), Tet10 and Hex20 "
                                                      "(second order)");
         TRIBOS_REQUIRE(cellGmshType == 0 || cellGmshType == type,
-                       file << " mixes " << elementTypeName(cellGmshType) << " (" << firstVolume << ") and "
-                            << elementTypeName(type) << " (" << what << "); "
+                       file << ": " << (physical ? bodies[b].what : std::string("the mesh (one body: it names no "
+                                                                                  "physical volumes)"))
+                            << " mixes " << elementTypeName(cellGmshType) << " (" << firstVolume << ") and "
+                            << elementTypeName(type) << " (volume " << entity << ", " << element << "); "
                             << (cellOrder(cellGmshType) != cellOrder(type)
-                                    ? "a mesh of first- and second-order cells is not supported (Tribos' mesh holds "
-                                      "one cell type): mesh every volume with the same -order"
-                                    : "a body has one cell type, and a mesh too: Tet4, Hex8, Tet10 or Hex20")
-                            << " (" << element << ")");
-        if (cellGmshType == 0) cellGmshType = type, firstVolume = what;
+                                    ? "a body of first- and second-order cells is not supported: its faces would "
+                                      "not match; mesh the body with one -order (bodies of different orders meet "
+                                      "in contact)"
+                                    : "a body holds cells of one type: Tet4, Hex8, Tet10 or Hex20"));
+        if (cellGmshType == 0) cellGmshType = type, firstVolume = "volume " + std::to_string(entity);
         cellTags.insert(cellTags.end(), tags.begin(), tags.end());
         cellNodes.insert(cellNodes.end(), nodes.begin(), nodes.end());
+        cellTypes.insert(cellTypes.end(), tags.size(), cellTypeOfGmsh(type));
       }
     }
     mesh.cellBody.insert(mesh.cellBody.end(), cellTags.size() - before, b);
@@ -258,7 +266,6 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
     TRIBOS_REQUIRE(std::count(mesh.cellBody.begin(), mesh.cellBody.end(), b) > 0,
                    file << ": " << bodies[b].what << " has no 3D elements; each physical volume is a body");
   if (!physical) mesh.cellBody.clear();  // one body, as a box mesh
-  mesh.type = cellTypeOfGmsh(cellGmshType);
 
   // Nodes no cell uses (geometry points, nodes of surfaces only) are dropped;
   // the rest keep Gmsh's order. Gmsh's node orders are Tribos' (positive
@@ -282,27 +289,28 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
   detail::requireUsableCoordinates(mesh.coords, usedTags, file);
   mesh.connectivity.reserve(cellNodes.size());
   for (std::size_t tag : cellNodes) mesh.connectivity.push_back(newIndex[gmshIndex.at(tag)]);
+  mesh.setCellTypes(cellTypes);
+  mesh.checkBodies(file, usedTags);  // bodies of different types share no node
   const std::vector<long long> cellIds(cellTags.begin(), cellTags.end());
   detail::checkMidEdgeNodes(mesh, file, cellIds, warnings);
   detail::requirePositiveCells(mesh, file, cellIds);
 
   // Named faces: the physical surfaces, each facet the face of its boundary cell.
   const detail::FaceIndex index(mesh);
-  const int facetType = facetTypeOf(mesh.type);
   const Gmsh::DimTags surfaces = Gmsh::physicalGroups(2);
   for (const auto& g : surfaces) {
     const std::string name = physicalName(2, g.second);
     std::vector<Facet>& face = mesh.faces[name];
     for (int e : Gmsh::entitiesForPhysicalGroup(2, g.second)) {
       for (int type : Gmsh::elementTypes(2, e)) {
-        TRIBOS_REQUIRE(type == facetType, file << ": element type " << type << " (" << elementTypeName(type)
-                                               << ") in physical surface '" << name << "' is not supported with "
-                                               << cellTypeName(mesh.type) << " cells; their faces are "
-                                               << elementTypeName(facetType));
+        TRIBOS_REQUIRE(isFacetType(type), file << ": element type " << type << " (" << elementTypeName(type)
+                                               << ") in physical surface '" << name
+                                               << "' is not supported; the faces of Tribos' cells are 3- and 6-node "
+                                                  "triangles, 4- and 8-node quadrangles");
         std::vector<std::size_t> tags, nodes;
         Gmsh::elementsByType(type, e, tags, nodes);
         const size_t npf = static_cast<size_t>(nodes.size() / std::max<size_t>(tags.size(), 1));
-        const size_t corners = static_cast<size_t>(detail::faceCorners(mesh.type));
+        const size_t corners = static_cast<size_t>(facetCorners(type));
         for (size_t k = 0; k < tags.size(); ++k) {
           std::vector<int> facetNodes;
           for (size_t a = 0; a < npf; ++a) {
@@ -313,6 +321,11 @@ Mesh readGmshFile(const std::string& path, const std::string& file, std::vector<
           const auto* hit =
               std::count(facetNodes.begin(), facetNodes.end(), -1) ? nullptr : index.boundaryFace(facetCorners);
           TRIBOS_REQUIRE(hit, file << ": surface '" << name << "' is not on the boundary (facet " << tags[k] << ")");
+          const CellType cellType = mesh.cellType(hit->cell);
+          TRIBOS_REQUIRE(type == facetTypeOf(cellType),
+                         file << ": facet " << tags[k] << " (" << elementTypeName(type) << ") of surface '" << name
+                              << "' lies on a " << cellTypeName(cellType) << " cell, whose faces are "
+                              << elementTypeName(facetTypeOf(cellType)));
           // A second-order facet's mid-edge nodes are its cell face's.
           const Facet facet = detail::outwardFacet(mesh, hit->cell, hit->local);
           std::vector<int> fileMid(facetNodes.begin() + corners, facetNodes.end());

@@ -37,6 +37,57 @@ CellType cellTypeFromName(const std::string& name) {
 
 bool isSecondOrder(CellType type) { return type == CellType::Tet10 || type == CellType::Hex20; }
 
+int Mesh::nodesPerCell() const {
+  TRIBOS_REQUIRE(!mixed(), "the mesh holds cells of several types (" << [&] {
+    std::string names;
+    for (CellType t : cellTypesPresent()) names += (names.empty() ? "" : ", ") + cellTypeName(t);
+    return names;
+  }() << "); their nodes per cell differ");
+  return nodesPerCellOf(type);
+}
+
+std::vector<CellType> Mesh::cellTypesPresent() const {
+  if (!mixed()) return connectivity.empty() ? std::vector<CellType>{} : std::vector<CellType>{type};
+  std::vector<CellType> present;
+  for (CellType t : kCellTypes)
+    if (std::find(cellTypes_.begin(), cellTypes_.end(), t) != cellTypes_.end()) present.push_back(t);
+  return present;
+}
+
+bool Mesh::hasSecondOrderCells() const {
+  for (CellType t : cellTypesPresent())
+    if (isSecondOrder(t)) return true;
+  return false;
+}
+
+void Mesh::addCell(CellType cellType, const int* nodes) {
+  if (connectivity.empty() && !mixed()) type = cellType;
+  if (!mixed() && cellType != type) {
+    const int cells = numCells();
+    cellTypes_.assign(cells, type);
+    cellStart_.resize(cells);
+    for (int c = 0; c < cells; ++c) cellStart_[c] = static_cast<size_t>(c) * nodesPerCellOf(type);
+  }
+  if (mixed()) cellTypes_.push_back(cellType), cellStart_.push_back(connectivity.size());
+  connectivity.insert(connectivity.end(), nodes, nodes + nodesPerCellOf(cellType));
+}
+
+void Mesh::setCellTypes(const std::vector<CellType>& types) {
+  size_t entries = 0;
+  for (CellType t : types) entries += nodesPerCellOf(t);
+  TRIBOS_REQUIRE(entries == connectivity.size(), "mesh: " << types.size() << " cell types name " << entries
+                                                          << " nodes, but the connectivity holds " << connectivity.size());
+  cellTypes_.clear();
+  cellStart_.clear();
+  if (types.empty()) return;
+  type = types.front();
+  if (std::all_of(types.begin(), types.end(), [&](CellType t) { return t == type; })) return;
+  cellTypes_ = types;
+  cellStart_.resize(types.size());
+  size_t start = 0;
+  for (size_t c = 0; c < types.size(); ++c) cellStart_[c] = start, start += nodesPerCellOf(types[c]);
+}
+
 namespace {
 
 std::string joined(const std::vector<std::string>& names) {
@@ -114,22 +165,52 @@ int Mesh::faceBody(const std::string& name) const {
   return body;
 }
 
-void Mesh::checkBodies() const {
+void Mesh::checkBodies(const std::string& what, const std::vector<long long>& nodeIds) const {
   TRIBOS_REQUIRE(cellBody.empty() || static_cast<int>(cellBody.size()) == numCells(),
-                 "mesh: cellBody has " << cellBody.size() << " entries for " << numCells() << " cells");
+                 what << ": cellBody has " << cellBody.size() << " entries for " << numCells() << " cells");
   std::vector<int> cells(numBodies(), 0);
   for (int c = 0; c < static_cast<int>(cellBody.size()); ++c) {
     TRIBOS_REQUIRE(cellBody[c] >= 0 && cellBody[c] < numBodies(),
-                   "mesh: cell " << c << " is in body " << cellBody[c] << " but the mesh has " << numBodies()
+                   what << ": cell " << c << " is in body " << cellBody[c] << " but the mesh has " << numBodies()
                                  << " bod" << (numBodies() == 1 ? "y" : "ies") << " (bodyNames)");
     ++cells[cellBody[c]];
   }
   if (cellBody.empty()) cells[0] = numCells();
   for (int b = 0; b < numBodies(); ++b) {
-    TRIBOS_REQUIRE(numCells() == 0 || cells[b] > 0, "mesh: body \"" << bodyName(b) << "\" has no cells");
+    TRIBOS_REQUIRE(numCells() == 0 || cells[b] > 0, what << ": body \"" << bodyName(b) << "\" has no cells");
     for (int a = 0; a < b; ++a)
-      TRIBOS_REQUIRE(bodyName(a) != bodyName(b), "mesh: two bodies are named \"" << bodyName(b) << "\"");
+      TRIBOS_REQUIRE(bodyName(a) != bodyName(b), what << ": two bodies are named \"" << bodyName(b) << "\"");
   }
+  if (mixed()) requireOneTypePerBody(what, nodeIds);
+}
+
+void Mesh::requireOneTypePerBody(const std::string& what, const std::vector<long long>& nodeIds) const {
+  std::vector<int> firstCell(numBodies(), -1);
+  for (int c = 0; c < numCells(); ++c) {
+    int& first = firstCell[bodyOf(c)];
+    if (first < 0) first = c;
+    TRIBOS_REQUIRE(cellType(c) == cellType(first),
+                   what << ": body \"" << bodyName(bodyOf(c)) << "\" mixes " << cellTypeName(cellType(first)) << " (cell "
+                                   << first << ") and " << cellTypeName(cellType(c)) << " (cell " << c
+                                   << ") cells; a body holds cells of one type (mesh it with one element type and "
+                                      "one order)");
+  }
+  // The first cell of each node; a cell of another type at the node is a
+  // bonded interface between bodies of different types.
+  std::vector<int> nodeCell(numNodes(), -1);
+  for (int c = 0; c < numCells(); ++c)
+    for (int a = 0; a < cellSize(c); ++a) {
+      const int n = cell(c)[a];
+      if (nodeCell[n] < 0) nodeCell[n] = c;
+      const int o = nodeCell[n];
+      TRIBOS_REQUIRE(cellType(o) == cellType(c),
+                     what << ": node " << (nodeIds.empty() ? n : nodeIds[n]) << " is shared by body \"" << bodyName(bodyOf(o)) << "\" ("
+                                   << cellTypeName(cellType(o)) << " cells) and body \"" << bodyName(bodyOf(c)) << "\" ("
+                                   << cellTypeName(cellType(c))
+                                   << " cells): bodies bonded through shared nodes need one cell type (a face of one "
+                                      "would not match the other's); give the bodies distinct nodes and join them "
+                                      "by contact (Type = Glued ties them)");
+    }
 }
 
 namespace {

@@ -16,7 +16,9 @@ namespace Mesh {
 // The cells of a mesh: Tet4 and Hex8, or Tet10 and Hex20 (second order,
 // Gmsh's node ordering: corners, then one node per edge;
 // docs/quadratic_elements.md), read from Gmsh and Exodus files or made by
-// generateBox. A mesh holds cells of one type.
+// generateBox. A body holds cells of one type; bodies may differ (a Tet4
+// body in contact with a Tet10 one), but bodies that share nodes have one
+// type (Mesh::checkBodies).
 enum class CellType { Tet4, Hex8, Tet10, Hex20 };
 
 constexpr int nodesPerCell(CellType type) {
@@ -53,9 +55,11 @@ struct BoxSpec {
 // interface); bodies meet in contact only through distinct nodes.
 class Mesh {
  public:
+  // The type of every cell of a mesh of one type. A mixed mesh (bodies of
+  // different types, mixed()) has no single type: read cellType(c).
   CellType type = CellType::Hex8;
   std::vector<std::array<double, 3>> coords;    // per node
-  std::vector<int> connectivity;                // nodesPerCell() ids per cell
+  std::vector<int> connectivity;                // the node ids of each cell, cell after cell
   std::map<std::string, std::vector<Facet>> faces;  // named boundary faces
   std::vector<int> cellBody;                    // body of each cell; empty: every cell is body 0
   std::vector<std::string> bodyNames;           // per body; empty: one body named "body"
@@ -66,10 +70,32 @@ class Mesh {
   // mesh leaves this empty.
   std::map<std::string, std::vector<int>> partFaceNodes;
 
-  int nodesPerCell() const { return Mesh::nodesPerCellOf(type); }
+  // The nodes per cell of a mesh of one type; throws on a mixed mesh, whose
+  // cells say it one by one (cellSize).
+  int nodesPerCell() const;
   int numNodes() const { return static_cast<int>(coords.size()); }
-  int numCells() const { return static_cast<int>(connectivity.size()) / nodesPerCell(); }
-  const int* cell(int c) const { return &connectivity[static_cast<size_t>(c) * nodesPerCell()]; }
+  int numCells() const {
+    return mixed() ? static_cast<int>(cellTypes_.size())
+                   : static_cast<int>(connectivity.size()) / nodesPerCellOf(type);
+  }
+  const int* cell(int c) const {
+    return &connectivity[mixed() ? cellStart_[c] : static_cast<size_t>(c) * nodesPerCellOf(type)];
+  }
+
+  // Cells of several types: the type and the number of nodes of each cell.
+  bool mixed() const { return !cellTypes_.empty(); }
+  CellType cellType(int c) const { return mixed() ? cellTypes_[c] : type; }
+  int cellSize(int c) const { return nodesPerCellOf(cellType(c)); }
+  // The types the cells have, in CellType's order; whether any is second order.
+  std::vector<CellType> cellTypesPresent() const;
+  bool hasSecondOrderCells() const;
+  // Appends a cell of the given type; a type other than the cells' so far
+  // makes the mesh mixed (an empty mesh takes the first cell's type).
+  void addCell(CellType cellType, const int* nodes);
+  // The type of every cell at once, for a connectivity already filled cell
+  // after cell: a mesh of one type when all are equal. Throws when the
+  // types' node counts do not add up to the connectivity.
+  void setCellTypes(const std::vector<CellType>& types);
 
   // Sorted unique node ids of a named face, or of a node set when no face
   // has the name; throws naming it and the valid names when neither exists.
@@ -89,11 +115,19 @@ class Mesh {
   // face when it has no facets or its facets lie on several bodies.
   int faceBody(const std::string& face) const;
   // Throws when cellBody and bodyNames disagree (sizes, out-of-range body,
-  // duplicate names, a body without cells).
-  void checkBodies() const;
+  // duplicate names, a body without cells), when a body mixes cell types,
+  // and when bodies of different cell types share a node: a first-order
+  // face bonded to a second-order one leaves its mid-edge nodes hanging
+  // (contact joins such bodies, through distinct nodes). Messages start with
+  // `what` (a reader's "mesh file \"...\"") and name nodes by nodeIds[n]
+  // when given (the file's numbers), by their index otherwise.
+  void checkBodies(const std::string& what = "mesh", const std::vector<long long>& nodeIds = {}) const;
 
  private:
   static int nodesPerCellOf(CellType t) { return ::Tribos::Mesh::nodesPerCell(t); }
+  void requireOneTypePerBody(const std::string& what, const std::vector<long long>& nodeIds) const;
+  std::vector<CellType> cellTypes_;   // per cell of a mixed mesh; empty otherwise
+  std::vector<size_t> cellStart_;     // per cell of a mixed mesh: its first entry in connectivity
 };
 
 // Box [x0,x1]x[y0,y1]x[z0,z1] with nx,ny,nz hexahedral cells; for Tet4 each

@@ -27,13 +27,17 @@ std::map<std::string, std::vector<int>> unpackNamedLists(ByteBuffer& b) {
 
 void packMesh(const Mesh& mesh, ByteBuffer& b) {
   b.put(static_cast<int>(mesh.type));
+  std::vector<int> types;  // per cell of a mixed mesh
+  for (int c = 0; mesh.mixed() && c < mesh.numCells(); ++c) types.push_back(static_cast<int>(mesh.cellType(c)));
+  b.put(types);
   b.put(mesh.coords);
   b.put(mesh.connectivity);
   b.put(static_cast<long long>(mesh.faces.size()));
   for (const auto& [name, facets] : mesh.faces) {
     b.put(name);
-    std::vector<int> flat;  // per facet: its nodes, then its cell
+    std::vector<int> flat;  // per facet: its node count, its nodes, then its cell
     for (const Facet& f : facets) {
+      flat.push_back(static_cast<int>(f.nodes.size()));
       flat.insert(flat.end(), f.nodes.begin(), f.nodes.end());
       flat.push_back(f.cell);
     }
@@ -49,18 +53,23 @@ void packMesh(const Mesh& mesh, ByteBuffer& b) {
 Mesh unpackMesh(ByteBuffer& b) {
   Mesh mesh;
   mesh.type = static_cast<CellType>(b.get<int>());
+  const std::vector<int> types = b.getVector<int>();
   mesh.coords = b.getVector<std::array<double, 3>>();
   mesh.connectivity = b.getVector<int>();
-  const size_t perFacet = detail::cellFaces(mesh.type).front().size() + 1;
+  if (!types.empty()) {
+    std::vector<CellType> cellTypes;
+    for (int t : types) cellTypes.push_back(static_cast<CellType>(t));
+    mesh.setCellTypes(cellTypes);
+  }
   const long long faces = b.get<long long>();
   for (long long k = 0; k < faces; ++k) {
     auto& face = mesh.faces[b.getString()];
     const std::vector<int> flat = b.getVector<int>();
-    TRIBOS_REQUIRE(flat.size() % perFacet == 0, "unpackMesh: the facets are cut short");
-    face.resize(flat.size() / perFacet);
-    for (size_t f = 0; f < face.size(); ++f) {
-      face[f].nodes.assign(flat.begin() + f * perFacet, flat.begin() + (f + 1) * perFacet - 1);
-      face[f].cell = flat[(f + 1) * perFacet - 1];
+    for (size_t at = 0; at < flat.size();) {
+      const size_t n = static_cast<size_t>(flat[at]);
+      TRIBOS_REQUIRE(n >= 3 && n <= 8 && at + n + 2 <= flat.size(), "unpackMesh: the facets are cut short");
+      face.push_back({std::vector<int>(flat.begin() + at + 1, flat.begin() + at + 1 + n), flat[at + 1 + n]});
+      at += n + 2;
     }
   }
   const long long bodies = b.get<long long>();

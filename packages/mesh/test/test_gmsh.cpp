@@ -223,7 +223,7 @@ TEUCHOS_UNIT_TEST(Gmsh, InvertedElementsAndUnusedNodes) {
 }
 
 // A hand-written file with a tetrahedron in volume 1 and a hexahedron in
-// volume 2: a Mesh has one cell type.
+// volume 2, without physical volumes: one body, which has one cell type.
 const char* kMixed =
     "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
     "$Entities\n0 0 0 2\n1 0 0 0 1 1 1 0 0\n2 0 0 0 1 1 1 0 0\n$EndEntities\n"
@@ -236,7 +236,9 @@ TEUCHOS_UNIT_TEST(Gmsh, MixedCellTypes) {
   std::ofstream(file) << kMixed;
   const std::string e = readError(file);
   out << e << "\n";
-  TEST_ASSERT(contains(e, "mixed.msh") && contains(e, "mixes Tet4 (volume 1) and Hex8 (volume 2); a body has one cell type"));
+  TEST_ASSERT(contains(e, "mixed.msh") && contains(e, "the mesh (one body: it names no physical volumes) mixes Tet4 "
+                                                     "(volume 1) and Hex8 (volume 2, element 2 (Hex8)); a body holds "
+                                                     "cells of one type"));
   std::remove(file.c_str());
 }
 

@@ -1,9 +1,10 @@
 // The readers on second-order cells: Gmsh's Tet10 and Hex20 blocks of
 // test/data/quadratic (their faces of 6- and 8-node facets, outward, with the
 // mid-edge nodes of their cells), the same cells written as Exodus II
-// TETRA10 and HEX20 blocks (Exodus' node order) read back alike, and the
-// files refused: mixed orders, order 3, Hex27, inverted and folded cells,
-// a mid-edge node far from its edge's midpoint (a warning).
+// TETRA10 and HEX20 blocks (Exodus' node order) read back alike, bodies of
+// different orders, and the files refused: a body of mixed orders, bonded
+// bodies of different orders, order 3, Hex27, inverted and folded cells, a
+// mid-edge node far from its edge's midpoint (a warning).
 #include <Teuchos_UnitTestHarness.hpp>
 
 #include <exodusII.h>
@@ -14,8 +15,11 @@
 #include <unistd.h>
 
 #include "Tribos_BodyShape.hpp"
+#include "Tribos_ByteBuffer.hpp"
+#include "Tribos_Discretization.hpp"
 #include "Tribos_ExodusReader.hpp"
 #include "Tribos_GmshReader.hpp"
+#include "Tribos_MeshBroadcast.hpp"
 #include "MeshTestGeometry.hpp"
 
 #include "Tribos_TestSupport.hpp"
@@ -148,14 +152,59 @@ TEUCHOS_UNIT_TEST(QuadraticRead, ExodusTet10AndHex20) {
   }
 }
 
-TEUCHOS_UNIT_TEST(QuadraticRead, Refused) {
-  std::string e = readError(dataFile("mixed_order.msh"));
+// Bodies of different orders: a Tet4 body beside a Tet10 one is read (each
+// cell with its type and nodes), travels through pack/unpack, and is cut
+// into one subdomain per body; the same cells in one body, and a Tet10
+// body bonded to a Tet4 one through shared nodes, are refused.
+TEUCHOS_UNIT_TEST(QuadraticRead, MixedOrderBodies) {
+  const Mesh m = readGmsh(dataFile("mixed_order.msh"));
+  TEST_ASSERT(m.mixed());
+  TEST_EQUALITY(m.numCells(), 2);
+  TEST_EQUALITY(m.numNodes(), 14);
+  TEST_ASSERT(m.cellType(0) == CellType::Tet4 && m.cellType(1) == CellType::Tet10);
+  TEST_EQUALITY(m.cellSize(0), 4);
+  TEST_EQUALITY(m.cellSize(1), 10);
+  TEST_ASSERT(m.bodyName(m.bodyOf(1)) == "quadratic");
+  TEST_ASSERT(m.hasSecondOrderCells());
+  // The Tet10's mid-edge node 4 (edge 0-1) at its edge's midpoint, its corner 0 at (2, 0, 0).
+  TEST_EQUALITY(distance(m.coords[m.cell(1)[4]], midpoint(m, m.cell(1)[0], m.cell(1)[1])), 0.0);
+  TEST_EQUALITY(distance(m.coords[m.cell(1)[0]], P{2, 0, 0}), 0.0);
+  std::string e;
+  try {
+    m.nodesPerCell();
+  } catch (const std::exception& x) {
+    e = x.what();
+  }
+  TEST_ASSERT(contains(e, "several types (Tet4, Tet10)"));
+
+  Tribos::ByteBuffer buffer;
+  packMesh(m, buffer);
+  const Mesh back = unpackMesh(buffer);
+  TEST_ASSERT(back.mixed() && back.cellType(0) == CellType::Tet4 && back.cellType(1) == CellType::Tet10);
+  TEST_ASSERT(back.connectivity == m.connectivity);
+
+  const Discretization d(m, boundingBox(m), DecompositionSpec{"METIS", {1, 1, 1}, 2}, 1, 0);
+  TEST_EQUALITY(d.localSubdomains.size(), 2u);
+  for (const Subdomain& s : d.localSubdomains) {
+    TEST_EQUALITY(s.cells.size(), 1u);
+    TEST_EQUALITY(s.connectivity.size(), static_cast<size_t>(d.part.cellSize(s.cells[0])));
+    for (int a = 0; a < d.part.cellSize(s.cells[0]); ++a)
+      TEST_EQUALITY(s.nodes[s.connectivity[a]], d.part.cell(s.cells[0])[a]);
+  }
+  TEST_ASSERT(d.part.mixed());
+
+  e = readError(dataFile("mixed_order_in_body.msh"));
   out << e << "\n";
-  TEST_ASSERT(contains(e, "mixed_order.msh") &&
-              contains(e, "mixes Tet4 (physical volume 'linear') and Tet10 (physical volume 'quadratic'); a mesh of "
-                          "first- and second-order cells is not supported") &&
-              contains(e, "(element 2 (Tet10))"));
-  e = readError(dataFile("order3.msh"));
+  TEST_ASSERT(contains(e, "mixed_order_in_body.msh\": physical volume 'part' mixes Tet4 (volume 1) and Tet10 (volume 2, "
+                          "element 2 (Tet10)); a body of first- and second-order cells is not supported"));
+  e = readError(dataFile("bonded_mixed_order.msh"));
+  out << e << "\n";
+  TEST_ASSERT(contains(e, "bonded_mixed_order.msh\": node 2 is shared by body \"linear\" (Tet4 cells) and body "
+                          "\"quadratic\" (Tet10 cells): bodies bonded through shared nodes need one cell type"));
+}
+
+TEUCHOS_UNIT_TEST(QuadraticRead, Refused) {
+  std::string e = readError(dataFile("order3.msh"));
   out << e << "\n";
   TEST_ASSERT(contains(e, "(Tet20) in physical volume 'cube' is not supported (elements of order 3 or more are not "
                           "supported"));

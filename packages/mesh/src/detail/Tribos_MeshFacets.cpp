@@ -53,7 +53,7 @@ const std::vector<std::vector<int>>& cellFaces(CellType type) {
 Facet outwardFacet(const Mesh& mesh, int cell, int local) {
   Facet f;
   f.cell = cell;
-  for (int ln : cellFaces(mesh.type)[local]) f.nodes.push_back(mesh.cell(cell)[ln]);
+  for (int ln : cellFaces(mesh.cellType(cell))[local]) f.nodes.push_back(mesh.cell(cell)[ln]);
   return f;
 }
 
@@ -90,8 +90,8 @@ std::string bodyOfCell(const Mesh& mesh, int c, const std::string& bodyWord) {
 // its rule, as a volume relative to h^3 (det J times the reference cell's
 // volume: 1/6 for the tetrahedron, 8 for [-1,1]^3), and where it is.
 double smallestJacobian(const Mesh& mesh, int c, double h, std::string& where) {
-  const CellType type = mesh.type;
-  const int npc = mesh.nodesPerCell();
+  const CellType type = mesh.cellType(c);
+  const int npc = mesh.cellSize(c);
   const int* n = mesh.cell(c);
   const double reference = isTetrahedron(type) ? 1.0 / 6.0 : 8.0;
   std::vector<Point> points = Fem::referenceNodes(type);
@@ -124,9 +124,9 @@ bool positiveCell(const Mesh& mesh, int c, std::string* where) {
   const int* n = mesh.cell(c);
   const auto& x = mesh.coords;
   double h = 0;
-  for (int a = 0; a < mesh.nodesPerCell(); ++a)
+  for (int a = 0; a < mesh.cellSize(c); ++a)
     for (int d = 0; d < 3; ++d) h = std::max(h, std::abs(x[n[a]][d] - x[n[0]][d]));
-  if (isSecondOrder(mesh.type)) {
+  if (isSecondOrder(mesh.cellType(c))) {
     // Corner volumes do not bound the Jacobian of a cell with mid-edge nodes.
     if (!(h > 0)) {
       if (where) *where = "all its nodes at one point";
@@ -138,7 +138,7 @@ bool positiveCell(const Mesh& mesh, int c, std::string* where) {
     return positive;
   }
   const double floor = 1e-12 * h * h * h;
-  if (mesh.type == CellType::Tet4) return triple(x[n[0]], x[n[1]], x[n[2]], x[n[3]]) > floor;
+  if (mesh.cellType(c) == CellType::Tet4) return triple(x[n[0]], x[n[1]], x[n[2]], x[n[3]]) > floor;
   // Corner k and its three neighbours in right-handed order (Tribos' Hex8
   // order: the bottom quadrilateral 0-3 counter-clockwise seen from above, the top 4-7).
   static const int corner[8][3] = {{1, 3, 4}, {2, 0, 5}, {3, 1, 6}, {0, 2, 7},
@@ -151,20 +151,22 @@ bool positiveCell(const Mesh& mesh, int c, std::string* where) {
 void requirePositiveCells(const Mesh& mesh, const std::string& file, const std::vector<long long>& cellIds,
                           const std::string& bodyWord) {
   std::vector<long long> bad;
-  std::string first;  // the first refused second-order cell: its body and det J
+  std::string first;  // the first refused cell, when second order: its body and det J
+  int firstCell = -1;
   for (int c = 0; c < mesh.numCells(); ++c) {
     std::string where;
     if (positiveCell(mesh, c, &where)) continue;
-    if (bad.empty() && isSecondOrder(mesh.type))
-      first = "element " + std::to_string(cellIds[c]) + " (" + cellTypeName(mesh.type) + ")" +
+    if (bad.empty() && isSecondOrder(mesh.cellType(c)))
+      first = "element " + std::to_string(cellIds[c]) + " (" + cellTypeName(mesh.cellType(c)) + ")" +
               bodyOfCell(mesh, c, bodyWord) + ": " + where;
+    if (bad.empty()) firstCell = c;
     bad.push_back(cellIds[c]);
   }
   if (bad.empty()) return;
   std::ostringstream os;
   for (size_t i = 0; i < std::min<size_t>(bad.size(), 5); ++i) os << (i ? ", " : "") << bad[i];
-  if (isSecondOrder(mesh.type))
-    throw Error(file + ": " + std::to_string(bad.size()) + " inverted or folded " + cellTypeName(mesh.type) +
+  if (isSecondOrder(mesh.cellType(firstCell)))
+    throw Error(file + ": " + std::to_string(bad.size()) + " inverted or folded " + cellTypeName(mesh.cellType(firstCell)) +
                 " element" + (bad.size() > 1 ? "s" : "") + " (det J <= 0 at a node or quadrature point): " + first +
                 (bad.size() > 1 ? "; elements " + os.str() + (bad.size() > 5 ? ", ..." : "") : "") +
                 " (a mid-edge node too far from the middle of its edge folds the cell)");
@@ -175,14 +177,13 @@ void requirePositiveCells(const Mesh& mesh, const std::string& file, const std::
 
 void checkMidEdgeNodes(const Mesh& mesh, const std::string& file, const std::vector<long long>& cellIds,
                        std::vector<std::string>* warnings, const std::string& bodyWord) {
-  const auto& edges = edgeNodes(mesh.type);
-  if (edges.empty()) return;
+  if (!mesh.hasSecondOrderCells()) return;
   double worst = 0;
   int worstCell = -1, worstNode = -1;
   long long beyond = 0;
   for (int c = 0; c < mesh.numCells(); ++c) {
     const int* n = mesh.cell(c);
-    for (const auto& e : edges) {
+    for (const auto& e : edgeNodes(mesh.cellType(c))) {
       const Point& m = mesh.coords[n[e[0]]];
       const Point& a = mesh.coords[n[e[1]]];
       const Point& b = mesh.coords[n[e[2]]];
@@ -198,7 +199,7 @@ void checkMidEdgeNodes(const Mesh& mesh, const std::string& file, const std::vec
   }
   if (worst <= kMidEdgeWarn) return;
   std::ostringstream os;
-  os << file << ": element " << cellIds[worstCell] << " (" << cellTypeName(mesh.type) << ")"
+  os << file << ": element " << cellIds[worstCell] << " (" << cellTypeName(mesh.cellType(worstCell)) << ")"
      << bodyOfCell(mesh, worstCell, bodyWord) << " has its mid-edge node " << worstNode << " at "
      << pointText(mesh.coords[mesh.cell(worstCell)[worstNode]]) << ", " << worst
      << " of its edge's length from the edge's midpoint";
@@ -219,15 +220,16 @@ std::array<int, 4> FaceIndex::keyOf(std::vector<int> nodes) {
 }
 
 FaceIndex::FaceIndex(const Mesh& mesh) {
-  const auto& faces = cellFaces(mesh.type);
-  const size_t corners = static_cast<size_t>(faceCorners(mesh.type));
-  entries_.reserve(static_cast<size_t>(mesh.numCells()) * faces.size());
-  for (int c = 0; c < mesh.numCells(); ++c)
+  entries_.reserve(static_cast<size_t>(mesh.numCells()) * 6);
+  for (int c = 0; c < mesh.numCells(); ++c) {
+    const auto& faces = cellFaces(mesh.cellType(c));
+    const size_t corners = static_cast<size_t>(faceCorners(mesh.cellType(c)));
     for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
       std::vector<int> nodes;
       for (size_t a = 0; a < corners; ++a) nodes.push_back(mesh.cell(c)[faces[f][a]]);
       entries_.push_back({keyOf(nodes), c, f});
     }
+  }
   std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
 }
 
