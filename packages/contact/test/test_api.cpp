@@ -11,19 +11,25 @@
 //  - Misuse is refused before any work, naming what is wrong: sizes, a
 //    kernel that is not one, ids out of order, rows naming missing nodes,
 //    contact rows off the plane's frame.
+//  - Subdomains whose K is positive definite (an implicit time step's
+//    K + M / (beta dt^2), floating = false) solve without a coarse space, as
+//    the dense solve of the same assembled matrix does.
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
 #include <cmath>
 #include <functional>
+#include <set>
 #include <string>
 
 #include "Tribos_Assembly.hpp"
 #include "Tribos_ContactConditions.hpp"
+#include "Tribos_DenseCholesky.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_FetiSolve.hpp"
 #include "Tribos_Loads.hpp"
+#include "Tribos_Mass.hpp"
 #include "Tribos_TestSupport.hpp"
 
 namespace {
@@ -82,8 +88,11 @@ Handover handover(const Brick& b, const Mesh::Discretization& disc) {
   const auto whole = Mesh::generateBox(b.spec);
   auto& fc = h.constraints;
   fc.dirichlet = Fem::constrainedDofs(whole, b.loads.dirichlet);
-  const auto contact = Contact::contactConstraints(whole, {Contact::planeBeyondFace(whole, "zmin", b.contact.gap)});
+  const auto contact = b.contact.enabled ? Contact::contactConstraints(
+                                               whole, {Contact::planeBeyondFace(whole, "zmin", b.contact.gap)})
+                                         : std::vector<Feti::ContactConstraint>();
   fc.rows = Feti::meshConstraintRows(disc, fc.dirichlet, contact, "Orthonormal", false);
+  if (!b.contact.enabled) return h;
   fc.contactNormal = Contact::faceNormal("zmin");
   const auto area = Fem::faceNodalAreas(whole, "zmin");
   for (int node : whole.faceNodes("zmin")) fc.contactArea[node] = area[node];
@@ -118,6 +127,142 @@ TEUCHOS_UNIT_TEST(ApplicationInterface, SameAsMeshPathOnEveryRankCount) {
   const double dr = Test::maxRelDiff(gathered, serial);
   out << comm->getSize() << " ranks vs 1: " << dr << "\n";
   TEST_COMPARE(dr, <=, 1e-7);
+}
+
+// The brick's subdomains as an implicit time step sees them
+// (docs/dynamics.md): K + M / (beta dt^2), trapezoidal rule (beta = 1/4),
+// dt = 1e-4 s, steel's density; positive definite, no kernel, declared so
+// (floating = false, R empty).
+constexpr double kDensity = 7850, kMassShift = 1 / (0.25 * 1e-4 * 1e-4);
+
+Handover timeStepHandover(const Brick& b, const Mesh::Discretization& disc) {
+  Handover h = handover(b, disc);
+  for (size_t k = 0; k < h.systems.size(); ++k) {
+    const LocalCsr M = Fem::assembleSubdomainMass(disc, disc.firstLocalSubdomain() + static_cast<int>(k), kDensity);
+    auto& sys = h.systems[k];
+    for (size_t i = 0; i < M.val.size(); ++i) sys.K.val[i] += kMassShift * M.val[i];  // K's pattern
+    sys.R.clear();
+    sys.floating = false;
+  }
+  return h;
+}
+
+// The displacement of the assembled K u = f of the handed-over subdomains
+// (one rank holding them all), dense: the Dirichlet dofs fixed and, with
+// contact, u_z >= 0 at the contact nodes by a primal active set
+// (frictionless: the plane's reaction K u - f at an active dof pushes).
+std::vector<double> denseSolve(const Handover& h, int numNodes) {
+  const int N = 3 * numNodes;
+  std::vector<double> K(static_cast<size_t>(N) * N, 0.0), f(N, 0.0);
+  for (const auto& sys : h.systems)
+    for (int i = 0; i < sys.numDofs(); ++i) {
+      const int gi = 3 * sys.nodes[i / 3] + i % 3;
+      f[gi] += sys.f[i];
+      for (int k = sys.K.rowptr[i]; k < sys.K.rowptr[i + 1]; ++k) {
+        const int j = sys.K.col[k];
+        K[static_cast<size_t>(3 * sys.nodes[j / 3] + j % 3) * N + gi] += sys.K.val[k];
+      }
+    }
+  std::vector<int> contactDofs;
+  for (const auto& entry : h.constraints.contactArea) contactDofs.push_back(3 * entry.first + 2);
+  std::set<int> active(contactDofs.begin(), contactDofs.end());
+  for (int round = 0; round < 100; ++round) {
+    std::vector<double> u(N, 0.0);
+    std::vector<char> held(N, 0);
+    for (const auto& [dof, value] : h.constraints.dirichlet) held[dof] = 1, u[dof] = value;
+    for (int dof : active) held[dof] = 1, u[dof] = 0;
+    std::vector<int> free;
+    for (int i = 0; i < N; ++i)
+      if (!held[i]) free.push_back(i);
+    const int n = static_cast<int>(free.size());
+    std::vector<double> A(static_cast<size_t>(n) * n), x(n);
+    for (int a = 0; a < n; ++a) {
+      x[a] = f[free[a]];
+      for (int i = 0; i < N; ++i)
+        if (held[i]) x[a] -= K[static_cast<size_t>(i) * N + free[a]] * u[i];
+      for (int c = 0; c < n; ++c) A[static_cast<size_t>(c) * n + a] = K[static_cast<size_t>(free[c]) * N + free[a]];
+    }
+    DenseCholesky chol;
+    TRIBOS_REQUIRE(chol.tryFactor(A, n), "denseSolve: the assembled matrix is singular");
+    chol.solve(x);
+    for (int a = 0; a < n; ++a) u[free[a]] = x[a];
+    bool changed = false;
+    for (int dof : contactDofs) {
+      double reaction = -f[dof];
+      for (int i = 0; i < N; ++i) reaction += K[static_cast<size_t>(i) * N + dof] * u[i];
+      if (active.count(dof) && reaction < 0) active.erase(dof), changed = true;
+      if (!active.count(dof) && u[dof] < 0) active.insert(dof), changed = true;
+    }
+    if (!changed) return u;
+  }
+  throw Error("denseSolve: the active set did not settle");
+}
+
+// FETI on positive definite subdomains: no coarse space (every kernel is
+// empty), the displacement of the dense solve of the same assembled matrix,
+// on 1, 2 and 3 ranks: clamped and free of any Dirichlet condition (the
+// mass alone holds the body) without contact, and clamped on the rigid
+// plane with frictionless contact.
+TEUCHOS_UNIT_TEST(ApplicationInterface, PositiveDefiniteSubdomainsMatchDenseSolve) {
+  const auto comm = Tpetra::getDefaultComm();
+  const auto self = comm->split(comm->getRank() == 0 ? 0 : 1, comm->getRank());
+  struct Case {
+    const char* name;
+    bool clamped, contact;
+  };
+  for (const Case c : {Case{"clamped", true, false}, Case{"free", false, false}, Case{"on the plane", true, true}}) {
+    Brick b;
+    if (!c.clamped) b.loads.dirichlet.clear();
+    b.contact.enabled = c.contact;
+    Handover h = timeStepHandover(b, b.disc(*comm));
+    auto problem = rcp(new Feti::FetiProblem(std::move(h.systems), std::move(h.constraints), Teuchos::ParameterList(), comm));
+    Teuchos::ParameterList params = tight();
+    params.sublist("Algorithm 1").sublist("SMALBE").set("Relative Tolerance", 1e-11);
+    const auto r = Contact::solveFeti(problem, Contact::FrictionSpec{FrictionLaw::Frictionless, 0.0, 0.0}, params);
+    out << c.name << ": outer algorithm " << r.outerAlgorithm << "\n";
+    TEST_ASSERT(r.verdict.converged);
+    TEST_EQUALITY(r.coarseSize, 0);
+    const auto u = r.u.gathered();
+    std::vector<double> reference(u.size());
+    if (comm->getRank() == 0)
+      reference = denseSolve(timeStepHandover(b, b.disc(*self)), Mesh::generateBox(b.spec).numNodes());
+    Teuchos::broadcast(*comm, 0, static_cast<int>(reference.size()), reference.data());
+    const double d = Test::maxRelDiff(u, reference);
+    out << c.name << ": FETI vs dense " << d << (c.contact ? ", active contacts " : "")
+        << (c.contact ? std::to_string(r.counts.active) : "") << "\n";
+    TEST_COMPARE(d, <=, 1e-8);
+    if (c.contact) TEST_COMPARE(r.counts.active, >, 0);
+  }
+}
+
+// A subdomain declared positive definite must be: a stiffness alone (its
+// rigid-body motions free) and one that also gives R are refused, naming it.
+TEUCHOS_UNIT_TEST(ApplicationInterface, PositiveDefiniteMisuseRefused) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Brick b;
+  const auto disc = b.disc(*comm);
+  auto error = [&](const std::function<void(Handover&)>& spoil) {
+    Handover h = timeStepHandover(b, disc);
+    spoil(h);
+    try {
+      Feti::FetiProblem(std::move(h.systems), std::move(h.constraints), Teuchos::ParameterList(), comm);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::string e = error([&](Handover& h) {
+    h.systems = handover(b, disc).systems;
+    for (auto& sys : h.systems) sys.floating = false;
+  });
+  out << e << "\n";
+  TEST_ASSERT(e.find("declared positive definite (floating = false), but rigid-body motion 0 of its nodes has the "
+                     "energy") != std::string::npos);
+  e = error([&](Handover& h) {
+    for (auto& sys : h.systems) sys.R = Fem::rigidBodyModes(sys.coords);
+  });
+  out << e << "\n";
+  TEST_ASSERT(e.find("R has 6 columns, but the subdomain is declared positive definite") != std::string::npos);
 }
 
 // Every row of B, on every rank: the rows meshConstraintRows() gives each

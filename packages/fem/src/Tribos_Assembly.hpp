@@ -23,6 +23,12 @@ struct SubdomainSystem {
   std::vector<double> f;      // tractions and volume forces of the subdomain's own cells
   std::vector<double> R;      // 3n x 6, column-major, orthonormal columns spanning ker K
   std::vector<Point> coords;  // node coordinates (local node order)
+  // Whether K has the rigid-body motions as its kernel (R), as a stiffness
+  // of a subdomain without Dirichlet conditions has (TFETI). False: K is
+  // positive definite, e.g. the K + M / (beta dt^2) of an implicit time
+  // step (docs/dynamics.md); R is empty, K+ is K's inverse and the
+  // subdomain adds nothing to the coarse space.
+  bool floating = true;
   int numDofs() const { return 3 * static_cast<int>(nodes.size()); }
 };
 

@@ -137,8 +137,34 @@ bool allFinite(const std::vector<double>& v) {
   return true;
 }
 
+// A subdomain declared positive definite (floating = false): R empty, and
+// no rigid-body motion of its nodes (orthonormal) with an energy r'Kr below
+// 1e-12 max |K_ii|, which a singular K (a stiffness without its mass term)
+// would have.
+void checkPositiveDefinite(const Fem::SubdomainSystem& sys, const std::string& name) {
+  TRIBOS_REQUIRE(sys.R.empty(), name << ": R has " << sys.R.size() / sys.numDofs()
+                                     << " columns, but the subdomain is declared positive definite (floating = "
+                                        "false): a K without kernel has no R");
+  const int n = sys.numDofs();
+  const std::vector<double> modes = Fem::rigidBodyModes(sys.coords);
+  const double scale = sys.K.maxAbsDiagonal();
+  std::vector<double> Kr(n);
+  for (int j = 0; j < 6; ++j) {
+    const double* r = &modes[static_cast<size_t>(j) * n];
+    sys.K.multiply(r, Kr.data());
+    double energy = 0;
+    for (int i = 0; i < n; ++i) energy += r[i] * Kr[i];
+    TRIBOS_REQUIRE(energy > 1e-12 * scale,
+                   name << ": declared positive definite (floating = false), but rigid-body motion " << j
+                        << " of its nodes has the energy r'Kr = " << energy << " (max |K_ii| = " << scale
+                        << "): K is singular or nearly so; a stiffness alone floats (floating = true), a time "
+                           "step's K + M / (beta dt^2) does not");
+  }
+}
+
 // An application's subdomain: sizes agree, values are finite, R (built from
-// the coordinates when empty) is orthonormal and spans a kernel of K.
+// the coordinates when empty) is orthonormal and spans a kernel of K; or,
+// not floating, K is positive definite and R empty.
 void checkSubdomain(Fem::SubdomainSystem& sys) {
   const int n = sys.numDofs();
   const std::string name = "FetiProblem: subdomain " + std::to_string(sys.id);
@@ -152,6 +178,7 @@ void checkSubdomain(Fem::SubdomainSystem& sys) {
                  name << ": " << sys.coords.size() << " coordinates for " << sys.nodes.size() << " nodes");
   for (int node : sys.nodes) TRIBOS_REQUIRE(node >= 0, name << ": negative global node number " << node);
   TRIBOS_REQUIRE(allFinite(sys.K.val) && allFinite(sys.f), name << ": K or f has a value that is not finite");
+  if (!sys.floating) return checkPositiveDefinite(sys, name);
   const bool given = !sys.R.empty();  // else built orthonormal from the coordinates
   if (!given) sys.R = Fem::rigidBodyModes(sys.coords);
   // TFETI: every subdomain floats, with the six rigid-body motions as the

@@ -137,12 +137,13 @@ Fem::SubdomainSystem subdomainSystem(const TpetraSubdomain& s) {
   requireMaps(s, rowMatrix, name);
   TRIBOS_REQUIRE(s.coords.size() == s.nodes.size(),
                  name << ": " << s.coords.size() << " coordinates for " << s.nodes.size() << " nodes");
-  TRIBOS_REQUIRE(rowMatrix || !s.R.is_null(),
+  TRIBOS_REQUIRE(rowMatrix || !s.R.is_null() || !s.floating,
                  name << ": K is a Tpetra::Operator that is not a RowMatrix; give its rigid-body modes R (6 "
                          "columns), against which its probed matrix is checked");
   const Map& map = *s.K->getDomainMap();
   Fem::SubdomainSystem sys;
   sys.id = s.id;
+  sys.floating = s.floating;
   sys.nodes = s.nodes;
   sys.coords = s.coords;
   sys.K = rowMatrix ? copyRows(*rowMatrix, name) : probe(*s.K, static_cast<int>(3 * s.nodes.size()));

@@ -52,6 +52,9 @@ struct TpetraSubdomain {
   // any basis of the kernel of K); null: built from coords (a RowMatrix K
   // only).
   RCP<const MultiVector> R;
+  // False: K is positive definite (a time step's K + M / (beta dt^2),
+  // docs/dynamics.md), has no kernel and R stays null; Fem::SubdomainSystem.
+  bool floating = true;
 };
 
 // FETI's K+ and the Cholesky factorization assume K = K': throws
