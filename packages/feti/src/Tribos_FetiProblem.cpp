@@ -162,6 +162,17 @@ void checkPositiveDefinite(const Fem::SubdomainSystem& sys, const std::string& n
   }
 }
 
+// K <- stiffnessCoefficient K + massCoefficient M (M on K's pattern): a
+// positive definite subdomain without kernel.
+void addMassTerm(Fem::SubdomainSystem& sys, const LocalCsr& M, const MassTerm& term) {
+  TRIBOS_REQUIRE(M.rowptr == sys.K.rowptr && M.col == sys.K.col,
+                 "FetiProblem: subdomain " << sys.id << ": its mass matrix has another pattern than K");
+  for (size_t i = 0; i < M.val.size(); ++i)
+    sys.K.val[i] = term.stiffnessCoefficient * sys.K.val[i] + term.massCoefficient * M.val[i];
+  sys.R.clear();
+  sys.floating = false;
+}
+
 // An application's subdomain: sizes agree, values are finite, R (built from
 // the coordinates when empty) is orthonormal and spans a kernel of K; or,
 // not floating, K is positive definite and R empty.
@@ -409,17 +420,23 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
 
 FetiProblem::FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
                          const std::vector<ContactConstraint>& contact, const Teuchos::ParameterList& params,
-                         const RCP<const Comm>& comm)
+                         const RCP<const Comm>& comm, const MassTerm* massTerm)
     : disc_(&disc), comm_(comm) {
   Teuchos::ParameterList p(params);
   p.validateParametersAndSetDefaults(*getValidParameters(), 0);
   const bool feti1 = p.get<std::string>("Formulation") == "FETI-1";
   feti1_ = feti1;
+  TRIBOS_REQUIRE(!massTerm || (!feti1 && massTerm->massCoefficient > 0 && massTerm->stiffnessCoefficient >= 0 &&
+                               std::isfinite(massTerm->massCoefficient) &&
+                               std::isfinite(massTerm->stiffnessCoefficient)),
+                 "FetiProblem: a mass term needs TFETI, a positive finite mass coefficient and a non-negative "
+                 "finite stiffness coefficient");
   FetiConstraints fc;
   fc.dirichlet = Fem::constrainedDofs(disc, loads.dirichlet);
   for (int s = disc.firstLocalSubdomain(); s < disc.endLocalSubdomain(); ++s) {
     systems_.push_back(Fem::assembleSubdomain(disc, s, mat, loads));
     if (feti1) eliminateDirichlet(systems_.back(), fc.dirichlet);
+    if (massTerm) addMassTerm(systems_.back(), Fem::assembleSubdomainMass(disc, s, massTerm->density), *massTerm);
   }
   // The partners of this rank's contact nodes in other ranks' parts, asked
   // of their owners before any rank can refuse (a collective).

@@ -35,6 +35,7 @@
 #include "Tribos_LocalSolver.hpp"
 #include "Tribos_SubdomainPseudoInverse.hpp"
 #include "Tribos_Loads.hpp"
+#include "Tribos_Mass.hpp"
 #include "Tribos_Types.hpp"
 
 namespace Tribos {
@@ -68,6 +69,17 @@ struct FetiConstraints {
   std::map<int, double> contactArea;
 };
 
+// A mass term in every subdomain's matrix: stiffnessCoefficient K +
+// massCoefficient M, M the consistent mass of the densities. With a positive
+// mass coefficient every subdomain is positive definite (floating = false,
+// no kernel, no coarse space): an implicit time step's K + M / (beta dt^2),
+// or M alone (stiffnessCoefficient 0) for a projection in the mass norm
+// (docs/dynamics.md).
+struct MassTerm {
+  Fem::BodyDensities density;
+  double massCoefficient = 0, stiffnessCoefficient = 1;
+};
+
 class FetiProblem {
  public:
   // Parameters: "Formulation" (TFETI | FETI-1), "Local Solver" (CHOLMOD | KLU2 | Tacho),
@@ -78,10 +90,11 @@ class FetiProblem {
   // contact search finds them (Contact::contactConstraints on the whole
   // mesh, Contact::faceContactConstraints on the ranks' parts). A rank may
   // be given every constraint or only those of the slave nodes it owns
-  // (scatterContactConstraints); it keeps the latter. Collective.
+  // (scatterContactConstraints); it keeps the latter. With a mass term, the
+  // subdomains' matrices are massTerm's (TFETI only). Collective.
   FetiProblem(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::LoadCase& loads,
               const std::vector<ContactConstraint>& contact, const Teuchos::ParameterList& params,
-              const RCP<const Comm>& comm);
+              const RCP<const Comm>& comm, const MassTerm* massTerm = nullptr);
   // Subdomains an application assembled: this rank's subdomains (ids
   // ascending, each rank a contiguous range, rank 0 first; K, f, the global
   // node numbers, the coordinates, and R, or empty R to have the rigid-body

@@ -1,0 +1,193 @@
+#include "Tribos_ImplicitDynamics.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+
+#include <cmath>
+
+#include "Tribos_Error.hpp"
+
+namespace Tribos {
+namespace Contact {
+
+namespace {
+
+constexpr TimeScheme kTimeSchemes[] = {TimeScheme::Newmark, TimeScheme::ContactStabilizedNewmark};
+
+bool frictionless(const PairFriction& friction) {
+  for (const auto& f : friction)
+    if (f.law != FrictionLaw::Frictionless) return false;
+  return true;
+}
+
+double sumOverRanks(double mine, const Comm& comm) {
+  double all = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, mine, Teuchos::outArg(all));
+  return all;
+}
+
+}  // namespace
+
+std::string timeSchemeName(TimeScheme scheme) {
+  return scheme == TimeScheme::Newmark ? "Newmark" : "Contact-Stabilized Newmark";
+}
+
+TimeScheme timeSchemeFromName(const std::string& name) {
+  std::string valid;
+  for (TimeScheme s : kTimeSchemes) {
+    if (name == timeSchemeName(s)) return s;
+    valid += (valid.empty() ? "" : ", ") + timeSchemeName(s);
+  }
+  throw Error("time scheme \"" + name + "\" unknown; valid: " + valid);
+}
+
+ImplicitDynamics::ImplicitDynamics(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat,
+                                   const Fem::BodyDensities& density, const Fem::LoadCase& loads,
+                                   const std::vector<Feti::ContactConstraint>& contact, const PairFriction& friction,
+                                   const DynamicsSpec& spec, const Teuchos::ParameterList& feti,
+                                   const Teuchos::ParameterList& solver, const RCP<const Comm>& comm)
+    : spec_(spec), friction_(friction), solver_(solver) {
+  TRIBOS_REQUIRE(std::isfinite(spec.timeStep) && spec.timeStep > 0,
+                 "ImplicitDynamics: the time step must be a positive finite number, got " << spec.timeStep);
+  for (double v : spec.initialVelocity)
+    TRIBOS_REQUIRE(std::isfinite(v), "ImplicitDynamics: the initial velocity must be finite");
+  // The trapezoidal rule: beta = 1/4, gamma = 1/2.
+  massCoefficient_ = 4 / (spec.timeStep * spec.timeStep);
+  const Feti::MassTerm effective{density, massCoefficient_, 1.0};
+  problem_ = rcp(new Feti::FetiProblem(disc, mat, loads, contact, feti, comm, &effective));
+  if (spec.scheme == TimeScheme::ContactStabilizedNewmark) {
+    const Feti::MassTerm massAlone{density, 1.0, 0.0};
+    projection_ = rcp(new Feti::FetiProblem(disc, mat, loads, contact, feti, comm, &massAlone));
+  }
+  const auto& fixed = problem_->dirichlet();
+  for (int k = 0; k < problem_->numLocalSubdomains(); ++k) {
+    const auto& sys = problem_->subdomain(k);
+    mass_.push_back(Fem::assembleSubdomainMass(disc, sys.id, density));
+    load_.push_back(sys.f);
+    u_.emplace_back(sys.numDofs(), 0.0);
+    v_.emplace_back(sys.numDofs(), 0.0);
+    for (int i = 0; i < sys.numDofs(); ++i)
+      if (!fixed.count(3LL * sys.nodes[i / 3] + i % 3)) v_.back()[i] = spec.initialVelocity[i % 3];
+  }
+  // M a_0 = f - K u_0 + (no contact force) = f at rest in the reference state.
+  Ma_ = load_;
+}
+
+ImplicitDynamics::Subdomains ImplicitDynamics::massTimes(const Subdomains& x) const {
+  Subdomains y(x.size());
+  for (size_t k = 0; k < x.size(); ++k) {
+    y[k].resize(x[k].size());
+    mass_[k].multiply(x[k], y[k]);
+  }
+  return y;
+}
+
+ImplicitDynamics::Subdomains ImplicitDynamics::stiffnessTimes(const Subdomains& x) const {
+  Subdomains y(x.size());
+  const Subdomains Mx = massTimes(x);
+  for (size_t k = 0; k < x.size(); ++k) {
+    y[k].resize(x[k].size());
+    problem_->subdomain(static_cast<int>(k)).K.multiply(x[k], y[k]);
+    for (size_t i = 0; i < y[k].size(); ++i) y[k][i] -= massCoefficient_ * Mx[k][i];
+  }
+  return y;
+}
+
+RCP<Vector> ImplicitDynamics::primal(const Subdomains& x) const {
+  auto p = rcp(new Vector(problem_->primalMap()));
+  auto data = p->getDataNonConst();
+  size_t at = 0;
+  for (const auto& xs : x)
+    for (double value : xs) data[at++] = value;
+  return p;
+}
+
+ImplicitDynamics::Subdomains ImplicitDynamics::subdomains(const Vector& primal) const {
+  const auto data = primal.getData();
+  Subdomains x;
+  size_t at = 0;
+  for (int k = 0; k < problem_->numLocalSubdomains(); ++k) {
+    const size_t n = static_cast<size_t>(problem_->subdomain(k).numDofs());
+    x.emplace_back(data.begin() + at, data.begin() + at + n);
+    at += n;
+  }
+  return x;
+}
+
+FetiSolveResult ImplicitDynamics::solveStep(const RCP<Feti::FetiProblem>& problem, const Subdomains& rhs,
+                                            const PairFriction& friction, const std::string& what) {
+  problem->setRightHandSides(rhs, problem->dirichlet());
+  // Friction acts on the slip of the step, since u_n: the slip velocity
+  // times dt.
+  if (!frictionless(friction)) problem->setTangentialOffset(*primal(u_));
+  FetiSolveResult r = solveFeti(problem, friction, solver_);
+  TRIBOS_REQUIRE(r.verdict.converged, "ImplicitDynamics: " << what << " of the step to t = "
+                                                           << time_ + spec_.timeStep
+                                                           << " did not meet its result check: " << r.verdict.stopReason);
+  return r;
+}
+
+ImplicitDynamics::Subdomains ImplicitDynamics::projectedPredictor(const Subdomains& flight) {
+  const PairFriction none{FrictionSpec{FrictionLaw::Frictionless, 0.0, 0.0}};
+  const FetiSolveResult r = solveStep(projection_, massTimes(flight), none, "the projection of the predictor");
+  return subdomains(*r.primal);
+}
+
+DynamicStep ImplicitDynamics::step() {
+  const double dt = spec_.timeStep, c = massCoefficient_;
+  Subdomains flight = u_;  // u_n + dt v_n
+  for (size_t k = 0; k < u_.size(); ++k)
+    for (size_t i = 0; i < u_[k].size(); ++i) flight[k][i] += dt * v_[k][i];
+  // (K + c M) u_{n+1} = rhs with the contact conditions on u_{n+1}:
+  //   Newmark:    rhs = f + c M (u_n + dt v_n) + M a_n,
+  //   stabilized: rhs = f_{n+1} + f_n - K u_n + c M w, w the projected flight.
+  const bool stabilized = spec_.scheme == TimeScheme::ContactStabilizedNewmark;
+  const Subdomains w = stabilized ? projectedPredictor(flight) : flight;
+  const Subdomains Mw = massTimes(w);
+  const Subdomains Ku = stabilized ? stiffnessTimes(u_) : Subdomains();
+  Subdomains rhs = load_;
+  for (size_t k = 0; k < rhs.size(); ++k)
+    for (size_t i = 0; i < rhs[k].size(); ++i)
+      rhs[k][i] += c * Mw[k][i] + (stabilized ? load_[k][i] - Ku[k][i] : Ma_[k][i]);
+  DynamicStep s;
+  s.solve = solveStep(problem_, rhs, friction_, "the contact solve");
+  const Subdomains next = subdomains(*s.solve.primal);
+  // The trapezoidal rule's velocity, from the displacements: v_{n+1} =
+  // v_n + 2 (u_{n+1} - w) / dt (w = u_n + dt v_n without projection); and
+  // M a_{n+1} = c M (u_{n+1} - u_n - dt v_n) - M a_n.
+  const Subdomains Mnext = stabilized ? Subdomains() : massTimes(next);
+  for (size_t k = 0; k < next.size(); ++k)
+    for (size_t i = 0; i < next[k].size(); ++i) {
+      v_[k][i] += 2 * (next[k][i] - w[k][i]) / dt;
+      if (!stabilized) Ma_[k][i] = c * (Mnext[k][i] - Mw[k][i]) - Ma_[k][i];
+    }
+  u_ = next;
+  time_ += dt;
+  s.time = time_;
+  s.kineticEnergy = kineticEnergy();
+  s.strainEnergy = strainEnergy();
+  double mine = 0;
+  for (double lambda : s.solve.contact.normalForce) mine += lambda;
+  const double multiplier = sumOverRanks(mine, *problem_->comm());
+  s.contactForce = stabilized ? multiplier / 2 : (lastMultiplier_ + multiplier) / 2;
+  lastMultiplier_ = multiplier;
+  return s;
+}
+
+double ImplicitDynamics::kineticEnergy() const {
+  const Subdomains Mv = massTimes(v_);
+  double e = 0;
+  for (size_t k = 0; k < v_.size(); ++k)
+    for (size_t i = 0; i < v_[k].size(); ++i) e += 0.5 * v_[k][i] * Mv[k][i];
+  return sumOverRanks(e, *problem_->comm());
+}
+
+double ImplicitDynamics::strainEnergy() const {
+  const Subdomains Ku = stiffnessTimes(u_);
+  double e = 0;
+  for (size_t k = 0; k < u_.size(); ++k)
+    for (size_t i = 0; i < u_[k].size(); ++i) e += 0.5 * u_[k][i] * Ku[k][i];
+  return sumOverRanks(e, *problem_->comm());
+}
+
+}  // namespace Contact
+}  // namespace Tribos

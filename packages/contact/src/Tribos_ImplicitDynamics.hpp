@@ -1,0 +1,105 @@
+// Tribos_ImplicitDynamics.hpp: implicit time stepping of elastic bodies in
+// contact through FETI (docs/dynamics.md). Every step is a contact problem
+// of the effective stiffness K + M / (beta dt^2) (trapezoidal rule, beta =
+// 1/4) on positive definite subdomains: no kernel, no coarse space, the
+// factorizations made once for the fixed step.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "Tribos_FetiSolve.hpp"
+#include "Tribos_Mass.hpp"
+
+namespace Tribos {
+namespace Contact {
+
+// The schemes (docs/dynamics.md, "Schemes at contact"), chosen by name:
+//   "Newmark"  the trapezoidal rule with the contact conditions on u_{n+1};
+//   "Contact-Stabilized Newmark"  Deuflhard, Krause and Ertel (2008): the
+//       free flight u_n + dt v_n first projected onto the admissible set in
+//       the mass norm, then the trapezoidal step from there.
+enum class TimeScheme { Newmark, ContactStabilizedNewmark };
+std::string timeSchemeName(TimeScheme scheme);
+// The scheme of a name; throws naming the valid names.
+TimeScheme timeSchemeFromName(const std::string& name);
+
+struct DynamicsSpec {
+  double timeStep = 0;                              // dt > 0, fixed
+  TimeScheme scheme = TimeScheme::ContactStabilizedNewmark;
+  std::array<double, 3> initialVelocity{0, 0, 0};  // of every node not fixed by a Dirichlet condition
+};
+
+// What a step leaves: the time reached, the energies of the state after it
+// (summed over the subdomains, each cell once), the contact force of the
+// step, and the step's contact solve. The contact force is the mean over
+// the step, its impulse / dt: the trapezoidal rule's momentum balance
+// M (v_{n+1} - v_n) = dt/2 (r_n + r_{n+1} + ...) gives the impulse
+// dt/2 (lambda_n + lambda_{n+1}) (Newmark: lambda the multipliers of the
+// steps, the forces at t_n and t_{n+1}) and dt/2 lambda (the
+// contact-stabilized scheme, whose one multiplier carries both ends).
+struct DynamicStep {
+  double time = 0;
+  double kineticEnergy = 0;  // v' M v / 2
+  double strainEnergy = 0;   // u' K u / 2
+  double contactForce = 0;   // the resultant of the normal contact forces, mean over the step, all ranks
+  FetiSolveResult solve;     // its contact.normalForce: the step problem's multipliers lambda_N
+};
+
+// The bodies of a decomposed mesh from rest in the reference configuration
+// (u = 0) with a uniform initial velocity, under constant loads (their
+// Dirichlet values, tractions and volume force at every time), in contact
+// through `contact` (the constraints of FetiProblem's mesh constructor) with
+// the friction of each pair. The initial state carries no contact force.
+class ImplicitDynamics {
+ public:
+  // feti: FetiProblem's parameters (TFETI); solver: solveFeti's. Collective.
+  ImplicitDynamics(const Mesh::Discretization& disc, const Fem::BodyMaterials& mat, const Fem::BodyDensities& density,
+                   const Fem::LoadCase& loads, const std::vector<Feti::ContactConstraint>& contact,
+                   const PairFriction& friction, const DynamicsSpec& spec, const Teuchos::ParameterList& feti,
+                   const Teuchos::ParameterList& solver, const RCP<const Comm>& comm);
+
+  // One step t -> t + dt. Throws Error when the step's contact solve does
+  // not meet its result check (its verdict names why). Collective.
+  DynamicStep step();
+
+  double time() const { return time_; }
+  // The energies of the current state, over all ranks. Collective.
+  double kineticEnergy() const;
+  double strainEnergy() const;
+  // The nodal displacement and velocity of the current state. Collective.
+  Fem::NodalVector displacement() const { return problem_->nodalDisplacement(*primal(u_)); }
+  Fem::NodalVector velocity() const { return problem_->nodalDisplacement(*primal(v_)); }
+
+ private:
+  using Subdomains = std::vector<std::vector<double>>;  // per local subdomain, 3 per local node
+  // Per local subdomain: y = M x, y = K x (K of the effective matrix less
+  // its mass term).
+  Subdomains massTimes(const Subdomains& x) const;
+  Subdomains stiffnessTimes(const Subdomains& x) const;
+  RCP<Vector> primal(const Subdomains& x) const;
+  Subdomains subdomains(const Vector& primal) const;
+  // The free flight u + dt v, projected onto the admissible set in the mass
+  // norm (the contact-stabilized scheme's predictor).
+  Subdomains projectedPredictor(const Subdomains& flight);
+  FetiSolveResult solveStep(const RCP<Feti::FetiProblem>& problem, const Subdomains& rhs,
+                            const PairFriction& friction, const std::string& what);
+
+  DynamicsSpec spec_;
+  PairFriction friction_;
+  Teuchos::ParameterList solver_;
+  double massCoefficient_;                     // 1 / (beta dt^2) = 4 / dt^2
+  RCP<Feti::FetiProblem> problem_;             // K + M / (beta dt^2)
+  RCP<Feti::FetiProblem> projection_;          // M alone (contact-stabilized scheme)
+  std::vector<LocalCsr> mass_;                 // M of each local subdomain
+  Subdomains load_;                            // f of each local subdomain (constant)
+  Subdomains u_, v_, Ma_;                      // the state: u, v and M a (trapezoidal rule)
+  double lastMultiplier_ = 0;                  // Newmark: the sum of lambda_N at t_n
+  double time_ = 0;
+};
+
+}  // namespace Contact
+}  // namespace Tribos
