@@ -13,12 +13,6 @@ namespace {
 
 constexpr TimeScheme kTimeSchemes[] = {TimeScheme::Newmark, TimeScheme::ContactStabilizedNewmark};
 
-bool frictionless(const PairFriction& friction) {
-  for (const auto& f : friction)
-    if (f.law != FrictionLaw::Frictionless) return false;
-  return true;
-}
-
 double sumOverRanks(double mine, const Comm& comm) {
   double all = 0;
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, mine, Teuchos::outArg(all));
@@ -45,7 +39,7 @@ ImplicitDynamics::ImplicitDynamics(const Mesh::Discretization& disc, const Fem::
                                    const std::vector<Feti::ContactConstraint>& contact, const PairFriction& friction,
                                    const DynamicsSpec& spec, const Teuchos::ParameterList& feti,
                                    const Teuchos::ParameterList& solver, const RCP<const Comm>& comm)
-    : spec_(spec), friction_(friction), solver_(solver) {
+    : spec_(spec) {
   TRIBOS_REQUIRE(std::isfinite(spec.timeStep) && spec.timeStep > 0,
                  "ImplicitDynamics: the time step must be a positive finite number, got " << spec.timeStep);
   for (double v : spec.initialVelocity)
@@ -54,9 +48,12 @@ ImplicitDynamics::ImplicitDynamics(const Mesh::Discretization& disc, const Fem::
   massCoefficient_ = 4 / (spec.timeStep * spec.timeStep);
   const Feti::MassTerm effective{density, massCoefficient_, 1.0};
   problem_ = rcp(new Feti::FetiProblem(disc, mat, loads, contact, feti, comm, &effective));
+  steps_ = std::make_unique<FetiLoadSteps>(problem_, friction, solver);
   if (spec.scheme == TimeScheme::ContactStabilizedNewmark) {
     const Feti::MassTerm massAlone{density, 1.0, 0.0};
     projection_ = rcp(new Feti::FetiProblem(disc, mat, loads, contact, feti, comm, &massAlone));
+    const PairFriction none{FrictionSpec{FrictionLaw::Frictionless, 0.0, 0.0}};
+    projectionSteps_ = std::make_unique<FetiLoadSteps>(projection_, none, solver);
   }
   const auto& fixed = problem_->dirichlet();
   for (int k = 0; k < problem_->numLocalSubdomains(); ++k) {
@@ -113,22 +110,23 @@ ImplicitDynamics::Subdomains ImplicitDynamics::subdomains(const Vector& primal) 
   return x;
 }
 
-FetiSolveResult ImplicitDynamics::solveStep(const RCP<Feti::FetiProblem>& problem, const Subdomains& rhs,
-                                            const PairFriction& friction, const std::string& what) {
-  problem->setRightHandSides(rhs, problem->dirichlet());
-  // Friction acts on the slip of the step, since u_n: the slip velocity
-  // times dt.
-  if (!frictionless(friction)) problem->setTangentialOffset(*primal(u_));
-  FetiSolveResult r = solveFeti(problem, friction, solver_);
+FetiSolveResult ImplicitDynamics::solveStep(Feti::FetiProblem& problem, FetiLoadSteps& steps, const Subdomains& rhs,
+                                            const std::string& what) {
+  problem.setRightHandSides(rhs, problem.dirichlet());
+  // Friction acts on the slip since the last solve (u_n; the first from
+  // the reference, u_0 = 0): the slip velocity times dt.
+  FetiSolveResult r = steps.solveNext();
   TRIBOS_REQUIRE(r.verdict.converged, "ImplicitDynamics: " << what << " of the step to t = "
                                                            << time_ + spec_.timeStep
-                                                           << " did not meet its result check: " << r.verdict.stopReason);
+                                                           << " did not meet its result check: " << r.verdict.stopReason
+                                                           << (r.handover.empty() ? "" : " (after Semismooth Newton: " +
+                                                                                            r.handover + ")"));
   return r;
 }
 
 ImplicitDynamics::Subdomains ImplicitDynamics::projectedPredictor(const Subdomains& flight) {
-  const PairFriction none{FrictionSpec{FrictionLaw::Frictionless, 0.0, 0.0}};
-  const FetiSolveResult r = solveStep(projection_, massTimes(flight), none, "the projection of the predictor");
+  const FetiSolveResult r =
+      solveStep(*projection_, *projectionSteps_, massTimes(flight), "the projection of the predictor");
   return subdomains(*r.primal);
 }
 
@@ -149,7 +147,7 @@ DynamicStep ImplicitDynamics::step() {
     for (size_t i = 0; i < rhs[k].size(); ++i)
       rhs[k][i] += c * Mw[k][i] + (stabilized ? load_[k][i] - Ku[k][i] : Ma_[k][i]);
   DynamicStep s;
-  s.solve = solveStep(problem_, rhs, friction_, "the contact solve");
+  s.solve = solveStep(*problem_, *steps_, rhs, "the contact solve");
   const Subdomains next = subdomains(*s.solve.primal);
   // The trapezoidal rule's velocity, from the displacements: v_{n+1} =
   // v_n + 2 (u_{n+1} - w) / dt (w = u_n + dt v_n without projection); and

@@ -8,6 +8,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -85,15 +86,17 @@ class ImplicitDynamics {
   // The free flight u + dt v, projected onto the admissible set in the mass
   // norm (the contact-stabilized scheme's predictor).
   Subdomains projectedPredictor(const Subdomains& flight);
-  FetiSolveResult solveStep(const RCP<Feti::FetiProblem>& problem, const Subdomains& rhs,
-                            const PairFriction& friction, const std::string& what);
+  FetiSolveResult solveStep(Feti::FetiProblem& problem, FetiLoadSteps& steps, const Subdomains& rhs,
+                            const std::string& what);
 
   DynamicsSpec spec_;
-  PairFriction friction_;
-  Teuchos::ParameterList solver_;
   double massCoefficient_;                     // 1 / (beta dt^2) = 4 / dt^2
-  RCP<Feti::FetiProblem> problem_;             // K + M / (beta dt^2)
-  RCP<Feti::FetiProblem> projection_;          // M alone (contact-stabilized scheme)
+  // The step's problem, K + M / (beta dt^2), and the projection's, M alone
+  // (contact-stabilized scheme), each solved as a sequence of right-hand
+  // sides: F built once, each solve started from the last multipliers,
+  // friction acting on the slip since the last solve.
+  RCP<Feti::FetiProblem> problem_, projection_;
+  std::unique_ptr<FetiLoadSteps> steps_, projectionSteps_;
   std::vector<LocalCsr> mass_;                 // M of each local subdomain
   Subdomains load_;                            // f of each local subdomain (constant)
   Subdomains u_, v_, Ma_;                      // the state: u, v and M a (trapezoidal rule)

@@ -6,7 +6,7 @@
 // 2 L / c, its force is rho c v0 A throughout, and the bar leaves with its
 // initial kinetic energy. Both schemes on 1 and 2 ranks (2 subdomains
 // along the bar); the default's errors fall as the step and the cells
-// shrink.
+// shrink. And a block sliding to a stop under Coulomb friction.
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
@@ -124,6 +124,62 @@ TEUCHOS_UNIT_TEST(SignoriniBar, Newmark) {
   TEST_COMPARE(std::abs(m.duration), <=, 0.05);
   TEST_COMPARE(std::abs(m.meanForce), <=, 0.05);
   TEST_COMPARE(m.deepest, <=, 1e-8);
+}
+
+// A block sliding on the plane (docs/dynamics.md): a soft cube of 0.1 m
+// (E = 10 MPa, rho = 1000, so that dt = 6.8 h / c: a steel cube at this dt,
+// 340 h / c, stalls in stick, docs/dynamics.md) resting on z = 0 under
+// gravity g, moving along x at v0, Coulomb friction F, the default scheme.
+// It decelerates at F g and stops after v0^2 / (2 F g) at t = v0 / (F g),
+// having dissipated its kinetic energy in friction. 100 steps to the stop;
+// the distance its nodes slid on the mean, the stop (to the step) and the
+// energy lost, within 2 %.
+TEUCHOS_UNIT_TEST(SlidingBlock, StopsAfterItsDistance) {
+  const auto comm = Tpetra::getDefaultComm();
+  const double side = 0.1, E = 1e7, rho = 1000, g = 9.81, v0 = 1, F = 0.3;
+  const double distance = v0 * v0 / (2 * F * g), stopTime = v0 / (F * g);
+  Mesh::BoxSpec spec;
+  spec.type = Mesh::CellType::Hex8;
+  spec.x = spec.y = spec.z = {0, side};
+  spec.cells = {2, 2, 2};
+  Mesh::DecompositionSpec dec;
+  dec.grid = {2, 1, 1};
+  const Mesh::Discretization disc(Mesh::generateBox(spec), spec, dec, comm->getSize(), comm->getRank());
+  Contact::ContactSpec plane;
+  plane.enabled = true;
+  const auto contact = Contact::faceContactConstraints(disc, plane, comm);
+  Fem::LoadCase loads;
+  loads.volumeForce = {0, 0, -rho * g};
+  Contact::DynamicsSpec dyn;
+  dyn.timeStep = stopTime / 100;
+  dyn.initialVelocity = {v0, 0, 0};
+  Teuchos::ParameterList solver;
+  solver.sublist("Algorithm 2").set("Relative Tolerance", 1e-9);
+  Contact::ImplicitDynamics run(disc, Fem::Material{E, 0.3}, rho, loads, contact,
+                                {Contact::FrictionSpec{FrictionLaw::Coulomb, F, 0.0}}, dyn, Teuchos::ParameterList(),
+                                solver, comm);
+  const double initial = run.kineticEnergy();
+  // The block has stopped when its mean velocity along x is below 1e-3 v0.
+  auto meanVelocityX = [&] {
+    const auto v = run.velocity().gathered();
+    double sum = 0;
+    for (size_t n = 0; n < v.size() / 3; ++n) sum += v[3 * n];
+    return sum / (v.size() / 3);
+  };
+  double stopped = -1;
+  while (run.time() < 1.2 * stopTime) {
+    run.step();
+    if (stopped < 0 && meanVelocityX() < 1e-3 * v0) stopped = run.time();
+  }
+  const auto u = run.displacement().gathered();
+  double slid = 0;
+  for (size_t n = 0; n < u.size() / 3; ++n) slid += u[3 * n] / (u.size() / 3);
+  const double lost = (initial - run.kineticEnergy()) / initial;
+  out << "slid " << slid << " m against " << distance << " (" << slid / distance - 1 << "), stopped at " << stopped
+      << " s against " << stopTime << " (" << stopped / stopTime - 1 << "), energy lost - initial " << lost - 1 << "\n";
+  TEST_COMPARE(std::abs(slid / distance - 1), <=, 0.02);
+  TEST_COMPARE(std::abs(stopped / stopTime - 1), <=, 0.02);
+  TEST_COMPARE(std::abs(lost - 1), <=, 0.02);
 }
 
 }  // namespace
