@@ -153,22 +153,47 @@ DynamicStep ImplicitDynamics::step() {
   // v_n + 2 (u_{n+1} - w) / dt (w = u_n + dt v_n without projection); and
   // M a_{n+1} = c M (u_{n+1} - u_n - dt v_n) - M a_n.
   const Subdomains Mnext = stabilized ? Subdomains() : massTimes(next);
+  double work = 0;  // constant loads: f' (u_{n+1} - u_n)
   for (size_t k = 0; k < next.size(); ++k)
     for (size_t i = 0; i < next[k].size(); ++i) {
+      work += load_[k][i] * (next[k][i] - u_[k][i]);
       v_[k][i] += 2 * (next[k][i] - w[k][i]) / dt;
       if (!stabilized) Ma_[k][i] = c * (Mnext[k][i] - Mw[k][i]) - Ma_[k][i];
     }
+  externalWork_ += sumOverRanks(work, *problem_->comm());
+  frictionDissipation_ += stepDissipation(s.solve.contact, stabilized);
   u_ = next;
   time_ += dt;
   s.time = time_;
   s.kineticEnergy = kineticEnergy();
   s.strainEnergy = strainEnergy();
+  s.externalWork = externalWork_;
+  s.frictionDissipation = frictionDissipation_;
   double mine = 0;
   for (double lambda : s.solve.contact.normalForce) mine += lambda;
   const double multiplier = sumOverRanks(mine, *problem_->comm());
   s.contactForce = stabilized ? multiplier / 2 : (lastMultiplier_ + multiplier) / 2;
   lastMultiplier_ = multiplier;
   return s;
+}
+
+double ImplicitDynamics::stepDissipation(const ContactNodeResults& contact, bool stabilized) {
+  // The mean friction force of the step (impulse / dt, as contactForce):
+  // phi_T / 2 (stabilized), (phi_T,n + phi_T,n+1) / 2 (Newmark), against
+  // the node's slip in the step. The contact nodes of a rank are the same,
+  // in the same order, at every step.
+  const auto& phi = contact.tangentialForce;
+  if (lastTangential_.size() != phi.size()) lastTangential_.assign(phi.size(), 0.0);
+  double mine = 0;
+  for (size_t k = 0; k < contact.nodes.size(); ++k) {
+    const auto s = contact.slipIncrement(k);
+    for (int d = 0; d < 3; ++d) {
+      const double mean = stabilized ? phi[3 * k + d] / 2 : (lastTangential_[3 * k + d] + phi[3 * k + d]) / 2;
+      mine -= mean * s[d];
+    }
+  }
+  lastTangential_ = phi;
+  return sumOverRanks(mine, *problem_->comm());
 }
 
 double ImplicitDynamics::kineticEnergy() const {

@@ -42,12 +42,20 @@ struct DynamicsSpec {
 // dt/2 (lambda_n + lambda_{n+1}) (Newmark: lambda the multipliers of the
 // steps, the forces at t_n and t_{n+1}) and dt/2 lambda (the
 // contact-stabilized scheme, whose one multiplier carries both ends).
+// Since t = 0: the work of the loads, sum over the steps of
+// (f_n + f_{n+1})' (u_{n+1} - u_n) / 2, and the energy friction dissipated,
+// the sum over the steps and contact nodes of the mean friction force of the
+// step against the node's slip in it (>= 0). With the energies they balance,
+// kinetic + strain = initial kinetic + work - dissipated, up to what the
+// scheme itself dissipates at contact.
 struct DynamicStep {
   double time = 0;
-  double kineticEnergy = 0;  // v' M v / 2
-  double strainEnergy = 0;   // u' K u / 2
-  double contactForce = 0;   // the resultant of the normal contact forces, mean over the step, all ranks
-  FetiSolveResult solve;     // its contact.normalForce: the step problem's multipliers lambda_N
+  double kineticEnergy = 0;        // v' M v / 2
+  double strainEnergy = 0;         // u' K u / 2
+  double externalWork = 0;         // since t = 0
+  double frictionDissipation = 0;  // since t = 0
+  double contactForce = 0;         // the resultant of the normal contact forces, mean over the step, all ranks
+  FetiSolveResult solve;           // its contact.normalForce: the step problem's multipliers lambda_N
 };
 
 // The bodies of a decomposed mesh from rest in the reference configuration
@@ -88,6 +96,8 @@ class ImplicitDynamics {
   Subdomains projectedPredictor(const Subdomains& flight);
   FetiSolveResult solveStep(Feti::FetiProblem& problem, FetiLoadSteps& steps, const Subdomains& rhs,
                             const std::string& what);
+  // The energy friction dissipated in the step just solved (all ranks).
+  double stepDissipation(const ContactNodeResults& contact, bool stabilized);
 
   DynamicsSpec spec_;
   double massCoefficient_;                     // 1 / (beta dt^2) = 4 / dt^2
@@ -101,6 +111,8 @@ class ImplicitDynamics {
   Subdomains load_;                            // f of each local subdomain (constant)
   Subdomains u_, v_, Ma_;                      // the state: u, v and M a (trapezoidal rule)
   double lastMultiplier_ = 0;                  // Newmark: the sum of lambda_N at t_n
+  std::vector<double> lastTangential_;         // Newmark: this rank's contact nodes' phi_T at t_n (3 each)
+  double externalWork_ = 0, frictionDissipation_ = 0;
   double time_ = 0;
 };
 

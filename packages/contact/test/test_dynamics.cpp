@@ -132,8 +132,9 @@ TEUCHOS_UNIT_TEST(SignoriniBar, Newmark) {
 // gravity g, moving along x at v0, Coulomb friction F, the default scheme.
 // It decelerates at F g and stops after v0^2 / (2 F g) at t = v0 / (F g),
 // having dissipated its kinetic energy in friction. 100 steps to the stop;
-// the distance its nodes slid on the mean, the stop (to the step) and the
-// energy lost, within 2 %.
+// the distance its nodes slid on the mean, the stop (to the step), the
+// energy lost and the energy friction dissipated (summed from the contact
+// forces and slips of the steps), within 2 %; the energies balance.
 TEUCHOS_UNIT_TEST(SlidingBlock, StopsAfterItsDistance) {
   const auto comm = Tpetra::getDefaultComm();
   const double side = 0.1, E = 1e7, rho = 1000, g = 9.81, v0 = 1, F = 0.3;
@@ -167,10 +168,20 @@ TEUCHOS_UNIT_TEST(SlidingBlock, StopsAfterItsDistance) {
     return sum / (v.size() / 3);
   };
   double stopped = -1;
+  Contact::DynamicStep last;
   while (run.time() < 1.2 * stopTime) {
-    run.step();
+    last = run.step();
     if (stopped < 0 && meanVelocityX() < 1e-3 * v0) stopped = run.time();
   }
+  // The energies balance: what friction dissipated is the kinetic energy the
+  // block had, less what is left (its bouncing), plus the work of gravity
+  // as it settles.
+  const double balance =
+      (last.kineticEnergy + last.strainEnergy + last.frictionDissipation - last.externalWork) / initial - 1;
+  out << "dissipated by friction - initial energy " << last.frictionDissipation / initial - 1 << "; work of gravity "
+      << last.externalWork / initial << ", balance " << balance << "\n";
+  TEST_COMPARE(std::abs(last.frictionDissipation / initial - 1), <=, 0.02);
+  TEST_COMPARE(std::abs(balance), <=, 0.02);
   const auto u = run.displacement().gathered();
   double slid = 0;
   for (size_t n = 0; n < u.size() / 3; ++n) slid += u[3 * n] / (u.size() / 3);
