@@ -160,40 +160,40 @@ DynamicStep ImplicitDynamics::step() {
       v_[k][i] += 2 * (next[k][i] - w[k][i]) / dt;
       if (!stabilized) Ma_[k][i] = c * (Mnext[k][i] - Mw[k][i]) - Ma_[k][i];
     }
-  externalWork_ += sumOverRanks(work, *problem_->comm());
-  frictionDissipation_ += stepDissipation(s.solve.contact, stabilized);
   u_ = next;
   time_ += dt;
+  // The step's forces as means over it; friction dissipates the mean
+  // friction force against the slip of the step.
+  auto& contact = s.solve.contact;
+  meanForces(contact, stabilized);
+  double force = 0, dissipated = 0;
+  for (size_t k = 0; k < contact.nodes.size(); ++k) {
+    force += contact.normalForce[k];
+    dissipated += contact.frictionDissipation(k);
+  }
+  const auto& comm = *problem_->comm();
+  externalWork_ += sumOverRanks(work, comm);
+  frictionDissipation_ += sumOverRanks(dissipated, comm);
+  s.contactForce = sumOverRanks(force, comm);
   s.time = time_;
   s.kineticEnergy = kineticEnergy();
   s.strainEnergy = strainEnergy();
   s.externalWork = externalWork_;
   s.frictionDissipation = frictionDissipation_;
-  double mine = 0;
-  for (double lambda : s.solve.contact.normalForce) mine += lambda;
-  const double multiplier = sumOverRanks(mine, *problem_->comm());
-  s.contactForce = stabilized ? multiplier / 2 : (lastMultiplier_ + multiplier) / 2;
-  lastMultiplier_ = multiplier;
   return s;
 }
 
-double ImplicitDynamics::stepDissipation(const ContactNodeResults& contact, bool stabilized) {
-  // The mean friction force of the step (impulse / dt, as contactForce):
-  // phi_T / 2 (stabilized), (phi_T,n + phi_T,n+1) / 2 (Newmark), against
-  // the node's slip in the step. The contact nodes of a rank are the same,
-  // in the same order, at every step.
-  const auto& phi = contact.tangentialForce;
-  if (lastTangential_.size() != phi.size()) lastTangential_.assign(phi.size(), 0.0);
-  double mine = 0;
-  for (size_t k = 0; k < contact.nodes.size(); ++k) {
-    const auto s = contact.slipIncrement(k);
-    for (int d = 0; d < 3; ++d) {
-      const double mean = stabilized ? phi[3 * k + d] / 2 : (lastTangential_[3 * k + d] + phi[3 * k + d]) / 2;
-      mine -= mean * s[d];
-    }
-  }
-  lastTangential_ = phi;
-  return sumOverRanks(mine, *problem_->comm());
+void ImplicitDynamics::meanForces(ContactNodeResults& contact, bool stabilized) {
+  auto& normal = contact.normalForce;
+  auto& tangential = contact.tangentialForce;
+  if (lastNormal_.size() != normal.size()) lastNormal_.assign(normal.size(), 0.0);
+  if (lastTangential_.size() != tangential.size()) lastTangential_.assign(tangential.size(), 0.0);
+  const std::vector<double> atEnd = normal, tangentialAtEnd = tangential;
+  for (size_t k = 0; k < normal.size(); ++k) normal[k] = (stabilized ? 0.0 : lastNormal_[k]) / 2 + normal[k] / 2;
+  for (size_t k = 0; k < tangential.size(); ++k)
+    tangential[k] = (stabilized ? 0.0 : lastTangential_[k]) / 2 + tangential[k] / 2;
+  lastNormal_ = atEnd;
+  lastTangential_ = tangentialAtEnd;
 }
 
 double ImplicitDynamics::kineticEnergy() const {

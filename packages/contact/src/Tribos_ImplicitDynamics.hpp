@@ -36,12 +36,14 @@ struct DynamicsSpec {
 
 // What a step leaves: the time reached, the energies of the state after it
 // (summed over the subdomains, each cell once), the contact force of the
-// step, and the step's contact solve. The contact force is the mean over
-// the step, its impulse / dt: the trapezoidal rule's momentum balance
+// step, and the step's contact solve. Contact forces are the means over the
+// step, impulse / dt: the trapezoidal rule's momentum balance
 // M (v_{n+1} - v_n) = dt/2 (r_n + r_{n+1} + ...) gives the impulse
 // dt/2 (lambda_n + lambda_{n+1}) (Newmark: lambda the multipliers of the
 // steps, the forces at t_n and t_{n+1}) and dt/2 lambda (the
-// contact-stabilized scheme, whose one multiplier carries both ends).
+// contact-stabilized scheme, whose one multiplier carries both ends). The
+// solve's contact node forces are replaced by these means; its KKT figures
+// and verdict are those of the step problem's multipliers.
 // Since t = 0: the work of the loads, sum over the steps of
 // (f_n + f_{n+1})' (u_{n+1} - u_n) / 2, and the energy friction dissipated,
 // the sum over the steps and contact nodes of the mean friction force of the
@@ -54,8 +56,8 @@ struct DynamicStep {
   double strainEnergy = 0;         // u' K u / 2
   double externalWork = 0;         // since t = 0
   double frictionDissipation = 0;  // since t = 0
-  double contactForce = 0;         // the resultant of the normal contact forces, mean over the step, all ranks
-  FetiSolveResult solve;           // its contact.normalForce: the step problem's multipliers lambda_N
+  double contactForce = 0;         // the resultant of the normal contact forces, all ranks
+  FetiSolveResult solve;
 };
 
 // The bodies of a decomposed mesh from rest in the reference configuration
@@ -96,8 +98,9 @@ class ImplicitDynamics {
   Subdomains projectedPredictor(const Subdomains& flight);
   FetiSolveResult solveStep(Feti::FetiProblem& problem, FetiLoadSteps& steps, const Subdomains& rhs,
                             const std::string& what);
-  // The energy friction dissipated in the step just solved (all ranks).
-  double stepDissipation(const ContactNodeResults& contact, bool stabilized);
+  // The contact node forces of the step just solved made the means over the
+  // step (the multipliers halved, or averaged with the previous step's).
+  void meanForces(ContactNodeResults& contact, bool stabilized);
 
   DynamicsSpec spec_;
   double massCoefficient_;                     // 1 / (beta dt^2) = 4 / dt^2
@@ -110,8 +113,9 @@ class ImplicitDynamics {
   std::vector<LocalCsr> mass_;                 // M of each local subdomain
   Subdomains load_;                            // f of each local subdomain (constant)
   Subdomains u_, v_, Ma_;                      // the state: u, v and M a (trapezoidal rule)
-  double lastMultiplier_ = 0;                  // Newmark: the sum of lambda_N at t_n
-  std::vector<double> lastTangential_;         // Newmark: this rank's contact nodes' phi_T at t_n (3 each)
+  // Newmark: this rank's contact nodes' multiplier forces at t_n (lambda_N,
+  // and phi_T 3 each; the same nodes in the same order at every step).
+  std::vector<double> lastNormal_, lastTangential_;
   double externalWork_ = 0, frictionDissipation_ = 0;
   double time_ = 0;
 };
