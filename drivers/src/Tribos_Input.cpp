@@ -187,6 +187,9 @@ RCP<const ParameterList> validParameters() {
   ParameterList& mat = pl->sublist("Material", false, "isotropic linear elastic material");
   mat.set("Young's Modulus", 2.1e11, "E > 0");
   mat.set("Poisson's Ratio", 0.3, "0 <= nu < 0.5 (nu = 0.5, an incompressible material, locks displacement elements)");
+  mat.set("Density", 0.0,
+          "mass per unit volume rho, read by Dynamics only, which needs rho > 0 for every body (a body named in "
+          "Bodies gives its own)");
   pl->sublist("Bodies", false,
               "one sublist per body with its own \"Material\" (Young's Modulus, Poisson's Ratio); a body named "
               "here must exist in the mesh (the box is the one body \"body\"); bodies not named take Material");
@@ -202,6 +205,20 @@ RCP<const ParameterList> validParameters() {
   steps.set("Times", Array<double>(1, 1.0),
             "step times: finite, positive, strictly increasing; at t = 1 every load without a Curve has its full "
             "Value. The default, one step at t = 1, is the static problem");
+  ParameterList& dynamics = pl->sublist(
+      "Dynamics", false,
+      "implicit time stepping of the bodies in contact (docs/dynamics.md): every step the contact problem of K + "
+      "4 M / dt^2 through FETI; the loads act from t = 0 at their full Value (no Load Steps, no Curves)");
+  dynamics.set("Enabled", false, "step in time; false: the static problem or the quasi-static Load Steps");
+  dynamics.set("Time Step", 0.0, "dt > 0, fixed");
+  dynamics.set("End Time", 0.0, "the time of the last step, at least Time Step; round(End Time / Time Step) steps");
+  dynamics.set("Scheme", Contact::timeSchemeName(Contact::TimeScheme::ContactStabilizedNewmark),
+               "Contact-Stabilized Newmark (Deuflhard, Krause and Ertel: energy never gained at contact) or Newmark "
+               "(the trapezoidal rule, contact on the step's end: chatters and gains energy at impact)",
+               choice(tuple<std::string>(Contact::timeSchemeName(Contact::TimeScheme::ContactStabilizedNewmark),
+                                         Contact::timeSchemeName(Contact::TimeScheme::Newmark))));
+  pl->sublist("Initial Conditions", false, "the state at t = 0 of a Dynamics run, which starts undeformed")
+      .set("Velocity", Array<double>(3, 0.0), "the velocity of every node (x, y, z), Dirichlet dofs aside");
   pl->sublist("Load Curves", false,
               "one sublist per piecewise-linear curve, named by the loads' Curve: Times (at least 2, strictly "
               "increasing) and Values of the same length; a curve a load uses must cover every step time");
@@ -700,6 +717,53 @@ void validateLoadHistory(const ParameterList& params) {
   }
 }
 
+// The most steps a Dynamics run may take: their times are held in memory
+// and their files counted against the disk (requireDiskSpace) before any
+// work.
+constexpr double kMaxDynamicSteps = 1e7;
+
+// Dynamics: a positive step, an end at least one step away and not too many
+// steps, a positive density for every body, the loads at their full Value
+// (no Load Steps, no Curves), and TFETI's positive definite subdomains
+// (FETI, TFETI, not the semismooth* method). Before the load history,
+// whose step times it makes.
+void validateDynamics(const ParameterList& params) {
+  if (!dynamics(params)) return;
+  const auto& d = params.sublist("Dynamics");
+  const double dt = d.get<double>("Time Step"), end = d.get<double>("End Time");
+  TRIBOS_REQUIRE(dt > 0, "\"Dynamics/Time Step\" = " << dt << ": a Dynamics run needs a positive time step");
+  TRIBOS_REQUIRE(end >= dt, "\"Dynamics/End Time\" = " << end << " is less than one Time Step (" << dt << ")");
+  TRIBOS_REQUIRE(end / dt <= kMaxDynamicSteps, "\"Dynamics/End Time\" / \"Time Step\" = " << end / dt
+                                                 << " steps; at most " << kMaxDynamicSteps << " are taken");
+  const auto& v = params.sublist("Initial Conditions").get<Array<double>>("Velocity");
+  TRIBOS_REQUIRE(v.size() == 3, "\"Initial Conditions/Velocity\" needs 3 components, has " << v.size());
+  TRIBOS_REQUIRE(params.sublist("Material").get<double>("Density") > 0,
+                 "\"Material/Density\" = " << params.sublist("Material").get<double>("Density")
+                                            << ": Dynamics needs the density of the bodies, rho > 0");
+  const auto& bodies = params.sublist("Bodies");
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    const double rho = bodies.sublist(bodies.name(it)).sublist("Material").get<double>("Density");
+    TRIBOS_REQUIRE(rho > 0, "\"Bodies/" << bodies.name(it) << "/Material/Density\" = " << rho
+                                         << ": Dynamics needs the density of every body, rho > 0");
+  }
+  const bool loadSteps = params.isSublist("Load Steps") &&
+                         params.sublist("Load Steps").get<Array<double>>("Times") != Array<double>(1, 1.0);
+  TRIBOS_REQUIRE(!loadSteps, "\"Load Steps/Times\" is given with Dynamics/Enabled = true: a Dynamics run steps in "
+                             "time by Dynamics/Time Step; remove Load Steps");
+  for (const auto& [path, name] : curveReferences(params))
+    TRIBOS_REQUIRE(name.empty(), "parameter \"" << path << "\" = \"" << name
+                                                << "\": loads on curves in time are not implemented for Dynamics, "
+                                                   "whose loads act at their full Value from t = 0");
+  const auto& solver = params.sublist("Solver");
+  TRIBOS_REQUIRE(solver.get<std::string>("Type") != "Monolithic",
+                 "Solver/Type = Monolithic: Dynamics steps through FETI (Type = FETI or Auto)");
+  TRIBOS_REQUIRE(solver.get<std::string>("Outer Algorithm") != kSemismooth,
+                 "Solver/Outer Algorithm = " << kSemismooth << " solves one static step; Dynamics steps through FETI");
+  TRIBOS_REQUIRE(solver.sublist("FETI").get<std::string>("Formulation") != "FETI-1",
+                 "Solver/FETI/Formulation = FETI-1: Dynamics solves TFETI's positive definite subdomains K + 4 M / "
+                 "dt^2 (Dirichlet conditions as rows of B)");
+}
+
 // What the solvers cannot do over several steps, refused before any work.
 void validateStepSolvers(const ParameterList& params) {
   const size_t steps = loadStepTimes(params).size();
@@ -789,6 +853,7 @@ void validate(ParameterList& params, const std::string& source) {
     const auto& vf = params.sublist("Boundary Conditions").get<Array<double>>("Volume Force");
     TRIBOS_REQUIRE(vf.size() == 3, "\"Boundary Conditions/Volume Force\" needs 3 components");
     requireFinite(params, "");
+    validateDynamics(params);
     validateLoadHistory(params);
     validateStepSolvers(params);
     validateMaterial(params.sublist("Material"));
@@ -1131,8 +1196,33 @@ Mesh::BoxSpec boxSpec(const ParameterList& params) {
   return spec;
 }
 
+bool dynamics(const ParameterList& params) { return params.sublist("Dynamics").get<bool>("Enabled"); }
+
+bool fetiContact(const ParameterList& params) {
+  return method(params) == Method::FetiContact || (dynamics(params) && params.sublist("Contact").get<bool>("Enabled"));
+}
+
+Contact::DynamicsSpec dynamicsSpec(const ParameterList& params) {
+  const auto& d = params.sublist("Dynamics");
+  Contact::DynamicsSpec spec;
+  spec.timeStep = d.get<double>("Time Step");
+  spec.scheme = Contact::timeSchemeFromName(d.get<std::string>("Scheme"));
+  const auto& v = params.sublist("Initial Conditions").get<Array<double>>("Velocity");
+  spec.initialVelocity = {v[0], v[1], v[2]};
+  return spec;
+}
+
+Fem::BodyDensities densities(const ParameterList& params, const Mesh::Mesh& mesh) {
+  const auto& bodies = params.sublist("Bodies");
+  std::vector<double> perBody(mesh.numBodies(), params.sublist("Material").get<double>("Density"));
+  for (auto it = bodies.begin(); it != bodies.end(); ++it)
+    perBody[mesh.bodyIndex(bodies.name(it))] = bodies.sublist(bodies.name(it)).sublist("Material").get<double>("Density");
+  return Fem::BodyDensities(std::move(perBody));
+}
+
 Method method(const ParameterList& params) {
   const auto& solver = params.sublist("Solver");
+  if (dynamics(params)) return Method::FetiDynamics;
   if (!params.sublist("Contact").get<bool>("Enabled"))
     return solver.get<std::string>("Type") == "FETI" ? Method::FetiLinear : Method::Monolithic;
   return solver.get<std::string>("Outer Algorithm") == "SemismoothStarNewton" ? Method::Semismooth : Method::FetiContact;
@@ -1251,6 +1341,14 @@ Fem::LoadCase loadCase(const ParameterList& params) {
 }
 
 std::vector<double> loadStepTimes(const ParameterList& params) {
+  if (dynamics(params)) {
+    const auto& d = params.sublist("Dynamics");
+    const double dt = d.get<double>("Time Step");
+    const long long steps = std::llround(d.get<double>("End Time") / dt);
+    std::vector<double> times;
+    for (long long k = 1; k <= steps; ++k) times.push_back(static_cast<double>(k) * dt);
+    return times;
+  }
   if (!params.isSublist("Load Steps")) return {1.0};
   const auto& times = params.sublist("Load Steps").get<Array<double>>("Times");
   return std::vector<double>(times.begin(), times.end());

@@ -14,6 +14,7 @@
 #include "Tribos_ContactSearch.hpp"
 #include "Tribos_Discretization.hpp"
 #include "Tribos_FetiContact.hpp"
+#include "Tribos_ImplicitDynamics.hpp"
 #include "Tribos_Elasticity.hpp"
 #include "Tribos_LoadCurve.hpp"
 #include "Tribos_Loads.hpp"
@@ -62,8 +63,18 @@ void applyOverride(Teuchos::ParameterList& params, const std::string& assignment
 
 // How a validated run is solved; the one place that reads Solver/Type,
 // Contact/Enabled and Solver/Outer Algorithm together.
-enum class Method { Monolithic, FetiLinear, FetiContact, Semismooth };
+enum class Method { Monolithic, FetiLinear, FetiContact, Semismooth, FetiDynamics };
 Method method(const Teuchos::ParameterList& params);
+
+// Whether the run steps in time (Dynamics/Enabled, docs/dynamics.md).
+bool dynamics(const Teuchos::ParameterList& params);
+// Whether FETI solves the run's contact: Method::FetiContact, or a Dynamics
+// run with Contact/Enabled (its contact search, constraints and checks).
+bool fetiContact(const Teuchos::ParameterList& params);
+// Dynamics' step, scheme and Initial Conditions/Velocity.
+Contact::DynamicsSpec dynamicsSpec(const Teuchos::ParameterList& params);
+// Material/Density of every body of the mesh (Bodies' own where named).
+Fem::BodyDensities densities(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
 
 // Builders from a validated list.
 Mesh::BoxSpec boxSpec(const Teuchos::ParameterList& params);

@@ -91,7 +91,7 @@ double fetiBytes(const Teuchos::ParameterList& params, const Mesh::BoxSpec& spec
   const SubdomainShape s = subdomainShape(spec, nodes, dec, S);
   const double d = 3.0 * s.nodes, b = 1.5 * s.surfaceNodes;
   const std::string op = params.sublist("Solver").sublist("FETI").get<std::string>("Dual Operator");
-  const bool contact = Input::method(params) == Input::Method::FetiContact;
+  const bool contact = Input::fetiContact(params);
   const bool explicitF = op == "Explicit" || (op == "Auto" && contact && b <= Feti::FetiProblem::kAutoExplicitRows);
   // A packed block holds b^2/2 values; while it is formed, the full b x b
   // double inverse and its packed copy coexist (counted as 16 b^2 per

@@ -454,6 +454,14 @@ void writeStep(const Teuchos::ParameterList& params, const IO::OutputDirectory& 
     reaction.values.insert(reaction.values.end(), rn, rn + 3);
   }
   if (!sol.result.reaction.empty()) result.nodeFields.push_back(reaction);
+  if (!sol.velocity.empty()) {
+    IO::Field velocity{"velocity", 3, {}};
+    for (int n : disc.ownedNodes()) {
+      const double* vn = sol.velocity.at(disc.meshNode(n));
+      velocity.values.insert(velocity.values.end(), vn, vn + 3);
+    }
+    result.nodeFields.push_back(velocity);
+  }
   result.cellFields = cellFields(disc, d.materials, sol.result.u);
   const bool first = !output.committed;
   series.writeStep(step, time, disc, result, [&](const IO::StepFile& file) {
@@ -562,7 +570,9 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
         Fem::requireRigidMotionsHeld(whole->coords, dirichlet, "Solver/Type = Monolithic",
                                      "a body that Dirichlet conditions do not hold has no unique displacement; hold "
                                      "it, or use Solver/Type = FETI, which finds the equilibrium of a floating body");
-      if (method == Input::Method::FetiContact) {
+      // In a Dynamics run the mass holds every body.
+      const bool dynamics = method == Input::Method::FetiDynamics;
+      if (Input::fetiContact(params)) {
         Progress::stage("contact search");
         const auto pairs = Input::contactPairs(params, *whole);
         try {
@@ -570,17 +580,17 @@ std::vector<Feti::ContactConstraint> validateOnRoot(const Teuchos::ParameterList
         } catch (const Error& e) {
           throw Error(std::string("Contact: ") + e.what());
         }
-        Contact::requireEveryBodyHeld(*whole, dirichlet, pairs, Input::pairFriction(params), constraints);
+        if (!dynamics) Contact::requireEveryBodyHeld(*whole, dirichlet, pairs, Input::pairFriction(params), constraints);
         // Before the FETI setup: no prescribed sliding against friction.
         Contact::requireNoPrescribedSlip(constraints, Input::pairFriction(params), dirichlet,
                                          [&](int node) { return whole->coords.at(node); });
-      } else if (method != Input::Method::Semismooth) {
+      } else if (method != Input::Method::Semismooth && !dynamics) {
         Contact::requireEveryBodyHeld(*whole, dirichlet, {}, {}, {});
       }
     }
   });
   for (const auto& n : search.notes) std::cerr << "tribos: warning: " << n << std::endl;
-  if (method == Input::Method::FetiContact) broadcastSearch(search, comm);
+  if (Input::fetiContact(params)) broadcastSearch(search, comm);
   return constraints;
 }
 
@@ -637,7 +647,7 @@ Discretized meshStep(const Teuchos::ParameterList& params, const RunOptions& opt
   Contact::ContactSearch search;
   auto rootConstraints = validateOnRoot(params, whole.get(), loads, method, comm, search);
   auto disc = Mesh::Discretization::scatter(*whole, spec, decomposition, comm);
-  auto constraints = method == Input::Method::FetiContact
+  auto constraints = Input::fetiContact(params)
                          ? Feti::scatterContactConstraints(rootConstraints, disc, comm)
                          : std::vector<Feti::ContactConstraint>();
   std::vector<Feti::ContactConstraint>().swap(rootConstraints);
@@ -722,6 +732,7 @@ StepReport stepReport(const Teuchos::ParameterList& params, int step, double tim
   StepReport s;
   s.step = step;
   s.time = time;
+  s.dynamics = sol.dynamics;
   s.iterations = sol.result.iterations;
   s.n_A = sol.result.n_A;
   s.kkt = sol.result.kkt;
@@ -814,7 +825,7 @@ void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, 
   report.solverConverged = r.solverConverged;
   report.converged = r.verdict.converged;
   report.stopReason = r.verdict.stopReason;
-  if (method == Input::Method::FetiContact) {
+  if (Input::fetiContact(params)) {
     const std::string leftOut = leftOutCheck(d, r.u, *comm);
     if (!leftOut.empty()) {
       report.converged = false;
@@ -1271,6 +1282,12 @@ void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& optio
       TRIBOS_REQUIRE(f.law == friction[0].law && f.coefficient == friction[0].coefficient,
                      "--export-fclib: the contact pairs differ in friction; the export takes one law and coefficient");
   }
+  TRIBOS_REQUIRE(!Input::dynamics(params) || options.restartDir.empty(),
+                 "--restart continues a load history; a Dynamics run's step files hold no velocity to continue from");
+  TRIBOS_REQUIRE(!Input::dynamics(params) || !options.verify,
+                 "--verify compares with the monolithic static solve; a Dynamics run has none");
+  TRIBOS_REQUIRE(options.exportFclib.empty() || !Input::dynamics(params),
+                 "--export-fclib writes one static contact problem; this run is a Dynamics run");
   TRIBOS_REQUIRE(options.exportFclib.empty() || Input::method(params) == Input::Method::FetiContact,
                  "--export-fclib writes a FETI contact problem; this run is "
                      << (params.sublist("Contact").get<bool>("Enabled") ? "solved by the semismooth* method"
@@ -1343,7 +1360,10 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     Progress::setStep(k + 1, numSteps);
     // The input's loads as they are at t = 1 without Load Steps; a history
     // scales them by their curves.
-    const Fem::LoadCase loads = numSteps == 1 && times[0] == 1.0 ? d.loads : Fem::loadCaseAt(loadHistory, times[k]);
+    // A Dynamics run's loads act at their full Value from t = 0.
+    const Fem::LoadCase loads = Input::dynamics(params) || (numSteps == 1 && times[0] == 1.0)
+                                    ? d.loads
+                                    : Fem::loadCaseAt(loadHistory, times[k]);
     StepSolution sol = method->solve(d, loads, report);
     checkStep(params, options, d, loads, sol, comm, report);
     for (IO::HistoryRow row : sol.history.rows) {

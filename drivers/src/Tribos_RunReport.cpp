@@ -96,6 +96,13 @@ IO::Summary stepSummary(const StepReport& r) {
     s.set("contact", c);
   }
   setReactionsAndPairs(r, s);
+  if (r.dynamics) {
+    IO::Summary d;
+    d.set("kinetic_energy", r.dynamics->kineticEnergy).set("strain_energy", r.dynamics->strainEnergy);
+    d.set("external_work", r.dynamics->externalWork).set("friction_dissipation", r.dynamics->frictionDissipation);
+    d.set("contact_force", r.dynamics->contactForce);
+    s.set("dynamics", d);
+  }
   if (!r.outerAlgorithm.empty()) s.set("outer_algorithm", r.outerAlgorithm);
   if (!r.handover.empty()) s.set("handover", r.handover);
   if (!r.preconditioner.empty()) s.set("newton_preconditioner", r.preconditioner);

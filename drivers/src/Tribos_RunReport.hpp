@@ -75,9 +75,17 @@ struct PairReport {
 // result and the verdict, the contact nodes by status, the reactions of the
 // supports and each pair's resultant and motion (the load-displacement
 // curves of a history).
+// A Dynamics step (docs/dynamics.md): the energies of the state after it,
+// the work of the loads and the energy friction dissipated since t = 0, and
+// the resultant of the normal contact forces, their mean over the step.
+struct DynamicsStepReport {
+  double kineticEnergy = 0, strainEnergy = 0, externalWork = 0, frictionDissipation = 0, contactForce = 0;
+};
+
 struct StepReport {
   int step = 1;
   double time = 1;
+  std::optional<DynamicsStepReport> dynamics;
   long long iterations = 0, n_A = 0;
   Contact::ResultKKT kkt;
   std::optional<ContactCountReport> contact;

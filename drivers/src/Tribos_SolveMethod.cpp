@@ -110,6 +110,55 @@ class MonolithicMethod : public MethodBase {
   }
 };
 
+// The outer algorithm's report and one history row per outer step.
+// The FETI problem's sizes and its solve's figures.
+void reportFeti(const Feti::FetiProblem& problem, const Contact::FetiSolveResult& r, RunReport& report,
+                const Comm& comm) {
+  report.primalDofs = static_cast<long long>(problem.primalMap()->getGlobalNumElements());
+  report.dualDofs = static_cast<long long>(problem.dualMap()->getGlobalNumElements());
+  FetiReport feti;
+  feti.localSolver = problem.localSolverName();
+  feti.factorSeconds = maxOver(problem.factorTime(), comm);
+  feti.factorMemoryMb = maxOver(problem.factorMemoryMb(), comm);
+  feti.denseBlockMemoryMb = maxOver(problem.denseBlockMemoryMb(), comm);
+  feti.F_applications = r.F_applications;
+  feti.F_seconds = maxOver(r.F_seconds, comm);
+  feti.coarseSize = r.coarseSize;
+  feti.coarseFactorMb = r.coarseFactorMb;
+  report.feti = feti;
+}
+
+void reportContact(const Contact::FetiSolveResult& r, const Contact::PairFriction& friction,
+                          RunReport& report, IO::IterationHistory& history) {
+  const auto& st = r.status;
+  OuterAlgorithmReport outer;
+  outer.name = r.outerAlgorithm;
+  outer.handover = r.handover;
+  outer.preconditioner = r.outerAlgorithm == "Semismooth Newton" ? st.preconditioner : "";
+  outer.resultCheckRounds = r.rounds;
+  outer.msaIterations = st.msa_iterations;
+  outer.innerIterations = st.inner_iterations;
+  outer.n_A_qpp = static_cast<long long>(st.n_A_qpp);
+  outer.n_A_qpq = static_cast<long long>(st.n_A_qpq);
+  outer.slipBoundChange = st.slip_bound_change;
+  outer.history = st.history;
+  report.outer = outer;
+  report.frictionLaw = frictionLawName(Contact::runLaw(friction));
+  report.outerIterations = st.outer_iterations;
+  for (const auto& step : st.steps) {
+    IO::HistoryRow row;
+    row.iteration = step.iteration;
+    row.relativeResidual = step.projectedGradient;
+    row.gLambda = step.normGx;
+    row.slipBoundChange = step.slipBoundChange;
+    row.n_A = static_cast<double>(step.n_A);
+    row.seconds = step.seconds;
+    history.rows.push_back(row);
+  }
+  report.contact = ContactCountReport{r.counts.nodes, r.counts.active, r.counts.stick, r.counts.slip};
+}
+
+
 // Total FETI, the solve an application runs on its own subdomains
 // (Contact::solveFeti), with the FCLIB export of a contact problem.
 class FetiMethod : public MethodBase {
@@ -157,18 +206,7 @@ class FetiMethod : public MethodBase {
       reportContact(r, friction, report, sol.history);
       if (!options_.exportFclib.empty()) exportFclib(*problem, d, loads, friction, r, report);
     }
-    report.primalDofs = static_cast<long long>(problem->primalMap()->getGlobalNumElements());
-    report.dualDofs = static_cast<long long>(problem->dualMap()->getGlobalNumElements());
-    FetiReport feti;
-    feti.localSolver = problem->localSolverName();
-    feti.factorSeconds = maxOver(problem->factorTime(), *comm_);
-    feti.factorMemoryMb = maxOver(problem->factorMemoryMb(), *comm_);
-    feti.denseBlockMemoryMb = maxOver(problem->denseBlockMemoryMb(), *comm_);
-    feti.F_applications = r.F_applications;
-    feti.F_seconds = maxOver(r.F_seconds, *comm_);
-    feti.coarseSize = r.coarseSize;
-    feti.coarseFactorMb = r.coarseFactorMb;
-    report.feti = feti;
+    reportFeti(*problem, r, report, *comm_);
     return sol;
   }
 
@@ -199,37 +237,6 @@ class FetiMethod : public MethodBase {
     Fem::NodalVector u(layout);
     u.values() = values;  // askOwners answers in the order asked: layout->nodes()
     return u;
-  }
-
-  // The outer algorithm's report and one history row per outer step.
-  static void reportContact(const Contact::FetiSolveResult& r, const Contact::PairFriction& friction,
-                            RunReport& report, IO::IterationHistory& history) {
-    const auto& st = r.status;
-    OuterAlgorithmReport outer;
-    outer.name = r.outerAlgorithm;
-    outer.handover = r.handover;
-    outer.preconditioner = r.outerAlgorithm == "Semismooth Newton" ? st.preconditioner : "";
-    outer.resultCheckRounds = r.rounds;
-    outer.msaIterations = st.msa_iterations;
-    outer.innerIterations = st.inner_iterations;
-    outer.n_A_qpp = static_cast<long long>(st.n_A_qpp);
-    outer.n_A_qpq = static_cast<long long>(st.n_A_qpq);
-    outer.slipBoundChange = st.slip_bound_change;
-    outer.history = st.history;
-    report.outer = outer;
-    report.frictionLaw = frictionLawName(Contact::runLaw(friction));
-    report.outerIterations = st.outer_iterations;
-    for (const auto& step : st.steps) {
-      IO::HistoryRow row;
-      row.iteration = step.iteration;
-      row.relativeResidual = step.projectedGradient;
-      row.gLambda = step.normGx;
-      row.slipBoundChange = step.slipBoundChange;
-      row.n_A = static_cast<double>(step.n_A);
-      row.seconds = step.seconds;
-      history.rows.push_back(row);
-    }
-    report.contact = ContactCountReport{r.counts.nodes, r.counts.active, r.counts.stick, r.counts.slip};
   }
 
   // FCLIB global problem: assembled K, contact rows in the local frame,
@@ -299,6 +306,48 @@ SolveMethodRegistry::Maker maker() {
   };
 }
 
+// Implicit dynamics (Dynamics/Enabled): each solve is the next time step of
+// Contact::ImplicitDynamics, made at the first; the run's loads act at their
+// full Value from t = 0 (Input refuses curves), so `loads` is the input's.
+class FetiDynamicsMethod : public MethodBase {
+ public:
+  using MethodBase::MethodBase;
+  StepSolution solve(const Discretized& d, const Fem::LoadCase& loads, RunReport& report) override {
+    const auto& solverParams = params_.sublist("Solver");
+    const bool contact = params_.sublist("Contact").get<bool>("Enabled");
+    const Contact::PairFriction friction = contact ? Input::pairFriction(params_) : Contact::PairFriction{{}};
+    StepSolution sol;
+    if (!run_) {
+      Progress::stage("FETI setup: assembly of K + 4 M / dt^2, gluing");
+      const auto t0 = std::chrono::steady_clock::now();
+      run_ = std::make_unique<Contact::ImplicitDynamics>(d.disc, d.materials, Input::densities(params_, d.disc.part),
+                                                         loads, d.constraints, friction, Input::dynamicsSpec(params_),
+                                                         solverParams.sublist("FETI"), solverParams, comm_);
+      sol.setupSeconds = seconds(t0);
+    }
+    Progress::stage("time step");
+    Contact::DynamicStep step = run_->step();
+    const auto& r = step.solve;
+    sol.result = r;
+    sol.velocity = run_->velocity();
+    sol.dynamics = DynamicsStepReport{step.kineticEnergy, step.strainEnergy, step.externalWork,
+                                      step.frictionDissipation, step.contactForce};
+    report.n_A = r.n_A;
+    if (contact) {
+      reportContact(r, friction, report, sol.history);
+    } else {
+      report.outerIterations = r.iterations;
+      report.relativeResidual = r.relativeResidual;
+      sol.history.rows.push_back(finalRow(r.iterations, r.relativeResidual, r.n_A, r.solveSeconds));
+    }
+    reportFeti(run_->problem(), r, report, *comm_);
+    return sol;
+  }
+
+ private:
+  std::unique_ptr<Contact::ImplicitDynamics> run_;
+};
+
 }  // namespace
 
 const SolveMethodRegistry& solveMethods() {
@@ -308,6 +357,7 @@ const SolveMethodRegistry& solveMethods() {
     r.add("FETI", maker<FetiMethod>(), "Total FETI: projected CG, or the outer contact algorithm");
     r.add("SemismoothStarNewton", maker<SemismoothMethod>(),
           "one face on a rigid plane, Tresca or frictionless, by the semismooth* Newton method");
+    r.add("FETI Dynamics", maker<FetiDynamicsMethod>(), "implicit time steps of K + 4 M / dt^2 through FETI");
     return r;
   }();
   return registry;
@@ -317,6 +367,7 @@ const char* solveMethodName(Input::Method method) {
   switch (method) {
     case Input::Method::Monolithic: return "Monolithic";
     case Input::Method::Semismooth: return "SemismoothStarNewton";
+    case Input::Method::FetiDynamics: return "FETI Dynamics";
     case Input::Method::FetiLinear:
     case Input::Method::FetiContact: break;
   }

@@ -7,6 +7,8 @@
 //                           algorithm of Solver/Outer Algorithm
 //   "SemismoothStarNewton"  one face on a rigid plane, Tresca or frictionless,
 //                           by the semismooth* Newton method (serial)
+//   "FETI Dynamics"         implicit time steps of K + 4 M / dt^2 through FETI
+//                           (Dynamics/Enabled, Contact::ImplicitDynamics)
 // Every method returns the shared result (Contact::SolveResult: the nodal
 // displacement, the contact nodes, the KKT residuals of that result and the
 // verdict on them, computed once by Contact::resultVerdict) with its history
@@ -16,6 +18,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +53,9 @@ struct Discretized {
 // What a method leaves for the result check and the files.
 struct StepSolution {
   Contact::SolveResult result;
+  // A Dynamics step: the velocity (on result.u's layout) and the step's figures.
+  Fem::NodalVector velocity;
+  std::optional<DynamicsStepReport> dynamics;
   double setupSeconds = 0;       // the method's setup (assembly, factorization); result.solveSeconds: its iterations
   IO::IterationHistory history;  // BASE.history.csv
 };

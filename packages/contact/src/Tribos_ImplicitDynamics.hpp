@@ -78,6 +78,8 @@ class ImplicitDynamics {
   DynamicStep step();
 
   double time() const { return time_; }
+  // The step's problem, K + M / (beta dt^2).
+  const Feti::FetiProblem& problem() const { return *problem_; }
   // The energies of the current state, over all ranks. Collective.
   double kineticEnergy() const;
   double strainEnergy() const;
