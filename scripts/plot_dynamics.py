@@ -22,7 +22,6 @@ them). BASE: the only summary of DIR beside an index, or --base. Written to
 --check: exit 1 unless every step has its figures and the figure was written.
 """
 import argparse
-import glob
 import os
 import sys
 
@@ -40,15 +39,10 @@ def fail(message):
 
 
 def summary_path(directory, base):
-    if not os.path.isdir(directory):
-        fail("%s is not a directory" % directory)
-    if base is not None:
-        return os.path.join(directory, base + ".json")
-    found = [f for f in sorted(glob.glob(os.path.join(directory, "*.json")))
-             if os.path.exists(f[:-len(".json")] + ".xmf")]
-    if len(found) != 1:
-        fail("%s holds %d results (a BASE.json beside a BASE.xmf); name one with --base" % (directory, len(found)))
-    return found[0]
+    try:
+        return tribos_summary.find(directory, base)
+    except ValueError as e:
+        fail(str(e))
 
 
 def main():

@@ -46,7 +46,6 @@ are drawn: those are complete (the index may list one more while a step is
 being written).
 """
 import argparse
-import glob
 import os
 import sys
 import xml.etree.ElementTree as ET
@@ -69,22 +68,10 @@ def fail(message):
 
 def summary_file(directory, base):
     """DIR/BASE.json: given by --base, else the only summary with an index beside it."""
-    if not os.path.isdir(directory):
-        fail("%s is not a directory" % directory)
-    if base is not None:
-        path = os.path.join(directory, base + ".json")
-        if not os.path.exists(path):
-            fail("%s holds no summary %s.json (files there: %s)"
-                 % (directory, base, ", ".join(sorted(os.listdir(directory))) or "none"))
-        return path
-    found = [f for f in sorted(glob.glob(os.path.join(directory, "*.json")))
-             if os.path.exists(f[:-len(".json")] + ".xmf")]
-    if not found:
-        fail("%s holds no result (a BASE.json beside a BASE.xmf): not the output directory of a tribos run" % directory)
-    if len(found) > 1:
-        fail("%s holds %d results (%s); name one with --base"
-             % (directory, len(found), ", ".join(os.path.basename(f) for f in found)))
-    return found[0]
+    try:
+        return tribos_summary.find(directory, base)
+    except ValueError as e:
+        fail(str(e))
 
 
 def read_steps(path):

@@ -14,10 +14,34 @@ results has the rows in its summary (`steps`).
     for row in s["steps"]: ...
 
 load() returns the summary as a dict with `steps` the list of the complete
-rows in step order, whichever way the run kept them.
+rows in step order, whichever way the run kept them; find() names the
+summary of a run's output directory.
 """
+import glob
 import json
 import os
+
+
+def find(directory, base=None):
+    """DIR/BASE.json: given by `base`, else the only summary of `directory`
+    with an index (BASE.xmf) beside it. Raises ValueError saying why not."""
+    if not os.path.isdir(directory):
+        raise ValueError("%s is not a directory" % directory)
+    if base is not None:
+        path = os.path.join(directory, base + ".json")
+        if not os.path.exists(path):
+            raise ValueError("%s holds no summary %s.json (files there: %s)"
+                             % (directory, base, ", ".join(sorted(os.listdir(directory))) or "none"))
+        return path
+    found = [f for f in sorted(glob.glob(os.path.join(directory, "*.json")))
+             if os.path.exists(f[:-len(".json")] + ".xmf")]
+    if not found:
+        raise ValueError("%s holds no result (a BASE.json beside a BASE.xmf): not the output directory of a tribos "
+                         "run" % directory)
+    if len(found) > 1:
+        raise ValueError("%s holds %d results (%s); name one with --base"
+                         % (directory, len(found), ", ".join(os.path.basename(f) for f in found)))
+    return found[0]
 
 
 def steps_of(summary, directory):

@@ -111,6 +111,11 @@ class MonolithicMethod : public MethodBase {
 };
 
 // The outer algorithm's report and one history row per outer step.
+// The friction of each contact pair (none without contact).
+Contact::PairFriction runFriction(const ParameterList& params) {
+  return params.sublist("Contact").get<bool>("Enabled") ? Input::pairFriction(params) : Contact::PairFriction{{}};
+}
+
 // The FETI problem's sizes and its solve's figures.
 void reportFeti(const Feti::FetiProblem& problem, const Contact::FetiSolveResult& r, RunReport& report,
                 const Comm& comm) {
@@ -158,7 +163,6 @@ void reportContact(const Contact::FetiSolveResult& r, const Contact::PairFrictio
   report.contact = ContactCountReport{r.counts.nodes, r.counts.active, r.counts.stick, r.counts.slip};
 }
 
-
 // Total FETI, the solve an application runs on its own subdomains
 // (Contact::solveFeti), with the FCLIB export of a contact problem.
 class FetiMethod : public MethodBase {
@@ -167,7 +171,7 @@ class FetiMethod : public MethodBase {
   StepSolution solve(const Discretized& d, const Fem::LoadCase& loads, RunReport& report) override {
     const auto& solverParams = params_.sublist("Solver");
     const bool contact = params_.sublist("Contact").get<bool>("Enabled");
-    const Contact::PairFriction friction = contact ? Input::pairFriction(params_) : Contact::PairFriction{{}};
+    const Contact::PairFriction friction = runFriction(params_);
     const auto out = options_.verbose ? Teuchos::fancyOStream(Teuchos::rcpFromRef(std::cout))
                                       : RCP<Teuchos::FancyOStream>();
     // The solvers' progress lines are collective figures: once, from rank 0.
@@ -315,7 +319,7 @@ class FetiDynamicsMethod : public MethodBase {
   StepSolution solve(const Discretized& d, const Fem::LoadCase& loads, RunReport& report) override {
     const auto& solverParams = params_.sublist("Solver");
     const bool contact = params_.sublist("Contact").get<bool>("Enabled");
-    const Contact::PairFriction friction = contact ? Input::pairFriction(params_) : Contact::PairFriction{{}};
+    const Contact::PairFriction friction = runFriction(params_);
     StepSolution sol;
     if (!run_) {
       Progress::stage("FETI setup: assembly of K + 4 M / dt^2, gluing");

@@ -11,6 +11,7 @@
 #include <Tpetra_Core.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -31,6 +32,36 @@ struct Bar {
   double energy() const { return 0.5 * rho * L * side * side * v0 * v0; }
 };
 
+// A box [0, a] x [0, b] x [0, c] of Hex8 cells, split into a grid of
+// subdomains, its face z = 0 on the rigid plane z = 0.
+struct OnThePlane {
+  Mesh::BoxSpec spec;
+  Mesh::Discretization disc;
+  std::vector<Feti::ContactConstraint> contact;
+  OnThePlane(const std::array<double, 3>& size, const std::array<int, 3>& cells, const std::array<int, 3>& grid,
+             const RCP<const Comm>& comm)
+      : spec(box(size, cells)), disc(Mesh::generateBox(spec), spec, decomposition(grid), comm->getSize(),
+                                     comm->getRank()) {
+    Contact::ContactSpec plane;
+    plane.enabled = true;
+    contact = Contact::faceContactConstraints(disc, plane, comm);
+  }
+  static Mesh::BoxSpec box(const std::array<double, 3>& size, const std::array<int, 3>& cells) {
+    Mesh::BoxSpec s;
+    s.type = Mesh::CellType::Hex8;
+    s.x = {0, size[0]};
+    s.y = {0, size[1]};
+    s.z = {0, size[2]};
+    s.cells = cells;
+    return s;
+  }
+  static Mesh::DecompositionSpec decomposition(const std::array<int, 3>& grid) {
+    Mesh::DecompositionSpec d;
+    d.grid = grid;
+    return d;
+  }
+};
+
 // What the run measured, relative to the exact values.
 struct Impact {
   double duration = 0, meanForce = 0, energyAfter = 0;  // relative errors
@@ -40,24 +71,14 @@ struct Impact {
 
 // The bar's impact with dt = courant h / c, up to 1.5 contact times.
 Impact impact(const Bar& bar, Contact::TimeScheme scheme, double courant, const RCP<const Comm>& comm) {
-  Mesh::BoxSpec spec;
-  spec.type = Mesh::CellType::Hex8;
-  spec.x = spec.y = {0, bar.side};
-  spec.z = {0, bar.L};
-  spec.cells = {1, 1, bar.cells};
-  Mesh::DecompositionSpec dec;
-  dec.grid = {1, 1, 2};
-  const Mesh::Discretization disc(Mesh::generateBox(spec), spec, dec, comm->getSize(), comm->getRank());
-  Contact::ContactSpec plane;
-  plane.enabled = true;
-  const auto contact = Contact::faceContactConstraints(disc, plane, comm);
+  const OnThePlane box({bar.side, bar.side, bar.L}, {1, 1, bar.cells}, {1, 1, 2}, comm);
   Contact::DynamicsSpec dyn;
   dyn.timeStep = courant * (bar.L / bar.cells) / bar.waveSpeed();
   dyn.scheme = scheme;
   dyn.initialVelocity = {0, 0, -bar.v0};
   Teuchos::ParameterList solver;
   solver.sublist("Algorithm 1").sublist("SMALBE").set("Relative Tolerance", 1e-10);
-  Contact::ImplicitDynamics run(disc, Fem::Material{bar.E, 0.0}, bar.rho, Fem::LoadCase{}, contact,
+  Contact::ImplicitDynamics run(box.disc, Fem::Material{bar.E, 0.0}, bar.rho, Fem::LoadCase{}, box.contact,
                                 {Contact::FrictionSpec{FrictionLaw::Frictionless, 0.0, 0.0}}, dyn,
                                 Teuchos::ParameterList(), solver, comm);
   Impact m;
@@ -139,16 +160,7 @@ TEUCHOS_UNIT_TEST(SlidingBlock, StopsAfterItsDistance) {
   const auto comm = Tpetra::getDefaultComm();
   const double side = 0.1, E = 1e7, rho = 1000, g = 9.81, v0 = 1, F = 0.3;
   const double distance = v0 * v0 / (2 * F * g), stopTime = v0 / (F * g);
-  Mesh::BoxSpec spec;
-  spec.type = Mesh::CellType::Hex8;
-  spec.x = spec.y = spec.z = {0, side};
-  spec.cells = {2, 2, 2};
-  Mesh::DecompositionSpec dec;
-  dec.grid = {2, 1, 1};
-  const Mesh::Discretization disc(Mesh::generateBox(spec), spec, dec, comm->getSize(), comm->getRank());
-  Contact::ContactSpec plane;
-  plane.enabled = true;
-  const auto contact = Contact::faceContactConstraints(disc, plane, comm);
+  const OnThePlane box({side, side, side}, {2, 2, 2}, {2, 1, 1}, comm);
   Fem::LoadCase loads;
   loads.volumeForce = {0, 0, -rho * g};
   Contact::DynamicsSpec dyn;
@@ -156,7 +168,7 @@ TEUCHOS_UNIT_TEST(SlidingBlock, StopsAfterItsDistance) {
   dyn.initialVelocity = {v0, 0, 0};
   Teuchos::ParameterList solver;
   solver.sublist("Algorithm 2").set("Relative Tolerance", 1e-9);
-  Contact::ImplicitDynamics run(disc, Fem::Material{E, 0.3}, rho, loads, contact,
+  Contact::ImplicitDynamics run(box.disc, Fem::Material{E, 0.3}, rho, loads, box.contact,
                                 {Contact::FrictionSpec{FrictionLaw::Coulomb, F, 0.0}}, dyn, Teuchos::ParameterList(),
                                 solver, comm);
   const double initial = run.kineticEnergy();
