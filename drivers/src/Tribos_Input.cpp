@@ -208,7 +208,8 @@ RCP<const ParameterList> validParameters() {
   ParameterList& dynamics = pl->sublist(
       "Dynamics", false,
       "implicit time stepping of the bodies in contact (docs/dynamics.md): every step the contact problem of K + "
-      "4 M / dt^2 through FETI; the loads act from t = 0 at their full Value (no Load Steps, no Curves)");
+      "4 M / dt^2 through FETI; a load acts as Value x its Curve at the physical time t, a load without a Curve "
+      "at its full Value from t = 0 (no Load Steps)");
   dynamics.set("Enabled", false, "step in time; false: the static problem or the quasi-static Load Steps");
   dynamics.set("Time Step", 0.0, "dt > 0, fixed");
   dynamics.set("End Time", 0.0, "the time of the last step, at least Time Step; round(End Time / Time Step) steps");
@@ -750,10 +751,25 @@ void validateDynamics(const ParameterList& params) {
                          params.sublist("Load Steps").get<Array<double>>("Times") != Array<double>(1, 1.0);
   TRIBOS_REQUIRE(!loadSteps, "\"Load Steps/Times\" is given with Dynamics/Enabled = true: a Dynamics run steps in "
                              "time by Dynamics/Time Step; remove Load Steps");
+  // The run starts undeformed: every Dirichlet value is 0 at t = 0 (a
+  // Value of 0, or a Curve that starts at 0); a load's Curve covers t = 0.
   for (const auto& [path, name] : curveReferences(params))
-    TRIBOS_REQUIRE(name.empty(), "parameter \"" << path << "\" = \"" << name
-                                                << "\": loads on curves in time are not implemented for Dynamics, "
-                                                   "whose loads act at their full Value from t = 0");
+    TRIBOS_REQUIRE(name.empty() || !params.sublist("Load Curves").isSublist(name) || loadCurve(params, name).covers(0.0),
+                   "parameter \"" << path << "\" = \"" << name << "\": a Dynamics run starts at t = 0, which \"Load "
+                                  "Curves/" << name << "\" does not cover");
+  const auto& dirichlet = params.sublist("Boundary Conditions").sublist("Dirichlet");
+  for (auto it = dirichlet.begin(); it != dirichlet.end(); ++it) {
+    const auto& item = dirichlet.sublist(dirichlet.name(it));
+    const auto& value = item.get<Array<double>>("Value");
+    const std::string curve = item.get<std::string>("Curve");
+    const double atZero = curve.empty() || !params.sublist("Load Curves").isSublist(curve)
+                              ? 1.0
+                              : loadCurve(params, curve)(0.0);
+    for (double v : value)
+      TRIBOS_REQUIRE(v * atZero == 0, "\"Boundary Conditions/Dirichlet/" << dirichlet.name(it) << "\": its value at t = 0 "
+                                     "is not 0, but a Dynamics run starts undeformed; give it a Curve that is 0 at "
+                                     "t = 0 (a load without a Curve acts at its full Value from t = 0)");
+  }
   const auto& solver = params.sublist("Solver");
   TRIBOS_REQUIRE(solver.get<std::string>("Type") != "Monolithic",
                  "Solver/Type = Monolithic: Dynamics steps through FETI (Type = FETI or Auto)");
@@ -1374,6 +1390,20 @@ Fem::LoadHistory loadHistory(const ParameterList& params) {
       curves.push_back(loadCurve(params, items.sublist(items.name(it)).get<std::string>("Curve")));
     return curves;
   };
+  // In a Dynamics run a load without a Curve is constant from t = 0.
+  if (dynamics(params)) {
+    const double end = params.sublist("Dynamics").get<double>("End Time");
+    const Fem::LoadCurve constant({0.0, std::max(end, 1.0) * 2}, {1.0, 1.0}, "a load without a Curve (constant)");
+    const auto orConstant = [&](std::vector<Fem::LoadCurve> curves) {
+      for (auto& c : curves)
+        if (c.isRamp()) c = constant;
+      return curves;
+    };
+    history.dirichletCurves = orConstant(curvesOf(bc.sublist("Dirichlet")));
+    history.tractionCurves = orConstant(curvesOf(bc.sublist("Traction")));
+    history.volumeForceCurve = orConstant({loadCurve(params, bc.get<std::string>("Volume Force Curve"))}).front();
+    return history;
+  }
   history.dirichletCurves = curvesOf(bc.sublist("Dirichlet"));
   history.tractionCurves = curvesOf(bc.sublist("Traction"));
   history.volumeForceCurve = loadCurve(params, bc.get<std::string>("Volume Force Curve"));

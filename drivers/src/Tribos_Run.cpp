@@ -1360,10 +1360,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     Progress::setStep(k + 1, numSteps);
     // The input's loads as they are at t = 1 without Load Steps; a history
     // scales them by their curves.
-    // A Dynamics run's loads act at their full Value from t = 0.
-    const Fem::LoadCase loads = Input::dynamics(params) || (numSteps == 1 && times[0] == 1.0)
-                                    ? d.loads
-                                    : Fem::loadCaseAt(loadHistory, times[k]);
+    const Fem::LoadCase loads = numSteps == 1 && times[0] == 1.0 ? d.loads : Fem::loadCaseAt(loadHistory, times[k]);
     StepSolution sol = method->solve(d, loads, report);
     checkStep(params, options, d, loads, sol, comm, report);
     for (IO::HistoryRow row : sol.history.rows) {

@@ -311,8 +311,9 @@ SolveMethodRegistry::Maker maker() {
 }
 
 // Implicit dynamics (Dynamics/Enabled): each solve is the next time step of
-// Contact::ImplicitDynamics, made at the first; the run's loads act at their
-// full Value from t = 0 (Input refuses curves), so `loads` is the input's.
+// Contact::ImplicitDynamics, made at the first with the loads at t = 0;
+// `loads` are those at the step's end (the curves at t, a load without one
+// at its full Value).
 class FetiDynamicsMethod : public MethodBase {
  public:
   using MethodBase::MethodBase;
@@ -324,13 +325,13 @@ class FetiDynamicsMethod : public MethodBase {
     if (!run_) {
       Progress::stage("FETI setup: assembly of K + 4 M / dt^2, gluing");
       const auto t0 = std::chrono::steady_clock::now();
-      run_ = std::make_unique<Contact::ImplicitDynamics>(d.disc, d.materials, Input::densities(params_, d.disc.part),
-                                                         loads, d.constraints, friction, Input::dynamicsSpec(params_),
-                                                         solverParams.sublist("FETI"), solverParams, comm_);
+      run_ = std::make_unique<Contact::ImplicitDynamics>(
+          d.disc, d.materials, Input::densities(params_, d.disc.part), Fem::loadCaseAt(Input::loadHistory(params_), 0.0),
+          d.constraints, friction, Input::dynamicsSpec(params_), solverParams.sublist("FETI"), solverParams, comm_);
       sol.setupSeconds = seconds(t0);
     }
     Progress::stage("time step");
-    Contact::DynamicStep step = run_->step();
+    Contact::DynamicStep step = run_->step(loads);
     const auto& r = step.solve;
     sol.result = r;
     sol.velocity = run_->velocity();

@@ -67,6 +67,7 @@ ImplicitDynamics::ImplicitDynamics(const Mesh::Discretization& disc, const Fem::
   }
   // M a_0 = f - K u_0 + (no contact force) = f at rest in the reference state.
   Ma_ = load_;
+  constantLoad_ = load_;
 }
 
 ImplicitDynamics::Subdomains ImplicitDynamics::massTimes(const Subdomains& x) const {
@@ -130,8 +131,22 @@ ImplicitDynamics::Subdomains ImplicitDynamics::projectedPredictor(const Subdomai
   return subdomains(*r.primal);
 }
 
-DynamicStep ImplicitDynamics::step() {
+DynamicStep ImplicitDynamics::step() { return advance(nullptr); }
+
+DynamicStep ImplicitDynamics::step(const Fem::LoadCase& atNext) { return advance(&atNext); }
+
+DynamicStep ImplicitDynamics::advance(const Fem::LoadCase* atNext) {
   const double dt = spec_.timeStep, c = massCoefficient_;
+  // The loads at t_{n+1}: f of each subdomain and the Dirichlet values (the
+  // problems' own, with the partners' of their contact nodes), assembled by
+  // setLoads; the constructor's without other loads. (A solve leaves the
+  // step's right-hand side in the problem's f.)
+  Subdomains next_f = constantLoad_;
+  if (atNext) {
+    problem_->setLoads(*atNext);
+    if (projection_) projection_->setLoads(*atNext);
+    for (int k = 0; k < problem_->numLocalSubdomains(); ++k) next_f[k] = problem_->subdomain(k).f;
+  }
   Subdomains flight = u_;  // u_n + dt v_n
   for (size_t k = 0; k < u_.size(); ++k)
     for (size_t i = 0; i < u_[k].size(); ++i) flight[k][i] += dt * v_[k][i];
@@ -142,7 +157,7 @@ DynamicStep ImplicitDynamics::step() {
   const Subdomains w = stabilized ? projectedPredictor(flight) : flight;
   const Subdomains Mw = massTimes(w);
   const Subdomains Ku = stabilized ? stiffnessTimes(u_) : Subdomains();
-  Subdomains rhs = load_;
+  Subdomains rhs = next_f;
   for (size_t k = 0; k < rhs.size(); ++k)
     for (size_t i = 0; i < rhs[k].size(); ++i)
       rhs[k][i] += c * Mw[k][i] + (stabilized ? load_[k][i] - Ku[k][i] : Ma_[k][i]);
@@ -153,14 +168,15 @@ DynamicStep ImplicitDynamics::step() {
   // v_n + 2 (u_{n+1} - w) / dt (w = u_n + dt v_n without projection); and
   // M a_{n+1} = c M (u_{n+1} - u_n - dt v_n) - M a_n.
   const Subdomains Mnext = stabilized ? Subdomains() : massTimes(next);
-  double work = 0;  // constant loads: f' (u_{n+1} - u_n)
+  double work = 0;  // (f_n + f_{n+1})' (u_{n+1} - u_n) / 2
   for (size_t k = 0; k < next.size(); ++k)
     for (size_t i = 0; i < next[k].size(); ++i) {
-      work += load_[k][i] * (next[k][i] - u_[k][i]);
+      work += (load_[k][i] + next_f[k][i]) / 2 * (next[k][i] - u_[k][i]);
       v_[k][i] += 2 * (next[k][i] - w[k][i]) / dt;
       if (!stabilized) Ma_[k][i] = c * (Mnext[k][i] - Mw[k][i]) - Ma_[k][i];
     }
   u_ = next;
+  load_ = next_f;
   time_ += dt;
   // The step's forces as means over it; friction dissipates the mean
   // friction force against the slip of the step.

@@ -60,11 +60,12 @@ struct DynamicStep {
   FetiSolveResult solve;
 };
 
-// The bodies of a decomposed mesh from rest in the reference configuration
-// (u = 0) with a uniform initial velocity, under constant loads (their
-// Dirichlet values, tractions and volume force at every time), in contact
-// through `contact` (the constraints of FetiProblem's mesh constructor) with
-// the friction of each pair. The initial state carries no contact force.
+// The bodies of a decomposed mesh from the reference configuration (u = 0)
+// with a uniform initial velocity, under loads given at t = 0 and, step by
+// step, at the step's end (constant loads: the same at every time), in
+// contact through `contact` (the constraints of FetiProblem's mesh
+// constructor) with the friction of each pair. The initial state carries no
+// contact force. The discretization must outlive the object.
 class ImplicitDynamics {
  public:
   // feti: FetiProblem's parameters (TFETI); solver: solveFeti's. Collective.
@@ -73,9 +74,13 @@ class ImplicitDynamics {
                    const PairFriction& friction, const DynamicsSpec& spec, const Teuchos::ParameterList& feti,
                    const Teuchos::ParameterList& solver, const RCP<const Comm>& comm);
 
-  // One step t -> t + dt. Throws Error when the step's contact solve does
-  // not meet its result check (its verdict names why). Collective.
+  // One step t -> t + dt under the loads of the constructor. Throws Error
+  // when the step's contact solve does not meet its result check (its
+  // verdict names why). Collective.
   DynamicStep step();
+  // The same, the loads at t + dt being `atNext` (the same conditions,
+  // other values: a load history's curves at t + dt).
+  DynamicStep step(const Fem::LoadCase& atNext);
 
   double time() const { return time_; }
   // The step's problem, K + M / (beta dt^2).
@@ -100,6 +105,7 @@ class ImplicitDynamics {
   Subdomains projectedPredictor(const Subdomains& flight);
   FetiSolveResult solveStep(Feti::FetiProblem& problem, FetiLoadSteps& steps, const Subdomains& rhs,
                             const std::string& what);
+  DynamicStep advance(const Fem::LoadCase* atNext);
   // The contact node forces of the step just solved made the means over the
   // step (the multipliers halved, or averaged with the previous step's).
   void meanForces(ContactNodeResults& contact, bool stabilized);
@@ -113,7 +119,8 @@ class ImplicitDynamics {
   RCP<Feti::FetiProblem> problem_, projection_;
   std::unique_ptr<FetiLoadSteps> steps_, projectionSteps_;
   std::vector<LocalCsr> mass_;                 // M of each local subdomain
-  Subdomains load_;                            // f of each local subdomain (constant)
+  Subdomains load_;                            // f of each local subdomain at t_n
+  Subdomains constantLoad_;                    // ... at t = 0, the loads of step()
   Subdomains u_, v_, Ma_;                      // the state: u, v and M a (trapezoidal rule)
   // Newmark: this rank's contact nodes' multiplier forces at t_n (lambda_N,
   // and phi_T 3 each; the same nodes in the same order at every step).

@@ -205,4 +205,49 @@ TEUCHOS_UNIT_TEST(SlidingBlock, StopsAfterItsDistance) {
   TEST_COMPARE(std::abs(lost - 1), <=, 0.02);
 }
 
+// A load on a curve in time: the bar floating free (no contact, no
+// Dirichlet condition) pushed along z by a traction on its top face that
+// grows linearly from 0 at t = 0, p(t) = p0 t / T. The trapezoidal rule
+// integrates a load linear in time exactly into the momentum: the bar's
+// mean velocity (mass-weighted; Hex8: half a node's share at the ends) is
+// p0 A t^2 / (2 T m) at every step, to the solver's accuracy; the work of
+// the load equals the kinetic and strain energy (no contact, no friction).
+TEUCHOS_UNIT_TEST(FreeBar, LoadOnACurveGivesItsMomentum) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Bar bar;
+  const OnThePlane box({bar.side, bar.side, bar.L}, {1, 1, bar.cells}, {1, 1, 2}, comm);
+  const double T = bar.contactTime(), p0 = 1e6, m = bar.rho * bar.L * bar.side * bar.side;
+  auto loadsAt = [&](double t) {
+    Fem::LoadCase loads;
+    loads.tractions.push_back({"zmax", {0, 0, p0 * t / T}});
+    return loads;
+  };
+  Contact::DynamicsSpec dyn;
+  dyn.timeStep = T / 40;
+  Contact::ImplicitDynamics run(box.disc, Fem::Material{bar.E, 0.0}, bar.rho, loadsAt(0.0), {},
+                                {Contact::FrictionSpec{}}, dyn, Teuchos::ParameterList(), Teuchos::ParameterList(),
+                                comm);
+  const auto mesh = Mesh::generateBox(box.spec);  // the nodes' places, in gathered()'s numbering
+  double worst = 0, balance = 0;
+  for (int n = 1; n <= 40; ++n) {
+    const double t = n * dyn.timeStep;
+    const auto s = run.step(loadsAt(t));
+    const auto v = run.velocity().gathered();
+    double momentum = 0;
+    for (int node = 0; node < mesh.numNodes(); ++node) {
+      const double z = mesh.coords[node][2];
+      const double share = (z == 0 || z == bar.L) ? 0.5 : 1.0;
+      momentum += share * v[3 * node + 2];
+    }
+    const double mean = momentum / (bar.cells * 4.0);  // 4 nodes per layer, bar.cells layers of mass
+    const double exact = p0 * bar.side * bar.side * t * t / (2 * T * m);
+    worst = std::max(worst, std::abs(mean - exact) / exact);
+    balance = (s.kineticEnergy + s.strainEnergy) / s.externalWork - 1;
+  }
+  out << "momentum against p0 A t^2 / (2 T m): worst " << worst << "; energies / work - 1 at the end " << balance
+      << "\n";
+  TEST_COMPARE(worst, <=, 1e-6);
+  TEST_COMPARE(std::abs(balance), <=, 1e-6);
+}
+
 }  // namespace
