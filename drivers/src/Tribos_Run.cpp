@@ -1369,7 +1369,8 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     }
     if (!report.converged && numSteps > 1) {
       std::ostringstream os;
-      os << "load step " << k + 1 << " of " << numSteps << " (t = " << times[k] << "): " << report.stopReason;
+      os << (Input::dynamics(params) ? "time step " : "load step ") << k + 1 << " of " << numSteps << " (t = "
+         << times[k] << "): " << report.stopReason;
       report.stopReason = os.str();
     }
     friction.advance(sol.result.contact);

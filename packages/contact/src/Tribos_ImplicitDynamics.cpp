@@ -112,23 +112,21 @@ ImplicitDynamics::Subdomains ImplicitDynamics::subdomains(const Vector& primal) 
 }
 
 FetiSolveResult ImplicitDynamics::solveStep(Feti::FetiProblem& problem, FetiLoadSteps& steps, const Subdomains& rhs,
-                                            const std::string& what) {
+                                            const std::string& what) const {
   problem.setRightHandSides(rhs, problem.dirichlet());
   // Friction acts on the slip since the last solve (u_n; the first from
   // the reference, u_0 = 0): the slip velocity times dt.
   FetiSolveResult r = steps.solveNext();
-  TRIBOS_REQUIRE(r.verdict.converged, "ImplicitDynamics: " << what << " of the step to t = "
-                                                           << time_ + spec_.timeStep
-                                                           << " did not meet its result check: " << r.verdict.stopReason
-                                                           << (r.handover.empty() ? "" : " (after Semismooth Newton: " +
-                                                                                            r.handover + ")"));
+  if (!r.verdict.converged)
+    r.verdict.stopReason = what + " of the step to t = " + std::to_string(time_ + spec_.timeStep) + ": " +
+                           r.verdict.stopReason +
+                           (r.handover.empty() ? "" : " (after Semismooth Newton: " + r.handover + ")");
   return r;
 }
 
-ImplicitDynamics::Subdomains ImplicitDynamics::projectedPredictor(const Subdomains& flight) {
-  const FetiSolveResult r =
-      solveStep(*projection_, *projectionSteps_, massTimes(flight), "the projection of the predictor");
-  return subdomains(*r.primal);
+ImplicitDynamics::Subdomains ImplicitDynamics::projectedPredictor(const Subdomains& flight, FetiSolveResult& solve) {
+  solve = solveStep(*projection_, *projectionSteps_, massTimes(flight), "the projection of the predictor");
+  return subdomains(*solve.primal);
 }
 
 DynamicStep ImplicitDynamics::step() { return advance(nullptr); }
@@ -154,14 +152,22 @@ DynamicStep ImplicitDynamics::advance(const Fem::LoadCase* atNext) {
   //   Newmark:    rhs = f + c M (u_n + dt v_n) + M a_n,
   //   stabilized: rhs = f_{n+1} + f_n - K u_n + c M w, w the projected flight.
   const bool stabilized = spec_.scheme == TimeScheme::ContactStabilizedNewmark;
-  const Subdomains w = stabilized ? projectedPredictor(flight) : flight;
+  DynamicStep s;
+  const Subdomains w = stabilized ? projectedPredictor(flight, s.solve) : flight;
+  if (stabilized && !s.solve.verdict.converged) {  // no step from a predictor that missed its check
+    s.time = time_;
+    s.kineticEnergy = kineticEnergy();
+    s.strainEnergy = strainEnergy();
+    s.externalWork = externalWork_;
+    s.frictionDissipation = frictionDissipation_;
+    return s;
+  }
   const Subdomains Mw = massTimes(w);
   const Subdomains Ku = stabilized ? stiffnessTimes(u_) : Subdomains();
   Subdomains rhs = next_f;
   for (size_t k = 0; k < rhs.size(); ++k)
     for (size_t i = 0; i < rhs[k].size(); ++i)
       rhs[k][i] += c * Mw[k][i] + (stabilized ? load_[k][i] - Ku[k][i] : Ma_[k][i]);
-  DynamicStep s;
   s.solve = solveStep(*problem_, *steps_, rhs, "the contact solve");
   const Subdomains next = subdomains(*s.solve.primal);
   // The trapezoidal rule's velocity, from the displacements: v_{n+1} =

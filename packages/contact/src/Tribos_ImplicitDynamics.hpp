@@ -74,9 +74,10 @@ class ImplicitDynamics {
                    const PairFriction& friction, const DynamicsSpec& spec, const Teuchos::ParameterList& feti,
                    const Teuchos::ParameterList& solver, const RCP<const Comm>& comm);
 
-  // One step t -> t + dt under the loads of the constructor. Throws Error
-  // when the step's contact solve does not meet its result check (its
-  // verdict names why). Collective.
+  // One step t -> t + dt under the loads of the constructor. A step whose
+  // contact solve misses its result check comes back with that verdict
+  // (solve.verdict.converged false, the stop reason saying which solve):
+  // the state is then that solve's, and the caller stops. Collective.
   DynamicStep step();
   // The same, the loads at t + dt being `atNext` (the same conditions,
   // other values: a load history's curves at t + dt).
@@ -101,10 +102,10 @@ class ImplicitDynamics {
   RCP<Vector> primal(const Subdomains& x) const;
   Subdomains subdomains(const Vector& primal) const;
   // The free flight u + dt v, projected onto the admissible set in the mass
-  // norm (the contact-stabilized scheme's predictor).
-  Subdomains projectedPredictor(const Subdomains& flight);
+  // norm (the contact-stabilized scheme's predictor), and its solve.
+  Subdomains projectedPredictor(const Subdomains& flight, FetiSolveResult& solve);
   FetiSolveResult solveStep(Feti::FetiProblem& problem, FetiLoadSteps& steps, const Subdomains& rhs,
-                            const std::string& what);
+                            const std::string& what) const;
   DynamicStep advance(const Fem::LoadCase* atNext);
   // The contact node forces of the step just solved made the means over the
   // step (the multipliers halved, or averaged with the previous step's).

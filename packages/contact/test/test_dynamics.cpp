@@ -66,7 +66,7 @@ struct OnThePlane {
 struct Impact {
   double duration = 0, meanForce = 0, energyAfter = 0;  // relative errors
   double deepest = 0;                                   // the largest penetration / (v0 2L/c)
-  int steps = 0;
+  int steps = 0, unconverged = 0;
 };
 
 // The bar's impact with dt = courant h / c, up to 1.5 contact times.
@@ -87,6 +87,7 @@ Impact impact(const Bar& bar, Contact::TimeScheme scheme, double courant, const 
   while (run.time() < 1.5 * bar.contactTime()) {
     const auto s = run.step();
     ++m.steps;
+    if (!s.solve.verdict.converged) ++m.unconverged;
     if (s.contactForce > floor) {
       if (first < 0) first = s.time - dyn.timeStep;
       last = s.time;
@@ -120,6 +121,7 @@ TEUCHOS_UNIT_TEST(SignoriniBar, ContactStabilizedNewmark) {
     bar.cells = cells;
     runs.push_back(impact(bar, Contact::TimeScheme::ContactStabilizedNewmark, 1.0, comm));
     report(out, ("stabilized, " + std::to_string(cells) + " cells").c_str(), runs.back());
+    TEST_EQUALITY(runs.back().unconverged, 0);
     TEST_COMPARE(runs.back().deepest, <=, 1e-8);
   }
   const Impact& f = runs.back();
@@ -142,6 +144,7 @@ TEUCHOS_UNIT_TEST(SignoriniBar, Newmark) {
   bar.cells = 40;
   const auto m = impact(bar, Contact::TimeScheme::Newmark, 1.0, comm);
   report(out, "Newmark, 40 cells", m);
+  TEST_EQUALITY(m.unconverged, 0);
   TEST_COMPARE(std::abs(m.duration), <=, 0.05);
   TEST_COMPARE(std::abs(m.meanForce), <=, 0.05);
   TEST_COMPARE(m.deepest, <=, 1e-8);
@@ -183,6 +186,7 @@ TEUCHOS_UNIT_TEST(SlidingBlock, StopsAfterItsDistance) {
   Contact::DynamicStep last;
   while (run.time() < 1.2 * stopTime) {
     last = run.step();
+    TEST_ASSERT(last.solve.verdict.converged);
     if (stopped < 0 && meanVelocityX() < 1e-3 * v0) stopped = run.time();
   }
   // The energies balance: what friction dissipated is the kinetic energy the
@@ -232,6 +236,7 @@ TEUCHOS_UNIT_TEST(FreeBar, LoadOnACurveGivesItsMomentum) {
   for (int n = 1; n <= 40; ++n) {
     const double t = n * dyn.timeStep;
     const auto s = run.step(loadsAt(t));
+    TEST_ASSERT(s.solve.verdict.converged);
     const auto v = run.velocity().gathered();
     double momentum = 0;
     for (int node = 0; node < mesh.numNodes(); ++node) {
