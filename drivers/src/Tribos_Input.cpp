@@ -724,10 +724,10 @@ void validateLoadHistory(const ParameterList& params) {
 constexpr double kMaxDynamicSteps = 1e7;
 
 // Dynamics: a positive step, an end at least one step away and not too many
-// steps, a positive density for every body, the loads at their full Value
-// (no Load Steps, no Curves), and TFETI's positive definite subdomains
-// (FETI, TFETI, not the semismooth* method). Before the load history,
-// whose step times it makes.
+// steps, a positive density for every body, no Load Steps, curves that
+// cover t = 0 and Dirichlet values 0 there (the run starts undeformed), and
+// TFETI's positive definite subdomains (FETI, TFETI, not the semismooth*
+// method). Before the load history, whose step times it makes.
 void validateDynamics(const ParameterList& params) {
   if (!dynamics(params)) return;
   const auto& d = params.sublist("Dynamics");

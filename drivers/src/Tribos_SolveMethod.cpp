@@ -110,7 +110,6 @@ class MonolithicMethod : public MethodBase {
   }
 };
 
-// The outer algorithm's report and one history row per outer step.
 // The friction of each contact pair (none without contact).
 Contact::PairFriction runFriction(const ParameterList& params) {
   return params.sublist("Contact").get<bool>("Enabled") ? Input::pairFriction(params) : Contact::PairFriction{{}};
@@ -133,8 +132,9 @@ void reportFeti(const Feti::FetiProblem& problem, const Contact::FetiSolveResult
   report.feti = feti;
 }
 
-void reportContact(const Contact::FetiSolveResult& r, const Contact::PairFriction& friction,
-                          RunReport& report, IO::IterationHistory& history) {
+// The outer algorithm's report and one history row per outer step.
+void reportContact(const Contact::FetiSolveResult& r, const Contact::PairFriction& friction, RunReport& report,
+                   IO::IterationHistory& history) {
   const auto& st = r.status;
   OuterAlgorithmReport outer;
   outer.name = r.outerAlgorithm;
