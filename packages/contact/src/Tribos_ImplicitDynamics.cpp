@@ -155,11 +155,7 @@ DynamicStep ImplicitDynamics::advance(const Fem::LoadCase* atNext) {
   DynamicStep s;
   const Subdomains w = stabilized ? projectedPredictor(flight, s.solve) : flight;
   if (stabilized && !s.solve.verdict.converged) {  // no step from a predictor that missed its check
-    s.time = time_;
-    s.kineticEnergy = kineticEnergy();
-    s.strainEnergy = strainEnergy();
-    s.externalWork = externalWork_;
-    s.frictionDissipation = frictionDissipation_;
+    recordState(s);
     return s;
   }
   const Subdomains Mw = massTimes(w);
@@ -197,12 +193,16 @@ DynamicStep ImplicitDynamics::advance(const Fem::LoadCase* atNext) {
   externalWork_ += sumOverRanks(work, comm);
   frictionDissipation_ += sumOverRanks(dissipated, comm);
   s.contactForce = sumOverRanks(force, comm);
+  recordState(s);
+  return s;
+}
+
+void ImplicitDynamics::recordState(DynamicStep& s) const {
   s.time = time_;
   s.kineticEnergy = kineticEnergy();
   s.strainEnergy = strainEnergy();
   s.externalWork = externalWork_;
   s.frictionDissipation = frictionDissipation_;
-  return s;
 }
 
 void ImplicitDynamics::meanForces(ContactNodeResults& contact, bool stabilized) {

@@ -107,6 +107,9 @@ class ImplicitDynamics {
   FetiSolveResult solveStep(Feti::FetiProblem& problem, FetiLoadSteps& steps, const Subdomains& rhs,
                             const std::string& what) const;
   DynamicStep advance(const Fem::LoadCase* atNext);
+  // The time, the energies, the work and the dissipation of the current
+  // state into a step's report. Collective.
+  void recordState(DynamicStep& s) const;
   // The contact node forces of the step just solved made the means over the
   // step (the multipliers halved, or averaged with the previous step's).
   void meanForces(ContactNodeResults& contact, bool stabilized);
