@@ -128,12 +128,12 @@ def snapshot(d):
     return {name: digest(os.path.join(d, name)) for name in sorted(os.listdir(d)) if name != ".tribos.lock"}
 
 
-def killed_copy(full, d, k):
-    """A copy of the uninterrupted result as a run killed after step k while
-    it committed step k + 1 leaves it: the summary says steps 1..k are
-    complete, step k + 1's data file, its row of the steps table and its
-    history rows are there (and half the row of step k + 2), the later steps'
-    files are not."""
+def killed_copy(full, d, k, steps=STEPS):
+    """A copy of the uninterrupted result (of `steps` steps) as a run killed
+    after step k while it committed step k + 1 leaves it: the summary says
+    steps 1..k are complete, step k + 1's data file, its row of the steps
+    table and its history rows are there (and half the row of step k + 2),
+    the later steps' files are not."""
     shutil.rmtree(d, ignore_errors=True)
     shutil.copytree(full, d)
     s = raw_summary(d)
@@ -144,7 +144,7 @@ def killed_copy(full, d, k):
     rows = history_rows(d)
     with open(os.path.join(d, BASE + ".history.csv"), "w", newline="") as f:
         csv.writer(f, lineterminator="\n").writerows([rows[0]] + [r for r in rows[1:] if int(r[6]) <= k + 1])
-    for step in range(k + 2, STEPS + 1):
+    for step in range(k + 2, steps + 1):
         os.remove(step_file(d, step))
 
 

@@ -445,6 +445,12 @@ void writeStep(const Teuchos::ParameterList& params, const IO::OutputDirectory& 
   result.attributes.numbers = {{"converged", report.converged ? 1.0 : 0.0},
                                {"solver_converged", report.solverConverged ? 1.0 : 0.0}};
   result.attributes.text = {{"problem", report.problem}, {"stop_reason", report.stopReason}};
+  // A Dynamics step's running sums, which a restart continues from: to the
+  // bit (the steps table has 10 digits) and under the file's digest.
+  if (sol.dynamics) {
+    result.attributes.numbers.push_back({"external_work", sol.dynamics->externalWork});
+    result.attributes.numbers.push_back({"friction_dissipation", sol.dynamics->frictionDissipation});
+  }
   IO::Field reaction{"reaction", 3, {}};
   for (int n : disc.ownedNodes()) {
     const double* un = sol.result.u.at(disc.meshNode(n));
@@ -850,8 +856,9 @@ void checkStep(const Teuchos::ParameterList& params, const RunOptions& options, 
 // A restarted run (tribos --restart DIR, docs/load_history.md): what it
 // continues from. The steps 1..completed of the run in DIR are done: their
 // files, their rows of its steps table and history are kept as they are, and
-// the next step starts from the displacement of the last of them.
+// the next step starts from the state of the last of them.
 struct Restart {
+  bool dynamics = false;              // a Dynamics run: its state holds the velocity too
   std::string summaryFile;            // DIR/BASE.json: how many steps are complete
   std::string stepsFile;              // DIR/BASE.steps.jsonl: their rows
   int completed = 0;
@@ -859,7 +866,7 @@ struct Restart {
   std::string stepLines;              // the same, as the table's text
   IO::IterationHistory history;       // the history's rows of those steps
   long long iterationsTotal = 0, n_A_total = 0;  // the work of those steps (their rows' sums)
-  std::vector<double> uOwned;         // the last one's displacement, 3 per owned node (after the mesh)
+  ResumedStep last;                   // the last one's state, read from its file (after the mesh)
   // The last one's friction memory at this rank's contact nodes (after the mesh).
   std::vector<std::pair<int, FrictionMemory::Node>> contactMemory;
 };
@@ -919,13 +926,14 @@ std::string valueText(const Teuchos::ParameterEntry& entry) {
 
 // The first entry (in the order of `here`, then the entries only `there`
 // has) in which two validated lists differ, as a sentence; "" when they
-// agree. `skip`: the full name of an entry not compared.
+// agree. `skip`: the full names of entries not compared.
 std::string firstDifference(const Teuchos::ParameterList& here, const Teuchos::ParameterList& there,
-                            const std::string& prefix, const std::string& skip) {
+                            const std::string& prefix, const std::vector<std::string>& skip) {
+  const auto skipped = [&](const std::string& full) { return std::find(skip.begin(), skip.end(), full) != skip.end(); };
   for (auto it = here.begin(); it != here.end(); ++it) {
     const std::string& name = here.name(it);
     const std::string full = prefix + name;
-    if (full == skip) continue;
+    if (skipped(full)) continue;
     const auto& entry = here.entry(it);
     if (!there.isParameter(name)) return "\"" + full + "\" is " + valueText(entry) + " here and absent there";
     if (entry.isList() != there.isSublist(name)) return "\"" + full + "\" is a sublist in one and a value in the other";
@@ -937,7 +945,7 @@ std::string firstDifference(const Teuchos::ParameterList& here, const Teuchos::P
     }
   }
   for (auto it = there.begin(); it != there.end(); ++it)
-    if (!here.isParameter(there.name(it)) && prefix + there.name(it) != skip)
+    if (!here.isParameter(there.name(it)) && !skipped(prefix + there.name(it)))
       return "\"" + prefix + there.name(it) + "\" is " + valueText(there.entry(it)) + " there and absent here";
   return "";
 }
@@ -945,7 +953,9 @@ std::string firstDifference(const Teuchos::ParameterList& here, const Teuchos::P
 // The result in DIR that --restart continues, checked before the mesh is
 // read: DIR is a directory that holds a result of this input (its
 // parameters file, Output/Directory aside, holds the input's effective
-// parameters) whose summary says steps 1..k of its Load Steps are complete,
+// parameters; a Dynamics run's may end at another Dynamics/End Time, its
+// steps at the same times: a run stopped early continues to this End Time)
+// whose summary says steps 1..k of its Load Steps are complete,
 // with steps left to do, written on as many ranks as this run has (the rows
 // of a step file follow the ranks' ownership of the nodes); whose steps
 // table has those k rows in order, at the input's times, each naming its
@@ -990,10 +1000,23 @@ Restart readRestart(const Teuchos::ParameterList& params, const RunOptions& opti
   }
   error = agreeOnError(comm, error);
   if (!error.empty()) throw CollectiveError("--restart " + dir + ": " + error);
-  const std::string difference = firstDifference(params, *earlier, "", "Output/Directory");
+  const bool dynamics = restart.dynamics = Input::dynamics(params);
+  std::vector<std::string> free{"Output/Directory"};
+  if (dynamics) free.push_back("Dynamics/End Time");
+  const std::string difference = firstDifference(params, *earlier, "", free);
   if (!difference.empty())
     throw CollectiveError("--restart " + dir + ": the result there is not of this input: its parameters (" +
                           parametersFile + ") differ: " + difference);
+  // Its steps are this run's first ones (the same times; a Dynamics run's
+  // may be fewer or more), their files named as this run names them.
+  const int numSteps = static_cast<int>(times.size());
+  const int earlierSteps = static_cast<int>(Input::loadStepTimes(*earlier).size());
+  const std::string ours = IO::StepSeries::dataFileName(base, numSteps, 1),
+                    theirs = IO::StepSeries::dataFileName(base, earlierSteps, 1);
+  if (ours != theirs)
+    throw CollectiveError("--restart " + dir + ": the run there names its " + std::to_string(earlierSteps) +
+                          " steps' files " + theirs + ", ..., this run of " + std::to_string(numSteps) + " steps " +
+                          ours + ", ...: give a Dynamics/End Time whose steps' numbers have as many digits");
 
   // How many steps its summary says are complete.
   auto refuse = [&](const std::string& file, const std::string& why) {
@@ -1005,9 +1028,9 @@ Restart readRestart(const Teuchos::ParameterList& params, const RunOptions& opti
   } catch (const Error& e) {
     refuse(restart.summaryFile, std::string("not a summary of a run: ") + e.what());
   }
-  const int numSteps = static_cast<int>(times.size());
-  if (summary.json("load_steps") != std::to_string(numSteps))
-    refuse(restart.summaryFile, "it has load_steps " + summary.json("load_steps") + ", the input " + std::to_string(numSteps));
+  if (summary.json("load_steps") != std::to_string(earlierSteps))
+    refuse(restart.summaryFile, "it has load_steps " + summary.json("load_steps") + ", its parameters " +
+                                    std::to_string(earlierSteps));
   if (summary.json("ranks") != std::to_string(comm.getSize()))
     refuse(restart.summaryFile, "the run ran on " + summary.json("ranks") +
                                     " ranks; restart it on as many (its step files' node rows follow them), not " +
@@ -1018,13 +1041,16 @@ Restart readRestart(const Teuchos::ParameterList& params, const RunOptions& opti
   const std::string completed = summary.json("steps_completed");
   char* end = nullptr;
   const long k = std::strtol(completed.c_str(), &end, 10);
-  if (completed.empty() || *end != '\0' || k < 0 || k > numSteps)
-    refuse(restart.summaryFile, "steps_completed is not a step count of the input's " + std::to_string(numSteps) + " steps");
+  if (completed.empty() || *end != '\0' || k < 0 || k > earlierSteps)
+    refuse(restart.summaryFile, "steps_completed is not a step count of its " + std::to_string(earlierSteps) + " steps");
   restart.completed = static_cast<int>(k);
   if (restart.completed == 0) refuse(restart.summaryFile, "it lists no complete step (run the input again without --restart)");
   if (restart.completed >= numSteps)
     refuse(restart.summaryFile,
-           "it lists all " + std::to_string(numSteps) + " steps: the run is complete, nothing is left to do");
+           (restart.completed == numSteps ? "it lists all " + std::to_string(numSteps) + " steps"
+                                          : "it lists " + completed + " steps, this input has " + std::to_string(numSteps)) +
+               ": the run is complete, nothing is left to do" +
+               (dynamics ? " (a later Dynamics/End Time continues it)" : ""));
 
   // Their rows: a killed run may have appended the row of the next step, or
   // part of it, before its summary said so.
@@ -1135,9 +1161,29 @@ std::vector<std::pair<int, FrictionMemory::Node>> readFrictionMemory(const std::
   return out;
 }
 
+// Rows [first, first + count) of a step file's node field /nodes/NAME, 3
+// values per node, finite; throws Tribos::Error naming the file.
+std::vector<double> readNodeRows(const std::string& file, const std::string& name, long long first, long long count,
+                                 const Mesh::Discretization& disc) {
+  const std::string dataset = "/nodes/" + name;
+  const auto rows = IO::readDatasetRows(file, dataset, first, count);
+  if (rows.columns != 3 || rows.rows != disc.numMeshNodes()) throw Error(file + ": " + dataset + " is not one row of 3 per node");
+  if (!allFinite(rows.values)) throw Error(file + ": " + dataset + " holds values that are not finite");
+  return rows.values;
+}
+
+// A finite number attribute of a step file's root group; throws
+// Tribos::Error naming the file.
+double finiteRootNumber(const std::string& file, const std::string& name) {
+  const double value = IO::readRootNumber(file, name);
+  if (!std::isfinite(value)) throw Error(file + ": the root attribute " + name + " is not finite");
+  return value;
+}
+
 // The state of the last step the restart continues from, after checking
 // every step file (verifyStepFiles) and that the last one holds this mesh
-// (as many nodes, each at the place this run has it): its displacement,
+// (as many nodes, each at the place this run has it): its displacement (a
+// Dynamics run's velocity, work of the loads and friction dissipation too),
 // each rank reading the rows of the nodes it owns from its step file (rows
 // in the rank-contiguous numbering, Discretization::nodeIndex), and the
 // friction memory of the rank's contact nodes (`constraints`, glued ones
@@ -1174,10 +1220,15 @@ void readRestartState(Restart& restart, const IO::StepSeries& series, const IO::
           throw Error(os.str());
         }
     }
-    const auto u = IO::readDatasetRows(file, "/nodes/displacement", first, count);
-    if (u.columns != 3 || u.rows != disc.numMeshNodes()) throw Error(file + ": /nodes/displacement is not one row of 3 per node");
-    restart.uOwned = u.values;
-    if (!allFinite(restart.uOwned)) throw Error(file + ": /nodes/displacement holds values that are not finite");
+    restart.last.uOwned = readNodeRows(file, "displacement", first, count, disc);
+    if (restart.dynamics) {
+      // The rest of a Dynamics step's state (ImplicitDynamics::resumeFrom),
+      // its running sums as the step file holds them: to the bit, under the
+      // file's digest.
+      restart.last.vOwned = readNodeRows(file, "velocity", first, count, disc);
+      restart.last.externalWork = finiteRootNumber(file, "external_work");
+      restart.last.frictionDissipation = finiteRootNumber(file, "friction_dissipation");
+    }
   } catch (const Error& e) {
     error = e.what();
   }
@@ -1282,8 +1333,15 @@ void checkRunnable(const Teuchos::ParameterList& params, const RunOptions& optio
       TRIBOS_REQUIRE(f.law == friction[0].law && f.coefficient == friction[0].coefficient,
                      "--export-fclib: the contact pairs differ in friction; the export takes one law and coefficient");
   }
-  TRIBOS_REQUIRE(!Input::dynamics(params) || options.restartDir.empty(),
-                 "--restart continues a load history; a Dynamics run's step files hold no velocity to continue from");
+  // A contact-stabilized step depends on u_n, v_n and the loads, which a step
+  // file gives; a Newmark step on M a_n and the contact forces of t_n too.
+  TRIBOS_REQUIRE(!Input::dynamics(params) || options.restartDir.empty() ||
+                     Input::dynamicsSpec(params).scheme == Contact::TimeScheme::ContactStabilizedNewmark,
+                 "--restart: \"Dynamics/Scheme\" = "
+                     << Contact::timeSchemeName(Input::dynamicsSpec(params).scheme)
+                     << " continues from M a_n and the contact forces at t_n, which its step files do not hold (they "
+                        "hold u, v and the contact forces averaged over the step); a run of Contact-Stabilized Newmark "
+                        "restarts");
   TRIBOS_REQUIRE(!Input::dynamics(params) || !options.verify,
                  "--verify compares with the monolithic static solve; a Dynamics run has none");
   TRIBOS_REQUIRE(options.exportFclib.empty() || !Input::dynamics(params),
@@ -1344,7 +1402,8 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     readRestartState(*restart, *series, *outputDir, d.disc, d.constraints, *comm);
     first = restart->completed;
     series->continueAfter(std::vector<double>(times.begin(), times.begin() + first));
-    method->resumeFrom(std::move(restart->uOwned));
+    restart->last.time = times[first - 1];
+    method->resumeFrom(std::move(restart->last));
     output.history = std::move(restart->history);
     output.stepLines = std::move(restart->stepLines);
     report.stepsCompleted = first;

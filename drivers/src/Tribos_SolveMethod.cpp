@@ -110,6 +110,26 @@ class MonolithicMethod : public MethodBase {
   }
 };
 
+// Values given at the owned nodes of disc (3 per node of ownedNodes(), in
+// its order), at the nodes the problem holds results at (those of its
+// subdomains and the partners of its contact nodes), asked of their owners.
+// Collective.
+Fem::NodalVector nodalOnProblem(const Feti::FetiProblem& problem, const Mesh::Discretization& disc,
+                                const std::vector<double>& owned, const Comm& comm) {
+  std::map<int, const double*> byNode;  // part node -> its 3 values
+  for (size_t i = 0; i < disc.ownedNodes().size(); ++i) byNode[disc.ownedNodes()[i]] = &owned[3 * i];
+  const auto& layout = problem.nodalLayout();
+  const auto values = disc.askOwners(layout->nodes(), 3,
+                                     [&](int partNode, double* out) {
+                                       const double* x = byNode.at(partNode);
+                                       std::copy(x, x + 3, out);
+                                     },
+                                     comm);
+  Fem::NodalVector x(layout);
+  x.values() = values;  // askOwners answers in the order asked: layout->nodes()
+  return x;
+}
+
 // The friction of each contact pair (none without contact).
 Contact::PairFriction runFriction(const ParameterList& params) {
   return params.sublist("Contact").get<bool>("Enabled") ? Input::pairFriction(params) : Contact::PairFriction{{}};
@@ -187,7 +207,7 @@ class FetiMethod : public MethodBase {
       problem_ = rcp(new Feti::FetiProblem(d.disc, d.materials, loads, d.constraints, solverParams.sublist("FETI"), comm_));
       if (Input::loadStepTimes(params_).size() > 1)
         steps_ = std::make_unique<Contact::FetiLoadSteps>(problem_, friction, solverParams, out);
-      if (resumeFrom_) steps_->resumeFrom(nodalOnProblem(d.disc, *resumeFrom_));
+      if (resumeFrom_) steps_->resumeFrom(nodalOnProblem(*problem_, d.disc, *resumeFrom_, *comm_));
       resumeFrom_.reset();
       sol.setupSeconds = seconds(t0);
     }
@@ -214,34 +234,16 @@ class FetiMethod : public MethodBase {
     return sol;
   }
 
-  void resumeFrom(std::vector<double> uOwned) override {
+  void resumeFrom(ResumedStep step) override {
     TRIBOS_REQUIRE(problem_.is_null(), "FetiMethod::resumeFrom: called after the first step");
     TRIBOS_REQUIRE(Input::loadStepTimes(params_).size() > 1, "FetiMethod::resumeFrom: the run has one load step");
-    resumeFrom_ = std::move(uOwned);
+    resumeFrom_ = std::move(step.uOwned);
   }
 
  private:
   RCP<Feti::FetiProblem> problem_;
   std::unique_ptr<Contact::FetiLoadSteps> steps_;  // a run of several load steps
   std::optional<std::vector<double>> resumeFrom_;  // until the first step: the displacement a restart continues from
-
-  // The displacement given at the owned nodes of disc, at the nodes the
-  // problem holds results at (those of its subdomains and the partners of
-  // its contact nodes), asked of their owners. Collective.
-  Fem::NodalVector nodalOnProblem(const Mesh::Discretization& disc, const std::vector<double>& uOwned) const {
-    std::map<int, const double*> owned;  // part node -> its 3 values
-    for (size_t i = 0; i < disc.ownedNodes().size(); ++i) owned[disc.ownedNodes()[i]] = &uOwned[3 * i];
-    const auto& layout = problem_->nodalLayout();
-    const auto values = disc.askOwners(layout->nodes(), 3,
-                                       [&](int partNode, double* out) {
-                                         const double* u = owned.at(partNode);
-                                         std::copy(u, u + 3, out);
-                                       },
-                                       *comm_);
-    Fem::NodalVector u(layout);
-    u.values() = values;  // askOwners answers in the order asked: layout->nodes()
-    return u;
-  }
 
   // FCLIB global problem: assembled K, contact rows in the local frame,
   // gaps, F (docs/fclib.md); the whole mesh is on rank 0.
@@ -325,9 +327,18 @@ class FetiDynamicsMethod : public MethodBase {
     if (!run_) {
       Progress::stage("FETI setup: assembly of K + 4 M / dt^2, gluing");
       const auto t0 = std::chrono::steady_clock::now();
+      const Fem::LoadHistory history = Input::loadHistory(params_);
       run_ = std::make_unique<Contact::ImplicitDynamics>(
-          d.disc, d.materials, Input::densities(params_, d.disc.part), Fem::loadCaseAt(Input::loadHistory(params_), 0.0),
-          d.constraints, friction, Input::dynamicsSpec(params_), solverParams.sublist("FETI"), solverParams, comm_);
+          d.disc, d.materials, Input::densities(params_, d.disc.part), Fem::loadCaseAt(history, 0.0), d.constraints,
+          friction, Input::dynamicsSpec(params_), solverParams.sublist("FETI"), solverParams, comm_);
+      if (resumeFrom_) {
+        const auto& problem = run_->problem();
+        const ResumedStep& at = *resumeFrom_;
+        run_->resumeFrom({at.time, nodalOnProblem(problem, d.disc, at.uOwned, *comm_),
+                          nodalOnProblem(problem, d.disc, at.vOwned, *comm_), at.externalWork, at.frictionDissipation},
+                         Fem::loadCaseAt(history, at.time));
+        resumeFrom_.reset();
+      }
       sol.setupSeconds = seconds(t0);
     }
     Progress::stage("time step");
@@ -349,8 +360,18 @@ class FetiDynamicsMethod : public MethodBase {
     return sol;
   }
 
+  // The state of the step continued from: its displacement and velocity,
+  // time and running sums (ImplicitDynamics::resumeFrom; the
+  // contact-stabilized scheme, as checkRunnable requires of a restart).
+  void resumeFrom(ResumedStep step) override {
+    TRIBOS_REQUIRE(!run_, "FetiDynamicsMethod::resumeFrom: called after the first step");
+    TRIBOS_REQUIRE(step.vOwned.size() == step.uOwned.size(), "FetiDynamicsMethod::resumeFrom: no velocity of the step");
+    resumeFrom_ = std::move(step);
+  }
+
  private:
   std::unique_ptr<Contact::ImplicitDynamics> run_;
+  std::optional<ResumedStep> resumeFrom_;  // until the first step: the step a restart continues from
 };
 
 }  // namespace

@@ -60,6 +60,19 @@ struct StepSolution {
   IO::IterationHistory history;  // BASE.history.csv
 };
 
+// The last step an earlier run completed, read back from its step file by
+// a restarted run (tribos --restart), for the method to continue from.
+// Values per node are 3 per node of disc.ownedNodes(), in its order (as the
+// step file has them).
+struct ResumedStep {
+  double time = 0;             // the step's time
+  std::vector<double> uOwned;  // its displacement
+  // A Dynamics step's velocity (empty for a load history), the work of the
+  // loads and the energy friction dissipated since t = 0.
+  std::vector<double> vOwned;
+  double externalWork = 0, frictionDissipation = 0;
+};
+
 // One method object serves every load step of a run, keeping what the
 // steps share (FETI: K, its factors, F, the coarse space and the previous
 // step's solution, the origin of the next step's slip).
@@ -71,11 +84,10 @@ class SolveMethod {
   // sublist). Collective.
   virtual StepSolution solve(const Discretized& d, const Fem::LoadCase& loads, RunReport& report) = 0;
   // A restarted history (tribos --restart): the next solve continues from a
-  // step an earlier run completed, whose displacement uOwned holds 3 values
-  // per node of d.disc.ownedNodes() in its order (as its step file has them).
-  // Call it before the first solve. A method without memory between steps
-  // (the monolithic solve of a linear problem) has nothing to take from it.
-  virtual void resumeFrom(std::vector<double> uOwned) { (void)uOwned; }
+  // step an earlier run completed. Call it before the first solve. A method
+  // without memory between steps (the monolithic solve of a linear problem)
+  // has nothing to take from it.
+  virtual void resumeFrom(ResumedStep step) { (void)step; }
 };
 
 // Makers take the validated parameters, the run's options and communicator.

@@ -2,6 +2,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "Tribos_Error.hpp"
@@ -109,6 +110,47 @@ ImplicitDynamics::Subdomains ImplicitDynamics::subdomains(const Vector& primal) 
     at += n;
   }
   return x;
+}
+
+ImplicitDynamics::Subdomains ImplicitDynamics::onSubdomains(const Fem::NodalVector& x) const {
+  Subdomains out;
+  for (int k = 0; k < problem_->numLocalSubdomains(); ++k) {
+    const auto& nodes = problem_->subdomain(k).nodes;
+    out.emplace_back(3 * nodes.size());
+    for (size_t a = 0; a < nodes.size(); ++a) std::copy(x.at(nodes[a]), x.at(nodes[a]) + 3, &out.back()[3 * a]);
+  }
+  return out;
+}
+
+// Exact for the contact-stabilized scheme: its step reads the state only
+// through u_n (the free flight, K u_n, the work, the origin of the step's
+// slip), v_n (the free flight and the velocity update) and f_n, and keeps
+// no contact force of t_n (unlike Newmark's M a_n); the running sums only
+// add to what they were. What the restarted step does not repeat bit for
+// bit: the subdomain copies of a node, which agreed to the gluing tolerance,
+// are made equal, and both solves (the projection and the step) start from
+// zero multipliers instead of the last ones. Both change the iterations,
+// not the result beyond the solvers' tolerance.
+void ImplicitDynamics::resumeFrom(const DynamicState& state, const Fem::LoadCase& loadsAtTime) {
+  TRIBOS_REQUIRE(spec_.scheme == TimeScheme::ContactStabilizedNewmark,
+                 "ImplicitDynamics::resumeFrom: the " << timeSchemeName(spec_.scheme)
+                                                      << " scheme continues from M a_n and the contact forces of t_n, "
+                                                         "which a displacement and a velocity do not give");
+  TRIBOS_REQUIRE(steps_->completedSteps() == 0, "ImplicitDynamics::resumeFrom: called after the first step");
+  TRIBOS_REQUIRE(std::isfinite(state.time) && state.time >= 0,
+                 "ImplicitDynamics::resumeFrom: the time must be finite and not negative, got " << state.time);
+  u_ = onSubdomains(state.u);
+  v_ = onSubdomains(state.v);
+  // f_n as the step to t_n assembled it (the next step's setLoads replaces
+  // the problem's loads with those of t_{n+1}).
+  problem_->setLoads(loadsAtTime);
+  for (int k = 0; k < problem_->numLocalSubdomains(); ++k) load_[k] = problem_->subdomain(k).f;
+  // Friction acts on the slip since u_n. (The projection is frictionless:
+  // its history is its last multipliers alone, a start.)
+  steps_->resumeFrom(state.u);
+  time_ = state.time;
+  externalWork_ = state.externalWork;
+  frictionDissipation_ = state.frictionDissipation;
 }
 
 FetiSolveResult ImplicitDynamics::solveStep(Feti::FetiProblem& problem, FetiLoadSteps& steps, const Subdomains& rhs,

@@ -60,6 +60,16 @@ struct DynamicStep {
   FetiSolveResult solve;
 };
 
+// The state of a step an earlier run completed, for a run that continues
+// from it (ImplicitDynamics::resumeFrom): the time t_n, the nodal
+// displacement and velocity on problem().nodalLayout(), and the running
+// sums since t = 0.
+struct DynamicState {
+  double time = 0;
+  Fem::NodalVector u, v;
+  double externalWork = 0, frictionDissipation = 0;
+};
+
 // The bodies of a decomposed mesh from the reference configuration (u = 0)
 // with a uniform initial velocity, under loads given at t = 0 and, step by
 // step, at the step's end (constant loads: the same at every time), in
@@ -83,6 +93,14 @@ class ImplicitDynamics {
   // other values: a load history's curves at t + dt).
   DynamicStep step(const Fem::LoadCase& atNext);
 
+  // Continues from a state an earlier run reached (a restart), before the
+  // first step; loadsAtTime: the loads at state.time, f_n of the next step.
+  // Every subdomain copy of a node takes the node's value (the copies of a
+  // solved step agree to the gluing tolerance). The contact-stabilized
+  // scheme only: Newmark's step also needs M a_n and the contact forces of
+  // t_n, which u and v do not give. Collective.
+  void resumeFrom(const DynamicState& state, const Fem::LoadCase& loadsAtTime);
+
   double time() const { return time_; }
   // The step's problem, K + M / (beta dt^2).
   const Feti::FetiProblem& problem() const { return *problem_; }
@@ -100,6 +118,7 @@ class ImplicitDynamics {
   Subdomains massTimes(const Subdomains& x) const;
   Subdomains stiffnessTimes(const Subdomains& x) const;
   RCP<Vector> primal(const Subdomains& x) const;
+  Subdomains onSubdomains(const Fem::NodalVector& x) const;
   Subdomains subdomains(const Vector& primal) const;
   // The free flight u + dt v, projected onto the admissible set in the mass
   // norm (the contact-stabilized scheme's predictor), and its solve.

@@ -59,5 +59,22 @@ DatasetRows readDatasetRows(const std::string& path, const std::string& dataset,
   return out;
 }
 
+double readRootNumber(const std::string& path, const std::string& name) {
+  QuietHdf5Errors quiet;
+  const std::string what = "the result file " + path + ", root attribute " + name;
+  const Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  TRIBOS_REQUIRE(file.valid(), "cannot open the result file " << path << " as HDF5");
+  TRIBOS_REQUIRE(H5Aexists(file.id(), name.c_str()) > 0, what << ": no such attribute");
+  const Handle attribute(H5Aopen(file.id(), name.c_str(), H5P_DEFAULT), H5Aclose);
+  TRIBOS_REQUIRE(attribute.valid(), what << ": cannot open the attribute");
+  const Handle space(H5Aget_space(attribute.id()), H5Sclose);
+  TRIBOS_REQUIRE(space.valid() && H5Sget_simple_extent_npoints(space.id()) == 1, what << ": not one number");
+  const Handle type(H5Aget_type(attribute.id()), H5Tclose);
+  TRIBOS_REQUIRE(type.valid() && H5Tget_class(type.id()) == H5T_FLOAT, what << ": not a number");
+  double value = 0;
+  TRIBOS_REQUIRE(H5Aread(attribute.id(), H5T_NATIVE_DOUBLE, &value) >= 0, what << ": cannot read it");
+  return value;
+}
+
 }  // namespace IO
 }  // namespace Tribos

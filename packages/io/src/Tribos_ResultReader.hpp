@@ -25,5 +25,12 @@ struct DatasetRows {
 // or the rows lie beyond it.
 DatasetRows readDatasetRows(const std::string& path, const std::string& dataset, long long first, long long count);
 
+// The number attribute `name` of the file's root group (ResultAttributes::
+// numbers, e.g. a Dynamics step's running sums that a restart continues
+// from). Not collective. Throws Tribos::Error naming the file and the
+// attribute when the file cannot be read or the attribute is missing or not
+// one number.
+double readRootNumber(const std::string& path, const std::string& name);
+
 }  // namespace IO
 }  // namespace Tribos
