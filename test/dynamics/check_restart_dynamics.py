@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """A restarted Dynamics run equals the uninterrupted one:
 
-  check_restart_dynamics.py --work DIR --input BAR.xml --ranks N [--refusals] -- MPIEXEC NPFLAG EXTRA... TRIBOS
+  check_restart_dynamics.py --work DIR --input BAR.xml --ranks N [--killed] [--refusals] [--set S ...]
+                            -- MPIEXEC NPFLAG EXTRA... TRIBOS
 
 (MPIEXEC NPFLAG: the launcher and its rank-count flag; the rank count is
 inserted after NPFLAG.) Signorini's bar of input/bar_impact.xml (120 steps
@@ -11,8 +12,9 @@ the restart point, step 60, lies in the middle of the contact, the bar
 compressed and its foot sliding (it sticks before it leaves): the state
 carries the velocity, the friction's slip origin, the work of the loads
 and the dissipation. The
-solves run to a relative tolerance of 1e-12 (Algorithm 2's for the step's
-Coulomb problem, SMALBE's for the frictionless projection) on N ranks:
+solves run to a relative tolerance of 1e-11 (Algorithm 2's for the step's
+Coulomb problem, SMALBE's for the frictionless projection) on N ranks
+(--set: more parameters of every run):
 
   - the run goes through its 120 steps into DIR/full;
   - it runs again to half its End Time (60 steps) into DIR/half, and is
@@ -22,25 +24,33 @@ Coulomb problem, SMALBE's for the frictionless projection) on N ranks:
     contact forces, each contact node's dissipated energy, and the steps
     table's energies (kinetic, strain, work of the loads, friction
     dissipation) equal to the uninterrupted run's to 1e-8 relative (each
-    against its largest magnitude in the uninterrupted run). The two runs differ in where the
-    solves of step 61 start (zero multipliers against the last ones) and in
-    the subdomain copies of a node (made equal); both results lie within
-    the solvers' tolerance of the same discrete solution;
-  - a copy of the full run made to look like a run killed after step 60
-    while it committed step 61 (test/check_restart.py) is continued to the
-    same result;
-  - the comparison can fail: the same restart from a step 60 whose velocity
-    reads 0 in its file (its digest recorded anew, as if the run had written
-    it so) ends far from the uninterrupted run;
+    against its largest magnitude in the uninterrupted run). The two runs
+    differ in where the solves of step 61 start (zero multipliers against
+    the last ones) and in the subdomain copies of a node (made equal, where
+    they agreed to the gluing the solves reached); both results lie within
+    the solvers' tolerance of the same discrete solution, the velocity, a
+    difference quotient 2 (u_{n+1} - u_pred) / dt, about 20 times the
+    tolerance from it;
+  - with --killed, a copy of the full run made to look like a run killed
+    after step 60 while it committed step 61 (test/check_restart.py) is
+    continued to the same result, and the comparison can fail: the same
+    restart from a step 60 whose velocity reads 0 in its file (its digest
+    recorded anew, as if the run had written it so) ends far from the
+    uninterrupted run;
   - with --refusals, each exit 1 naming the file or the parameter, the
     directory left as it was: a step file whose velocity was changed (by its
-    digest), a step file that lost its velocity (digest recorded anew), the
-    step file continued from missing, another Time Step, another density,
-    the Newmark scheme (its step needs M a_n and the contact forces of t_n),
-    a complete run, and an End Time whose step numbers need more digits.
+    digest), a step file that lost its velocity (its digest recorded anew),
+    another Time Step, and an End Time whose step numbers need more digits.
+    (The Newmark scheme is refused before any work, test/bad_inputs; the
+    other refusals are those of a load history, test/check_restart.py.)
 
-Measured on 2 ranks: 3e-13 relative in the displacement, 2e-12 in the
-velocity.
+Measured on 1 and 2 ranks, the largest over steps 61-120: 1.1e-12 relative
+in the displacement, 2.2e-10 in the velocity, 1.4e-10 and 1.8e-10 in the
+normal and friction forces; the energies of the steps table agree to all
+their 10 digits. The difference follows the tolerance: 2.5e-9, 2.2e-10 and
+5.2e-11 in the velocity at 1e-10, 1e-11 and 1e-12; from one subdomain (no
+copies) 1.8e-10 at 1e-10.
+Each run is about 1.3 s (1 rank) and 1.8 s (2 ranks), most of it mpiexec's.
 """
 import argparse
 import json
@@ -62,8 +72,8 @@ SLIDING = ["Contact/Friction Law=Coulomb",
            "Contact/Friction Coefficient=0.3",
            "Initial Conditions/Velocity={0.5, 0, -1}",
            "Boundary Conditions/Volume Force={0, 0, -77008.5}",
-           "Solver/Algorithm 2/Relative Tolerance=1e-12",
-           "Solver/Algorithm 1/SMALBE/Relative Tolerance=1e-12"]
+           "Solver/Algorithm 2/Relative Tolerance=1e-11",
+           "Solver/Algorithm 1/SMALBE/Relative Tolerance=1e-11"]
 check = cr.check
 
 
@@ -132,14 +142,6 @@ def refusals(args, np_, full, work, steps, after, dt):
                re.escape(os.path.join(cut, cr.BASE + ".parameters.xml")) +
                r"\) differ: \"Dynamics/Time Step\" is 5e-06 here and %s there" % re.escape(repr(dt)),
                sets=sets + ["Dynamics/Time Step=5e-6"])
-    cr.refusal(args, np_, "another density", cut,
-               r"differ: \"Material/Density\" is 7800 here and 7850 there", sets=sets + ["Material/Density=7800"])
-    cr.refusal(args, np_, "the Newmark scheme", cut,
-               r"--restart: \"Dynamics/Scheme\" = Newmark continues from M a_n and the contact forces at t_n, which "
-               r"its step files do not hold", sets=sets + ["Dynamics/Scheme=Newmark"])
-    cr.refusal(args, np_, "a complete run", full, re.escape(os.path.join(full, cr.BASE + ".json")) +
-               r": it lists all %d steps: the run is complete, nothing is left to do \(a later Dynamics/End Time "
-               r"continues it\)" % steps, sets=sets)
     cr.refusal(args, np_, "an End Time of 10000 steps", cut,
                r"the run there names its %d steps' files solution\.step0001\.h5, \.\.\., this run of 10000 steps "
                r"solution\.step00001\.h5" % steps, sets=sets + ["Dynamics/End Time=%r" % (10000 * dt)])
@@ -162,8 +164,31 @@ def refusals(args, np_, full, work, steps, after, dt):
         cr.record_digest(d, after)  # a record that vouches for it: the file still lacks the state
     variant("velocity_lost", velocity_lost, re.escape(cr.step_file(os.path.join(work, "velocity_lost"), after)) +
             r", dataset /nodes/velocity: no such dataset")
-    variant("step_file_missing", lambda d: os.remove(cr.step_file(d, after)),
-            re.escape(cr.step_file(os.path.join(work, "step_file_missing"), after)) + " is missing")
+
+
+def killed_runs(args, np_, full, work, steps, after):
+    """Killed while it committed step after + 1, restarted with the same
+    input; and from a velocity of 0."""
+    killed = os.path.join(work, "killed")
+    cr.killed_copy(full, killed, after, steps)
+    kept = [cr.digest(cr.step_file(killed, k)) for k in range(1, after + 1)]
+    p = cr.tribos(args, np_, ["--restart", killed], SLIDING)
+    if check(p.returncode == 0, "np %d: the restart after step %d of a killed run (exit %d)" % (np_, after, p.returncode)):
+        check_continued("np %d, killed then restarted" % np_, killed, full, steps, after, kept)
+    else:
+        print(p.stderr[-3000:])
+
+    # The comparison sees the velocity a restart carries.
+    forgetful = os.path.join(work, "forgetful")
+    cr.killed_copy(full, forgetful, after, steps)
+    with h5py.File(cr.step_file(forgetful, after), "r+") as f:
+        f["nodes/velocity"][...] = 0.0
+    cr.record_digest(forgetful, after)
+    p = cr.tribos(args, np_, ["--restart", forgetful], SLIDING)
+    if check(p.returncode == 0, "np %d: a restart from a step %d at rest (exit %d)" % (np_, after, p.returncode)):
+        worst = differences(forgetful, full, steps, after)
+        check(worst["v"] > 1e3 * TOLERANCE, "np %d: from a velocity of 0 the run differs by %.1e in the velocity "
+              "(> %g): the comparison sees the state a restart carries" % (np_, worst["v"], 1e3 * TOLERANCE))
 
 
 def main():
@@ -171,9 +196,12 @@ def main():
     ap.add_argument("--work", required=True)
     ap.add_argument("--input", required=True)
     ap.add_argument("--ranks", type=int, required=True)
+    ap.add_argument("--killed", action="store_true")
     ap.add_argument("--refusals", action="store_true")
+    ap.add_argument("--set", action="append", default=[], dest="sets")
     ap.add_argument("launcher", nargs="+")
     args = ap.parse_args()
+    SLIDING.extend(args.sets)
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     np_, work = args.ranks, args.work
@@ -202,28 +230,8 @@ def main():
     else:
         print(p.stderr[-3000:])
 
-    # Killed while it committed step after + 1, restarted with the same input.
-    killed = os.path.join(work, "killed")
-    cr.killed_copy(full, killed, after, steps)
-    kept = [cr.digest(cr.step_file(killed, k)) for k in range(1, after + 1)]
-    p = cr.tribos(args, np_, ["--restart", killed], SLIDING)
-    if check(p.returncode == 0, "np %d: the restart after step %d of a killed run (exit %d)" % (np_, after, p.returncode)):
-        check_continued("np %d, killed then restarted" % np_, killed, full, steps, after, kept)
-    else:
-        print(p.stderr[-3000:])
-
-    # The comparison sees the velocity a restart carries.
-    forgetful = os.path.join(work, "forgetful")
-    cr.killed_copy(full, forgetful, after, steps)
-    with h5py.File(cr.step_file(forgetful, after), "r+") as f:
-        f["nodes/velocity"][...] = 0.0
-    cr.record_digest(forgetful, after)
-    p = cr.tribos(args, np_, ["--restart", forgetful], SLIDING)
-    if check(p.returncode == 0, "np %d: a restart from a step %d at rest (exit %d)" % (np_, after, p.returncode)):
-        worst = differences(forgetful, full, steps, after)
-        check(worst["v"] > 1e3 * TOLERANCE, "np %d: from a velocity of 0 the run differs by %.1e in the velocity "
-              "(> %g): the comparison sees the state a restart carries" % (np_, worst["v"], 1e3 * TOLERANCE))
-
+    if args.killed:
+        killed_runs(args, np_, full, work, steps, after)
     if args.refusals:
         refusals(args, np_, full, work, steps, after, dt)
     print("%.1f s" % (time.time() - started))
