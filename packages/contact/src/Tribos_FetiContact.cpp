@@ -86,6 +86,27 @@ class CoarseProjector : public Operator {
   mutable Vector Px_;
 };
 
+// A vector operation y = op(x) on the dual rows as a Tpetra operator.
+class DualRowsOperator : public Operator {
+ public:
+  using Apply = std::function<void(const Vector&, Vector&)>;
+  DualRowsOperator(RCP<const Map> map, Apply op) : map_(map), op_(std::move(op)), y_(map) {}
+  RCP<const Map> getDomainMap() const override { return map_; }
+  RCP<const Map> getRangeMap() const override { return map_; }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
+             SC beta = 0) const override {
+    for (size_t j = 0; j < X.getNumVectors(); ++j) {
+      op_(*X.getVector(j), y_);
+      Y.getVectorNonConst(j)->update(alpha, y_, beta);
+    }
+  }
+
+ private:
+  RCP<const Map> map_;
+  Apply op_;
+  mutable Vector y_;
+};
+
 // h without the initial gaps d of the contact rows (h = B K+ f - c): the
 // size of the load-driven problem, whether or not contact is active.
 RCP<const Vector> loadPart(const Feti::FetiDual& dual) {
@@ -98,6 +119,64 @@ RCP<const Vector> loadPart(const Feti::FetiDual& dual) {
 }
 
 }  // namespace
+
+// lambda = lambda_U + P mu with the F-conjugate projector P of positive
+// definite subdomains (Feti::ConjugateProjector): A <- FP, b <- P'b (and
+// bReference), a preconditioner M <- P M P'. The contact rows of lambda and
+// mu agree, so bounds, cones and their offsets stay. Forward on the
+// untransformed dual (A = F). back: mu -> lambda_U + P mu.
+class ConjugateProjectionTransform : public Friction::DualTransform {
+ public:
+  explicit ConjugateProjectionTransform(RCP<const Feti::ConjugateProjector> P) : P_(P) {}
+  void forward(Friction::ContactDual& dual) override {
+    const auto map = dual.map();
+    lambdaU_ = rcp(new Vector(map));
+    P_->particular(*dual.b, *lambdaU_);
+    dual.b = projected(*dual.b);
+    if (!dual.bReference.is_null()) dual.bReference = projected(*dual.bReference);
+    const auto P = P_;
+    dual.A = rcp(new DualRowsOperator(map, [P](const Vector& x, Vector& y) { P->applyFP(x, y); }));
+    dual.normAOf = Teuchos::null;  // ||FP|| is what the projector changes
+    dual.denseA = nullptr;
+    if (dual.preconditioner) {
+      auto named = dual.preconditioner;
+      dual.preconditioner = [named, P, map](const std::string& name) -> RCP<const Operator> {
+        RCP<const Operator> M = named(name);
+        if (M.is_null()) return M;
+        return rcp(new DualRowsOperator(map, [M, P](const Vector& x, Vector& y) {
+          Vector Ptx(x.getMap()), MPtx(x.getMap());
+          P->applyPt(x, Ptx);
+          M->apply(Ptx, MPtx);
+          P->applyP(MPtx, y);
+        }));
+      };
+    }
+  }
+  void back(Vector& x) const override {
+    Vector Px(x.getMap());
+    P_->applyP(x, Px);
+    x.update(1.0, *lambdaU_, 1.0, Px, 0.0);
+    if (!shiftU_.is_null()) x.update(1.0, *shiftU_, 1.0);
+  }
+  // The original dual's h moved by `shift` (the rounding defect of a
+  // single-precision F, FetiContactProblem::solve): b moves by P' shift
+  // (the caller's), lambda_U by U (U'FU)^+ U' shift. Replaces an earlier shift.
+  void shiftRightHandSide(const Vector& shift) {
+    shiftU_ = rcp(new Vector(shift.getMap()));
+    P_->particular(shift, *shiftU_);
+  }
+  // P'x, the transform of a right-hand side.
+  RCP<Vector> projected(const Vector& x) const {
+    auto y = rcp(new Vector(x.getMap()));
+    P_->applyPt(x, *y);
+    return y;
+  }
+
+ private:
+  RCP<const Feti::ConjugateProjector> P_;
+  RCP<Vector> lambdaU_, shiftU_;
+};
+
 
 void checkFriction(const FrictionSpec& friction) {
   TRIBOS_REQUIRE(friction.law == FrictionLaw::Frictionless || friction.law == FrictionLaw::Tresca ||
@@ -188,6 +267,10 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
   if (!cd_.G.is_null())
     transforms_.add(rcp(new Friction::HomogenizationTransform(Teuchos::rcpFromRef(dual->lambdaTilde()))))
         .add(rcp(new Friction::ProjectionTransform(rcp(new CoarseProjector(dual)), true)));
+  if (!dual->conjugateProjector().is_null()) {
+    conjugate_ = rcp(new ConjugateProjectionTransform(dual->conjugateProjector()));
+    transforms_.add(conjugate_);
+  }
   transforms_.add(scaling_).forward(cd_);
   if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact();
 }
@@ -310,6 +393,7 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
   Friction::ContactDual cd = cd_;
   RCP<Vector> applied = rcp(new Vector(cd_.b->getMap()));  // s P defect, in cd.b
   const auto correctAt = [&](const Vector& lambda) {
+    if (!conjugate_.is_null()) conjugate_->shiftRightHandSide(*dual_->roundingDefect(lambda));
     auto shift = roundingShift(lambda);
     auto b = rcp(new Vector(*cd_.b, Teuchos::Copy));
     b->update(1.0, *shift, 1.0);
@@ -341,7 +425,8 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
 RCP<Vector> FetiContactProblem::roundingShift(const Vector& lambda) const {
   auto defect = dual_->roundingDefect(lambda);
   auto shift = rcp(new Vector(defect->getMap()));
-  if (cd_.G.is_null()) shift->assign(*defect);
+  if (!conjugate_.is_null()) dual_->conjugateProjector()->applyPt(*defect, *shift);
+  else if (cd_.G.is_null()) shift->assign(*defect);
   else dual_->coarse().project(*defect, *shift);
   shift->scale(scale());
   return shift;

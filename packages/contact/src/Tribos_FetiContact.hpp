@@ -88,6 +88,8 @@ struct FetiContactSolution {
   Friction::WarmStart warmStart;  // the outer algorithm's final state, for the next load step
 };
 
+class ConjugateProjectionTransform;  // Tribos_FetiContact.cpp
+
 class FetiContactProblem {
  public:
   // normPFP: ||PFP|| when known (the same problem at another load, norm());
@@ -151,6 +153,8 @@ class FetiContactProblem {
   // of transforms_.
   RCP<Friction::ScalingTransform> scaling_;
   Friction::DualTransformChain transforms_;
+  // lambda = lambda_U + P mu for positive definite subdomains (null: none).
+  RCP<ConjugateProjectionTransform> conjugate_;
   RCP<const Feti::FetiDual> dual_;
   Friction::ContactDual cd_;
 };

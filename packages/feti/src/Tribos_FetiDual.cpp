@@ -11,11 +11,13 @@ namespace Feti {
 FetiDual::FetiDual(RCP<const FetiProblem> problem) : problem_(problem) {
   F_ = rcp(new DualOperator(problem));
   coarse_ = rcp(new CoarseSpace(problem));
+  if (problem->conjugateProjectorWanted() && ConjugateProjector::applies(*problem))
+    conjugate_ = rcp(new ConjugateProjector(problem, F_));
   loadTerms();
 }
 
 FetiDual::FetiDual(RCP<const FetiProblem> problem, const FetiDual& same)
-    : problem_(problem), F_(same.F_), coarse_(same.coarse_) {
+    : problem_(problem), F_(same.F_), coarse_(same.coarse_), conjugate_(same.conjugate_) {
   TRIBOS_REQUIRE(problem.get() == same.problem_.get(), "FetiDual: the operators of another problem");
   loadTerms();
 }

@@ -4,6 +4,7 @@
 //   u = K+(f - B'lambda) + R alpha.
 #pragma once
 
+#include "Tribos_ConjugateProjector.hpp"
 #include "Tribos_FetiOperators.hpp"
 #include "Tribos_FetiProblem.hpp"
 
@@ -29,6 +30,10 @@ class FetiDual {
   RCP<DualOperator> F() const { return F_; }
   const CoarseSpace& coarse() const { return *coarse_; }
   RCP<const CoarseSpace> coarsePtr() const { return coarse_; }
+  // The projector conjugate to F that takes the rigid motions of positive
+  // definite subdomains out (ConjugateProjector); null where it does not
+  // apply or "Conjugate Projector" is false.
+  RCP<const ConjugateProjector> conjugateProjector() const { return conjugate_; }
   const Vector& h() const { return *h_; }
   const std::vector<double>& e() const { return e_; }
   const Vector& lambdaTilde() const { return *lambdaTilde_; }
@@ -42,6 +47,7 @@ class FetiDual {
   RCP<const FetiProblem> problem_;
   RCP<DualOperator> F_;
   RCP<CoarseSpace> coarse_;
+  RCP<const ConjugateProjector> conjugate_;
   RCP<Vector> h_, lambdaTilde_;
   std::vector<double> e_;
   // h, e and lambda~ of the problem's current loads.

@@ -410,6 +410,12 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
             "separator would exceed 3000 rows) or Auto (Split on several ranks from 3000 coarse rows on, i.e. "
             "500 floating subdomains; docs/feti.md)",
             rcp(new Teuchos::StringValidator(Teuchos::tuple<std::string>("Auto", "Replicated", "Split"))));
+    pl->set("Conjugate Projector", true,
+            "positive definite subdomains with contact (the K + M / (beta dt^2) of an implicit time step): take "
+            "the subdomains' rigid motions out of the dual problem by the projector conjugate with respect to F "
+            "onto their jumps on the gluing and Dirichlet rows, whose eigenvalues of order 1 / (c m) otherwise "
+            "stall the contact solvers when the step is long against h / c_wave (docs/dynamics.md); ignored "
+            "where the subdomains float (TFETI's coarse space holds them)");
     // The dual solver of a problem without contact reads its own sublist, so
     // that the whole FETI list of an input is handed to the problem as it is.
     pl->sublist("Projected CG", false, "the dual solver without contact (Feti::ProjectedCG)")
@@ -588,6 +594,7 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
   hasContact_ = contact;
   localSolverName_ = p.get<std::string>("Local Solver");
   coarseProblem_ = p.get<std::string>("Coarse Problem");
+  conjugateProjector_ = p.get<bool>("Conjugate Projector");
   dirichlet_ = std::move(fc.dirichlet);
   const Numbering numbering = subdomainNumbering(systems_, *comm_);
   const int S = static_cast<int>(numbering.owner.size());

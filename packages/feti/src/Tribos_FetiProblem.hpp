@@ -147,6 +147,9 @@ class FetiProblem {
   // Whether the equality rows (gluing, Dirichlet) are orthonormal (Gluing =
   // Orthonormal): then BB' is the identity on them.
   bool orthonormalEqualityRows() const { return orthonormalEquality_; }
+  // "Conjugate Projector": whether a dual of positive definite subdomains
+  // takes their rigid motions out by ConjugateProjector.
+  bool conjugateProjectorWanted() const { return conjugateProjector_; }
   // z = S p: per subdomain the Schur complement on the dofs B touches,
   // S = K_bb - K_bi K_ii^-1 K_ib (zero on interior dofs), for the Dirichlet
   // preconditioner. The interior blocks are factored on first use.
@@ -234,6 +237,7 @@ class FetiProblem {
   std::vector<std::pair<LO, long long>> dirichletRows_;
   int numNodes_ = 0;
   bool hasContact_ = false;
+  bool conjugateProjector_ = true;
   RCP<const Comm> comm_;
   std::string localSolverName_;
   std::string coarseProblem_ = "Auto";
