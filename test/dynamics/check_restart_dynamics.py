@@ -1,56 +1,59 @@
 #!/usr/bin/python3
 """A restarted Dynamics run equals the uninterrupted one:
 
-  check_restart_dynamics.py --work DIR --input BAR.xml --ranks N [--killed] [--refusals] [--set S ...]
-                            -- MPIEXEC NPFLAG EXTRA... TRIBOS
+  check_restart_dynamics.py --work DIR --input BAR.xml --ranks N [--killed] [--refuse-inputs]
+                            [--refuse-files] [--set S ...] -- MPIEXEC NPFLAG EXTRA... TRIBOS
 
 (MPIEXEC NPFLAG: the launcher and its rank-count flag; the rank count is
-inserted after NPFLAG.) Signorini's bar of input/bar_impact.xml (120 steps
-of the contact-stabilized scheme) made to slide as it bounces: Coulomb
-friction F = 0.3, an initial velocity (0.5, 0, -1) m/s and gravity, so that
-the restart point, step 60, lies in the middle of the contact, the bar
-compressed and its foot sliding (it sticks before it leaves): the state
-carries the velocity, the friction's slip origin, the work of the loads
-and the dissipation. The
+inserted after NPFLAG.) Signorini's bar of input/bar_impact.xml on 20
+cells instead of 40, dt = h / c as there (60 steps of the
+contact-stabilized scheme; a step writes its file and flushes it, and a
+run's time is mostly that), made to slide as it bounces: Coulomb friction
+F = 0.3, an initial velocity (0.5, 0, -1) m/s and gravity, so that the
+restart point, step 30, lies in the middle of the contact, the bar
+compressed and its foot held by friction: the state carries the velocity,
+the friction's slip origin, the work of the loads and the dissipation. The
 solves run to a relative tolerance of 1e-11 (Algorithm 2's for the step's
 Coulomb problem, SMALBE's for the frictionless projection) on N ranks
 (--set: more parameters of every run):
 
-  - the run goes through its 120 steps into DIR/full;
-  - it runs again to half its End Time (60 steps) into DIR/half, and is
-    continued there with `--restart` to the full End Time: steps 1-60 stay
+  - the run goes through its 60 steps into DIR/full;
+  - it runs again to half its End Time (30 steps) into DIR/half, and is
+    continued there with `--restart` to the full End Time: steps 1-30 stay
     byte for byte as they were, the index is the uninterrupted run's, and
-    every step 61-120 has every node's displacement and velocity, the
+    every step 31-60 has every node's displacement and velocity, the
     contact forces, each contact node's dissipated energy, and the steps
     table's energies (kinetic, strain, work of the loads, friction
     dissipation) equal to the uninterrupted run's to 1e-8 relative (each
     against its largest magnitude in the uninterrupted run). The two runs
-    differ in where the solves of step 61 start (zero multipliers against
+    differ in where the solves of step 31 start (zero multipliers against
     the last ones) and in the subdomain copies of a node (made equal, where
     they agreed to the gluing the solves reached); both results lie within
     the solvers' tolerance of the same discrete solution, the velocity, a
-    difference quotient 2 (u_{n+1} - u_pred) / dt, about 20 times the
+    difference quotient 2 (u_{n+1} - u_pred) / dt, about 10 times the
     tolerance from it;
   - with --killed, a copy of the full run made to look like a run killed
-    after step 60 while it committed step 61 (test/check_restart.py) is
+    after step 30 while it committed step 31 (test/check_restart.py) is
     continued to the same result, and the comparison can fail: the same
-    restart from a step 60 whose velocity reads 0 in its file (its digest
+    restart from a step 30 whose velocity reads 0 in its file (its digest
     recorded anew, as if the run had written it so) ends far from the
     uninterrupted run;
-  - with --refusals, each exit 1 naming the file or the parameter, the
-    directory left as it was: a step file whose velocity was changed (by its
-    digest), a step file that lost its velocity (its digest recorded anew),
-    another Time Step, and an End Time whose step numbers need more digits.
-    (The Newmark scheme is refused before any work, test/bad_inputs; the
-    other refusals are those of a load history, test/check_restart.py.)
+  - refusals, each exit 1 naming the file or the parameter, the directory
+    left as it was: with --refuse-inputs, another Time Step and an End Time
+    whose step numbers need more digits; with --refuse-files, a step file
+    whose velocity was changed (by its digest) and one that lost its
+    velocity (its digest recorded anew; every rank reads its rows). (The
+    Newmark scheme is refused before any work, test/bad_inputs; the other
+    refusals are those of a load history, test/check_restart.py.)
 
-Measured on 1 and 2 ranks, the largest over steps 61-120: 1.1e-12 relative
-in the displacement, 2.2e-10 in the velocity, 1.4e-10 and 1.8e-10 in the
-normal and friction forces; the energies of the steps table agree to all
-their 10 digits. The difference follows the tolerance: 2.5e-9, 2.2e-10 and
-5.2e-11 in the velocity at 1e-10, 1e-11 and 1e-12; from one subdomain (no
-copies) 1.8e-10 at 1e-10.
-Each run is about 1.3 s (1 rank) and 1.8 s (2 ranks), most of it mpiexec's.
+Measured on 1 and 2 ranks, the largest over steps 31-60: 1.5e-12 relative
+in the displacement, 1.2e-10 in the velocity, 6.6e-12 and 8.4e-11 in the
+normal and friction forces, 7e-12 in the dissipated energy; the energies,
+the work and the dissipation of the steps table agree to all their 10
+digits. The difference follows the tolerance: 1.7e-9, 1.2e-10 and 4.3e-12
+in the velocity at 1e-10, 1e-11 and 1e-12 (with one subdomain, no copies,
+2.6e-11 at 1e-11). A run is about 1 s of work and 1.5-2.5 s of mpiexec's
+start; the test takes 5-10 s on 1 rank and 7 s on 2.
 """
 import argparse
 import json
@@ -68,7 +71,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import check_restart as cr  # noqa: E402  (the load-history restart test's helpers)
 
 TOLERANCE = 1e-8
-SLIDING = ["Contact/Friction Law=Coulomb",
+SLIDING = ["Mesh/Cells={1, 1, 20}",
+           "Contact/Friction Law=Coulomb",
            "Contact/Friction Coefficient=0.3",
            "Initial Conditions/Velocity={0.5, 0, -1}",
            "Boundary Conditions/Volume Force={0, 0, -77008.5}",
@@ -134,7 +138,7 @@ def check_continued(what, d, full, steps, after, kept):
         what, after + 1, steps, TOLERANCE, ", ".join("%s %.1e" % kv for kv in worst.items())))
 
 
-def refusals(args, np_, full, work, steps, after, dt):
+def refuse_inputs(args, np_, full, work, steps, after, dt):
     cut = os.path.join(work, "cut")
     cr.killed_copy(full, cut, after, steps)
     sets = SLIDING
@@ -145,6 +149,10 @@ def refusals(args, np_, full, work, steps, after, dt):
     cr.refusal(args, np_, "an End Time of 10000 steps", cut,
                r"the run there names its %d steps' files solution\.step0001\.h5, \.\.\., this run of 10000 steps "
                r"solution\.step00001\.h5" % steps, sets=sets + ["Dynamics/End Time=%r" % (10000 * dt)])
+
+
+def refuse_files(args, np_, full, work, steps, after):
+    sets = SLIDING
 
     def variant(name, change, regex):
         d = os.path.join(work, name)
@@ -197,7 +205,8 @@ def main():
     ap.add_argument("--input", required=True)
     ap.add_argument("--ranks", type=int, required=True)
     ap.add_argument("--killed", action="store_true")
-    ap.add_argument("--refusals", action="store_true")
+    ap.add_argument("--refuse-inputs", action="store_true")
+    ap.add_argument("--refuse-files", action="store_true")
     ap.add_argument("--set", action="append", default=[], dest="sets")
     ap.add_argument("launcher", nargs="+")
     args = ap.parse_args()
@@ -205,7 +214,8 @@ def main():
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     np_, work = args.ranks, args.work
-    dt = float(parameter(args.input, "Dynamics/Time Step"))
+    dt = 2 * float(parameter(args.input, "Dynamics/Time Step"))  # h / c on half the cells
+    SLIDING.append("Dynamics/Time Step=%r" % dt)
     steps = round(float(parameter(args.input, "Dynamics/End Time")) / dt)
     after = steps // 2
     started = time.time()
@@ -232,8 +242,10 @@ def main():
 
     if args.killed:
         killed_runs(args, np_, full, work, steps, after)
-    if args.refusals:
-        refusals(args, np_, full, work, steps, after, dt)
+    if args.refuse_inputs:
+        refuse_inputs(args, np_, full, work, steps, after, dt)
+    if args.refuse_files:
+        refuse_files(args, np_, full, work, steps, after)
     print("%.1f s" % (time.time() - started))
     if cr.failures:
         print("%d check(s) failed" % len(cr.failures))
