@@ -17,6 +17,7 @@
 #include "IoTestSupport.hpp"
 #include "Tribos_Error.hpp"
 #include "Tribos_OutputDirectory.hpp"
+#include "Tribos_ResultReader.hpp"
 #include "Tribos_ResultSet.hpp"
 
 using namespace Tribos;
@@ -237,6 +238,26 @@ TEUCHOS_UNIT_TEST(ResultWriter, RootAttributes) {
   TEST_EQUALITY(h5.text("note"), "");
   TEST_EQUALITY(h5.number("converged"), 1.0);
   TEST_EQUALITY(h5.number("solver_converged"), 0.0);
+}
+
+// IO::readRootNumber, as a restart reads a Dynamics step's running sums:
+// the number back to the bit, and a missing attribute or a text refused,
+// naming the file and the attribute.
+TEUCHOS_UNIT_TEST(ResultReader, RootNumber) {
+  const auto comm = Tpetra::getDefaultComm();
+  const Written w(comm);
+  TEST_EQUALITY(IO::readRootNumber(w.h5Path(), "converged"), 1.0);
+  const auto refusal = [&](const std::string& name) {
+    try {
+      IO::readRootNumber(w.h5Path(), name);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no refusal");
+  };
+  TEST_ASSERT(refusal("external_work").find(w.h5Path() + ", root attribute external_work: no such attribute") !=
+              std::string::npos);
+  TEST_ASSERT(refusal("problem").find("root attribute problem: not a number") != std::string::npos);
 }
 
 // Every DataItem of the index names solution.h5 and an existing dataset of
