@@ -120,11 +120,12 @@ RCP<const Vector> loadPart(const Feti::FetiDual& dual) {
 
 }  // namespace
 
-// lambda = lambda_U + P mu with the F-conjugate projector P of positive
-// definite subdomains (Feti::ConjugateProjector): A <- FP, b <- P'b (and
-// bReference), a preconditioner M <- P M P'. The contact rows of lambda and
-// mu agree, so bounds, cones and their offsets stay. Forward on the
-// untransformed dual (A = F). back: mu -> lambda_U + P mu.
+// lambda = lambda_U + P Q mu with the F-conjugate projector P of positive
+// definite subdomains and Q the orthogonal one onto the complement of its
+// directions U (Feti::ConjugateProjector): A <- QFPQ, b <- QP'b (and
+// bReference), a preconditioner M <- PQ M QP'. The contact rows of lambda
+// and mu agree, so bounds, cones and their offsets stay. Forward on the
+// untransformed dual (A = F). back: mu -> lambda_U + P Q mu.
 class ConjugateProjectionTransform : public Friction::DualTransform {
  public:
   explicit ConjugateProjectionTransform(RCP<const Feti::ConjugateProjector> P) : P_(P) {}
@@ -135,7 +136,7 @@ class ConjugateProjectionTransform : public Friction::DualTransform {
     dual.b = projected(*dual.b);
     if (!dual.bReference.is_null()) dual.bReference = projected(*dual.bReference);
     const auto P = P_;
-    dual.A = rcp(new DualRowsOperator(map, [P](const Vector& x, Vector& y) { P->applyFP(x, y); }));
+    dual.A = rcp(new DualRowsOperator(map, [P](const Vector& x, Vector& y) { P->applyHessian(x, y); }));
     dual.normAOf = Teuchos::null;  // ||FP|| is what the projector changes
     dual.denseA = nullptr;
     if (dual.preconditioner) {
@@ -145,30 +146,30 @@ class ConjugateProjectionTransform : public Friction::DualTransform {
         if (M.is_null()) return M;
         return rcp(new DualRowsOperator(map, [M, P](const Vector& x, Vector& y) {
           Vector Ptx(x.getMap()), MPtx(x.getMap());
-          P->applyPt(x, Ptx);
+          P->applyRightHandSide(x, Ptx);  // Q P'
           M->apply(Ptx, MPtx);
-          P->applyP(MPtx, y);
+          P->applyBack(MPtx, y);          // P Q
         }));
       };
     }
   }
   void back(Vector& x) const override {
     Vector Px(x.getMap());
-    P_->applyP(x, Px);
+    P_->applyBack(x, Px);
     x.update(1.0, *lambdaU_, 1.0, Px, 0.0);
     if (!shiftU_.is_null()) x.update(1.0, *shiftU_, 1.0);
   }
   // The original dual's h moved by `shift` (the rounding defect of a
   // single-precision F, FetiContactProblem::solve): b moves by P' shift
-  // (the caller's), lambda_U by U (U'FU)^+ U' shift. Replaces an earlier shift.
+  // (the caller's: Q P' shift), lambda_U by U (U'FU)^+ U' shift. Replaces an earlier shift.
   void shiftRightHandSide(const Vector& shift) {
     shiftU_ = rcp(new Vector(shift.getMap()));
     P_->particular(shift, *shiftU_);
   }
-  // P'x, the transform of a right-hand side.
+  // Q P'x, the transform of a right-hand side.
   RCP<Vector> projected(const Vector& x) const {
     auto y = rcp(new Vector(x.getMap()));
-    P_->applyPt(x, *y);
+    P_->applyRightHandSide(x, *y);
     return y;
   }
 
@@ -425,7 +426,7 @@ FetiContactSolution FetiContactProblem::solve(const std::string& outerAlgorithm,
 RCP<Vector> FetiContactProblem::roundingShift(const Vector& lambda) const {
   auto defect = dual_->roundingDefect(lambda);
   auto shift = rcp(new Vector(defect->getMap()));
-  if (!conjugate_.is_null()) dual_->conjugateProjector()->applyPt(*defect, *shift);
+  if (!conjugate_.is_null()) dual_->conjugateProjector()->applyRightHandSide(*defect, *shift);
   else if (cd_.G.is_null()) shift->assign(*defect);
   else dual_->coarse().project(*defect, *shift);
   shift->scale(scale());

@@ -139,8 +139,10 @@ ConjugateProjector::ConjugateProjector(RCP<const FetiProblem> problem, RCP<const
   TRIBOS_REQUIRE(info == 0, "ConjugateProjector: the eigen-decomposition of U'U failed (LAPACK info " << info << ")");
   const double largest = w.empty() ? 0.0 : w.back();
   for (int j = 0; j < n; ++j)
-    if (w[j] > 1e-10 * largest)
+    if (w[j] > 1e-10 * largest) {
+      inverseEigen_.push_back(1 / w[j]);
       V_.insert(V_.end(), UtU.begin() + static_cast<size_t>(j) * n, UtU.begin() + static_cast<size_t>(j + 1) * n);
+    }
   rank_ = static_cast<int>(V_.size() / std::max(n, 1));
   // V'U'FU V, r x r.
   std::vector<double> UtFU(static_cast<size_t>(n) * n, 0.0);
@@ -171,22 +173,45 @@ std::vector<double> ConjugateProjector::coefficients(const Vector& x) const {
   return c;
 }
 
-void ConjugateProjector::applyFP(const Vector& x, Vector& y) const {
-  F_->apply(x, y);
-  FU_.subtractTimes(coefficients(y), y);
-}
-
-void ConjugateProjector::applyPt(const Vector& x, Vector& y) const {
+void ConjugateProjector::applyQ(const Vector& x, Vector& y) const {
+  const int n = columns_;
+  std::vector<double> c(static_cast<size_t>(n), 0.0);
   y.assign(x);
-  FU_.subtractTimes(coefficients(x), y);
+  if (rank_ == 0) return;
+  const std::vector<double> Utx = U_.transposeTimes(x, n, *problem_->comm());
+  std::vector<double> s(static_cast<size_t>(rank_), 0.0);
+  Teuchos::BLAS<int, double> blas;
+  blas.GEMV(Teuchos::TRANS, n, rank_, 1.0, V_.data(), n, Utx.data(), 1, 0.0, s.data(), 1);
+  for (int j = 0; j < rank_; ++j) s[j] *= inverseEigen_[j];
+  blas.GEMV(Teuchos::NO_TRANS, n, rank_, 1.0, V_.data(), n, s.data(), 1, 0.0, c.data(), 1);
+  U_.subtractTimes(c, y);
 }
 
-void ConjugateProjector::applyP(const Vector& x, Vector& y) const {
-  Vector Fx(x.getMap());
-  F_->apply(x, Fx);
+void ConjugateProjector::applyP(const Vector& x, const Vector& Fx, Vector& y) const {
   const std::vector<double> c = coefficients(Fx);
   y.assign(x);
   U_.subtractTimes(c, y);
+}
+
+void ConjugateProjector::applyHessian(const Vector& x, Vector& y) const {
+  Vector Qx(x.getMap()), FPQx(x.getMap());
+  applyQ(x, Qx);
+  F_->apply(Qx, FPQx);
+  FU_.subtractTimes(coefficients(FPQx), FPQx);  // F P z = F z - FU (U'FU)^+ U'F z
+  applyQ(FPQx, y);
+}
+
+void ConjugateProjector::applyRightHandSide(const Vector& x, Vector& y) const {
+  Vector Ptx(x, Teuchos::Copy);
+  FU_.subtractTimes(coefficients(x), Ptx);
+  applyQ(Ptx, y);
+}
+
+void ConjugateProjector::applyBack(const Vector& x, Vector& y) const {
+  Vector Qx(x.getMap()), FQx(x.getMap());
+  applyQ(x, Qx);
+  F_->apply(Qx, FQx);
+  applyP(Qx, FQx, y);
 }
 
 void ConjugateProjector::particular(const Vector& h, Vector& lambdaU) const {

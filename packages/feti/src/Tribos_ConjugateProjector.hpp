@@ -55,12 +55,18 @@ class ConjugateProjector {
 
   // Independent directions kept (the rank of U).
   int rank() const { return rank_; }
-  // y = F P x: one application of F. Collective.
-  void applyFP(const Vector& x, Vector& y) const;
-  // y = P' x = x - F U (U'FU)^+ U' x. Collective.
-  void applyPt(const Vector& x, Vector& y) const;
-  // y = P x = x - U (U'FU)^+ U'F x: one application of F. Collective.
-  void applyP(const Vector& x, Vector& y) const;
+  // The transformed dual works on mu in the complement of Im U (Q, the
+  // orthogonal projector onto ker U'): U's directions are in FP's null
+  // space, and an iterate that drifted into them by round-off would meet
+  // the curvature of F there (1 / (c m)) less its cancellation, of either
+  // sign. So lambda = lambda_U + P Q mu, and
+  //   y = Q F P Q x   (its Hessian: one application of F),
+  //   y = Q P' x      (its right-hand side from the original one),
+  //   y = P Q x       (back to the original multipliers: one application of F).
+  // Collective.
+  void applyHessian(const Vector& x, Vector& y) const;
+  void applyRightHandSide(const Vector& x, Vector& y) const;
+  void applyBack(const Vector& x, Vector& y) const;
   // lambda_U = U (U'FU)^+ U' h. Collective.
   void particular(const Vector& h, Vector& lambdaU) const;
 
@@ -84,10 +90,15 @@ class ConjugateProjector {
   // V: 6S x r, the independent combinations of U's columns (U V has rank
   // r); the factor of V'U'FU V.
   std::vector<double> V_;
+  std::vector<double> inverseEigen_;  // 1 / the kept eigenvalues of U'U
   int columns_ = 0, rank_ = 0;
   DenseCholesky factor_;
   // c = V (V'U'FUV)^-1 V'U' x (6S coefficients, replicated). Collective.
   std::vector<double> coefficients(const Vector& x) const;
+  // y = Q x = x - U V diag(1 / eigenvalues) V'U' x. Collective.
+  void applyQ(const Vector& x, Vector& y) const;
+  // y = P x given Fx. Collective.
+  void applyP(const Vector& x, const Vector& Fx, Vector& y) const;
 };
 
 }  // namespace Feti
