@@ -131,6 +131,12 @@ ParameterList pairItem(const ParameterList& contact) {
 ParameterList bodyItem(const ParameterList& material) {
   ParameterList p("body");
   p.sublist("Material").setParameters(material);
+  // Beside the body's Material: what a body is at t = 0 is a property of
+  // the body, named where its other properties are (and checked against
+  // the mesh's bodies with them, checkMeshFaces).
+  p.set("Initial Velocity", Array<double>(),
+        "Dynamics: the velocity (x, y, z) at t = 0 of this body's nodes, Dirichlet dofs aside; empty (the "
+        "default): Initial Conditions/Velocity. Bodies that share nodes (bonded) need the same velocity");
   return p;
 }
 
@@ -191,8 +197,9 @@ RCP<const ParameterList> validParameters() {
           "mass per unit volume rho, read by Dynamics only, which needs rho > 0 for every body (a body named in "
           "Bodies gives its own)");
   pl->sublist("Bodies", false,
-              "one sublist per body with its own \"Material\" (Young's Modulus, Poisson's Ratio); a body named "
-              "here must exist in the mesh (the box is the one body \"body\"); bodies not named take Material");
+              "one sublist per body with its own \"Material\" (Young's Modulus, Poisson's Ratio, Density) and "
+              "\"Initial Velocity\" (Dynamics); a body named here must exist in the mesh (the box is the one body "
+              "\"body\"); bodies not named take Material and Initial Conditions/Velocity");
   ParameterList& bc = pl->sublist("Boundary Conditions", false, "Dirichlet conditions and loads");
   bc.sublist("Dirichlet", false, "one sublist per condition: Face, Components, Value, Curve");
   bc.sublist("Traction", false, "one sublist per load: Face, Value, Curve");
@@ -219,7 +226,9 @@ RCP<const ParameterList> validParameters() {
                choice(tuple<std::string>(Contact::timeSchemeName(Contact::TimeScheme::ContactStabilizedNewmark),
                                          Contact::timeSchemeName(Contact::TimeScheme::Newmark))));
   pl->sublist("Initial Conditions", false, "the state at t = 0 of a Dynamics run, which starts undeformed")
-      .set("Velocity", Array<double>(3, 0.0), "the velocity of every node (x, y, z), Dirichlet dofs aside");
+      .set("Velocity", Array<double>(3, 0.0),
+           "the velocity of every node (x, y, z), Dirichlet dofs aside; a body's own Bodies/NAME/Initial Velocity "
+           "replaces it on that body's nodes");
   pl->sublist("Load Curves", false,
               "one sublist per piecewise-linear curve, named by the loads' Curve: Times (at least 2, strictly "
               "increasing) and Values of the same length; a curve a load uses must cover every step time");
@@ -273,6 +282,12 @@ RCP<const ParameterList> validParameters() {
   out.set("Directory", "output", "directory for the HDF5/XDMF files (overridden by --output)");
   out.set("Base Name", "solution", "file name without extension");
   out.set("Write Results", true, "write the HDF5/XDMF result files");
+  out.set("Step Stride", 1,
+          "a run of several steps (Load Steps, Dynamics) writes the data file and index entry of every k-th step "
+          "and of the last (and of a step that fails); the steps table keeps a row per step, written with the next "
+          "written step, and a restart continues from the last written step. At most " +
+              std::to_string(kMaxStepStride) + ": the rows of the steps between two written ones are held in memory",
+          range<int>(1, kMaxStepStride));
   return pl;
 }
 
@@ -738,6 +753,13 @@ void validateDynamics(const ParameterList& params) {
                                                  << " steps; at most " << kMaxDynamicSteps << " are taken");
   const auto& v = params.sublist("Initial Conditions").get<Array<double>>("Velocity");
   TRIBOS_REQUIRE(v.size() == 3, "\"Initial Conditions/Velocity\" needs 3 components, has " << v.size());
+  const auto& named = params.sublist("Bodies");
+  for (auto it = named.begin(); it != named.end(); ++it) {
+    const auto& own = named.sublist(named.name(it)).get<Array<double>>("Initial Velocity");
+    TRIBOS_REQUIRE(own.empty() || own.size() == 3,
+                   "\"Bodies/" << named.name(it) << "/Initial Velocity\" needs 3 components (or none: the body takes "
+                                   "Initial Conditions/Velocity), has " << own.size());
+  }
   TRIBOS_REQUIRE(params.sublist("Material").get<double>("Density") > 0,
                  "\"Material/Density\" = " << params.sublist("Material").get<double>("Density")
                                             << ": Dynamics needs the density of the bodies, rho > 0");
@@ -1227,6 +1249,72 @@ Contact::DynamicsSpec dynamicsSpec(const ParameterList& params) {
   spec.initialVelocity = {v[0], v[1], v[2]};
   return spec;
 }
+
+Contact::DynamicsSpec dynamicsSpec(const ParameterList& params, const Mesh::Mesh& mesh) {
+  Contact::DynamicsSpec spec = dynamicsSpec(params);
+  spec.bodyVelocity = initialVelocities(params, mesh);
+  return spec;
+}
+
+std::vector<std::array<double, 3>> initialVelocities(const ParameterList& params, const Mesh::Mesh& mesh) {
+  const auto& global = params.sublist("Initial Conditions").get<Array<double>>("Velocity");
+  std::vector<std::array<double, 3>> perBody(mesh.numBodies(), {global[0], global[1], global[2]});
+  const auto& bodies = params.sublist("Bodies");
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    const auto& own = bodies.sublist(bodies.name(it)).get<Array<double>>("Initial Velocity");
+    if (!own.empty()) perBody[mesh.bodyIndex(bodies.name(it))] = {own[0], own[1], own[2]};
+  }
+  return perBody;
+}
+
+namespace {
+
+// The parameter that gives a body its initial velocity, for a message.
+std::string velocityParameter(const ParameterList& params, const std::string& body) {
+  const auto& bodies = params.sublist("Bodies");
+  const bool own = bodies.isSublist(body) && !bodies.sublist(body).get<Array<double>>("Initial Velocity").empty();
+  return own ? "\"Bodies/" + body + "/Initial Velocity\"" : "\"Initial Conditions/Velocity\" (body \"" + body + "\")";
+}
+
+std::string vectorText(const std::array<double, 3>& v) {
+  std::ostringstream os;
+  os << "(" << v[0] << ", " << v[1] << ", " << v[2] << ")";
+  return os.str();
+}
+
+}  // namespace
+
+void checkBondedVelocities(const Mesh::Mesh& mesh, const ParameterList& params) {
+  if (!dynamics(params) || mesh.numBodies() < 2) return;
+  const auto velocity = initialVelocities(params, mesh);
+  // The first body met at each node; a cell of another body with another
+  // velocity there makes the node a bonded one whose copies would start
+  // apart (they are glued: the first step would tear the jump off).
+  std::vector<int> nodeBody(mesh.numNodes(), -1);
+  std::vector<char> counted(mesh.numNodes(), 0);
+  int first = -1, a = -1, b = -1;  // the first such node and its bodies
+  long long count = 0;
+  for (int c = 0; c < mesh.numCells(); ++c)
+    for (int k = 0; k < mesh.cellSize(c); ++k) {
+      const int n = mesh.cell(c)[k], body = mesh.bodyOf(c);
+      if (nodeBody[n] < 0) nodeBody[n] = body;
+      if (velocity[nodeBody[n]] == velocity[body] || counted[n]) continue;
+      counted[n] = 1;
+      ++count;
+      if (first < 0) first = n, a = nodeBody[n], b = body;
+    }
+  if (first < 0) return;
+  std::ostringstream os;
+  os << "bodies \"" << mesh.bodyName(a) << "\" and \"" << mesh.bodyName(b) << "\" share node " << first << " at "
+     << vectorText(mesh.coords[first]) << " (" << count << " such node(s)), but "
+     << velocityParameter(params, mesh.bodyName(a)) << " = " << vectorText(velocity[a]) << " and "
+     << velocityParameter(params, mesh.bodyName(b)) << " = " << vectorText(velocity[b])
+     << ": bodies bonded through shared nodes move as one; give them the same initial velocity, or distinct nodes "
+        "joined by contact";
+  throw Error(os.str());
+}
+
+int stepStride(const ParameterList& params) { return params.sublist("Output").get<int>("Step Stride"); }
 
 Fem::BodyDensities densities(const ParameterList& params, const Mesh::Mesh& mesh) {
   const auto& bodies = params.sublist("Bodies");

@@ -71,8 +71,22 @@ bool dynamics(const Teuchos::ParameterList& params);
 // Whether FETI solves the run's contact: Method::FetiContact, or a Dynamics
 // run with Contact/Enabled (its contact search, constraints and checks).
 bool fetiContact(const Teuchos::ParameterList& params);
-// Dynamics' step, scheme and Initial Conditions/Velocity.
+// Dynamics' step, scheme and Initial Conditions/Velocity; with the mesh,
+// the velocity of each of its bodies too.
 Contact::DynamicsSpec dynamicsSpec(const Teuchos::ParameterList& params);
+Contact::DynamicsSpec dynamicsSpec(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
+// The initial velocity of every body of the mesh: Bodies/NAME/Initial
+// Velocity where given, Initial Conditions/Velocity elsewhere.
+std::vector<std::array<double, 3>> initialVelocities(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
+// A Dynamics run whose bodies share nodes (bonded) with different initial
+// velocities is refused, naming both bodies, their parameters and a node.
+// On the whole mesh, before any work.
+void checkBondedVelocities(const Mesh::Mesh& mesh, const Teuchos::ParameterList& params);
+// Output/Step Stride: a run of several steps writes every k-th step's data
+// file and the last; at most kMaxStepStride (the rows of the steps between
+// two written ones wait in memory, 1-2 kB each).
+constexpr int kMaxStepStride = 10000;
+int stepStride(const Teuchos::ParameterList& params);
 // Material/Density of every body of the mesh (Bodies' own where named).
 Fem::BodyDensities densities(const Teuchos::ParameterList& params, const Mesh::Mesh& mesh);
 

@@ -371,7 +371,8 @@ void requireNoNameClash(const IO::OutputDirectory& dir, const std::string& base,
 // docs/exit_codes.md, disk full).
 void requireDiskSpace(const IO::OutputDirectory& dir, const Teuchos::ParameterList& params, const MeshSize* meshSize,
                       const Comm& comm) {
-  const double steps = static_cast<double>(Input::loadStepTimes(params).size());
+  // The steps written: every k-th and the last.
+  const double steps = std::ceil(static_cast<double>(Input::loadStepTimes(params).size()) / Input::stepStride(params));
   const double perStep = outputBytesPerStep(params, meshSize), needed = steps * perStep;
   std::string error;
   struct statvfs fs;
@@ -380,7 +381,8 @@ void requireDiskSpace(const IO::OutputDirectory& dir, const Teuchos::ParameterLi
     if (0.5 * needed > free) {
       std::ostringstream os;
       os.precision(3);
-      os << "the results of the " << static_cast<long long>(steps) << " steps of \"Load Steps/Times\" need about " << needed / 1e9
+      os << "the results of the " << static_cast<long long>(steps) << " steps "
+         << (Input::stepStride(params) > 1 ? "written (Output/Step Stride) " : "") << "of \"Load Steps/Times\" need about " << needed / 1e9
          << " GB (" << perStep / 1e6 << " MB a step, within a factor of two), and the file system of " << dir.path()
          << " has " << free / 1e9
          << " GB free; write fewer steps, a coarser mesh, or into another Output/Directory";
@@ -508,6 +510,7 @@ Mesh::Mesh readMeshFile(const Teuchos::ParameterList& params, const Mesh::Decomp
     if (comm.getRank() == 0) {
       mesh = Input::mesh(params, &warnings, memoryLimit(maxMemory));
       Input::checkMeshFaces(mesh, params);
+      Input::checkBondedVelocities(mesh, params);  // (the box is one body)
       const auto& contact = params.sublist("Contact");
       if (contact.get<bool>("Enabled") && contact.sublist("Pairs").numParams() == 0)
         Contact::faceNormal(mesh, contact.get<std::string>("Face"));
@@ -863,6 +866,7 @@ struct Restart {
   std::string stepsFile;              // DIR/BASE.steps.jsonl: their rows
   int completed = 0;
   std::vector<IO::Summary> stepRows;  // the rows of steps 1..completed
+  std::vector<bool> written;          // which of them wrote a data file (Output/Step Stride; the last did)
   std::string stepLines;              // the same, as the table's text
   IO::IterationHistory history;       // the history's rows of those steps
   long long iterationsTotal = 0, n_A_total = 0;  // the work of those steps (their rows' sums)
@@ -1003,6 +1007,9 @@ Restart readRestart(const Teuchos::ParameterList& params, const RunOptions& opti
   const bool dynamics = restart.dynamics = Input::dynamics(params);
   std::vector<std::string> free{"Output/Directory"};
   if (dynamics) free.push_back("Dynamics/End Time");
+  // Which steps get a file is the output's choice, not the run's: its rows
+  // say which did.
+  free.push_back("Output/Step Stride");
   const std::string difference = firstDifference(params, *earlier, "", free);
   if (!difference.empty())
     throw CollectiveError("--restart " + dir + ": the result there is not of this input: its parameters (" +
@@ -1073,8 +1080,12 @@ Restart readRestart(const Teuchos::ParameterList& params, const RunOptions& opti
                                     " of Load Steps/Times");
     const std::string file = "\"" + IO::StepSeries::dataFileName(base, numSteps, i + 1) + "\"";
     const std::string sha = row.json("sha256");
-    if (row.json("file") != file || sha.size() != 66 || sha.find_first_not_of("0123456789abcdef", 1) != 65)
+    // A step between two written ones (Output/Step Stride) has no file; the
+    // last complete step has one, the state the run continues from.
+    const bool unwritten = row.json("file").empty() && sha.empty() && i + 1 < restart.completed;
+    if (!unwritten && (row.json("file") != file || sha.size() != 66 || sha.find_first_not_of("0123456789abcdef", 1) != 65))
       refuse(restart.stepsFile, "its row " + step + " does not name the file " + file + " with its SHA-256 digest");
+    restart.written.push_back(!unwritten);
     restart.stepRows.push_back(row);
     restart.stepLines += lines[i] + "\n";
     restart.iterationsTotal += std::strtoll(row.json("iterations").c_str(), nullptr, 10);
@@ -1105,6 +1116,7 @@ void verifyStepFiles(const Restart& restart, const IO::StepSeries& series, const
   std::string error;
   if (comm.getRank() == 0)
     for (int k = 1; k <= restart.completed && error.empty(); ++k) {
+      if (!restart.written[k - 1]) continue;
       Progress::stage("checking step file " + std::to_string(k) + " of " + std::to_string(restart.completed));
       struct stat st;
       const std::string file = dir.path() + "/" + series.dataFileName(k);
@@ -1401,7 +1413,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     // rows; the method continues from the last one's displacement.
     readRestartState(*restart, *series, *outputDir, d.disc, d.constraints, *comm);
     first = restart->completed;
-    series->continueAfter(std::vector<double>(times.begin(), times.begin() + first));
+    series->continueAfter(std::vector<double>(times.begin(), times.begin() + first), restart->written);
     restart->last.time = times[first - 1];
     method->resumeFrom(std::move(restart->last));
     output.history = std::move(restart->history);
@@ -1415,6 +1427,7 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
   // The loads and their curves, read once: a step costs the same whatever
   // the length of the history and of its curves.
   const Fem::LoadHistory loadHistory = Input::loadHistory(params);
+  const int stride = Input::stepStride(params);
   for (int k = first; k < numSteps; ++k) {
     Progress::setStep(k + 1, numSteps);
     // The input's loads as they are at t = 1 without Load Steps; a history
@@ -1447,8 +1460,15 @@ RunResult run(const Teuchos::ParameterList& params, const RunOptions& options, c
     report.maxAbsDisplacement = sol.result.u.normInf();
     report.memoryEstimateMb = maxOver(memory.total() / (1024.0 * 1024.0), *comm);
     report.peakRssMb = maxOver(IO::peakRssMb(), *comm);
-    if (series) writeStep(params, *outputDir, *series, k + 1, times[k], d, sol, friction, output, report, comm);
-    else {
+    // Every stride-th step is written, the last, and a step that fails
+    // (the run ends there); a step between waits in memory for the next
+    // written one, whose commit appends its row and history rows.
+    const bool written = (k + 1) % stride == 0 || k + 1 == numSteps || !report.converged;
+    if (series && written) {
+      writeStep(params, *outputDir, *series, k + 1, times[k], d, sol, friction, output, report, comm);
+    } else if (series) {
+      output.stepLines += stepRow(*report.lastStep).toJsonLine() + "\n";
+    } else {
       report.unwrittenSteps.push_back(stepRow(*report.lastStep));
       output.history.rows.clear();
     }

@@ -330,7 +330,7 @@ class FetiDynamicsMethod : public MethodBase {
       const Fem::LoadHistory history = Input::loadHistory(params_);
       run_ = std::make_unique<Contact::ImplicitDynamics>(
           d.disc, d.materials, Input::densities(params_, d.disc.part), Fem::loadCaseAt(history, 0.0), d.constraints,
-          friction, Input::dynamicsSpec(params_), solverParams.sublist("FETI"), solverParams, comm_);
+          friction, Input::dynamicsSpec(params_, d.disc.part), solverParams.sublist("FETI"), solverParams, comm_);
       if (resumeFrom_) {
         const auto& problem = run_->problem();
         const ResumedStep& at = *resumeFrom_;

@@ -20,6 +20,35 @@ double sumOverRanks(double mine, const Comm& comm) {
   return all;
 }
 
+// The initial velocity of a subdomain's nodes: its body's (a subdomain
+// holds the cells of one body).
+const std::array<double, 3>& initialVelocity(const DynamicsSpec& spec, const Mesh::Discretization& disc, int subdomain) {
+  return spec.bodyVelocity.empty() ? spec.initialVelocity : spec.bodyVelocity[disc.subdomainBody.at(subdomain)];
+}
+
+// One velocity per body, finite; and the copies of every node start with
+// one velocity: bodies bonded through shared nodes (glued copies) with
+// different velocities would start torn apart. Collective.
+void checkInitialVelocities(const DynamicsSpec& spec, const Mesh::Discretization& disc, const Comm& comm) {
+  TRIBOS_REQUIRE(spec.bodyVelocity.empty() || static_cast<int>(spec.bodyVelocity.size()) == disc.part.numBodies(),
+                 "ImplicitDynamics: " << spec.bodyVelocity.size() << " body velocities for "
+                                      << disc.part.numBodies() << " bodies");
+  for (const auto& v : spec.bodyVelocity)
+    for (double x : v) TRIBOS_REQUIRE(std::isfinite(x), "ImplicitDynamics: a body's initial velocity is not finite");
+  std::string mine;
+  for (const auto& sub : disc.localSubdomains)
+    for (int n : sub.nodes)
+      for (const auto& copy : disc.copies(n))
+        if (mine.empty() && initialVelocity(spec, disc, copy.subdomain) != initialVelocity(spec, disc, sub.id))
+          mine = "node " + std::to_string(disc.meshNode(n)) + " is shared by bodies \"" +
+                 disc.part.bodyName(disc.subdomainBody[sub.id]) + "\" and \"" +
+                 disc.part.bodyName(disc.subdomainBody[copy.subdomain]) + "\" with different initial velocities";
+  int bad = !mine.empty(), any = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, bad, Teuchos::outArg(any));
+  TRIBOS_REQUIRE(!any, "ImplicitDynamics: " << (mine.empty() ? "on another rank, a node is shared by bodies with "
+                                                               "different initial velocities" : mine));
+}
+
 }  // namespace
 
 std::string timeSchemeName(TimeScheme scheme) {
@@ -45,6 +74,7 @@ ImplicitDynamics::ImplicitDynamics(const Mesh::Discretization& disc, const Fem::
                  "ImplicitDynamics: the time step must be a positive finite number, got " << spec.timeStep);
   for (double v : spec.initialVelocity)
     TRIBOS_REQUIRE(std::isfinite(v), "ImplicitDynamics: the initial velocity must be finite");
+  checkInitialVelocities(spec, disc, *comm);
   // The trapezoidal rule: beta = 1/4, gamma = 1/2.
   massCoefficient_ = 4 / (spec.timeStep * spec.timeStep);
   const Feti::MassTerm effective{density, massCoefficient_, 1.0};
@@ -63,8 +93,9 @@ ImplicitDynamics::ImplicitDynamics(const Mesh::Discretization& disc, const Fem::
     load_.push_back(sys.f);
     u_.emplace_back(sys.numDofs(), 0.0);
     v_.emplace_back(sys.numDofs(), 0.0);
+    const auto& v0 = initialVelocity(spec, disc, sys.id);
     for (int i = 0; i < sys.numDofs(); ++i)
-      if (!fixed.count(3LL * sys.nodes[i / 3] + i % 3)) v_.back()[i] = spec.initialVelocity[i % 3];
+      if (!fixed.count(3LL * sys.nodes[i / 3] + i % 3)) v_.back()[i] = v0[i % 3];
   }
   // M a_0 = f - K u_0 + (no contact force) = f at rest in the reference state.
   Ma_ = load_;
@@ -206,7 +237,9 @@ DynamicStep ImplicitDynamics::advance(const Fem::LoadCase* atNext) {
   for (size_t k = 0; k < rhs.size(); ++k)
     for (size_t i = 0; i < rhs[k].size(); ++i)
       rhs[k][i] += c * Mw[k][i] + (stabilized ? load_[k][i] - Ku[k][i] : Ma_[k][i]);
+  const FetiSolveResult projection = s.solve;
   s.solve = solveStep(*problem_, *steps_, rhs, "the contact solve");
+  if (stabilized) addCost(projection, s.solve);
   const Subdomains next = subdomains(*s.solve.primal);
   // The trapezoidal rule's velocity, from the displacements: v_{n+1} =
   // v_n + 2 (u_{n+1} - w) / dt (w = u_n + dt v_n without projection); and
@@ -237,6 +270,13 @@ DynamicStep ImplicitDynamics::advance(const Fem::LoadCase* atNext) {
   s.contactForce = sumOverRanks(force, comm);
   recordState(s);
   return s;
+}
+
+void ImplicitDynamics::addCost(const FetiSolveResult& projection, FetiSolveResult& step) {
+  step.n_A += projection.n_A;
+  step.solveSeconds += projection.solveSeconds;
+  step.F_applications += projection.F_applications;
+  step.F_seconds += projection.F_seconds;
 }
 
 void ImplicitDynamics::recordState(DynamicStep& s) const {

@@ -32,6 +32,10 @@ struct DynamicsSpec {
   double timeStep = 0;                              // dt > 0, fixed
   TimeScheme scheme = TimeScheme::ContactStabilizedNewmark;
   std::array<double, 3> initialVelocity{0, 0, 0};  // of every node not fixed by a Dirichlet condition
+  // Per body of the mesh (Mesh::bodyOf), in place of initialVelocity on its
+  // nodes; empty: initialVelocity everywhere. Bodies that share nodes must
+  // have the same (the constructor refuses them, naming a node).
+  std::vector<std::array<double, 3>> bodyVelocity;
 };
 
 // What a step leaves: the time reached, the energies of the state after it
@@ -71,7 +75,7 @@ struct DynamicState {
 };
 
 // The bodies of a decomposed mesh from the reference configuration (u = 0)
-// with a uniform initial velocity, under loads given at t = 0 and, step by
+// with an initial velocity uniform on each body, under loads given at t = 0 and, step by
 // step, at the step's end (constant loads: the same at every time), in
 // contact through `contact` (the constraints of FetiProblem's mesh
 // constructor) with the friction of each pair. The initial state carries no
@@ -126,6 +130,10 @@ class ImplicitDynamics {
   FetiSolveResult solveStep(Feti::FetiProblem& problem, FetiLoadSteps& steps, const Subdomains& rhs,
                             const std::string& what) const;
   DynamicStep advance(const Fem::LoadCase* atNext);
+  // The predictor's projection is part of the step's cost: its
+  // applications of F and its time are added to the step's (the
+  // iterations, KKT figures and verdict stay the contact solve's).
+  static void addCost(const FetiSolveResult& projection, FetiSolveResult& step);
   // The time, the energies, the work and the dissipation of the current
   // state into a step's report. Collective.
   void recordState(DynamicStep& s) const;

@@ -81,7 +81,7 @@ void StepSeries::check(int step, double time, const StepResult& result) const {
     say("rank " + std::to_string(comm_->getRank()) + " passes another step or time than rank 0");
   } else {
     const int next = stepsWritten() + 1;
-    if (step != next) say("the next step is " + std::to_string(next) + ", not " + std::to_string(step));
+    if (step < next) say("the next step is " + std::to_string(next) + " or a later one, not " + std::to_string(step));
     if (step > numSteps_) say("the series has " + std::to_string(numSteps_) + " steps");
     if (!std::isfinite(time)) say("its time " + exactly(time) + " is not finite");
     else if (written_ > 0 && !(time > lastTime_))
@@ -136,7 +136,8 @@ void StepSeries::addIndex(ResultSet& files, int step, const SeriesStep& s) {
   }
   std::string text = xdmfTimeSeriesHead();
   for (size_t k = 0; k < continuedTimes_.size(); ++k)
-    text += xdmfTimeSeriesStep(static_cast<int>(k) + 1, {continuedTimes_[k], dataFileName(static_cast<int>(k) + 1), s.layout});
+    if (continuedWritten_.empty() || continuedWritten_[k])
+      text += xdmfTimeSeriesStep(static_cast<int>(k) + 1, {continuedTimes_[k], dataFileName(static_cast<int>(k) + 1), s.layout});
   text += stepText;
   indexTail_ = static_cast<long long>(text.size());
   writeTextFile(files.add(indexFileName()), text + xdmfTimeSeriesTail(), comm_);
@@ -192,9 +193,10 @@ void StepSeries::writeStep(int step, double time, const Mesh::Discretization& di
   lastTime_ = time;
   committedThisRun_ = true;
   std::vector<double>().swap(continuedTimes_);
+  std::vector<bool>().swap(continuedWritten_);
 }
 
-void StepSeries::continueAfter(const std::vector<double>& times) {
+void StepSeries::continueAfter(const std::vector<double>& times, const std::vector<bool>& written) {
   std::ostringstream signature, e;
   for (double t : times) signature << exactly(t) << ' ';
   auto say = [&](const std::string& what) { e << (e.tellp() > 0 ? "; " : "") << what; };
@@ -202,6 +204,8 @@ void StepSeries::continueAfter(const std::vector<double>& times) {
     say("rank " + std::to_string(comm_->getRank()) + " passes other steps than rank 0");
   else if (written_ > 0)
     say("steps are written already");
+  else if (!written.empty() && written.size() != times.size())
+    say(std::to_string(written.size()) + " flags of written steps for " + std::to_string(times.size()) + " steps");
   else if (times.empty() || static_cast<int>(times.size()) >= numSteps_)
     say("it continues after " + std::to_string(times.size()) + " of " + std::to_string(numSteps_) +
         " steps; at least one must be done and one left");
@@ -211,6 +215,7 @@ void StepSeries::continueAfter(const std::vector<double>& times) {
         say("the time " + exactly(times[k]) + " of step " + std::to_string(k + 1) + " is not finite or not increasing");
   refuseIfAny("cannot continue", e.str());
   continuedTimes_ = times;
+  continuedWritten_ = written;
   written_ = static_cast<int>(times.size());
   lastTime_ = times.back();
 }

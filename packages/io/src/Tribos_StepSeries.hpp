@@ -84,8 +84,10 @@ class StepSeries {
 
   // Collective, after step `step` (1-based) is complete at pseudo-time `time`:
   // writes the step's data file, the index of steps 1..step and `texts` (the
-  // last one the summary) and commits them. `step` must be the step after the
-  // last committed one (a failed step may be written again), `time` finite
+  // last one the summary) and commits them. `step` must follow the last
+  // committed one (a run that writes every k-th step skips the steps
+  // between, which get neither a file nor an index entry; a failed step may
+  // be written again), `time` finite
   // and above the previous step's, the same on every rank; the text names
   // plain file names, distinct from the data files and the index. Refusals:
   // Tribos::CollectiveError, nothing written. A write or commit failure:
@@ -105,9 +107,10 @@ class StepSeries {
   // its data file and renames the index and texts over the earlier run's,
   // removing nothing. The index lists the earlier steps with the layout of
   // the step written next: a series has one mesh and the same fields at
-  // every step. Refusals (steps left to write, times increasing, the same
-  // on every rank): Tribos::CollectiveError.
-  void continueAfter(const std::vector<double>& times);
+  // every step. written: which of the earlier steps have a data file (and
+  // so an index entry); empty: all of them. Refusals (steps left to write,
+  // times increasing, the same on every rank): Tribos::CollectiveError.
+  void continueAfter(const std::vector<double>& times, const std::vector<bool>& written = {});
 
   // The file names of the series (plain names in the directory).
   std::string dataFileName(int step) const { return dataFileName(base_, numSteps_, step); }
@@ -142,6 +145,7 @@ class StepSeries {
   double lastTime_ = 0;                 // the time of step written_
   bool committedThisRun_ = false;       // this run committed a step
   std::vector<double> continuedTimes_;  // the steps continueAfter took over, until this run's first commit
+  std::vector<bool> continuedWritten_;  // ... which of them have a data file
   long long indexTail_ = 0;             // where the index's closing tags begin
 };
 

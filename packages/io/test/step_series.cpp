@@ -7,12 +7,14 @@
 // earlier ones; other results' files stay. A failure in step 2 (a data file
 // that cannot be renamed, a text file that cannot, wrong arguments) leaves
 // step 1's set complete and readable, and the step can be written again. A
-// one-step series writes what ResultWriter::write writes.
+// one-step series writes what ResultWriter::write writes. Steps may be
+// skipped (a run's Output/Step Stride): they have no file and no index entry.
 #include <Teuchos_FileInputSource.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Teuchos_XMLObject.hpp>
 #include <Tpetra_Core.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -279,6 +281,36 @@ TEUCHOS_UNIT_TEST(StepSeries, ThreeStepsEachCompleteWhenWritten) {
   }
 }
 
+// Every other step written (a run's Output/Step Stride): the steps between
+// have no file and no index entry; a series continued after them lists the
+// written ones only.
+TEUCHOS_UNIT_TEST(StepSeries, SkippedStepsHaveNoFile) {
+  const auto comm = Tpetra::getDefaultComm();
+  Setup s(comm);
+  const std::vector<double> times = {0.5, 1.0, 1.5, 2.0, 2.5};
+  {
+    IO::StepSeries series(s.dir, kBase, 5, comm);
+    writeSteps(series, s.disc, times, 2, 2, comm);
+    writeSteps(series, s.disc, times, 4, 4, comm);
+    TEST_EQUALITY(series.stepsWritten(), 4);
+  }
+  IO::StepSeries continued(s.dir, kBase, 5, comm);
+  continued.continueAfter({times.begin(), times.begin() + 4}, {false, true, false, true});
+  writeSteps(continued, s.disc, times, 5, 5, comm);
+  if (comm->getRank() != 0) return;
+  const auto files = listDirectory(s.dir.path());
+  for (int k = 1; k <= 5; ++k)
+    TEST_EQUALITY(std::count(files.begin(), files.end(), continued.dataFileName(k)), k % 2 == 0 || k == 5 ? 1 : 0);
+  const auto index = readIndex(s.dir.path() + "/run.xmf", out, success);
+  TEST_EQUALITY(index.size(), size_t(3));
+  if (index.size() != 3) return;
+  TEST_EQUALITY(index[0].time, times[1]);
+  TEST_EQUALITY(index[1].time, times[3]);
+  TEST_EQUALITY(index[2].time, times[4]);
+  for (int k : {2, 4, 5}) checkStepFile(s.dir.path() + "/" + continued.dataFileName(k), k, times[k - 1], s.disc,
+                                        comm->getSize(), out, success);
+}
+
 // Step numbers as wide as the last step needs.
 TEUCHOS_UNIT_TEST(StepSeries, FileNames) {
   const auto comm = Tpetra::getDefaultComm();
@@ -425,7 +457,7 @@ TEUCHOS_UNIT_TEST(StepSeries, Refusals) {
                                                             [&] { series.writeStep(step, time, s.disc, r, t); });
     TEST_ASSERT(contains(m, says));
   };
-  refused("step 2 first", 2, 1.0, result, texts(1), "the next step is 1, not 2");
+  refused("step 0", 0, 1.0, result, texts(1), "the next step is 1 or a later one, not 0");
   refused("time not finite", 1, std::nan(""), result, texts(1), "not finite");
   refused("no summary", 1, 1.0, result, {}, "no text file replaced last");
   refused("text named as a step file", 1, 1.0, result, {{"run.step0002.h5", "x"}}, "run.step0002.h5");
