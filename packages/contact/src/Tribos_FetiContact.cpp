@@ -272,6 +272,20 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
     conjugate_ = rcp(new ConjugateProjectionTransform(dual->conjugateProjector()));
     transforms_.add(conjugate_);
   }
+  if (cd_.G.is_null() && dual->problem().dualScalingWanted()) {
+    std::vector<double> d(dual->problem().dualMap()->getNodeNumElements(), 1.0);
+    const auto estimate = dual->problem().dualDiagonalEstimate();
+    for (size_t i = 0; i < d.size(); ++i)
+      if (estimate[i] > 0) d[i] = 1 / std::sqrt(estimate[i]);
+    contactScale_.assign(nc, 1.0);
+    for (size_t k = 0; k < nc; ++k) {
+      contactScale_[k] = d[cd_.normalRows[k]];
+      for (int j = 0; j < 2; ++j)
+        if (cd_.tangentRows[2 * k + j] >= 0) d[cd_.tangentRows[2 * k + j]] = contactScale_[k];
+    }
+    rowScale_ = d;
+    transforms_.add(rcp(new Friction::DiagonalScalingTransform(d)));
+  }
   transforms_.add(scaling_).forward(cd_);
   if (!dual->coarse().equalityRowsHoldKernel()) checkHeldByContact();
 }
@@ -279,6 +293,10 @@ FetiContactProblem::FetiContactProblem(RCP<const Feti::FetiDual> dual, const Pai
 RCP<Vector> FetiContactProblem::startFrom(const Vector& lambda) const {
   auto x = rcp(new Vector(lambda, Teuchos::Copy));
   x->update(-1.0, *multipliers(Vector(lambda.getMap())), 1.0);
+  if (!rowScale_.empty()) {  // the scaled dual's unknown: D^-1 x
+    auto v = x->getDataNonConst();
+    for (size_t i = 0; i < rowScale_.size(); ++i) v[i] /= rowScale_[i];
+  }
   if (cd_.G.is_null()) return x;
   auto Px = rcp(new Vector(lambda.getMap()));
   dual_->coarse().project(*x, *Px);
@@ -429,6 +447,10 @@ RCP<Vector> FetiContactProblem::roundingShift(const Vector& lambda) const {
   if (!conjugate_.is_null()) dual_->conjugateProjector()->applyRightHandSide(*defect, *shift);
   else if (cd_.G.is_null()) shift->assign(*defect);
   else dual_->coarse().project(*defect, *shift);
+  if (!rowScale_.empty()) {
+    auto v = shift->getDataNonConst();
+    for (size_t i = 0; i < rowScale_.size(); ++i) v[i] *= rowScale_[i];
+  }
   shift->scale(scale());
   return shift;
 }
@@ -450,6 +472,10 @@ FetiContactSolution FetiContactProblem::solveDual(const Friction::ContactDual& c
   // fall outside the snapshot.
   const long long n_A0 = dual_->F()->applications();
   sol.status = solver->solve(cd, *sol.x);
+  // The slip bounds in force units: a scaled dual's are those of its scaled
+  // multipliers (DiagonalScalingTransform).
+  for (size_t k = 0; k < contactScale_.size() && k < sol.status.slipBound.size(); ++k)
+    sol.status.slipBound[k] *= contactScale_[k];
   sol.warmStart = solver->finalState();
   sol.n_A = dual_->F()->applications() - n_A0;
   sol.lambda = multipliers(*sol.x);

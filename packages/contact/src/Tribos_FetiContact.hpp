@@ -140,8 +140,9 @@ class FetiContactProblem {
   FetiContactSolution solveDual(const Friction::ContactDual& cd, const std::string& outerAlgorithm,
                                 const Teuchos::ParameterList& solverParams, RCP<Teuchos::FancyOStream> out,
                                 const Vector* start, double tolerance, const Friction::WarmStart* warm) const;
-  // s P (F~ - F) lambda: the rounding defect at lambda as the transformed
-  // problem's b sees it.
+  // s D P (F~ - F) lambda (P: the coarse or the conjugate projection, D the
+  // row scaling, where present): the rounding defect at lambda as the
+  // transformed problem's b sees it.
   RCP<Vector> roundingShift(const Vector& lambda) const;
   static constexpr int kRoundingCorrections = 3;
   // sol.u from sol.lambda (FetiDual::recoverPrimal), the rigid motion fixed
@@ -155,6 +156,9 @@ class FetiContactProblem {
   Friction::DualTransformChain transforms_;
   // lambda = lambda_U + P mu for positive definite subdomains (null: none).
   RCP<ConjugateProjectionTransform> conjugate_;
+  // The scale of each local contact's multipliers in a scaled dual (empty:
+  // not scaled; Friction::DiagonalScalingTransform).
+  std::vector<double> contactScale_, rowScale_;
   RCP<const Feti::FetiDual> dual_;
   Friction::ContactDual cd_;
 };

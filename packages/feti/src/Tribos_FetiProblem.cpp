@@ -7,6 +7,7 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 #include <Tpetra_Export.hpp>
+#include <Tpetra_Import.hpp>
 #include <Tpetra_Vector.hpp>
 #include <algorithm>
 #include <cmath>
@@ -370,6 +371,33 @@ void keepOwnRows(FetiConstraints& fc, const Comm& comm) {
 
 }  // namespace
 
+std::vector<double> FetiProblem::dualDiagonalEstimate() const {
+  Vector diagonal(primalMap_);
+  {
+    auto v = diagonal.getDataNonConst();
+    size_t offset = 0;
+    for (const auto& sys : systems_) {
+      for (int i = 0; i < sys.K.rows; ++i)
+        for (int k = sys.K.rowptr[i]; k < sys.K.rowptr[i + 1]; ++k)
+          if (sys.K.col[k] == i) v[offset + i] = sys.K.val[k];
+      offset += static_cast<size_t>(sys.numDofs());
+    }
+  }
+  const CrsMatrix& B = *constraints_.B;
+  Vector onColumns(B.getColMap());
+  onColumns.doImport(diagonal, Import(primalMap_, B.getColMap()), Tpetra::INSERT);
+  const auto kjj = onColumns.getData();
+  std::vector<double> estimate(B.getNodeNumRows(), 0.0);
+  for (LO i = 0; i < static_cast<LO>(B.getNodeNumRows()); ++i) {
+    typename CrsMatrix::local_inds_host_view_type cols;
+    typename CrsMatrix::values_host_view_type vals;
+    B.getLocalRowView(i, cols, vals);
+    for (size_t k = 0; k < cols.extent(0); ++k)
+      if (kjj[cols(k)] > 0) estimate[i] += vals(k) * vals(k) / kjj[cols(k)];
+  }
+  return estimate;
+}
+
 RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
   static RCP<Teuchos::ParameterList> pl;
   if (pl.is_null()) {
@@ -416,6 +444,11 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
             "onto their jumps on the gluing and Dirichlet rows, whose eigenvalues of order 1 / (c m) otherwise "
             "stall the contact solvers when the step is long against h / c_wave (docs/dynamics.md); ignored "
             "where the subdomains float (TFETI's coarse space holds them)");
+    pl->set("Dual Scaling", true,
+            "contact problems without a coarse space (positive definite subdomains, FETI-1 with every subdomain "
+            "held): scale each multiplier by an estimate of F's diagonal, the same for the rows of a contact node "
+            "so that bounds and friction cones stay (docs/dynamics.md): on a graded mesh F's diagonal spreads as the "
+            "cube of the element size, and the contact solvers' steps with it");
     // The dual solver of a problem without contact reads its own sublist, so
     // that the whole FETI list of an input is handed to the problem as it is.
     pl->sublist("Projected CG", false, "the dual solver without contact (Feti::ProjectedCG)")
@@ -595,6 +628,7 @@ void FetiProblem::setup(FetiConstraints fc, bool contact, const Teuchos::Paramet
   localSolverName_ = p.get<std::string>("Local Solver");
   coarseProblem_ = p.get<std::string>("Coarse Problem");
   conjugateProjector_ = p.get<bool>("Conjugate Projector");
+  dualScaling_ = p.get<bool>("Dual Scaling");
   dirichlet_ = std::move(fc.dirichlet);
   const Numbering numbering = subdomainNumbering(systems_, *comm_);
   const int S = static_cast<int>(numbering.owner.size());

@@ -147,9 +147,17 @@ class FetiProblem {
   // Whether the equality rows (gluing, Dirichlet) are orthonormal (Gluing =
   // Orthonormal): then BB' is the identity on them.
   bool orthonormalEqualityRows() const { return orthonormalEquality_; }
+  // An estimate of the diagonal of F = B K+ B' on this rank's dual rows,
+  // sum_j B_ij^2 / K_jj: exact for a diagonal K, and within the spread of
+  // K's rows otherwise, which is what a scaling of the dual by it needs
+  // (Friction::DiagonalScalingTransform). Collective.
+  std::vector<double> dualDiagonalEstimate() const;
   // "Conjugate Projector": whether a dual of positive definite subdomains
   // takes their rigid motions out by ConjugateProjector.
   bool conjugateProjectorWanted() const { return conjugateProjector_; }
+  // "Dual Scaling": whether a contact dual without a coarse space is scaled
+  // by dualDiagonalEstimate().
+  bool dualScalingWanted() const { return dualScaling_; }
   // z = S p: per subdomain the Schur complement on the dofs B touches,
   // S = K_bb - K_bi K_ii^-1 K_ib (zero on interior dofs), for the Dirichlet
   // preconditioner. The interior blocks are factored on first use.
@@ -237,7 +245,7 @@ class FetiProblem {
   std::vector<std::pair<LO, long long>> dirichletRows_;
   int numNodes_ = 0;
   bool hasContact_ = false;
-  bool conjugateProjector_ = true;
+  bool conjugateProjector_ = true, dualScaling_ = true;
   RCP<const Comm> comm_;
   std::string localSolverName_;
   std::string coarseProblem_ = "Auto";

@@ -2,6 +2,8 @@
 
 #include <Tpetra_Vector.hpp>
 
+#include <cmath>
+
 #include "Tribos_Error.hpp"
 #include "Tribos_QP_Utils.hpp"
 
@@ -139,6 +141,81 @@ void ProjectionTransform::forward(ContactDual& dual) {
   dual.jointHessian = complementIsGtG_ ? RCP<const QP::ProjectorComplement>(PAP) : Teuchos::null;
   dual.b = applied(*P_, *dual.b);
   if (!dual.bReference.is_null()) dual.bReference = applied(*P_, *dual.bReference);
+}
+
+namespace {
+
+// y = D A D x for D = diag(d), d on the local rows.
+class DiagonallyScaledOperator : public Operator {
+ public:
+  DiagonallyScaledOperator(RCP<const Operator> A, RCP<const Vector> d) : A_(A), d_(d) {}
+  RCP<const Map> getDomainMap() const override { return A_->getDomainMap(); }
+  RCP<const Map> getRangeMap() const override { return A_->getRangeMap(); }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
+             SC beta = 0) const override {
+    MultiVector DX(X.getMap(), X.getNumVectors()), ADX(Y.getMap(), X.getNumVectors());
+    DX.elementWiseMultiply(1.0, *d_, X, 0.0);
+    A_->apply(DX, ADX);
+    Y.elementWiseMultiply(alpha, *d_, ADX, beta);
+  }
+
+ private:
+  RCP<const Operator> A_;
+  RCP<const Vector> d_;
+};
+
+RCP<const Vector> timesDiagonal(const Vector& x, const Vector& d) {
+  auto y = rcp(new Vector(x.getMap()));
+  y->elementWiseMultiply(1.0, d, x, 0.0);
+  return y;
+}
+
+}  // namespace
+
+void DiagonalScalingTransform::forward(ContactDual& dual) {
+  TRIBOS_REQUIRE(!dual.A.is_null() && !dual.b.is_null(), "DiagonalScalingTransform: the problem has no A or no b");
+  TRIBOS_REQUIRE(dual.G.is_null(), "DiagonalScalingTransform: a dual with an equality constraint G x = 0");
+  TRIBOS_REQUIRE(d_.size() == dual.b->getLocalLength(),
+                 "DiagonalScalingTransform: " << d_.size() << " scales for " << dual.b->getLocalLength() << " rows");
+  const int nc = dual.numLocalContacts();
+  for (int k = 0; k < nc; ++k) {
+    const SC dk = d_[dual.normalRows[k]];
+    for (int j = 0; j < 2; ++j) {
+      const LO t = dual.tangentRows[2 * k + j];
+      TRIBOS_REQUIRE(t < 0 || d_[t] == dk, "DiagonalScalingTransform: the rows of contact " << k << " differ in scale");
+    }
+    dual.normalLower[k] /= dk;
+    dual.normalOffset[k] /= dk;
+    dual.slipBound[k] /= dk;
+    if (!dual.tangentCenter.empty())
+      for (int j = 0; j < 2; ++j) dual.tangentCenter[2 * k + j] /= dk;
+  }
+  for (SC v : d_) TRIBOS_REQUIRE(std::isfinite(v) && v > 0, "DiagonalScalingTransform: a scale that is not positive");
+  auto d = rcp(new Vector(dual.map()));
+  {
+    auto v = d->getDataNonConst();
+    for (size_t i = 0; i < d_.size(); ++i) v[i] = d_[i];
+  }
+  d_vector_ = d;
+  dual.A = rcp(new DiagonallyScaledOperator(dual.A, d));
+  dual.normAOf = Teuchos::null;
+  dual.denseA = nullptr;
+  dual.b = timesDiagonal(*dual.b, *d);
+  if (!dual.bReference.is_null()) dual.bReference = timesDiagonal(*dual.bReference, *d);
+  // (DAD)^-1 = D^-1 A^-1 D^-1.
+  if (dual.preconditioner) {
+    auto inverse = rcp(new Vector(dual.map()));
+    inverse->reciprocal(*d);
+    dual.preconditioner = [inner = dual.preconditioner, inverse](const std::string& name) -> RCP<const Operator> {
+      const RCP<const Operator> M = inner(name);
+      return M.is_null() ? M : RCP<const Operator>(rcp(new DiagonallyScaledOperator(M, inverse)));
+    };
+  }
+}
+
+void DiagonalScalingTransform::back(Vector& x) const {
+  TRIBOS_REQUIRE(!d_vector_.is_null(), "DiagonalScalingTransform: back before forward");
+  x.elementWiseMultiply(1.0, *d_vector_, x, 0.0);
 }
 
 void ScalingTransform::forward(ContactDual& dual) {

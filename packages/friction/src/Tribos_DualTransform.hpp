@@ -80,6 +80,31 @@ class ProjectionTransform : public DualTransform {
   bool complementIsGtG_;
 };
 
+// x = D y with D = diag(d) > 0, one d for the three rows of a contact:
+// A <- DAD, b <- Db (and bReference), and the constraints in y:
+//   y_N,k >= l_k / d_k,  ||y_T,k - c_k / d_k|| <= g_k / d_k,
+// the normal force d_k (y_N,k + normalOffset_k / d_k), Coulomb's cone
+// ||y_T - c/d|| <= F (y_N + offset/d) with the same F (a cone is invariant
+// under a uniform scaling of its node's rows). With d_i = 1 / sqrt(A_ii)
+// (or an estimate of it) the diagonal of DAD is about 1: multipliers whose
+// rows belong to nodes of very different mass or stiffness (a graded mesh:
+// A_ii spreads as the cube of the element size) no longer spread A's
+// spectrum, and the gradient steps of MPRGP, MPGP and Newton's CG see the
+// conditioning of the scaled operator (Jacobi preconditioning that keeps
+// bounds and cones what they are). Only for a dual without an equality
+// constraint (G null): G D would replace G, and FETI's projector would no
+// longer be orthogonal. back: x <- D x. d: this rank's rows.
+class DiagonalScalingTransform : public DualTransform {
+ public:
+  explicit DiagonalScalingTransform(std::vector<SC> d) : d_(std::move(d)) {}
+  void forward(ContactDual& dual) override;
+  void back(Vector& x) const override;
+
+ private:
+  std::vector<SC> d_;
+  RCP<const Vector> d_vector_;  // d on the dual's map (set by forward)
+};
+
 // A <- s A, b <- s b, bReference <- s bReference, s = 1/||A|| from
 // powerSteps power iterations on A (their applications of A are the
 // caller's to count or not). The minimizer does not change: back is the
