@@ -372,6 +372,7 @@ void keepOwnRows(FetiConstraints& fc, const Comm& comm) {
 }  // namespace
 
 std::vector<double> FetiProblem::dualDiagonalEstimate() const {
+  if (dualDiagonalFormed_) return dualDiagonal_;
   Vector diagonal(primalMap_);
   {
     auto v = diagonal.getDataNonConst();
@@ -395,6 +396,8 @@ std::vector<double> FetiProblem::dualDiagonalEstimate() const {
     for (size_t k = 0; k < cols.extent(0); ++k)
       if (kjj[cols(k)] > 0) estimate[i] += vals(k) * vals(k) / kjj[cols(k)];
   }
+  dualDiagonal_ = estimate;
+  dualDiagonalFormed_ = true;
   return estimate;
 }
 
@@ -560,6 +563,7 @@ void FetiProblem::setRightHandSides(const std::vector<std::vector<double>>& subd
 }
 
 void FetiProblem::setStiffness(const std::vector<LocalCsr>& K) {
+  dualDiagonalFormed_ = false;
   TRIBOS_REQUIRE(K.size() == systems_.size(), "FetiProblem::setStiffness: " << K.size() << " matrices for "
                                                                            << systems_.size() << " subdomains on rank "
                                                                            << comm_->getRank());

@@ -150,7 +150,8 @@ class FetiProblem {
   // An estimate of the diagonal of F = B K+ B' on this rank's dual rows,
   // sum_j B_ij^2 / K_jj: exact for a diagonal K, and within the spread of
   // K's rows otherwise, which is what a scaling of the dual by it needs
-  // (Friction::DiagonalScalingTransform). Collective.
+  // (Friction::DiagonalScalingTransform). Formed once (setStiffness forms
+  // it again): every load step's dual is scaled alike. Collective.
   std::vector<double> dualDiagonalEstimate() const;
   // "Conjugate Projector": whether a dual of positive definite subdomains
   // takes their rigid motions out by ConjugateProjector.
@@ -246,6 +247,8 @@ class FetiProblem {
   int numNodes_ = 0;
   bool hasContact_ = false;
   bool conjugateProjector_ = true, dualScaling_ = true;
+  mutable std::vector<double> dualDiagonal_;  // dualDiagonalEstimate(), once formed
+  mutable bool dualDiagonalFormed_ = false;
   RCP<const Comm> comm_;
   std::string localSolverName_;
   std::string coarseProblem_ = "Auto";

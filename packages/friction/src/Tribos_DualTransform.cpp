@@ -153,15 +153,20 @@ class DiagonallyScaledOperator : public Operator {
   RCP<const Map> getRangeMap() const override { return A_->getRangeMap(); }
   void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS, SC alpha = 1,
              SC beta = 0) const override {
-    MultiVector DX(X.getMap(), X.getNumVectors()), ADX(Y.getMap(), X.getNumVectors());
-    DX.elementWiseMultiply(1.0, *d_, X, 0.0);
-    A_->apply(DX, ADX);
-    Y.elementWiseMultiply(alpha, *d_, ADX, beta);
+    // The work vectors are kept: the solvers apply A hundreds of times.
+    if (DX_.is_null() || DX_->getNumVectors() != X.getNumVectors()) {
+      DX_ = rcp(new MultiVector(X.getMap(), X.getNumVectors()));
+      ADX_ = rcp(new MultiVector(Y.getMap(), X.getNumVectors()));
+    }
+    DX_->elementWiseMultiply(1.0, *d_, X, 0.0);
+    A_->apply(*DX_, *ADX_);
+    Y.elementWiseMultiply(alpha, *d_, *ADX_, beta);
   }
 
  private:
   RCP<const Operator> A_;
   RCP<const Vector> d_;
+  mutable RCP<MultiVector> DX_, ADX_;
 };
 
 RCP<const Vector> timesDiagonal(const Vector& x, const Vector& d) {
