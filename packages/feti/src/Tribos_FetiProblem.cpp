@@ -450,7 +450,7 @@ RCP<const Teuchos::ParameterList> FetiProblem::getValidParameters() {
     pl->set("Dual Scaling", true,
             "contact problems without a coarse space (positive definite subdomains, FETI-1 with every subdomain "
             "held): scale each multiplier by an estimate of F's diagonal, the same for the rows of a contact node "
-            "so that bounds and friction cones stay (docs/dynamics.md): on a graded mesh F's diagonal spreads as the "
+            "so that bounds and friction cones stay (docs/feti.md): on a graded mesh F's diagonal spreads as the "
             "cube of the element size, and the contact solvers' steps with it");
     // The dual solver of a problem without contact reads its own sublist, so
     // that the whole FETI list of an input is handed to the problem as it is.
