@@ -23,6 +23,8 @@ import xml.etree.ElementTree as ET
 import h5py
 import numpy as np
 
+from dynamics_checks import check, failed, numbers, parameter
+
 sep = sys.argv.index("--")
 ap = argparse.ArgumentParser()
 ap.add_argument("--out", required=True)
@@ -32,29 +34,11 @@ ap.add_argument("--tol-energy", type=float, default=0.02)
 a = ap.parse_args(sys.argv[1:sep])
 cmd = sys.argv[sep + 1:] + ["--output", a.out, "--summary", f"{a.out}/summary.json", "--quiet"]
 rc = subprocess.run(cmd).returncode
-failed = False
-
-
-def check(ok, what):
-    global failed
-    print(("ok: " if ok else "FAILED: ") + what)
-    failed = failed or not ok
 
 
 check(rc == 0, f"exit code {rc} == 0")
 if rc != 0:
     sys.exit(1)
-
-
-def parameter(root, path):
-    node = root
-    for name in path.split("/")[:-1]:
-        node = next(c for c in node if c.tag == "ParameterList" and c.get("name") == name)
-    return next(c for c in node if c.tag == "Parameter" and c.get("name") == path.split("/")[-1]).get("value")
-
-
-def numbers(text):
-    return [float(v) for v in text.strip("{} ").split(",")]
 
 
 root = ET.parse(f"{a.out}/solution.parameters.xml").getroot()
@@ -87,7 +71,7 @@ check(abs(err_e) <= a.tol_energy, f"energy after separation against the initial 
 # shares, and the check is left out for them).
 if parameter(root, "Mesh/Element") != "Hex8":
     print("skipped: the momentum of the velocity field (nodal shares of the mass known for Hex8 only)")
-    sys.exit(1 if failed else 0)
+    sys.exit(1 if failed() else 0)
 with h5py.File(f"{a.out}/{rows[-1]['file']}", "r") as h:
     zs = h["mesh/geometry"][:, 2]
     vz = h["nodes/velocity"][:, 2]
@@ -96,4 +80,4 @@ mean = (w * vz).sum() / w.sum()
 expected = -v0 + impulse / (rho * A * L)
 check(abs(mean - expected) <= 1e-4 * v0,
       f"the last step's velocity field: the bar leaves at {mean:.6g} m/s, -v0 + impulse / m = {expected:.6g}")
-sys.exit(1 if failed else 0)
+sys.exit(1 if failed() else 0)

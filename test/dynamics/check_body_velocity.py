@@ -31,6 +31,8 @@ import xml.etree.ElementTree as ET
 import h5py
 import numpy as np
 
+from dynamics_checks import check, failed, numbers, parameter
+
 sep = sys.argv.index("--")
 ap = argparse.ArgumentParser()
 ap.add_argument("--out", required=True)
@@ -41,28 +43,11 @@ cmd = sys.argv[sep + 1:] + ["--output", a.out, "--quiet"]
 for s in a.sets:
     cmd += ["--set", s]
 rc = subprocess.run(cmd).returncode
-failed = False
-
-
-def check(ok, what):
-    global failed
-    print(("ok: " if ok else "FAILED: ") + what)
-    failed = failed or not ok
 
 
 check(rc == 0, f"exit code {rc} == 0")
 if rc != 0:
     sys.exit(1)
-
-
-def parameter(root, path):
-    node = root
-    for name in path.split("/")[:-1]:
-        node = next((c for c in node if c.tag == "ParameterList" and c.get("name") == name), None)
-        if node is None:
-            return None
-    leaf = next((c for c in node if c.tag == "Parameter" and c.get("name") == path.split("/")[-1]), None)
-    return None if leaf is None else leaf.get("value")
 
 
 def vector(text):
@@ -116,4 +101,4 @@ check(worst_p <= 1e-10, f"each body's momentum is its m v0 at every step: {worst
 check(worst_v <= 1e-8, f"every node's velocity is its body's v0: {worst_v:.1e} of the largest |v0| (<= 1e-8)")
 check(worst_e <= 1e-9, f"the kinetic energy is sum m |v0|^2 / 2 = {energy:.6g} J: {worst_e:.1e} relative (<= 1e-9)")
 check(worst_f <= 1e-9 * p_ref, f"no contact force: {worst_f:.1e} N")
-sys.exit(1 if failed else 0)
+sys.exit(1 if failed() else 0)

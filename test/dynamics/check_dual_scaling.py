@@ -24,6 +24,8 @@ import xml.etree.ElementTree as ET
 import h5py
 import numpy as np
 
+from dynamics_checks import check, failed, parameter
+
 p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 p.add_argument("--out", required=True)
 p.add_argument("--steps", type=int, default=10)
@@ -32,22 +34,6 @@ p.add_argument("--ratio", type=float, default=0.5)
 p.add_argument("command", nargs=argparse.REMAINDER)
 a = p.parse_args()
 command = a.command[1:] if a.command[:1] == ["--"] else a.command
-failed = False
-
-
-def check(ok, what):
-    global failed
-    print(("ok: " if ok else "FAILED: ") + what)
-    failed = failed or not ok
-
-
-def time_step(parameters):
-    for node in ET.parse(parameters).getroot().iter("ParameterList"):
-        if node.get("name") == "Dynamics":
-            for q in node.findall("Parameter"):
-                if q.get("name") == "Time Step":
-                    return float(q.get("value"))
-    raise SystemExit(f"{parameters}: no Dynamics/Time Step")
 
 
 runs = {scaled: f"{a.out}/{'scaled' if scaled else 'unscaled'}" for scaled in (True, False)}
@@ -60,7 +46,7 @@ for scaled in (True, False):
         subprocess.run(["mkdir", "-p", a.out], check=True)
         with open(f"{a.out}/parameters.xml", "w") as f:
             f.write(printed)
-        dt = time_step(f"{a.out}/parameters.xml")
+        dt = float(parameter(ET.parse(f"{a.out}/parameters.xml").getroot(), "Dynamics/Time Step"))
     rc = subprocess.run(command + ["--output", out, "--quiet", "--set", f"Dynamics/End Time={a.steps * dt}",
                                    "--set", f"Solver/FETI/Dual Scaling={'true' if scaled else 'false'}"],
                         stdout=subprocess.DEVNULL).returncode
@@ -71,7 +57,7 @@ for scaled in (True, False):
     rows[scaled] = [json.loads(line) for line in open(f"{runs[scaled]}/solution.steps.jsonl")]
     check(len(rows[scaled]) == a.steps and all(r["converged"] for r in rows[scaled]),
           f"Dual Scaling = {scaled}: {len(rows[scaled])} steps, all converged")
-if failed:
+if failed():
     sys.exit(1)
 nA = {s: sum(r["n_A"] for r in rows[s]) for s in rows}
 check(nA[True] <= a.ratio * nA[False],
@@ -85,4 +71,4 @@ for one, other in zip(rows[True], rows[False]):
             worst[field] = max(worst[field], np.abs(x - y).max() / scale)
 for field, d in worst.items():
     check(d <= a.tol, f"{field}: largest difference over the steps {d:.3g} of the field's largest value (at most {a.tol})")
-sys.exit(1 if failed else 0)
+sys.exit(1 if failed() else 0)

@@ -52,6 +52,8 @@ import xml.etree.ElementTree as ET
 import h5py
 import numpy as np
 
+from dynamics_checks import check, failed, numbers, parameter
+
 sep = sys.argv.index("--") if "--" in sys.argv else len(sys.argv)
 ap = argparse.ArgumentParser()
 ap.add_argument("--out", required=True)
@@ -63,13 +65,6 @@ ap.add_argument("--tol-penetration", type=float, default=1e-3)
 ap.add_argument("--static", action="store_true", help="a static run: the approach for its force against Hertz's")
 ap.add_argument("--json", help="write the measured figures to this file")
 a = ap.parse_args(sys.argv[1:sep])
-failed = False
-
-
-def check(ok, what):
-    global failed
-    print(("ok: " if ok else "FAILED: ") + what)
-    failed = failed or not ok
 
 
 cmd = sys.argv[sep + 1:]
@@ -79,17 +74,6 @@ if cmd:
     check(rc == 0, f"exit code {rc} == 0")
     if rc != 0:
         sys.exit(1)
-
-
-def parameter(root, path):
-    node = root
-    for name in path.split("/")[:-1]:
-        node = next(c for c in node if c.tag == "ParameterList" and c.get("name") == name)
-    return next(c for c in node if c.tag == "Parameter" and c.get("name") == path.split("/")[-1]).get("value")
-
-
-def numbers(text):
-    return [float(v) for v in text.strip("{} ").split(",")]
 
 
 def volumes(X, cells):
@@ -171,7 +155,7 @@ if a.static:
     print(f"static: {len(X)} nodes, F = {F:.6g}, Hertz delta = {delta:.5g}, a = {math.sqrt(R * delta):.4g} "
           f"(a / R = {math.sqrt(delta / R):.3f}); the centre of mass approaches by {approach:.5g} "
           f"({approach / delta - 1:+.3%}), a_h = {a_h:.4g} ({a_h / math.sqrt(R * delta) - 1:+.3%})")
-    sys.exit(1 if failed else 0)
+    sys.exit(1 if failed() else 0)
 
 velocity = numbers(parameter(root, "Initial Conditions/Velocity"))
 dt = float(parameter(root, "Dynamics/Time Step"))
@@ -232,4 +216,4 @@ if a.json:
                    "err_force": err_f, "delta_max": delta, "approach": approach, "err_approach": err_delta,
                    "penetration": deepest / delta, "restitution": impulse / m / v0 - 1, "err_energy": err_e,
                    "steps": len(rows), "contact_steps": len(on)}, f, indent=1)
-sys.exit(1 if failed else 0)
+sys.exit(1 if failed() else 0)

@@ -70,6 +70,8 @@ import xml.etree.ElementTree as ET
 import h5py
 import numpy as np
 
+from dynamics_checks import check, failed, numbers, parameter
+
 sep = sys.argv.index("--") if "--" in sys.argv else len(sys.argv)
 ap = argparse.ArgumentParser()
 ap.add_argument("--out", required=True)
@@ -83,25 +85,6 @@ ap.add_argument("--tol-dissipation", type=float, default=0.01)
 ap.add_argument("--plot", help="draw the block's velocity and the forces against the model into this PNG")
 ap.add_argument("--json", help="write the measured figures to this file")
 a = ap.parse_args(sys.argv[1:sep])
-failed = False
-
-
-def check(ok, what):
-    global failed
-    print(("ok: " if ok else "FAILED: ") + what)
-    failed = failed or not ok
-
-
-def parameter(root, path, default=None):
-    node = root
-    try:
-        for name in path.split("/")[:-1]:
-            node = next(c for c in node if c.tag == "ParameterList" and c.get("name") == name)
-        return next(c for c in node if c.tag == "Parameter" and c.get("name") == path.split("/")[-1]).get("value")
-    except StopIteration:
-        if default is None:
-            raise
-        return default
 
 
 def sublists(root, path):
@@ -109,10 +92,6 @@ def sublists(root, path):
     for name in path.split("/"):
         node = next(c for c in node if c.tag == "ParameterList" and c.get("name") == name)
     return [c for c in node if c.tag == "ParameterList"]
-
-
-def numbers(text):
-    return [float(v) for v in text.strip("{} ").split(",")]
 
 
 cmd = sys.argv[sep + 1:]
@@ -362,4 +341,4 @@ if a.json:
                    "err_period": err_T, "periods": list(periods), "v_max": vmax, "err_v_max": err_v,
                    "err_friction": err_f, "dissipated": dissipated[-1], "err_dissipation": err_d,
                    "err_dissipation_model": err_dm, "steps": len(rows)}, f, indent=1)
-sys.exit(1 if failed else 0)
+sys.exit(1 if failed() else 0)
