@@ -760,7 +760,10 @@ void validateDynamics(const ParameterList& params) {
                    "\"Bodies/" << named.name(it) << "/Initial Velocity\" needs 3 components (or none: the body takes "
                                    "Initial Conditions/Velocity), has " << own.size());
   }
-  TRIBOS_REQUIRE(params.sublist("Material").get<double>("Density") > 0,
+  // Without named bodies Material's density is every body's; with them, a
+  // body the input does not name takes it, which the mesh tells
+  // (requireEveryBodyDensity).
+  TRIBOS_REQUIRE(params.sublist("Bodies").numParams() > 0 || params.sublist("Material").get<double>("Density") > 0,
                  "\"Material/Density\" = " << params.sublist("Material").get<double>("Density")
                                             << ": Dynamics needs the density of the bodies, rho > 0");
   const auto& bodies = params.sublist("Bodies");
@@ -1171,6 +1174,15 @@ void checkMeshFaces(const Mesh::Mesh& mesh, const ParameterList& params) {
       found = found || mesh.bodyName(b) == bodies.name(it), valid += (valid.empty() ? "" : ", ") + mesh.bodyName(b);
     TRIBOS_REQUIRE(found, "parameter \"Bodies/" << bodies.name(it) << "\": " << where << " has no body of that name; "
                                                 << "its bodies are: " << valid);
+  }
+  if (dynamics(params)) {
+    // Every body's density: its own, or Material's for a body not named.
+    const double common = params.sublist("Material").get<double>("Density");
+    for (int b = 0; b < mesh.numBodies(); ++b)
+      TRIBOS_REQUIRE(bodies.isSublist(mesh.bodyName(b)) || common > 0,
+                     "body \"" << mesh.bodyName(b) << "\" of " << where << " has no density: Dynamics needs rho > 0 "
+                                << "from \"Bodies/" << mesh.bodyName(b) << "/Material/Density\" or \"Material/Density\" (= "
+                                << common << ")");
   }
   // The type of the cells under a face (one body's: every body has one type).
   const auto surfaceType = [&](const std::string& face) {
