@@ -77,7 +77,15 @@ struct ContactDual {
   std::function<RCP<const Operator>(const std::string& name)> preconditioner;
 
   RCP<const Map> map() const { return b->getMap(); }
-  SC normB() const { return (bReference.is_null() ? b : bReference)->norm2(); }
+  // The scale of relative tolerances: ||bReference||, or ||b|| where there
+  // is no reference or it vanishes while b does not (a problem driven by
+  // its gaps or prescribed values alone, e.g. a time step's projection
+  // from rest onto a moved support: a zero scale would ask for an exact
+  // solution and the solver would never stop). Collective.
+  SC normB() const {
+    const SC reference = bReference.is_null() ? 0.0 : bReference->norm2();
+    return reference > 0 ? reference : b->norm2();
+  }
   int numLocalContacts() const { return static_cast<int>(normalRows.size()); }
   // Whether some rank holds Coulomb contacts (collective): a rank without
   // contacts has no friction coefficients whatever the law, so a decision
